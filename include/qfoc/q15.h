@@ -1,0 +1,316 @@
+/**
+ * @file q15.h
+ * @brief Saturating Q15 / Q31 arithmetic: the primitives every qfoc block uses.
+ *
+ * All functions are total: every value of every input type gives a defined result.
+ * Saturation is the default and returns into the symmetric ranges
+ * [-32767, 32767] (Q15) and [-(2^31 - 1), 2^31 - 1] (Q31), so that negating or
+ * taking the absolute value of a result is always exact.
+ *
+ * Rounding: wherever a result loses fraction bits it is rounded to the nearest
+ * representable value, ties away from zero (symmetric, no DC bias between positive
+ * and negative signals).  Rounding is written with divisions by powers of two, never
+ * with right shifts of negative values (implementation-defined in C99 6.5.7,
+ * MISRA C:2012 Rule 10.1 / Dir 1.1).  The compiler turns the divisions into shifts
+ * with a sign fix-up.
+ *
+ * The functions are static inline so that each transform compiles to straight-line
+ * code on the Cortex-M4 (MISRA C:2012 Rule 8.10: inline functions have internal
+ * linkage).
+ *
+ * Requirements: REQ-Q15-001 .. REQ-Q15-008 (specs/requirements.md).
+ */
+#ifndef QFOC_Q15_H
+#define QFOC_Q15_H
+
+#include "qfoc/types.h"
+
+/** Q30 magnitude from which a Q30 -> Q15 conversion saturates: 32767.5 * 32768. */
+#define QFOC_Q30_SAT_LIMIT (1073725440L)
+
+/**
+ * @brief Saturate a 32-bit integer to the symmetric Q15 range.
+ * @param[in] x any int32_t value
+ * @return x clamped to [-32767, 32767]
+ *
+ * Scaling and overflow: no scaling; compares only.
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  behavior upper:
+    assumes x > 32767;
+    ensures \result == 32767;
+  behavior between:
+    assumes -32767 <= x <= 32767;
+    ensures \result == x;
+  behavior lower:
+    assumes x < -32767;
+    ensures \result == -32767;
+  complete behaviors;
+  disjoint behaviors;
+*/
+static inline qfoc_q15_t qfoc_q15_sat(int32_t x)
+{
+    int32_t r = x;
+    if (x > (int32_t)QFOC_Q15_MAX) {
+        r = (int32_t)QFOC_Q15_MAX;
+    } else if (x < (int32_t)QFOC_Q15_MIN) {
+        r = (int32_t)QFOC_Q15_MIN;
+    } else {
+        /* already in range */
+    }
+    return (qfoc_q15_t)r;
+}
+
+/**
+ * @brief Saturate a 64-bit integer to the symmetric Q31 range.
+ * @param[in] x any int64_t value
+ * @return x clamped to [-(2^31 - 1), 2^31 - 1]
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ31Sym(\result);
+  ensures value: \result == QfocSat31(x);
+*/
+static inline qfoc_q31_t qfoc_q31_sat(int64_t x)
+{
+    int64_t r = x;
+    if (x > (int64_t)QFOC_Q31_MAX) {
+        r = (int64_t)QFOC_Q31_MAX;
+    } else if (x < (int64_t)QFOC_Q31_MIN) {
+        r = (int64_t)QFOC_Q31_MIN;
+    } else {
+        /* already in range */
+    }
+    return (qfoc_q31_t)r;
+}
+
+/**
+ * @brief Saturating addition a + b.
+ *
+ * Scaling and overflow: 1.15 + 1.15 summed exactly in 32 bits (|sum| <= 65536),
+ * then saturated to [-32767, 32767].
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  ensures value: \result == QfocSat15(a + b);
+  behavior exact:
+    assumes QfocQ15Sym(a + b);
+    ensures \result == a + b;
+  behavior saturated:
+    assumes !QfocQ15Sym(a + b);
+    ensures \result == 32767 || \result == -32767;
+  complete behaviors;
+  disjoint behaviors;
+*/
+static inline qfoc_q15_t qfoc_q15_add(qfoc_q15_t a, qfoc_q15_t b)
+{
+    return qfoc_q15_sat((int32_t)a + (int32_t)b);
+}
+
+/**
+ * @brief Saturating subtraction a - b.
+ *
+ * Scaling and overflow: as qfoc_q15_add; |a - b| <= 65535 in 32 bits.
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  ensures value: \result == QfocSat15(a - b);
+  behavior exact:
+    assumes QfocQ15Sym(a - b);
+    ensures \result == a - b;
+  behavior saturated:
+    assumes !QfocQ15Sym(a - b);
+    ensures \result == 32767 || \result == -32767;
+  complete behaviors;
+  disjoint behaviors;
+*/
+static inline qfoc_q15_t qfoc_q15_sub(qfoc_q15_t a, qfoc_q15_t b)
+{
+    return qfoc_q15_sat((int32_t)a - (int32_t)b);
+}
+
+/**
+ * @brief Saturating negation -a (-(-32768) gives 32767).
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  ensures value: \result == QfocSat15(-a);
+  behavior exact:
+    assumes a != -32768;
+    ensures \result == -a;
+  behavior saturated:
+    assumes a == -32768;
+    ensures \result == 32767;
+  complete behaviors;
+  disjoint behaviors;
+*/
+static inline qfoc_q15_t qfoc_q15_neg(qfoc_q15_t a)
+{
+    return qfoc_q15_sat(-(int32_t)a);
+}
+
+/**
+ * @brief Saturating absolute value |a| (|-32768| gives 32767).
+ */
+/*@
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+  behavior exact:
+    assumes a != -32768;
+    ensures \result == \abs(a);
+  behavior saturated:
+    assumes a == -32768;
+    ensures \result == 32767;
+  complete behaviors;
+  disjoint behaviors;
+*/
+static inline qfoc_q15_t qfoc_q15_abs(qfoc_q15_t a)
+{
+    int32_t r = (int32_t)a;
+    if (r < 0) {
+        r = -r;
+    }
+    return qfoc_q15_sat(r);
+}
+
+/**
+ * @brief Convert a Q30 value (the product of two Q15 values) to Q15.
+ * @param[in] x any int32_t, read as Q2.30
+ * @return x / 32768 rounded to nearest (ties away from zero), saturated.
+ *
+ * Scaling and overflow: the rounding offset is added on the side of zero that
+ * cannot overflow (|x| < QFOC_Q30_SAT_LIMIT there), so the 32-bit arithmetic is
+ * exact; at and beyond +-QFOC_Q30_SAT_LIMIT the result is +-32767.
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  behavior exact:
+    assumes QfocQ30Fits(x);
+    ensures \result == QfocRoundDiv(x, 32768);
+  behavior upper:
+    assumes x >= 1073725440;
+    ensures \result == 32767;
+  behavior lower:
+    assumes x <= -1073725440;
+    ensures \result == -32767;
+  complete behaviors;
+  disjoint behaviors;
+*/
+static inline qfoc_q15_t qfoc_q15_from_q30(int32_t x)
+{
+    int32_t r;
+    if (x >= QFOC_Q30_SAT_LIMIT) {
+        r = (int32_t)QFOC_Q15_MAX;
+    } else if (x <= -QFOC_Q30_SAT_LIMIT) {
+        r = (int32_t)QFOC_Q15_MIN;
+    } else if (x >= 0) {
+        r = (x + 16384) / 32768;
+    } else {
+        r = -((16384 - x) / 32768);
+    }
+    return (qfoc_q15_t)r;
+}
+
+/**
+ * @brief Q15 x Q15 -> Q15 multiplication, rounded and saturated.
+ *
+ * Scaling and overflow: 1.15 x 1.15 = 2.30 exact in 32 bits (|a b| <= 2^30),
+ * rounded to nearest (ties away from zero) to 1.15 by qfoc_q15_from_q30; only
+ * (-32768) x (-32768) = 1.0 saturates, to 32767.  Error <= 0.5 LSB otherwise.
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  behavior exact:
+    assumes QfocQ30Fits(a * b);
+    ensures \result == QfocRoundDiv(a * b, 32768);
+  behavior saturated:
+    assumes !QfocQ30Fits(a * b);
+    ensures \result == 32767;
+  complete behaviors;
+  disjoint behaviors;
+*/
+static inline qfoc_q15_t qfoc_q15_mul(qfoc_q15_t a, qfoc_q15_t b)
+{
+    return qfoc_q15_from_q30((int32_t)a * (int32_t)b);
+}
+
+/**
+ * @brief Saturating Q31 addition.
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ31Sym(\result);
+  ensures value: \result == QfocSat31(a + b);
+*/
+static inline qfoc_q31_t qfoc_q31_add(qfoc_q31_t a, qfoc_q31_t b)
+{
+    return qfoc_q31_sat((int64_t)a + (int64_t)b);
+}
+
+/**
+ * @brief Multiply-accumulate in Q31: acc + a x b.
+ * @param[in] acc accumulator, Q1.31 (any int32_t)
+ * @param[in] a, b factors, Q1.15 (any int16_t)
+ * @return acc + a b as Q31 (the Q30 product scaled by 2, exact), saturated.
+ *
+ * Scaling and overflow: 1.15 x 1.15 = 2.30; x 2 gives 1.31 (|2ab| <= 2^31);
+ * the sum is formed exactly in 64 bits and saturated to the symmetric Q31 range.
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ31Sym(\result);
+  ensures value: \result == QfocSat31(acc + 2 * a * b);
+*/
+static inline qfoc_q31_t qfoc_q31_mac(qfoc_q31_t acc, qfoc_q15_t a, qfoc_q15_t b)
+{
+    int32_t p = (int32_t)a * (int32_t)b;   /* 2.30, |p| <= 2^30 */
+    int64_t p31 = (int64_t)p * 2;         /* 1.31, |p31| <= 2^31 */
+    return qfoc_q31_sat((int64_t)acc + p31);
+}
+
+/**
+ * @brief Convert Q31 to Q15: x / 65536 rounded to nearest (ties away from zero),
+ *        saturated to [-32767, 32767].
+ *
+ * Scaling and overflow: 1.31 -> 1.15 drops 16 fraction bits; the quotient and the
+ * remainder are formed separately so no intermediate exceeds 32 bits.
+ */
+/*@
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  ensures value: \result == QfocSat15(QfocRoundDiv(x, 65536));
+*/
+static inline qfoc_q15_t qfoc_q15_from_q31(qfoc_q31_t x)
+{
+    int32_t q = x / 65536;
+    int32_t rem = x % 65536;
+    if (rem >= 32768) {
+        q = q + 1;
+    } else if (rem <= -32768) {
+        q = q - 1;
+    } else {
+        /* rounds towards zero */
+    }
+    return qfoc_q15_sat(q);
+}
+
+/**
+ * @brief Convert Q15 to Q31 (exact: x * 65536).
+ */
+/*@
+  assigns \nothing;
+  ensures value: \result == x * 65536;
+*/
+static inline qfoc_q31_t qfoc_q31_from_q15(qfoc_q15_t x)
+{
+    return (qfoc_q31_t)x * 65536;
+}
+
+#endif /* QFOC_Q15_H */

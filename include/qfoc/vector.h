@@ -1,0 +1,130 @@
+/**
+ * @file vector.h
+ * @brief Integer square root, vector magnitude and circle limitation (Q15).
+ *
+ * Used by the current loop and the SVPWM overmodulation (qfoc_circle_limit),
+ * field weakening, and estimators (qfoc_vec_mag).  All functions are total
+ * and exact in integer arithmetic: no floating point, no division, a fixed
+ * number of loop iterations (16) in the square root, so the execution time
+ * does not depend on the data.
+ *
+ * Requirements: REQ-VEC-001 .. REQ-VEC-004 (specs/requirements/trig.md).
+ */
+#ifndef QFOC_VECTOR_H
+#define QFOC_VECTOR_H
+
+#include "qfoc/types.h"
+
+#ifdef __FRAMAC__
+#include "vector.acsl"
+#endif
+
+/**
+ * @brief Integer square root, rounded down: floor(sqrt(v)).
+ *
+ * @param[in] v any uint32_t value
+ * @return r with r * r <= v < (r + 1) * (r + 1), r in [0, 65535]
+ *
+ * Method: binary search for r in [0, 65536) keeping lo * lo <= v < hi * hi;
+ * exactly 16 iterations for every v.
+ *
+ * Bad input: none possible.
+ *
+ * Scaling and overflow: plain unsigned integers; the trial root mid is
+ * <= 65535, so mid * mid <= 65535^2 < 2^32 fits uint32; the bound
+ * hi * hi <= 2^32 appears only in the (mathematical) loop invariant.
+ *
+ * Requirements: REQ-VEC-001.
+ */
+/*@
+  assigns \nothing;
+  ensures range: 0 <= \result <= 65535;
+  ensures floor_sqrt: QfocIsSqrt(\result, v);
+*/
+uint32_t qfoc_isqrt32(uint32_t v);
+
+/**
+ * @brief Magnitude of the vector (x, y): floor(sqrt(x^2 + y^2)), saturated.
+ *
+ * @param[in] x first component, any int16_t (-32768 included)
+ * @param[in] y second component, any int16_t (-32768 included)
+ * @return floor(sqrt(x^2 + y^2)) when that is below 32767, else 32767.
+ *         Rounded DOWN (never above the true magnitude), error < 1 LSB.
+ *
+ * Bad input: none; a vector longer than 32767 (up to 32768 * sqrt(2) = 46341)
+ * saturates to 32767.
+ *
+ * Scaling and overflow: 1.15 x 1.15 = 2.30 per square, formed in int32
+ * (<= 2^30) and converted to uint32; the sum <= 2^31 fits uint32 exactly; the
+ * square root of a 2.30 value is a 1.15 value (<= 46341), saturated to 32767.
+ *
+ * Requirements: REQ-VEC-002.
+ */
+/*@
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+  behavior exact:
+    assumes x * x + y * y < 32767 * 32767;
+    ensures floor_sqrt: QfocIsSqrt(\result, x * x + y * y);
+  behavior saturated:
+    assumes x * x + y * y >= 32767 * 32767;
+    ensures \result == 32767;
+  complete behaviors;
+  disjoint behaviors;
+*/
+qfoc_q15_t qfoc_vec_mag(qfoc_q15_t x, qfoc_q15_t y);
+
+/**
+ * @brief Circle limitation of a (d, q) voltage (or current) vector with
+ *        d-axis priority.
+ *
+ * @param[in]  in   requested vector (d, q), any int16_t components
+ * @param[in]  vmax radius of the limiting circle; clamped to [0, 32767]
+ *                  (a negative vmax acts as 0: the output is (0, 0))
+ * @param[out] out  limited vector:
+ *                  d' = clamp(d, -vmax, vmax),
+ *                  q' = clamp(q, -qlim, qlim), qlim = floor(sqrt(vmax^2 - d'^2))
+ * @return true when the input lay outside the circle (some component was
+ *         limited), false when out == in.
+ *
+ * The output always lies inside or on the circle: d'^2 + q'^2 <= vmax^2
+ * (qlim is rounded down).  An input inside or on the circle is passed through
+ * unchanged.  The d component keeps priority (field weakening / MTPA current
+ * is served first), q takes what is left; both keep their sign.
+ *
+ * Aliasing: in and out MAY point to the same object (in-place limiting); the
+ * input is read completely before out is written.
+ *
+ * Bad input: in and out must be valid pointers (precondition, not checked).
+ *
+ * Scaling and overflow: vmax^2 and d'^2 are 2.30 values formed in int32
+ * (<= 32767^2 < 2^30); their difference is >= 0 because |d'| <= vmax; its
+ * integer square root is a 1.15 value <= vmax <= 32767, so every result
+ * fits qfoc_q15_t without saturation.
+ *
+ * Requirements: REQ-VEC-003, REQ-VEC-004.
+ */
+/*@
+  requires valid_in: \valid_read(in);
+  requires valid_out: \valid(out);
+  assigns out->d, out->q;
+  ensures in_circle:
+    out->d * out->d + out->q * out->q <= QfocVmaxClamp(vmax) * QfocVmaxClamp(vmax);
+  ensures d_priority:
+    out->d == QfocClamp(\old(in->d), -QfocVmaxClamp(vmax), QfocVmaxClamp(vmax));
+  ensures q_shrinks:
+    (\old(in->q) >= 0 ==> 0 <= out->q <= \old(in->q)) &&
+    (\old(in->q) < 0 ==> \old(in->q) <= out->q <= 0);
+  behavior inside:
+    assumes QfocInCircle(in->d, in->q, vmax);
+    ensures unchanged: out->d == \old(in->d) && out->q == \old(in->q);
+    ensures not_limited: \result == 0;
+  behavior limited:
+    assumes !QfocInCircle(in->d, in->q, vmax);
+    ensures was_limited: \result == 1;
+  complete behaviors;
+  disjoint behaviors;
+*/
+bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out);
+
+#endif /* QFOC_VECTOR_H */

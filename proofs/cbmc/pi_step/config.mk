@@ -1,0 +1,2 @@
+SRCS = src/qfoc_pi.c
+UNWIND = 17

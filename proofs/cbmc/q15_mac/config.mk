@@ -1,0 +1,2 @@
+SRCS =
+UNWIND = 1

@@ -1,0 +1,2 @@
+SRCS = src/qfoc_transforms.c
+UNWIND = 1

@@ -1,0 +1,2 @@
+SRCS = src/qfoc_vector.c
+UNWIND = 17

@@ -1,0 +1,89 @@
+/**
+ * @file qfoc_transforms.c
+ * @brief Clarke, Park, inverse Park and inverse Clarke transforms in Q15.
+ *
+ * See include/qfoc/transforms.h for the equations, ranges, contracts and the
+ * scaling of every step.  Requirements: REQ-TRF-001 .. REQ-TRF-010.
+ */
+#include "qfoc/transforms.h"
+#include "qfoc/q15.h"
+
+/** 1/sqrt(3) in Q16: 65536 / sqrt(3) = 37837.23 -> 37837 (error -6.0e-6 relative). */
+#define QFOC_INV_SQRT3_Q16 ((int32_t)37837)
+
+/**
+ * Largest |i_u + 2 i_v| inside the document's Clarke bound:
+ * floor(sqrt(3) * 32767) = floor(56754.11) = 56754 (56754^2 <= 3 * 32767^2).
+ * 56754 * 37837 = 2147401098 < 2^31 - 1, so the Q31 product cannot overflow.
+ */
+#define QFOC_CLARKE_SUM_MAX ((int32_t)56754)
+
+/** 1/2 in Q15: 0.5 * 32768 = 16384 (exact). */
+#define QFOC_HALF_Q15 ((int32_t)16384)
+
+/** sqrt(3)/2 in Q15: 0.8660254 * 32768 = 28377.92 -> 28378 (error +2.8e-6 relative). */
+#define QFOC_SQRT3_2_Q15 ((int32_t)28378)
+
+void qfoc_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out)
+{
+    /* (2-4) numerator, 3.15: |iu + 2 iv| <= 98304 */
+    int32_t sum = (int32_t)iu + ((int32_t)iv * 2);
+    int32_t beta_q31;
+
+    /* beyond the document's bound the result saturates: clamp the numerator */
+    if (sum > QFOC_CLARKE_SUM_MAX) {
+        sum = QFOC_CLARKE_SUM_MAX;
+    } else if (sum < -QFOC_CLARKE_SUM_MAX) {
+        sum = -QFOC_CLARKE_SUM_MAX;
+    } else {
+        /* inside the bound: exact */
+    }
+    /* 3.15 x 0.16 = Q31, |beta_q31| <= 2147401098 */
+    beta_q31 = sum * QFOC_INV_SQRT3_Q16;
+
+    out->alpha = qfoc_q15_sat((int32_t)iu);           /* (2-3) */
+    out->beta = qfoc_q15_from_q31(beta_q31);          /* (2-4), rounded */
+}
+
+void qfoc_park(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
+{
+    /* clamp every factor to the symmetric range: |product| <= 32767^2 */
+    int32_t alpha = (int32_t)qfoc_q15_sat((int32_t)in->alpha);
+    int32_t beta = (int32_t)qfoc_q15_sat((int32_t)in->beta);
+    int32_t s = (int32_t)qfoc_q15_sat((int32_t)sc->sine);
+    int32_t c = (int32_t)qfoc_q15_sat((int32_t)sc->cosine);
+    /* 2.30 sums, |sum| <= 2 * 32767^2 = 2147352578 < 2^31 */
+    int32_t d_q30 = (alpha * c) + (beta * s);         /* (2-7) */
+    int32_t q_q30 = (beta * c) - (alpha * s);         /* (2-8) */
+
+    out->d = qfoc_q15_from_q30(d_q30);
+    out->q = qfoc_q15_from_q30(q_q30);
+}
+
+void qfoc_inv_park(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *out)
+{
+    /* clamp every factor to the symmetric range: |product| <= 32767^2 */
+    int32_t d = (int32_t)qfoc_q15_sat((int32_t)in->d);
+    int32_t q = (int32_t)qfoc_q15_sat((int32_t)in->q);
+    int32_t s = (int32_t)qfoc_q15_sat((int32_t)sc->sine);
+    int32_t c = (int32_t)qfoc_q15_sat((int32_t)sc->cosine);
+    /* 2.30 sums, |sum| <= 2 * 32767^2 = 2147352578 < 2^31 */
+    int32_t alpha_q30 = (d * c) - (q * s);
+    int32_t beta_q30 = (d * s) + (q * c);
+
+    out->alpha = qfoc_q15_from_q30(alpha_q30);
+    out->beta = qfoc_q15_from_q30(beta_q30);
+}
+
+void qfoc_inv_clarke(const qfoc_ab_t *in, qfoc_abc_t *out)
+{
+    int32_t alpha = (int32_t)qfoc_q15_sat((int32_t)in->alpha);
+    int32_t beta = (int32_t)qfoc_q15_sat((int32_t)in->beta);
+    /* 2.30 terms: |alpha/2| <= 536854528, |sqrt(3)/2 beta| <= 929872126 */
+    int32_t half_alpha_q30 = alpha * QFOC_HALF_Q15;
+    int32_t sqrt3_beta_q30 = beta * QFOC_SQRT3_2_Q15;
+
+    out->u = (qfoc_q15_t)alpha;
+    out->v = qfoc_q15_from_q30(sqrt3_beta_q30 - half_alpha_q30);
+    out->w = qfoc_q15_from_q30(-sqrt3_beta_q30 - half_alpha_q30);
+}

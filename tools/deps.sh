@@ -1,0 +1,66 @@
+#!/bin/sh
+# tools/deps.sh -- install everything qfoc needs on Debian bookworm.
+#
+#   sh tools/deps.sh            install (as root) or print the sudo command (not root)
+#   sh tools/deps.sh --check    exit 0 when everything is already there, 1 otherwise
+#
+# Idempotent: when every tool is present it returns within a second.
+# CBMC 6.x is not in bookworm; tools/install-cbmc.sh puts trixie's build into
+# build/tools/cbmc (project-local, the system is left alone).
+set -eu
+
+TOP=$(cd "$(dirname "$0")/.." && pwd)
+CBMC_PREFIX=${CBMC_PREFIX:-$TOP/build/tools/cbmc}
+
+PKGS="make gcc frama-c-base why3 z3 cvc4 cppcheck lcov gcovr libcmocka-dev \
+gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi \
+python3 debian-archive-keyring dpkg-dev"
+
+# command that must exist for each tool (same order is not required)
+need_cmds() {
+    for c in gcc make frama-c why3 z3 cvc4 cppcheck lcov gcovr arm-none-eabi-gcc python3 dpkg-deb; do
+        command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
+    done
+    [ -f /usr/include/cmocka.h ] || { echo "missing: libcmocka-dev"; return 1; }
+    [ -f /usr/share/keyrings/debian-archive-keyring.gpg ] || { echo "missing: debian-archive-keyring"; return 1; }
+    [ -x "$CBMC_PREFIX/bin/cbmc" ] || { echo "missing: cbmc ($CBMC_PREFIX)"; return 1; }
+    [ -f "$HOME/.why3.conf" ] || { echo "missing: why3 prover configuration"; return 1; }
+    return 0
+}
+
+if [ "${1:-}" = "--check" ]; then
+    need_cmds >/dev/null
+    exit $?
+fi
+
+if need_cmds >/dev/null 2>&1; then
+    echo "deps: all tools present"
+    exit 0
+fi
+
+if [ "$(id -u)" != 0 ]; then
+    echo "deps: some tools are missing and this is not root. Run:" >&2
+    echo "  sudo apt-get update && sudo apt-get install -y --no-install-recommends $PKGS" >&2
+    echo "  then: make deps" >&2
+    exit 1
+fi
+
+missing_pkgs=""
+for p in $PKGS; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing_pkgs="$missing_pkgs $p"
+done
+if [ -n "$missing_pkgs" ]; then
+    echo "deps: apt-get install$missing_pkgs"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -q
+    # shellcheck disable=SC2086
+    apt-get install -y -q --no-install-recommends $missing_pkgs
+fi
+
+# why3 must know z3 and cvc4 (bookworm has no Alt-Ergo).
+if [ ! -f "$HOME/.why3.conf" ] || ! grep -q 'name = "Z3"' "$HOME/.why3.conf" 2>/dev/null; then
+    why3 config detect >/dev/null 2>&1 || why3 config --detect >/dev/null
+fi
+
+sh "$TOP/tools/install-cbmc.sh" "$CBMC_PREFIX"
+echo "deps: done"

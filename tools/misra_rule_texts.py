@@ -1,0 +1,31 @@
+#!/usr/bin/env python3
+"""Write the cppcheck MISRA addon's rule-texts file from misra/guidelines.txt.
+
+usage: misra_rule_texts.py GUIDELINES OUT
+The addon expects 'Appendix A Summary of guidelines', then per rule a line
+'Rule N.M Category' followed by one line of text.
+"""
+import sys
+
+CATEGORY = {"M": "Mandatory", "R": "Required", "A": "Advisory"}
+
+
+def main() -> int:
+    src, dst = sys.argv[1], sys.argv[2]
+    lines = ["Appendix A Summary of guidelines"]
+    with open(src, encoding="utf-8") as f:
+        for raw in f:
+            raw = raw.strip()
+            if not raw or raw.startswith("#"):
+                continue
+            head, text = raw.split("|", 1)
+            rule, cat = head.split()
+            lines.append(f"Rule {rule} {CATEGORY[cat]}")
+            lines.append(text)
+    with open(dst, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
