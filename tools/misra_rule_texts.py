@@ -21,7 +21,8 @@ def main() -> int:
             head, text = raw.split("|", 1)
             rule, cat = head.split()
             lines.append(f"Rule {rule} {CATEGORY[cat]}")
-            lines.append(text)
+            # the addon takes a text line only when it starts with a capital letter
+            lines.append(text[:1].upper() + text[1:])
     with open(dst, "w", encoding="utf-8") as f:
         f.write("\n".join(lines) + "\n")
     return 0

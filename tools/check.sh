@@ -1,0 +1,41 @@
+#!/bin/sh
+# tools/check.sh -- every qfoc gate, one after the other, then a summary.
+# All gates run even when one fails, so one run shows every shortfall; the exit
+# status is non-zero when any gate failed.
+set -u
+TOP=$(cd "$(dirname "$0")/.." && pwd)
+cd "$TOP"
+mkdir -p build
+summary=build/check-summary.txt
+: > "$summary"
+status=0
+start_all=$(date +%s)
+
+gate() {  # gate NAME COMMAND...
+    name=$1
+    shift
+    echo
+    echo "==================== $name"
+    t0=$(date +%s)
+    log=build/check-$name.log
+    "$@" > "$log" 2>&1
+    rc=$?
+    t1=$(date +%s)
+    cat "$log"
+    last=$(grep -v '^[[:space:]]*$' "$log" | tail -n 1)
+    if [ "$rc" = 0 ]; then res=PASS; else res=FAIL; status=1; fi
+    printf '%-9s %s  %4ss  %s\n' "$name" "$res" "$((t1 - t0))" "$last" >> "$summary"
+}
+
+gate test     make --no-print-directory test
+gate coverage make --no-print-directory coverage
+gate prove    make --no-print-directory prove
+gate cbmc     make --no-print-directory cbmc
+gate misra    make --no-print-directory misra
+gate target   make --no-print-directory target
+
+echo
+echo "==================== summary ($(( $(date +%s) - start_all )) s)"
+cat "$summary"
+if [ "$status" = 0 ]; then echo "check: all gates pass"; else echo "check: FAILED"; fi
+exit "$status"
