@@ -31,8 +31,6 @@ HOST_OBJS := $(patsubst src/%.c,$(BUILD)/host/obj/%.o,$(SRCS))
 ARM_OBJS  := $(patsubst src/%.c,$(BUILD)/target/obj/%.o,$(SRCS))
 COV_OBJS  := $(patsubst src/%.c,$(BUILD)/cov/obj/%.o,$(SRCS))
 
-DEPS_STAMP := $(BUILD)/.deps-ok
-
 .PHONY: help deps lib test coverage prove cbmc misra target check demo clean
 
 help:
@@ -93,9 +91,14 @@ $(BUILD)/target/libqfoc.a: $(ARM_OBJS)
 	@rm -f $@
 	$(ARM_AR) rcs $@ $^
 
+# The library must contain no floating-point instruction and call no soft-float or
+# division helper: checked on the disassembly of the Cortex-M4F build.
 target: deps $(BUILD)/target/libqfoc.a
+	@arm-none-eabi-objdump -d $(BUILD)/target/libqfoc.a > $(BUILD)/target/libqfoc.dis
+	@if grep -E '\bv[a-z]+\.(f32|f64)\b|__aeabi_[a-z0-9]*(f|d)[a-z0-9]*|__aeabi_.div|__aeabi_l' \
+	    $(BUILD)/target/libqfoc.dis; then echo "target: floating point or a runtime helper in libqfoc.a"; exit 1; fi
 	@arm-none-eabi-size -t $(BUILD)/target/libqfoc.a | tail -n 1 | \
-	  awk '{printf "target: build/target/libqfoc.a (Cortex-M4F, -O2): text %s B, data %s B, bss %s B\n", $$1, $$2, $$3}'
+	  awk '{printf "target: build/target/libqfoc.a (Cortex-M4F, -O2): text %s B, data %s B, bss %s B; no floating point, no runtime helpers\n", $$1, $$2, $$3}'
 
 # ---------------------------------------------------------------- demo
 $(BUILD)/host/accuracy: tools/accuracy.c $(BUILD)/host/libqfoc.a

@@ -27,7 +27,9 @@ gcovr --root . --object-directory "$OUT" --filter 'src/' --filter 'include/' \
 cat build/coverage/summary.txt
 if [ "$rc" != 0 ]; then
     echo "coverage: below 100 % (gcovr exit $rc); uncovered:"
-    grep -v '100%' build/coverage/coverage.txt | sed -n '/^src\|^include/p' || true
+    gcovr --root . --object-directory "$OUT" --filter 'src/' --filter 'include/' --branches \
+        | grep -E '^(src|include)/' | grep -v ' 100% ' || true
+    grep -E '^(src|include)/' build/coverage/coverage.txt | grep -v ' 100% ' || true
     exit 1
 fi
 echo "coverage: report build/coverage/index.html"
