@@ -31,7 +31,7 @@ HOST_OBJS := $(patsubst src/%.c,$(BUILD)/host/obj/%.o,$(SRCS))
 ARM_OBJS  := $(patsubst src/%.c,$(BUILD)/target/obj/%.o,$(SRCS))
 COV_OBJS  := $(patsubst src/%.c,$(BUILD)/cov/obj/%.o,$(SRCS))
 
-.PHONY: help deps lib test coverage prove cbmc misra target check demo clean
+.PHONY: help deps lib test coverage prove cbmc misra target trace check demo clean
 
 help:
 	@sed -n '/^## /s/^## //p' README.md 2>/dev/null | head -n 40 || true
@@ -78,6 +78,11 @@ prove: deps
 cbmc: deps
 	@sh tools/cbmc.sh
 
+# ---------------------------------------------------------------- traceability
+## trace: every requirement exercised by a test or harness and named in a header
+trace:
+	@python3 tools/trace.py
+
 # ---------------------------------------------------------------- MISRA C:2012
 misra: deps
 	@sh tools/misra.sh
@@ -109,7 +114,7 @@ demo: deps $(BUILD)/host/accuracy
 	@$(BUILD)/host/accuracy
 
 # ---------------------------------------------------------------- all gates
-## check: unit tests, coverage, WP proofs, CBMC, MISRA, Cortex-M4F build
+## check: unit tests, coverage, WP proofs, CBMC, MISRA, traceability, Cortex-M4F build
 check: deps
 	@sh tools/check.sh
 
