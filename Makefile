@@ -34,8 +34,8 @@ COV_OBJS  := $(patsubst src/%.c,$(BUILD)/cov/obj/%.o,$(SRCS))
 .PHONY: help deps lib test coverage prove cbmc misra target trace check demo clean
 
 help:
-	@sed -n '/^## /s/^## //p' README.md 2>/dev/null | head -n 40 || true
-	@echo "targets: demo check deps lib test coverage prove cbmc misra target clean"
+	@echo "qfoc: make demo | make check   (README.md describes every target)"
+	@sed -n 's/^## /  /p' $(firstword $(MAKEFILE_LIST))
 
 ## deps: install the Debian packages and CBMC (idempotent)
 deps:
@@ -50,6 +50,7 @@ $(BUILD)/host/libqfoc.a: $(HOST_OBJS)
 	@rm -f $@
 	ar rcs $@ $^
 
+## lib: the host library build/host/libqfoc.a
 lib: $(BUILD)/host/libqfoc.a
 
 # ---------------------------------------------------------------- unit tests
@@ -57,6 +58,7 @@ $(BUILD)/host/tests/%: tests/%.c $(BUILD)/host/libqfoc.a
 	@mkdir -p $(@D)
 	$(CC) $(TEST_CFLAGS) $< $(BUILD)/host/libqfoc.a -lcmocka -lm -o $@
 
+## test: CMocka unit tests against double-precision references
 test: deps $(TEST_BINS)
 	@sh tools/run_tests.sh $(TEST_BINS)
 
@@ -68,13 +70,16 @@ $(BUILD)/cov/obj/%.o: src/%.c $(HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(WARN) -O0 -g --coverage -Iinclude -c $< -o $@
 
+## coverage: 100 % line and branch gate (gcovr), HTML report
 coverage: deps $(COV_OBJS)
 	@sh tools/coverage.sh "$(COV_OBJS)" $(TESTS)
 
 # ---------------------------------------------------------------- formal proofs
+## prove: Frama-C WP on every unit, proved N / M goals
 prove: deps
 	@sh tools/prove.sh
 
+## cbmc: every CBMC harness under proofs/cbmc
 cbmc: deps
 	@sh tools/cbmc.sh
 
@@ -84,6 +89,7 @@ trace:
 	@python3 tools/trace.py
 
 # ---------------------------------------------------------------- MISRA C:2012
+## misra: cppcheck MISRA C:2012 addon, deviations recorded
 misra: deps
 	@sh tools/misra.sh
 
@@ -98,6 +104,7 @@ $(BUILD)/target/libqfoc.a: $(ARM_OBJS)
 
 # The library must contain no floating-point instruction and call no soft-float or
 # division helper: checked on the disassembly of the Cortex-M4F build.
+## target: the library for Cortex-M4F (arm-none-eabi-gcc -O2 -Werror)
 target: deps $(BUILD)/target/libqfoc.a
 	@arm-none-eabi-objdump -d $(BUILD)/target/libqfoc.a > $(BUILD)/target/libqfoc.dis
 	@if grep -E '\bv[a-z]+\.(f32|f64)\b|__aeabi_[a-z0-9]*(f|d)[a-z0-9]*|__aeabi_.div|__aeabi_l' \

@@ -146,6 +146,19 @@ static uint8_t svpwm_sector(int32_t a, int32_t b, int32_t c)
 }
 
 /*@
+  requires range_g: 0 <= g <= 65535;
+  assigns \nothing;
+  ensures value: \result == (x * g) / 65536;
+*/
+static qfoc_q15_t svpwm_scale(qfoc_q15_t x, int32_t g)
+{
+    int32_t p = (int32_t)x * g;
+    //@ assert prod: -2147450880 <= p <= 2147385345 && -32767 <= p / 65536 <= 32766;
+    /* truncated towards zero: the scaled vector never grows */
+    return (qfoc_q15_t)(p / SVPWM_ONE_Q16);
+}
+
+/*@
   requires range_v: 1 <= v <= 32767;
   requires valid_in: \valid_read(in);
   requires valid_ab: \valid(ab);
@@ -163,13 +176,9 @@ static void svpwm_limit(const qfoc_ab_t *in, int32_t v, qfoc_ab_t *ab, qfoc_svpw
     if (mag > r_lim) {
         /* proportional scaling onto the circle, gain g = r_lim / |v| in Q16 */
         int32_t g = (r_lim * SVPWM_ONE_Q16) / mag;
-        int32_t a = (int32_t)in->alpha;
-        int32_t b = (int32_t)in->beta;
         //@ assert g_range: 0 <= g <= 65535;
-        //@ assert a_prod: -(32768 * g) <= a * g <= 32768 * g;
-        //@ assert b_prod: -(32768 * g) <= b * g <= 32768 * g;
-        ab->alpha = (qfoc_q15_t)((a * g) / SVPWM_ONE_Q16);
-        ab->beta = (qfoc_q15_t)((b * g) / SVPWM_ONE_Q16);
+        ab->alpha = svpwm_scale(in->alpha, g);
+        ab->beta = svpwm_scale(in->beta, g);
         out->limited = true;
         out->utilisation = QFOC_Q15_MAX;
     } else {
@@ -184,7 +193,7 @@ static void svpwm_limit(const qfoc_ab_t *in, int32_t v, qfoc_ab_t *ab, qfoc_svpw
 
 /*@
   requires range_v: 1 <= v <= 32767;
-  requires range_k: 0 <= k;
+  requires range_k: 0 <= k && v * k <= 2147418112;
   assigns \nothing;
   ensures range: -(v * k + 32768) <= \result * 65536 <= v * k + 32768;
   ensures range16: -32767 <= \result <= 32767;

@@ -52,9 +52,26 @@ void qfoc_park(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
     int32_t beta = (int32_t)qfoc_q15_sat((int32_t)in->beta);
     int32_t s = (int32_t)qfoc_q15_sat((int32_t)sc->sine);
     int32_t c = (int32_t)qfoc_q15_sat((int32_t)sc->cosine);
+    int32_t d_q30;
+    int32_t q_q30;
+
+    /*@ assert clamped: alpha == QfocSat15(in->alpha) && beta == QfocSat15(in->beta) &&
+                        s == QfocSat15(sc->sine) && c == QfocSat15(sc->cosine); */
+    /*@ assert products: -1073676289 <= alpha * c <= 1073676289 &&
+                         -1073676289 <= beta * s <= 1073676289 &&
+                         -1073676289 <= beta * c <= 1073676289 &&
+                         -1073676289 <= alpha * s <= 1073676289; */
+    /*@ for vector_bound: assert unclamped: alpha == in->alpha && beta == in->beta &&
+                                            s == sc->sine && c == sc->cosine; */
     /* 2.30 sums, |sum| <= 2 * 32767^2 = 2147352578 < 2^31 */
-    int32_t d_q30 = (alpha * c) + (beta * s);         /* (2-7) */
-    int32_t q_q30 = (beta * c) - (alpha * s);         /* (2-8) */
+    d_q30 = (alpha * c) + (beta * s);                 /* (2-7) */
+    q_q30 = (beta * c) - (alpha * s);                 /* (2-8) */
+    /*@ assert d_sum: d_q30 == QfocParkDQ30(in->alpha, in->beta, sc->sine, sc->cosine); */
+    /*@ assert q_sum: q_q30 == QfocParkQQ30(in->alpha, in->beta, sc->sine, sc->cosine); */
+    /*@ for vector_bound: assert doc_bound: ParkDocBound(d_q30) && ParkDocBound(q_q30); */
+    /*@ for vector_bound: assert doc_fits: QfocQ30Fits(d_q30) && QfocQ30Fits(q_q30); */
+    /*@ for vector_bound: assert doc_d: d_q30 == in->alpha * sc->cosine + in->beta * sc->sine; */
+    /*@ for vector_bound: assert doc_q: q_q30 == in->beta * sc->cosine - in->alpha * sc->sine; */
 
     out->d = qfoc_q15_from_q30(d_q30);
     out->q = qfoc_q15_from_q30(q_q30);
@@ -67,9 +84,26 @@ void qfoc_inv_park(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *out)
     int32_t q = (int32_t)qfoc_q15_sat((int32_t)in->q);
     int32_t s = (int32_t)qfoc_q15_sat((int32_t)sc->sine);
     int32_t c = (int32_t)qfoc_q15_sat((int32_t)sc->cosine);
+    int32_t alpha_q30;
+    int32_t beta_q30;
+
+    /*@ assert clamped: d == QfocSat15(in->d) && q == QfocSat15(in->q) &&
+                        s == QfocSat15(sc->sine) && c == QfocSat15(sc->cosine); */
+    /*@ assert products: -1073676289 <= d * c <= 1073676289 &&
+                         -1073676289 <= q * s <= 1073676289 &&
+                         -1073676289 <= d * s <= 1073676289 &&
+                         -1073676289 <= q * c <= 1073676289; */
+    /*@ for vector_bound: assert unclamped: d == in->d && q == in->q &&
+                                            s == sc->sine && c == sc->cosine; */
     /* 2.30 sums, |sum| <= 2 * 32767^2 = 2147352578 < 2^31 */
-    int32_t alpha_q30 = (d * c) - (q * s);
-    int32_t beta_q30 = (d * s) + (q * c);
+    alpha_q30 = (d * c) - (q * s);
+    beta_q30 = (d * s) + (q * c);
+    /*@ assert alpha_sum: alpha_q30 == QfocInvParkAlphaQ30(in->d, in->q, sc->sine, sc->cosine); */
+    /*@ assert beta_sum: beta_q30 == QfocInvParkBetaQ30(in->d, in->q, sc->sine, sc->cosine); */
+    /*@ for vector_bound: assert doc_bound: InvParkDocBound(alpha_q30) && InvParkDocBound(beta_q30); */
+    /*@ for vector_bound: assert doc_fits: QfocQ30Fits(alpha_q30) && QfocQ30Fits(beta_q30); */
+    /*@ for vector_bound: assert doc_alpha: alpha_q30 == in->d * sc->cosine - in->q * sc->sine; */
+    /*@ for vector_bound: assert doc_beta: beta_q30 == in->d * sc->sine + in->q * sc->cosine; */
 
     out->alpha = qfoc_q15_from_q30(alpha_q30);
     out->beta = qfoc_q15_from_q30(beta_q30);
@@ -79,11 +113,22 @@ void qfoc_inv_clarke(const qfoc_ab_t *in, qfoc_abc_t *out)
 {
     int32_t alpha = (int32_t)qfoc_q15_sat((int32_t)in->alpha);
     int32_t beta = (int32_t)qfoc_q15_sat((int32_t)in->beta);
-    /* 2.30 terms: |alpha/2| <= 536854528, |sqrt(3)/2 beta| <= 929872126 */
-    int32_t half_alpha_q30 = alpha * QFOC_HALF_Q15;
-    int32_t sqrt3_beta_q30 = beta * QFOC_SQRT3_2_Q15;
+    int32_t half_alpha_q30;
+    int32_t sqrt3_beta_q30;
+    int32_t v_q30;
+    int32_t w_q30;
+
+    /*@ assert clamped: alpha == QfocSat15(in->alpha) && beta == QfocSat15(in->beta); */
+    /* 2.30 terms: |alpha / 2| <= 536854528, |sqrt(3)/2 beta| <= 929861926 */
+    half_alpha_q30 = alpha * QFOC_HALF_Q15;
+    sqrt3_beta_q30 = beta * QFOC_SQRT3_2_Q15;
+    /* |sum| <= 1466716454 < 2^31 */
+    v_q30 = sqrt3_beta_q30 - half_alpha_q30;
+    w_q30 = -sqrt3_beta_q30 - half_alpha_q30;
+    /*@ assert v_sum: v_q30 == QfocInvClarkeVQ30(in->alpha, in->beta); */
+    /*@ assert w_sum: w_q30 == QfocInvClarkeWQ30(in->alpha, in->beta); */
 
     out->u = (qfoc_q15_t)alpha;
-    out->v = qfoc_q15_from_q30(sqrt3_beta_q30 - half_alpha_q30);
-    out->w = qfoc_q15_from_q30(-sqrt3_beta_q30 - half_alpha_q30);
+    out->v = qfoc_q15_from_q30(v_q30);
+    out->w = qfoc_q15_from_q30(w_q30);
 }

@@ -9,7 +9,7 @@
 #include "qfoc/vector.h"
 #include "qfoc/q15.h"
 
-/* Upper end (exclusive) of the square-root search: 65536^2 = 2^32 > any uint32_t. */
+/* Upper end (exclusive) of the square root: 65536^2 = 2^32 > any uint32_t. */
 #define VEC_ISQRT_HI (65536u)
 
 /* m * m for a 16-bit m (<= 65535^2 = 4294836225 < 2^32).  The 16-bit
@@ -27,26 +27,42 @@ static uint32_t vec_sq_u16(uint16_t m)
 
 uint32_t qfoc_isqrt32(uint32_t v)
 {
-    uint32_t lo = 0u;            /* lo * lo <= v */
-    uint32_t hi = VEC_ISQRT_HI;  /* v < hi * hi */
+    uint32_t r = 0u;              /* root found so far, r * r <= v */
+    uint32_t rem = v;             /* remainder v - r * r */
+    uint32_t q = VEC_ISQRT_HI;    /* v < (r + q)^2, q a power of two */
 
+    /* Digit by digit, most significant root bit first: 16 iterations for
+     * every v (q = 65536, 32768, ..., 2), using only additions, comparisons
+     * and products by the data-independent bit p. */
     /*@
-      loop invariant bounds: 0 <= lo < hi <= 65536;
-      loop invariant low: lo * lo <= v;
-      loop invariant high: v < hi * hi;
-      loop assigns lo, hi;
-      loop variant hi - lo;
+      loop invariant pow2: q == 1 || q == 2 || q == 4 || q == 8 || q == 16 ||
+        q == 32 || q == 64 || q == 128 || q == 256 || q == 512 || q == 1024 ||
+        q == 2048 || q == 4096 || q == 8192 || q == 16384 || q == 32768 ||
+        q == 65536;
+      loop invariant bound: r + q <= 65536;
+      loop invariant rem_def: rem == v - (r * r);
+      loop invariant high: v < (r + q) * (r + q);
+      loop assigns r, rem, q;
+      loop variant q;
     */
-    while ((hi - lo) > 1u) {
-        uint32_t mid = lo + ((hi - lo) / 2u);   /* lo < mid < hi <= 65536 */
-        //@ assert mid_range: lo < mid < hi;
-        if (vec_sq_u16((uint16_t)mid) <= v) {
-            lo = mid;
+    while (q > 1u) {
+        uint32_t p = q / 2u;                  /* trial root bit */
+        /* (r + p)^2 - r^2 = (2 r + p) p <= (131072 - 3 p) p < 2^31 */
+        uint32_t t = ((2u * r) + p) * p;
+        //@ assert q_even: q == 2 * p;
+        //@ assert expand: (r + p) * (r + p) == (r * r) + t;
+
+        if (t <= rem) {
+            rem = rem - t;
+            r = r + p;
+            //@ assert high_set: v < (r + p) * (r + p);
         } else {
-            hi = mid;
+            /* bit p of the root is 0 */
+            //@ assert high_clear: v < (r + p) * (r + p);
         }
+        q = p;
     }
-    return lo;
+    return r;
 }
 
 /* v * v as uint32 for |v| <= 32768 (<= 2^30). */
