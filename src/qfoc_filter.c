@@ -13,7 +13,7 @@
 /** Half of QFOC_FLT_Q15_ONE, the round-to-nearest offset: 16384. */
 #define QFOC_FLT_Q15_HALF ((int64_t)16384)
 /** Q30 -> Q31 factor: a Q15 x Q15 product (2.30) times 2 is 1.31. */
-#define QFOC_FLT_Q30_TO_Q31 ((int64_t)2)
+#define QFOC_FLT_Q30_TO_Q31 ((int32_t)2)
 /** Safe low-pass coefficient after a rejected init: 32767 / 32768 = 0.99997. */
 #define QFOC_LPF_ALPHA_SAFE ((qfoc_q15_t)32767)
 /** Safe leak after a rejected init: 32767 / 32768 = 0.99997 (state decays at once). */
@@ -28,14 +28,14 @@
   ensures value: \result == FilterPow2(s);
   ensures range: 1 <= \result <= 32768;
 */
-static int64_t qfoc_flt_pow2(uint8_t s)
+static int32_t qfoc_flt_pow2(uint8_t s)
 {
     /* 2^s for s = 0..15 (the gain shifts); exact integers 1 .. 32768 */
     static const int32_t qfoc_flt_pow2_table[16] = {
         1, 2, 4, 8, 16, 32, 64, 128,
         256, 512, 1024, 2048, 4096, 8192, 16384, 32768
     };
-    return (int64_t)qfoc_flt_pow2_table[s];
+    return qfoc_flt_pow2_table[s];
 }
 
 /**
@@ -75,11 +75,10 @@ static qfoc_q31_t qfoc_flt_q31_from_input(qfoc_q15_t u)
 bool qfoc_lpf_is_valid(const qfoc_lpf_t *f)
 {
     bool ok = false;
-    /* -32767 x 65536 = -2147418112, 32767 x 65536 = 2147418112 */
-    if ((f->alpha > 0) && (f->state >= (int32_t)-2147418112) && (f->state <= (int32_t)2147418112)) {
+    if ((f->alpha > 0) && (f->state >= QFOC_Q31_MIN)) {
         ok = true;
     } else {
-        /* invalid coefficient or state */
+        /* invalid coefficient or state -2^31 */
     }
     return ok;
 }
@@ -107,12 +106,12 @@ qfoc_q15_t qfoc_lpf_step(qfoc_lpf_t *f, qfoc_q15_t u)
 {
     const int64_t y = (int64_t)f->state;
     const int64_t alpha = (int64_t)f->alpha;
-    /* u - y in Q31, |d| <= 2 x 2147418112 < 2^33 */
+    /* u - y in Q31, |d| <= 2147418112 + 2147483647 < 2^33 */
     const int64_t d = (int64_t)qfoc_flt_q31_from_input(u) - y;
     int64_t prod;
     int64_t inc;
 
-    /*@ assert d_range: -4294836224 <= d <= 4294836224; */
+    /*@ assert d_range: -4294901759 <= d <= 4294901759; */
     /*@ assert prod_hi: d >= 0 ==> 0 <= alpha * d <= 32767 * d; */
     /*@ assert prod_lo: d < 0 ==> 32767 * d <= alpha * d < 0; */
     /* alpha (1.15) x d (1.31) = 2.46, |.| < 2^48 */
@@ -121,8 +120,12 @@ qfoc_q15_t qfoc_lpf_step(qfoc_lpf_t *f, qfoc_q15_t u)
     inc = qfoc_flt_round_q15(prod);
     /*@ assert inc_hi: d >= 0 ==> 0 <= inc <= d; */
     /*@ assert inc_lo: d < 0 ==> d <= inc <= 0; */
-    f->state = (qfoc_q31_t)(y + inc);
-    /* Q31 -> Q15 rounded; |state| <= 2147418112, no saturation occurs */
+    /* y + inc lies between y and u (both in the symmetric Q31 range), so the
+       saturation never changes the value (proved: contract of qfoc_lpf_step); it
+       makes the range of the state evident to bit-level checkers as well */
+    f->state = qfoc_q31_sat(y + inc);
+    /* Q31 -> Q15 rounded (saturates only if the state was set outside the Q15
+       range by the caller) */
     return qfoc_q15_from_q31(f->state);
 }
 
@@ -165,23 +168,25 @@ void qfoc_leaky_reset(qfoc_leaky_int_t *f, qfoc_q15_t value)
 qfoc_q15_t qfoc_leaky_step(qfoc_leaky_int_t *f, qfoc_q15_t x)
 {
     const int64_t y = (int64_t)f->state;
-    const int64_t div = qfoc_flt_pow2(f->gain_shift);
-    /* x (1.15) x gain (1.15) = 2.30, |.| <= 32768 x 32767 < 2^30: exact in 32 bits;
-       x 2 -> 1.31, |.| < 2^31 */
+    const int32_t pw2 = qfoc_flt_pow2(f->gain_shift);
+    const int32_t half = pw2 / 2;
+    /* x (1.15) x gain (1.15) = 2.30, |.| <= 32768 x 32767 < 2^30: exact in 32 bits */
     const int32_t xg = (int32_t)x * (int32_t)f->gain;
-    const int64_t p = (int64_t)xg * QFOC_FLT_Q30_TO_Q31;
-    int64_t step;
+    int32_t p;
+    int32_t step;
     int64_t loss;
 
-    /*@ assert p_range: -2147418112 <= p <= 2147352578; */
-    /* integration step T x: p / 2^gain_shift rounded to nearest (ties away) */
+    /*@ assert xg_range: -1073709056 <= xg <= 1073676289; */
+    /* x 2 -> 1.31: |p| <= 2147418112 < 2^31, exact in 32 bits */
+    p = xg * QFOC_FLT_Q30_TO_Q31;
+    /* integration step T x: p / 2^gain_shift rounded to nearest (ties away from
+       zero); p + half and half - p stay below 2^31 (half <= 16384) */
     if (p >= 0) {
-        step = (p + (div / 2)) / div;
+        step = (p + half) / pw2;
     } else {
-        step = -(((div / 2) - p) / div);
+        step = -((half - p) / pw2);
     }
-    /*@ assert step_eq: step == QfocRoundDiv(p, div); */
-    /*@ assert step_range: -2147418112 <= step <= 2147352578; */
+    /*@ assert step_eq: step == QfocRoundDiv(p, pw2); */
 
     /*@ assert loss_hi: y >= 0 ==> 0 <= f->leak * y <= 32767 * y; */
     /*@ assert loss_lo: y < 0 ==> 32767 * y <= f->leak * y <= 0; */
@@ -189,7 +194,8 @@ qfoc_q15_t qfoc_leaky_step(qfoc_leaky_int_t *f, qfoc_q15_t x)
        Q31 rounded; |loss| <= |y| */
     loss = qfoc_flt_round_q15((int64_t)f->leak * y);
 
-    /* y + T x - (T / tau) y, |.| < 2^33, saturated to the symmetric Q31 range */
-    f->state = qfoc_q31_sat((y + step) - loss);
+    /* y + T x - (T / tau) y, |.| < 2^33 in 64 bits, saturated to the symmetric
+       Q31 range */
+    f->state = qfoc_q31_sat((y + (int64_t)step) - loss);
     return qfoc_q15_from_q31(f->state);
 }

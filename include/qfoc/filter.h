@@ -77,7 +77,8 @@
 /** First-order low-pass filter (2-34). */
 typedef struct {
     qfoc_q15_t alpha;   /**< omega_c / f, Q15, 1..32767 */
-    qfoc_q31_t state;   /**< y(k), Q31, within [-32767, 32767] x 65536 */
+    qfoc_q31_t state;   /**< y(k), Q31, symmetric Q31 range; within
+                             [-32767, 32767] x 65536 after init/reset/step */
 } qfoc_lpf_t;
 
 /** Leaky (high-pass-filtered) integrator (2-17). */
@@ -89,13 +90,18 @@ typedef struct {
 } qfoc_leaky_int_t;
 
 #ifdef __FRAMAC__
+/* ACSL predicates over the types above, read by Frama-C only (DEV-001). */
+/* cppcheck-suppress misra-c2012-20.1 ; DEV-001 */
 #include "filter.acsl"
 #endif
 
 /**
  * @brief Check a low-pass instance (run-time twin of LpfValid).
  * @param[in] f instance (read only)
- * @return true when 0 < alpha and the state is within [-32767, 32767] x 65536.
+ * @return true when 0 < alpha and the state is in the symmetric Q31 range
+ *         (-2^31 excluded).  The state stays within the narrower range
+ *         [-32767, 32767] x 65536 once it has been set by qfoc_lpf_init(),
+ *         qfoc_lpf_reset() or a step (contract of qfoc_lpf_step, `q15_range`).
  *
  * Scaling and overflow: compares only.
  *
@@ -154,6 +160,7 @@ int32_t qfoc_lpf_init(qfoc_lpf_t *f, qfoc_q15_t alpha);
   requires alpha_valid: 0 < f->alpha;
   assigns f->state;
   ensures valid: LpfValid(f);
+  ensures q15_range: FilterQ15InQ31(f->state);
   ensures state: f->state == QfocSat15(value) * 65536;
 */
 void qfoc_lpf_reset(qfoc_lpf_t *f, qfoc_q15_t value);
@@ -167,10 +174,12 @@ void qfoc_lpf_reset(qfoc_lpf_t *f, qfoc_q15_t value);
  * The new state is a convex combination of the input and the old state: it lies
  * between them (inclusive) exactly in Q31, and the Q15 output lies between the
  * input and the previous output.  Hence the filter never overshoots and never
- * overflows.
+ * overflows, and a state within [-32767, 32767] x 65536 stays there.  The final
+ * saturation to the symmetric Q31 range never changes the value (it is there so
+ * that the range of the state is evident without the convexity argument).
  *
  * Scaling and overflow: u (1.15) x 65536 -> 1.31; d = u - y in 64 bits
- * (|d| <= 2 x 2147418112 < 2^33); alpha (1.15) x d (1.31) = 2.46 in 64 bits
+ * (|d| < 2^33); alpha (1.15) x d (1.31) = 2.46 in 64 bits
  * (|.| < 2^48); / 32768 rounded to nearest gives the Q31 increment, whose
  * magnitude is at most |d| because alpha < 32768, so y + increment stays between
  * y and u.  Output: Q31 -> Q15 rounded (error <= 1/2 LSB).  The increment's
@@ -188,7 +197,8 @@ void qfoc_lpf_reset(qfoc_lpf_t *f, qfoc_q15_t value);
   assigns f->state;
   ensures still_valid: LpfValid(f);
   ensures state: f->state == LpfNext(\old(f->state), u, f->alpha);
-  ensures result: \result == QfocRoundDiv(f->state, 65536);
+  ensures q15_range: FilterQ15InQ31(\old(f->state)) ==> FilterQ15InQ31(f->state);
+  ensures result: \result == QfocSat15(QfocRoundDiv(f->state, 65536));
   ensures range: QfocQ15Sym(\result);
   behavior rising:
     assumes LpfInput(u) >= f->state;

@@ -32,9 +32,6 @@ typedef uint16_t qfoc_angle_t; /**< electrical angle, 65536 counts per turn */
 #define QFOC_Q31_MAX ((qfoc_q31_t)2147483647)
 #define QFOC_Q31_MIN ((qfoc_q31_t)-2147483647)  /**< symmetric range */
 
-#define QFOC_ANGLE_90DEG  ((qfoc_angle_t)0x4000u)  /**< 90 electrical degrees */
-#define QFOC_ANGLE_180DEG ((qfoc_angle_t)0x8000u)  /**< 180 electrical degrees */
-
 /** Three phase quantities (document: u, v, w). */
 typedef struct {
     qfoc_q15_t u;

@@ -1,2 +1,2 @@
 SRCS = src/qfoc_filter.c
-UNWIND = 17
+UNWIND = 1

@@ -1,2 +1,2 @@
 SRCS = src/qfoc_pi.c
-UNWIND = 17
+UNWIND = 1
