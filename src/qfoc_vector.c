@@ -125,8 +125,11 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
     int32_t q = (int32_t)in->q;
     int32_t vm = (int32_t)vmax;
     int32_t dl;
+    int32_t adl;
     int32_t ql;
     int32_t qo;
+    uint32_t vmu;
+    uint32_t adu;
     uint32_t w;
     bool limited;
 
@@ -135,15 +138,24 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
         vm = 0;
     }
     dl = vec_clamp(d, vm);                   /* d priority: |dl| <= vm */
-    //@ assert dl_sq: dl * dl <= vm * vm;
-    w = vec_square(vm) - vec_square(dl);     /* 2.30, in [0, 32767^2] */
+    adl = dl;
+    if (adl < 0) {
+        adl = -adl;
+    }
+    /* vm^2 - dl^2 = (vm - |dl|) (vm + |dl|): both factors in [0, 65534], so
+     * the 16 x 16 bit product cannot overflow 32 bits (2.30, <= 32767^2) */
+    vmu = (uint32_t)vm;
+    adu = (uint32_t)adl;
+    w = (uint32_t)(uint16_t)(vmu - adu) * (uint32_t)(uint16_t)(vmu + adu);
+    //@ assert w_value: w == (vm * vm) - (dl * dl);
     ql = (int32_t)qfoc_isqrt32(w);           /* q room left, 1.15 */
     //@ assert ql_sq: ql * ql <= vm * vm;
     //@ assert ql_bound: 0 <= ql <= vm;
     qo = vec_clamp(q, ql);
     //@ assert qo_sq: qo * qo <= ql * ql;
     limited = (dl != d) || (qo != q);
-    out->d = (qfoc_q15_t)dl;
-    out->q = (qfoc_q15_t)qo;
+    /* |dl|, |qo| <= vm <= 32767: the saturation never acts (proved) */
+    out->d = qfoc_q15_sat(dl);
+    out->q = qfoc_q15_sat(qo);
     return limited;
 }

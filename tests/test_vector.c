@@ -118,7 +118,7 @@ static void test_req_vec_002_mag(void **state)
     for (k = 0u; k < 1000000u; k++) {
         mag_check((int32_t)lcg_int16(), (int32_t)lcg_int16(), &max_err);
     }
-    print_message("REQ-VEC-002 vec_mag: max error %.4f LSB (floor, bound < 1)\n", max_err);
+    print_message("REQ-VEC-002 vec_mag: max error %.6f LSB (floor, bound < 1)\n", max_err);
     assert_true(max_err < 1.0);
     assert_int_equal(qfoc_vec_mag(-32768, -32768), 32767);   /* 46341 saturated */
     assert_int_equal(qfoc_vec_mag(-32768, 0), 32767);        /* 32768 saturated */
@@ -242,7 +242,7 @@ static void test_req_vec_004_circle_random(void **state)
         /* small vectors near a small circle: inside and outside both frequent */
         circle_check(d / 512, q / 512, v / 512, &max_short);
     }
-    print_message("REQ-VEC-004 circle_limit: max radial shortfall of a limited output %.4f LSB\n",
+    print_message("REQ-VEC-004 circle_limit: max radial shortfall of a limited output %.6f LSB\n",
                   max_short);
     assert_true(max_short < 1.0);
 }

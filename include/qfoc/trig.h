@@ -121,7 +121,7 @@ void qfoc_sincos(qfoc_angle_t theta, qfoc_sincos_t *out);
  *         atan2(0, 0) is defined as 0 (no division by zero).
  *
  * Accuracy: |result - atan2(y, x) 32768 / pi| <= 1 count = 0.0055 electrical
- * degrees (measured maximum 0.78 counts), for EVERY (x, y) != (0, 0) whatever
+ * degrees (measured maximum 0.79 counts = 0.0043 degrees), for EVERY (x, y) != (0, 0) whatever
  * its magnitude: the only quantisation is the Q15 ratio, whose error
  * (<= 0.5 / 32768) does not grow for small vectors.  Tested on a grid of all
  * multiples of 61, the axes, the diagonals, and random vectors with |v| < 50.

@@ -25,14 +25,17 @@
  * @param[in] v any uint32_t value
  * @return r with r * r <= v < (r + 1) * (r + 1), r in [0, 65535]
  *
- * Method: binary search for r in [0, 65536) keeping lo * lo <= v < hi * hi;
- * exactly 16 iterations for every v.
+ * Method: digit by digit, most significant root bit first, keeping
+ * rem = v - r^2 >= 0 and v < (r + q)^2 with q = 65536, 32768, ..., 1; each
+ * step tries the bit p = q / 2 with the increment (r + p)^2 - r^2 = (2 r + p) p.
+ * Exactly 16 iterations for every v; only additions, comparisons and products
+ * by the data-independent power of two p.
  *
  * Bad input: none possible.
  *
- * Scaling and overflow: plain unsigned integers; the trial root mid is
- * <= 65535, so mid * mid <= 65535^2 < 2^32 fits uint32; the bound
- * hi * hi <= 2^32 appears only in the (mathematical) loop invariant.
+ * Scaling and overflow: plain unsigned integers; r + 2 p <= 65536 bounds the
+ * increment (2 r + p) p <= (131072 - 3 p) p < 2^31; the bound
+ * (r + q)^2 <= 2^32 appears only in the (mathematical) loop invariant.
  *
  * Requirements: REQ-VEC-001.
  */
@@ -97,10 +100,11 @@ qfoc_q15_t qfoc_vec_mag(qfoc_q15_t x, qfoc_q15_t y);
  *
  * Bad input: in and out must be valid pointers (precondition, not checked).
  *
- * Scaling and overflow: vmax^2 and d'^2 are 2.30 values formed in int32
- * (<= 32767^2 < 2^30); their difference is >= 0 because |d'| <= vmax; its
- * integer square root is a 1.15 value <= vmax <= 32767, so every result
- * fits qfoc_q15_t without saturation.
+ * Scaling and overflow: vmax^2 - d'^2 is formed as the 2.30 product
+ * (vmax - |d'|) (vmax + |d'|) of two factors in [0, 65534] (|d'| <= vmax),
+ * a 16 x 16 bit product in uint32 (<= 32767^2 < 2^30); its integer square
+ * root is a 1.15 value <= vmax <= 32767, so the final qfoc_q15_sat never
+ * acts (proved) and every result fits qfoc_q15_t.
  *
  * Requirements: REQ-VEC-003, REQ-VEC-004.
  */
