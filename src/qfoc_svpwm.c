@@ -68,25 +68,6 @@ static int32_t svpwm_clamp(int32_t x, int32_t lo, int32_t hi)
 }
 
 /*@
-  requires range_k: 0 <= k;
-  requires range_t: -2147418112 <= u * k <= 2147418112;
-  assigns \nothing;
-  ensures value: \result == QfocRoundDiv(u * k, 65536);
-  ensures range: -32767 <= \result <= 32767;
-*/
-static int32_t svpwm_mul_q16(int32_t u, int32_t k)
-{
-    int32_t t = u * k;
-    int32_t r;
-    if (t >= 0) {
-        r = (t + SVPWM_HALF_Q16) / SVPWM_ONE_Q16;
-    } else {
-        r = -((SVPWM_HALF_Q16 - t) / SVPWM_ONE_Q16);
-    }
-    return r;
-}
-
-/*@
   requires range_dt: 0 <= dt <= 8191;
   requires range_db: 0 <= db <= 32767;
   assigns \nothing;
@@ -109,8 +90,9 @@ static int32_t svpwm_dt_comp(qfoc_q15_t i, int32_t dt, int32_t db)
     } else if (ai >= db) {
         c = dt;
     } else {
-        /* linear fade inside the dead band: 0 < ai < db */
-        c = (ai * dt) / db;
+        /* linear fade inside the dead band: 0 < ai < db, so 0 <= c < dt;
+         * the clamp is a no-op that keeps the bound local */
+        c = svpwm_clamp((ai * dt) / db, 0, dt);
     }
     if (i < 0) {
         c = -c;
@@ -137,7 +119,8 @@ static uint8_t svpwm_sector(int32_t a, int32_t b, int32_t c)
         s = 3u;
     } else if ((b >= a) && (a >= c)) {
         s = 4u;
-    } else if ((c >= a) && (a >= b)) {
+    } else if (a >= b) {
+        /* rows 1 .. 4 failed, so Tc is the largest: row 5 Tc >= Ta >= Tb */
         s = 5u;
     } else {
         s = 6u;
@@ -177,6 +160,8 @@ static void svpwm_limit(const qfoc_ab_t *in, int32_t v, qfoc_ab_t *ab, qfoc_svpw
         /* proportional scaling onto the circle, gain g = r_lim / |v| in Q16 */
         int32_t g = (r_lim * SVPWM_ONE_Q16) / mag;
         //@ assert g_range: 0 <= g <= 65535;
+        /* no-op (g <= 65535 proved); keeps the bound local for bit-level checkers */
+        g = svpwm_clamp(g, 0, SVPWM_ONE_Q16 - 1);
         ab->alpha = svpwm_scale(in->alpha, g);
         ab->beta = svpwm_scale(in->beta, g);
         out->limited = true;
@@ -193,19 +178,33 @@ static void svpwm_limit(const qfoc_ab_t *in, int32_t v, qfoc_ab_t *ab, qfoc_svpw
 
 /*@
   requires range_v: 1 <= v <= 32767;
-  requires range_k: 0 <= k && v * k <= 2147418112;
+  requires range_p: 100 <= p <= 32767;
+  requires range_k: 0 <= k && v * k <= p * 65536;
   assigns \nothing;
-  ensures range: -(v * k + 32768) <= \result * 65536 <= v * k + 32768;
-  ensures range16: -32767 <= \result <= 32767;
+  ensures range: -p <= \result <= p;
 */
-static int32_t svpwm_time(qfoc_q15_t ux, int32_t v, int32_t k)
+static int32_t svpwm_time(qfoc_q15_t ux, int32_t v, int32_t k, int32_t p)
 {
     /* phase voltage limited to what the bus can produce (never active after
      * the overmodulation limit); bounds the product independently of the
      * transform's accuracy */
     int32_t u = svpwm_clamp((int32_t)ux, -v, v);
+    int64_t t;
+    int64_t r;
     //@ assert prod: -(v * k) <= u * k <= v * k;
-    return svpwm_mul_q16(u, k);
+    /* |u k| <= Vdc k <= P * 65536 < 2^31 (proved above); the product is formed
+     * in 64 bits (one SMULL on the Cortex-M4) so that its bound also follows
+     * from the operand widths alone (2^15 * 2^31), which bit-level checkers
+     * (CBMC) can establish without the nonlinear argument */
+    t = (int64_t)u * (int64_t)k;
+    if (t >= 0) {
+        r = (t + (int64_t)SVPWM_HALF_Q16) / (int64_t)SVPWM_ONE_Q16;
+    } else {
+        r = -(((int64_t)SVPWM_HALF_Q16 - t) / (int64_t)SVPWM_ONE_Q16);
+    }
+    //@ assert r_range: -p <= r <= p;
+    /* no-op (|r| <= P proved); keeps every later sum locally bounded */
+    return svpwm_clamp((int32_t)r, -p, p);
 }
 
 /*@
@@ -221,9 +220,9 @@ static void svpwm_times(const qfoc_abc_t *uvw, int32_t v, int32_t p, int32_t t[3
     /* Tx = Ux / Vdc * P: k = P / Vdc in Q16 is the one division of the step */
     int32_t k = (p * SVPWM_ONE_Q16) / v;
     //@ assert k_range: 0 <= k && v * k <= p * 65536;
-    t[0] = svpwm_time(uvw->u, v, k);
-    t[1] = svpwm_time(uvw->v, v, k);
-    t[2] = svpwm_time(uvw->w, v, k);
+    t[0] = svpwm_time(uvw->u, v, k, p);
+    t[1] = svpwm_time(uvw->v, v, k, p);
+    t[2] = svpwm_time(uvw->w, v, k, p);
 }
 
 /*@
@@ -284,6 +283,8 @@ static void svpwm_modulate(int32_t ta, int32_t tb, int32_t tc, int32_t p, qfoc_s
     out->cmp[QFOC_SVPWM_W] = (uint16_t)cc;
 }
 
+/* public interface, also called by qfoc_svpwm_step (DEV-002) */
+/* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
 bool qfoc_svpwm_cfg_is_valid(const qfoc_svpwm_cfg_t *c)
 {
     bool ok = false;

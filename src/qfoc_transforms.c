@@ -57,10 +57,10 @@ void qfoc_park(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
 
     /*@ assert clamped: alpha == QfocSat15(in->alpha) && beta == QfocSat15(in->beta) &&
                         s == QfocSat15(sc->sine) && c == QfocSat15(sc->cosine); */
-    /*@ assert products: -1073676289 <= alpha * c <= 1073676289 &&
-                         -1073676289 <= beta * s <= 1073676289 &&
-                         -1073676289 <= beta * c <= 1073676289 &&
-                         -1073676289 <= alpha * s <= 1073676289; */
+    /*@ assert prod_ac: -1073676289 <= alpha * c <= 1073676289; */
+    /*@ assert prod_bs: -1073676289 <= beta * s <= 1073676289; */
+    /*@ assert prod_bc: -1073676289 <= beta * c <= 1073676289; */
+    /*@ assert prod_as: -1073676289 <= alpha * s <= 1073676289; */
     /*@ for vector_bound: assert unclamped: alpha == in->alpha && beta == in->beta &&
                                             s == sc->sine && c == sc->cosine; */
     /* 2.30 sums, |sum| <= 2 * 32767^2 = 2147352578 < 2^31 */
@@ -70,8 +70,8 @@ void qfoc_park(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
     /*@ assert q_sum: q_q30 == QfocParkQQ30(in->alpha, in->beta, sc->sine, sc->cosine); */
     /*@ for vector_bound: assert doc_bound: ParkDocBound(d_q30) && ParkDocBound(q_q30); */
     /*@ for vector_bound: assert doc_fits: QfocQ30Fits(d_q30) && QfocQ30Fits(q_q30); */
-    /*@ for vector_bound: assert doc_d: d_q30 == in->alpha * sc->cosine + in->beta * sc->sine; */
-    /*@ for vector_bound: assert doc_q: q_q30 == in->beta * sc->cosine - in->alpha * sc->sine; */
+    /*@ for vector_bound: assert doc_d: d_q30 == QfocParkD(in->alpha, in->beta, sc->sine, sc->cosine); */
+    /*@ for vector_bound: assert doc_q: q_q30 == QfocParkQ(in->alpha, in->beta, sc->sine, sc->cosine); */
 
     out->d = qfoc_q15_from_q30(d_q30);
     out->q = qfoc_q15_from_q30(q_q30);
@@ -89,10 +89,10 @@ void qfoc_inv_park(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *out)
 
     /*@ assert clamped: d == QfocSat15(in->d) && q == QfocSat15(in->q) &&
                         s == QfocSat15(sc->sine) && c == QfocSat15(sc->cosine); */
-    /*@ assert products: -1073676289 <= d * c <= 1073676289 &&
-                         -1073676289 <= q * s <= 1073676289 &&
-                         -1073676289 <= d * s <= 1073676289 &&
-                         -1073676289 <= q * c <= 1073676289; */
+    /*@ assert prod_dc: -1073676289 <= d * c <= 1073676289; */
+    /*@ assert prod_qs: -1073676289 <= q * s <= 1073676289; */
+    /*@ assert prod_ds: -1073676289 <= d * s <= 1073676289; */
+    /*@ assert prod_qc: -1073676289 <= q * c <= 1073676289; */
     /*@ for vector_bound: assert unclamped: d == in->d && q == in->q &&
                                             s == sc->sine && c == sc->cosine; */
     /* 2.30 sums, |sum| <= 2 * 32767^2 = 2147352578 < 2^31 */
@@ -102,8 +102,8 @@ void qfoc_inv_park(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *out)
     /*@ assert beta_sum: beta_q30 == QfocInvParkBetaQ30(in->d, in->q, sc->sine, sc->cosine); */
     /*@ for vector_bound: assert doc_bound: InvParkDocBound(alpha_q30) && InvParkDocBound(beta_q30); */
     /*@ for vector_bound: assert doc_fits: QfocQ30Fits(alpha_q30) && QfocQ30Fits(beta_q30); */
-    /*@ for vector_bound: assert doc_alpha: alpha_q30 == in->d * sc->cosine - in->q * sc->sine; */
-    /*@ for vector_bound: assert doc_beta: beta_q30 == in->d * sc->sine + in->q * sc->cosine; */
+    /*@ for vector_bound: assert doc_alpha: alpha_q30 == QfocInvParkAlpha(in->d, in->q, sc->sine, sc->cosine); */
+    /*@ for vector_bound: assert doc_beta: beta_q30 == QfocInvParkBeta(in->d, in->q, sc->sine, sc->cosine); */
 
     out->alpha = qfoc_q15_from_q30(alpha_q30);
     out->beta = qfoc_q15_from_q30(beta_q30);

@@ -45,7 +45,7 @@
  *
  * Error bound (REQ-SVPWM-010), Vdc the clamped bus voltage, P the period,
  * against an ideal real-valued SVPWM of the same Q15 inputs:
- *  - linear range (limited false), every compare value before the final clamp:
+ *  - linear range (limited false), every compare value (both clamped to [0, P]):
  *    |cmp - cmp_ideal| <= 3 + 2 * P / Vdc ticks, plus 2 ticks when the
  *    dead-time compensation fades inside the dead band.  The P / Vdc term is
  *    the quantisation of the Q15 phase voltages (one LSB of voltage is P / Vdc
@@ -54,10 +54,15 @@
  *  - limited (overmodulation) case: |cmp - cmp_ideal| <= 3 + 8 * P / Vdc ticks
  *    (the scaled alpha, beta are re-quantised to Q15 and the vector magnitude
  *    is itself rounded).
- *  - line-to-line: (cmp_x - cmp_y) / P * Vdc equals Ux - Uy of the command
- *    within the same bound (converted to voltage).
- *  - centring: without clamping and with dt_comp == 0,
- *    max(cmp) + min(cmp) == P within 1 tick (proved: ensures centred).
+ *  - line-to-line (linear range, no compare value clamped, zero currents):
+ *    |(cmp_x - cmp_y) - (Ux - Uy) * P / Vdc| <= 2 + 2 * P / Vdc ticks against
+ *    the ideal transform (tests); i.e. duty differences times
+ *    Vdc reproduce the commanded line-to-line voltages.
+ *  - centring: whenever no compare value is clamped (0 < cmp < P on all
+ *    phases), max(cmp) + min(cmp) == P within 1 tick (proved: ensures centred).
+ *  - magnitude: |v| is the floor square root of qfoc_vec_mag() (error < 1 LSB);
+ *    the limited flag is therefore exact except within about 1 LSB of the
+ *    circle.
  *
  * Requirements: REQ-SVPWM-001 .. REQ-SVPWM-011 (specs/requirements/svpwm.md).
  */

@@ -111,8 +111,8 @@ void qfoc_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out);
   behavior vector_bound:
     assumes QfocVecBound(in->alpha, in->beta);
     assumes QfocSinCosUnit(sc->sine, sc->cosine);
-    ensures d_doc: out->d == QfocRoundDiv(in->alpha * sc->cosine + in->beta * sc->sine, 32768);
-    ensures q_doc: out->q == QfocRoundDiv(in->beta * sc->cosine - in->alpha * sc->sine, 32768);
+    ensures d_doc: out->d == QfocRoundDiv(QfocParkD(in->alpha, in->beta, sc->sine, sc->cosine), 32768);
+    ensures q_doc: out->q == QfocRoundDiv(QfocParkQ(in->alpha, in->beta, sc->sine, sc->cosine), 32768);
   behavior d_exact:
     assumes QfocQ30Fits(QfocParkDQ30(in->alpha, in->beta, sc->sine, sc->cosine));
     ensures out->d == QfocRoundDiv(QfocParkDQ30(in->alpha, in->beta, sc->sine, sc->cosine), 32768);
@@ -163,8 +163,8 @@ void qfoc_park(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out);
   behavior vector_bound:
     assumes QfocVecBound(in->d, in->q);
     assumes QfocSinCosUnit(sc->sine, sc->cosine);
-    ensures alpha_doc: out->alpha == QfocRoundDiv(in->d * sc->cosine - in->q * sc->sine, 32768);
-    ensures beta_doc: out->beta == QfocRoundDiv(in->d * sc->sine + in->q * sc->cosine, 32768);
+    ensures alpha_doc: out->alpha == QfocRoundDiv(QfocInvParkAlpha(in->d, in->q, sc->sine, sc->cosine), 32768);
+    ensures beta_doc: out->beta == QfocRoundDiv(QfocInvParkBeta(in->d, in->q, sc->sine, sc->cosine), 32768);
   behavior alpha_exact:
     assumes QfocQ30Fits(QfocInvParkAlphaQ30(in->d, in->q, sc->sine, sc->cosine));
     ensures out->alpha == QfocRoundDiv(QfocInvParkAlphaQ30(in->d, in->q, sc->sine, sc->cosine), 32768);
@@ -193,9 +193,11 @@ void qfoc_inv_park(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *out)
  *
  * This is the exact inverse of the Clarke transform (2-3), (2-4) for a balanced
  * set (u + v + w = 0): qfoc_clarke(u, v) returns (alpha, beta) again.
- * Input range: |v|, |w| <= 32767 in real terms, which holds whenever
- * alpha^2 + beta^2 <= 32767^2 (a vector inside the full-scale circle); the Q30
- * sums then fit (QfocQ30Fits) and v, w are exact.
+ * Input range: |v|, |w| <= 32767 in real terms; the Q30 sums then fit
+ * (QfocQ30Fits) and v, w are exact.  This holds for every vector inside the
+ * full-scale circle (alpha^2 + beta^2 <= 32767^2), since
+ * sqrt(16384^2 + 28378^2) * 32767 < 32767.5 * 32768 (shown by test
+ * test_req_trf_008_inv_clarke_saturation; not a WP behaviour).
  * Bad input: -32768 is read as -32767; an output whose exact value rounds beyond
  * +-32767 saturates to +-32767.  u always equals alpha saturated to the symmetric
  * range.

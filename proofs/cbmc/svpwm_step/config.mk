@@ -1,2 +1,2 @@
-SRCS = src/qfoc_svpwm.c src/qfoc_transforms.c src/qfoc_vector.c
-UNWIND = 17
+SRCS = src/qfoc_svpwm.c
+UNWIND = 2

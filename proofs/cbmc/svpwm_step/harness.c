@@ -5,12 +5,42 @@
  * zero-voltage output for an invalid configuration, and for a valid one:
  * compare values in [0, period], sector 1..6 ordering the compare values as the
  * document's table, utilisation in [0, 32767], vdc_low flag, centred pulses.
+ * The callees qfoc_vec_mag() and qfoc_inv_clarke() are replaced by stubs that
+ * return ANY value their contracts allow (each has its own harness,
+ * vector_mag and transforms_inv_clarke): an over-approximation, so every
+ * property shown here holds for the real functions too, and the SAT problem
+ * stays small (no square-root loop).
  * Requirements: REQ-SVPWM-001 .. REQ-SVPWM-006, REQ-SVPWM-008, REQ-SVPWM-009.
  */
 #include "qfoc/svpwm.h"
+#include "qfoc/transforms.h"
+#include "qfoc/vector.h"
 
 int16_t nondet_int16(void);
 uint16_t nondet_uint16(void);
+
+/* contract of qfoc_vec_mag: 0 <= result <= 32767 (weakened: any such value) */
+qfoc_q15_t qfoc_vec_mag(qfoc_q15_t x, qfoc_q15_t y)
+{
+    qfoc_q15_t r = nondet_int16();
+    (void)x;
+    (void)y;
+    __CPROVER_assume((r >= 0) && (r <= 32767));
+    return r;
+}
+
+/* contract of qfoc_inv_clarke: outputs in [-32767, 32767] (weakened: any such values) */
+void qfoc_inv_clarke(const qfoc_ab_t *in, qfoc_abc_t *out)
+{
+    qfoc_abc_t r;
+    __CPROVER_assert(__CPROVER_r_ok(in, sizeof(*in)) && __CPROVER_w_ok(out, sizeof(*out)),
+                     "inv_clarke pointers valid");
+    r.u = nondet_int16();
+    r.v = nondet_int16();
+    r.w = nondet_int16();
+    __CPROVER_assume((r.u >= -32767) && (r.v >= -32767) && (r.w >= -32767));
+    *out = r;
+}
 
 static int32_t max3(int32_t a, int32_t b, int32_t c)
 {
