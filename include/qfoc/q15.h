@@ -18,7 +18,8 @@
  * code on the Cortex-M4 (MISRA C:2012 Rule 8.10: inline functions have internal
  * linkage).
  *
- * Requirements: REQ-Q15-001 .. REQ-Q15-008 (specs/requirements.md).
+ * Requirements: REQ-Q15-001 .. REQ-Q15-008 (specs/requirements/q15.md); each
+ * function below names the ones it meets.
  */
 #ifndef QFOC_Q15_H
 #define QFOC_Q15_H
@@ -30,6 +31,7 @@
 
 /**
  * @brief Saturate a 32-bit integer to the symmetric Q15 range.
+ * Requirement: REQ-Q15-001.
  * @param[in] x any int32_t value
  * @return x clamped to [-32767, 32767]
  *
@@ -65,6 +67,7 @@ static inline qfoc_q15_t qfoc_q15_sat(int32_t x)
 
 /**
  * @brief Saturate a 64-bit integer to the symmetric Q31 range.
+ * Requirement: REQ-Q15-006.
  * @param[in] x any int64_t value
  * @return x clamped to [-(2^31 - 1), 2^31 - 1]
  */
@@ -88,6 +91,7 @@ static inline qfoc_q31_t qfoc_q31_sat(int64_t x)
 
 /**
  * @brief Saturating addition a + b.
+ * Requirement: REQ-Q15-002.
  *
  * Scaling and overflow: 1.15 + 1.15 summed exactly in 32 bits (|sum| <= 65536),
  * then saturated to [-32767, 32767].
@@ -112,6 +116,7 @@ static inline qfoc_q15_t qfoc_q15_add(qfoc_q15_t a, qfoc_q15_t b)
 
 /**
  * @brief Saturating subtraction a - b.
+ * Requirement: REQ-Q15-002.
  *
  * Scaling and overflow: as qfoc_q15_add; |a - b| <= 65535 in 32 bits.
  */
@@ -135,6 +140,7 @@ static inline qfoc_q15_t qfoc_q15_sub(qfoc_q15_t a, qfoc_q15_t b)
 
 /**
  * @brief Saturating negation -a (-(-32768) gives 32767).
+ * Requirement: REQ-Q15-003.
  */
 /*@
   assigns \nothing;
@@ -156,6 +162,7 @@ static inline qfoc_q15_t qfoc_q15_neg(qfoc_q15_t a)
 
 /**
  * @brief Saturating absolute value |a| (|-32768| gives 32767).
+ * Requirement: REQ-Q15-003.
  */
 /*@
   assigns \nothing;
@@ -180,6 +187,7 @@ static inline qfoc_q15_t qfoc_q15_abs(qfoc_q15_t a)
 
 /**
  * @brief Convert a Q30 value (the product of two Q15 values) to Q15.
+ * Requirement: REQ-Q15-004.
  * @param[in] x any int32_t, read as Q2.30
  * @return x / 32768 rounded to nearest (ties away from zero), saturated.
  *
@@ -219,6 +227,7 @@ static inline qfoc_q15_t qfoc_q15_from_q30(int32_t x)
 
 /**
  * @brief Q15 x Q15 -> Q15 multiplication, rounded and saturated.
+ * Requirement: REQ-Q15-005.
  *
  * Scaling and overflow: 1.15 x 1.15 = 2.30 exact in 32 bits (|a b| <= 2^30),
  * rounded to nearest (ties away from zero) to 1.15 by qfoc_q15_from_q30; only
@@ -243,6 +252,7 @@ static inline qfoc_q15_t qfoc_q15_mul(qfoc_q15_t a, qfoc_q15_t b)
 
 /**
  * @brief Saturating Q31 addition.
+ * Requirement: REQ-Q15-006.
  */
 /*@
   assigns \nothing;
@@ -256,6 +266,7 @@ static inline qfoc_q31_t qfoc_q31_add(qfoc_q31_t a, qfoc_q31_t b)
 
 /**
  * @brief Multiply-accumulate in Q31: acc + a x b.
+ * Requirement: REQ-Q15-007.
  * @param[in] acc accumulator, Q1.31 (any int32_t)
  * @param[in] a, b factors, Q1.15 (any int16_t)
  * @return acc + a b as Q31 (the Q30 product scaled by 2, exact), saturated.
@@ -278,6 +289,7 @@ static inline qfoc_q31_t qfoc_q31_mac(qfoc_q31_t acc, qfoc_q15_t a, qfoc_q15_t b
 /**
  * @brief Convert Q31 to Q15: x / 65536 rounded to nearest (ties away from zero),
  *        saturated to [-32767, 32767].
+ * Requirement: REQ-Q15-008.
  *
  * Scaling and overflow: 1.31 -> 1.15 drops 16 fraction bits; the quotient and the
  * remainder are formed separately so no intermediate exceeds 32 bits.
@@ -303,6 +315,7 @@ static inline qfoc_q15_t qfoc_q15_from_q31(qfoc_q31_t x)
 
 /**
  * @brief Convert Q15 to Q31 (exact: x * 65536).
+ * Requirement: REQ-Q15-008.
  */
 /*@
   assigns \nothing;

@@ -155,7 +155,9 @@ bool qfoc_svpwm_cfg_is_valid(const qfoc_svpwm_cfg_t *c);
  *    |Tx| <= 5 P / 4 afterwards; the injected offset (P - Tmax - Tmin) / 2
  *    (truncated towards zero) and Tx + offset stay within +-4 P; clamped to [0, P].
  *
- * Requirements: REQ-SVPWM-002 .. REQ-SVPWM-011.
+ * Requirements: REQ-SVPWM-002, REQ-SVPWM-003, REQ-SVPWM-004, REQ-SVPWM-005,
+ *   REQ-SVPWM-006, REQ-SVPWM-007, REQ-SVPWM-008, REQ-SVPWM-009, REQ-SVPWM-010,
+ *   REQ-SVPWM-011.
  */
 /*@
   requires valid_cfg: \valid_read(cfg);

@@ -21,7 +21,7 @@
  * do not use the table contents: every range stated below follows from the
  * types alone.
  *
- * Requirements: REQ-TRIG-001 .. REQ-TRIG-006 (specs/requirements/trig.md).
+ * Requirements: REQ-TRIG-001 .. REQ-TRIG-005 (specs/requirements/trig.md).
  */
 #ifndef QFOC_TRIG_H
 #define QFOC_TRIG_H
