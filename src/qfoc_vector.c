@@ -130,6 +130,8 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
     int32_t qo;
     uint32_t vmu;
     uint32_t adu;
+    uint32_t aqu;
+    uint32_t r2;
     uint32_t w;
     bool limited;
 
@@ -142,18 +144,32 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
     if (adl < 0) {
         adl = -adl;
     }
-    /* vm^2 - dl^2 = (vm - |dl|) (vm + |dl|): both factors in [0, 65534], so
-     * the 16 x 16 bit product cannot overflow 32 bits (2.30, <= 32767^2) */
     vmu = (uint32_t)vm;
-    adu = (uint32_t)adl;
-    w = (uint32_t)(uint16_t)(vmu - adu) * (uint32_t)(uint16_t)(vmu + adu);
-    //@ assert w_value: w == (vm * vm) - (dl * dl);
-    ql = (int32_t)qfoc_isqrt32(w);           /* q room left, 1.15 */
-    //@ assert ql_sq: ql * ql <= vm * vm;
-    //@ assert ql_bound: 0 <= ql <= vm;
-    qo = vec_clamp(q, ql);
-    //@ assert qo_sq: qo * qo <= ql * ql;
-    limited = (dl != d) || (qo != q);
+    adu = (uint32_t)((d < 0) ? -d : d);      /* |d| <= 32768 */
+    aqu = (uint32_t)((q < 0) ? -q : q);      /* |q| <= 32768 */
+    /* d^2 + q^2 <= 2 * 2^30 = 2^31: exact in uint32 */
+    r2 = (adu * adu) + (aqu * aqu);
+    //@ assert r2_value: r2 == (d * d) + (q * q);
+    if (r2 <= (vmu * vmu)) {
+        /* inside or on the circle: nothing to limit (decided exactly, on the
+         * squared radius, so the result never depends on square-root rounding) */
+        //@ assert d_sq: d * d <= vm * vm;
+        //@ assert d_in: -vm <= d <= vm;
+        qo = q;
+        limited = false;
+    } else {
+        /* vm^2 - dl^2 = (vm - |dl|) (vm + |dl|): both factors in [0, 65534], so
+         * the 16 x 16 bit product cannot overflow 32 bits (2.30, <= 32767^2) */
+        adu = (uint32_t)adl;
+        w = (uint32_t)(uint16_t)(vmu - adu) * (uint32_t)(uint16_t)(vmu + adu);
+        //@ assert w_value: w == (vm * vm) - (dl * dl);
+        ql = (int32_t)qfoc_isqrt32(w);       /* q room left, 1.15 */
+        //@ assert ql_sq: ql * ql <= vm * vm;
+        //@ assert ql_bound: 0 <= ql <= vm;
+        qo = vec_clamp(q, ql);
+        //@ assert qo_sq: qo * qo <= ql * ql;
+        limited = true;
+    }
     /* |dl|, |qo| <= vm <= 32767: the saturation never acts (proved) */
     out->d = qfoc_q15_sat(dl);
     out->q = qfoc_q15_sat(qo);

@@ -100,7 +100,9 @@ qfoc_q15_t qfoc_vec_mag(qfoc_q15_t x, qfoc_q15_t y);
  *
  * Bad input: in and out must be valid pointers (precondition, not checked).
  *
- * Scaling and overflow: vmax^2 - d'^2 is formed as the 2.30 product
+ * Scaling and overflow: whether the input lies inside the circle is decided
+ * exactly on the squares, d^2 + q^2 <= vmax^2 in uint32 (<= 2^31); outside it,
+ * vmax^2 - d'^2 is formed as the 2.30 product
  * (vmax - |d'|) (vmax + |d'|) of two factors in [0, 65534] (|d'| <= vmax),
  * a 16 x 16 bit product in uint32 (<= 32767^2 < 2^30); its integer square
  * root is a 1.15 value <= vmax <= 32767, so the final qfoc_q15_sat never
