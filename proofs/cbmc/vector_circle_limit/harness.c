@@ -4,12 +4,13 @@
  * Part 1, every int16 value of (d, q, vmax): no run-time error (overflow,
  * conversion, bounds, pointer), and the properties that are linear in the
  * inputs: d' = clamp(d, -max(vmax, 0), max(vmax, 0)), q' has the sign of q
- * and |q'| <= |q|, the result is true exactly when some component changed.
+ * and |q'| <= |q|.
  *
  * Part 2, |d|, |q|, vmax of up to 8 bits (sign-extended nondet int8): the
  * quadratic properties: the output lies inside the circle, the output equals
  * the input and the result is false when the input lies inside, the result is
- * true otherwise.  (Squares of full 16-bit symbolic values make the SAT
+ * true otherwise, and the result is true exactly when some component changed
+ * (the function decides on d^2 + q^2 <= vmax^2, a quadratic test).  (Squares of full 16-bit symbolic values make the SAT
  * problem a multiplier-equivalence problem that does not finish in minutes;
  * these properties are proved for the full range by Frama-C WP, contract
  * behaviours inside / limited and ensures in_circle, and tested on random
@@ -60,7 +61,6 @@ int main(void)
     __CPROVER_assert(od == clamp(d, vm), "d priority: d' = clamp(d, -vmax, vmax)");
     __CPROVER_assert((q >= 0) ? ((oq >= 0) && (oq <= q)) : ((oq <= 0) && (oq >= q)),
                      "q' keeps the sign of q and does not grow");
-    __CPROVER_assert(lim == ((od != d) || (oq != q)), "result true iff limited");
 
     /* Part 2: 8-bit operands, quadratic properties */
     vmax = (qfoc_q15_t)nondet_int8();
@@ -78,5 +78,6 @@ int main(void)
     } else {
         __CPROVER_assert(lim, "outside: limited");
     }
+    __CPROVER_assert(lim == ((out.d != in.d) || (out.q != in.q)), "result true iff limited");
     return 0;
 }
