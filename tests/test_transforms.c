@@ -229,6 +229,45 @@ static void test_req_trf_009_clarke_balanced(void **state)
 static double park_max_err;
 static double park_max_err_ideal;
 
+/* The input sweep shared by the Park and inverse Park tests: random vectors at
+ * random exact angles (compared with the ideal rotation too), random raw
+ * sine/cosine words that are not a unit pair (totality), and every combination
+ * of the corner values for both inputs and both sin/cos words. */
+typedef void (*rotation_check_t)(int16_t x1, int16_t x2, qfoc_sincos_t sc, double x, bool ideal);
+
+static void sweep_rotation(rotation_check_t check, uint32_t seed)
+{
+    uint32_t i;
+    size_t a;
+    size_t b;
+    size_t s;
+    size_t c;
+
+    lcg_seed(seed);
+    for (i = 0u; i < N_RANDOM; i++) {
+        double x = 2.0 * PI_D * rand_unit();
+        check(rand_q15(), rand_q15(), sincos_of(x), x, true);
+    }
+    for (i = 0u; i < N_RANDOM; i++) {
+        qfoc_sincos_t sc;
+        sc.sine = rand_q15();
+        sc.cosine = rand_q15();
+        check(rand_q15(), rand_q15(), sc, 0.0, false);
+    }
+    for (a = 0u; a < N_CORNERS; a++) {
+        for (b = 0u; b < N_CORNERS; b++) {
+            for (s = 0u; s < N_CORNERS; s++) {
+                for (c = 0u; c < N_CORNERS; c++) {
+                    qfoc_sincos_t sc;
+                    sc.sine = corners[s];
+                    sc.cosine = corners[c];
+                    check(corners[a], corners[b], sc, 0.0, false);
+                }
+            }
+        }
+    }
+}
+
 static void check_park(int16_t alpha, int16_t beta, qfoc_sincos_t sc, double x, bool ideal)
 {
     qfoc_ab_t in;
@@ -272,39 +311,11 @@ static void check_park(int16_t alpha, int16_t beta, qfoc_sincos_t sc, double x, 
 /* REQ-TRF-003, REQ-TRF-004, REQ-TRF-010: random vectors and angles, all corners */
 static void test_req_trf_003_004_park(void **state)
 {
-    uint32_t i;
-    size_t a;
-    size_t b;
-    size_t s;
-    size_t c;
     (void)state;
 
     park_max_err = 0.0;
     park_max_err_ideal = 0.0;
-    lcg_seed(0xCAFEF00Du);
-    for (i = 0u; i < N_RANDOM; i++) {
-        double x = 2.0 * PI_D * rand_unit();
-        check_park(rand_q15(), rand_q15(), sincos_of(x), x, true);
-    }
-    /* raw sine / cosine words, not a unit pair (totality) */
-    for (i = 0u; i < N_RANDOM; i++) {
-        qfoc_sincos_t sc;
-        sc.sine = rand_q15();
-        sc.cosine = rand_q15();
-        check_park(rand_q15(), rand_q15(), sc, 0.0, false);
-    }
-    for (a = 0u; a < N_CORNERS; a++) {
-        for (b = 0u; b < N_CORNERS; b++) {
-            for (s = 0u; s < N_CORNERS; s++) {
-                for (c = 0u; c < N_CORNERS; c++) {
-                    qfoc_sincos_t sc;
-                    sc.sine = corners[s];
-                    sc.cosine = corners[c];
-                    check_park(corners[a], corners[b], sc, 0.0, false);
-                }
-            }
-        }
-    }
+    sweep_rotation(check_park, 0xCAFEF00Du);
     print_message("Park max |error| vs (2-7),(2-8) with the same Q15 sin/cos: %.4f LSB (bound %.2f)\n",
                   park_max_err, PARK_BOUND);
     print_message("Park max |error| vs the exact angle (incl. sin/cos quantisation): %.4f LSB\n",
@@ -419,37 +430,11 @@ static void check_inv_park(int16_t d, int16_t q, qfoc_sincos_t sc, double x, boo
 static void test_req_trf_005_006_inv_park(void **state)
 {
     uint32_t i;
-    size_t a;
-    size_t b;
-    size_t s;
-    size_t c;
     (void)state;
 
     inv_park_max_err = 0.0;
     inv_park_max_err_ideal = 0.0;
-    lcg_seed(0x5EED1234u);
-    for (i = 0u; i < N_RANDOM; i++) {
-        double x = 2.0 * PI_D * rand_unit();
-        check_inv_park(rand_q15(), rand_q15(), sincos_of(x), x, true);
-    }
-    for (i = 0u; i < N_RANDOM; i++) {
-        qfoc_sincos_t sc;
-        sc.sine = rand_q15();
-        sc.cosine = rand_q15();
-        check_inv_park(rand_q15(), rand_q15(), sc, 0.0, false);
-    }
-    for (a = 0u; a < N_CORNERS; a++) {
-        for (b = 0u; b < N_CORNERS; b++) {
-            for (s = 0u; s < N_CORNERS; s++) {
-                for (c = 0u; c < N_CORNERS; c++) {
-                    qfoc_sincos_t sc;
-                    sc.sine = corners[s];
-                    sc.cosine = corners[c];
-                    check_inv_park(corners[a], corners[b], sc, 0.0, false);
-                }
-            }
-        }
-    }
+    sweep_rotation(check_inv_park, 0x5EED1234u);
     /* harmonics on U_d, U_q as in the document: M + A_d sin(wt + phi_d), ... */
     for (i = 0u; i < 3600u; i++) {
         double x = (2.0 * PI_D * (double)i) / 3600.0;
