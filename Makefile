@@ -14,6 +14,8 @@ BUILD   := build
 SRCS    := $(sort $(wildcard src/*.c))
 HDRS    := $(sort $(wildcard include/qfoc/*.h))
 TESTS   := $(sort $(wildcard tests/test_*.c))
+SIM_SRCS := $(sort $(wildcard sim/*.c))
+SIM_HDRS := $(sort $(wildcard sim/*.h))
 TEST_BINS := $(patsubst tests/%.c,$(BUILD)/host/tests/%,$(TESTS))
 
 WARN    := -std=c99 -Wall -Wextra -Wconversion -Wsign-conversion -Wshadow \
@@ -54,9 +56,10 @@ $(BUILD)/host/libqfoc.a: $(HOST_OBJS)
 lib: $(BUILD)/host/libqfoc.a
 
 # ---------------------------------------------------------------- unit tests
-$(BUILD)/host/tests/%: tests/%.c $(BUILD)/host/libqfoc.a
+# Tests link the plant model of sim/ (double precision, host only) as well.
+$(BUILD)/host/tests/%: tests/%.c $(BUILD)/host/libqfoc.a $(SIM_SRCS) $(SIM_HDRS)
 	@mkdir -p $(@D)
-	$(CC) $(TEST_CFLAGS) $< $(BUILD)/host/libqfoc.a -lcmocka -lm -o $@
+	$(CC) $(TEST_CFLAGS) -Isim $< $(SIM_SRCS) $(BUILD)/host/libqfoc.a -lcmocka -lm -o $@
 
 ## test: CMocka unit tests against double-precision references
 test: deps $(TEST_BINS)

@@ -1,0 +1,197 @@
+/**
+ * @file sim.h
+ * @brief Double-precision plant for closed-loop tests of qfoc (host only).
+ *
+ * Not part of the library: plain C99 with double arithmetic, used by the tests,
+ * the estimator report and the demonstration to put the Q15 library in a loop
+ * with a model of the compressor drive.
+ *
+ * Models (specs/reference-motor.md gives the equations and their sources):
+ *  - motor file: a TOML subset (sections, `key = number`, `key = "text"`,
+ *    comments), one file per motor under specs/motors/;
+ *  - salient-pole PMSM in the rotor (dq) frame, document chapter 1, integrated
+ *    with classical RK4 at a fixed number of sub-steps per PWM period;
+ *  - mechanics J dw/dt = T_e - T_L - B w, or a locked (imposed) speed;
+ *  - compressor load T_L = T_mean + T_1 sin(theta_m + phi_1) + T_2 sin(2 theta_m + phi_2);
+ *  - two-level inverter on a centre-aligned up-down PWM counter, with dead time:
+ *    the pole voltage follows the current sign while both switches are off;
+ *  - sensing: phase currents u, v and the DC bus through 12-bit ADCs, sampled
+ *    at the start of each PWM period (counter zero, zero vector on the low side),
+ *    with optional Gaussian noise; compare values written during period k take
+ *    effect at the start of period k + 1 (one period of computation delay).
+ */
+#ifndef QFOC_SIM_H
+#define QFOC_SIM_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+/** pi in double precision (M_PI is not C99). */
+#define SIM_PI 3.14159265358979323846
+
+/* ------------------------------------------------------------------ motor file */
+
+/** Motor, inverter and sensing data of one motor file (SI units). */
+typedef struct {
+    char name[96];
+    double pole_pairs;
+    double rs_ohm;
+    double ld_h;
+    double lq_h;
+    double psi_f_wb;
+    double j_kgm2;
+    double b_nms;
+    double rated_speed_rpm;
+    double max_speed_rpm;
+    double rated_current_a;
+    double nominal_torque_nm;
+    double vdc_nominal_v;
+    double vdc_min_v;
+    double vdc_max_v;
+    double f_pwm_hz;
+    double f_timer_hz;
+    double dead_time_s;
+    double i_full_scale_a;
+    double vdc_full_scale_v;
+    double adc_bits;
+    double f_base_hz;
+} sim_motor_t;
+
+/**
+ * @brief Read a motor file.
+ * @return 0 on success; -1 when the file cannot be read, a line is malformed or a
+ *         required key is missing or not positive (the message names it on stderr).
+ */
+int sim_motor_load(const char *path, sim_motor_t *m);
+
+/** Per-unit bases of a motor file (specs/scaling.md section 2). */
+typedef struct {
+    double v_base;    /**< V: DC-bus sensing full scale */
+    double i_base;    /**< A: phase-current sensing full scale */
+    double f_base;    /**< Hz: electrical frequency of speed 1.0 */
+    double w_base;    /**< rad/s electrical */
+    double psi_base;  /**< Wb = V_base / w_base */
+    double z_base;    /**< ohm = V_base / I_base */
+    double l_base;    /**< H = Z_base / w_base */
+    double t_s;       /**< s: PWM (and control) period */
+    uint16_t period;  /**< PWM counter top, f_timer / (2 f_pwm) */
+} sim_bases_t;
+
+void sim_bases(const sim_motor_t *m, sim_bases_t *b);
+
+/* ------------------------------------------------------------------ plant */
+
+/** Compressor load torque (N m) as a function of the mechanical angle. */
+typedef struct {
+    double t_mean;  /**< mean load torque */
+    double t_1x;    /**< amplitude of the pulsation at 1x the mechanical frequency */
+    double phi_1x;  /**< its phase (rad) */
+    double t_2x;    /**< amplitude at 2x */
+    double phi_2x;  /**< its phase (rad) */
+} sim_load_t;
+
+/** Scenario settings of a plant instance. */
+typedef struct {
+    sim_motor_t motor;        /**< the motor actually simulated (parameter errors are
+                                   applied to the controller's copy, not here) */
+    double vdc_v;             /**< DC-bus voltage */
+    double dead_time_s;       /**< inverter dead time (0 = ideal switches) */
+    double noise_i_rms_a;     /**< Gaussian noise on each current sample, A rms */
+    double noise_vdc_rms_v;   /**< Gaussian noise on the DC-bus sample, V rms */
+    double adc_offset_counts; /**< current-ADC offset error, counts */
+    uint32_t seed;            /**< noise generator seed */
+    bool speed_locked;        /**< true: speed imposed, mechanics not integrated */
+    double locked_speed_e;    /**< imposed electrical speed, rad/s (speed_locked) */
+    sim_load_t load;
+    int substeps;             /**< RK4 steps per PWM period (>= 1, e.g. 20) */
+} sim_cfg_t;
+
+/** ADC samples of one PWM period. */
+typedef struct {
+    uint16_t iu;   /**< phase u current, 0..4095, 2048 = 0 A */
+    uint16_t iv;   /**< phase v current */
+    uint16_t vdc;  /**< DC bus, 0..4095 */
+} sim_adc_t;
+
+/** Plant state (read the fields; change them only through the functions). */
+typedef struct {
+    sim_cfg_t cfg;
+    sim_bases_t bases;
+    double t;          /**< time, s (start of the current PWM period) */
+    double id, iq;     /**< rotor-frame currents, A */
+    double w_m;        /**< mechanical speed, rad/s */
+    double theta_m;    /**< mechanical angle, rad, in [0, 2 pi) */
+    uint16_t cmp_active[3];   /**< compare values of the current period */
+    uint16_t cmp_pending[3];  /**< written this period, active from the next */
+    double v_ab_avg[2];       /**< average alpha/beta phase voltage of the last period */
+    double torque_avg;        /**< average electromagnetic torque of the last period */
+    uint32_t rng;
+} sim_t;
+
+/** Initialise at standstill, zero currents, theta_m = 0, compare = period / 2. */
+void sim_init(sim_t *s, const sim_cfg_t *cfg);
+
+/** Set the state: electrical angle and speed (rad, rad/s) and dq currents (A). */
+void sim_set_state(sim_t *s, double theta_e, double w_e, double id, double iq);
+
+/** ADC samples at the current instant (start of the period). */
+void sim_sample(sim_t *s, sim_adc_t *adc);
+
+/** Write compare values (0..period); they take effect at the next period start. */
+void sim_set_compare(sim_t *s, const uint16_t cmp[3]);
+
+/** Integrate one PWM period; then the pending compare values become active. */
+void sim_step_period(sim_t *s);
+
+/* truth, for references and reports */
+double sim_theta_e(const sim_t *s);          /**< electrical angle, rad, [0, 2 pi) */
+double sim_w_e(const sim_t *s);              /**< electrical speed, rad/s */
+void sim_i_ab(const sim_t *s, double i_ab[2]);   /**< stationary-frame current, A */
+double sim_torque(const sim_t *s);           /**< electromagnetic torque now, N m */
+double sim_load_torque(const sim_t *s);      /**< load torque now, N m */
+
+/* ------------------------------------------------------------------ helpers */
+
+/** Phase-current ADC code to Q15 of I_base: (code - 2048) x 16. */
+int16_t sim_adc_current_q15(uint16_t code);
+/** DC-bus ADC code to Q15 of V_base: code x 8. */
+int16_t sim_adc_vdc_q15(uint16_t code);
+/** Wrap an angle to [-pi, pi). */
+double sim_wrap_pi(double x);
+
+/* ------------------------------------------------------------------ ideal controller */
+
+/**
+ * Double-precision current controller on the TRUE rotor angle (the "ideal"
+ * controller the estimators are validated under): PI in dq with decoupling,
+ * pole-zero cancellation at bandwidth bw_hz, angle advanced by 1.5 periods for the
+ * computation and PWM delay, voltage limited to the inscribed circle, and the
+ * library's SVPWM (qfoc_svpwm_step) with dead-time compensation producing the
+ * compare values.  Reference currents from a torque command with a voltage-limit
+ * (field-weakening) rule for i_d.
+ */
+typedef struct {
+    sim_motor_t m;        /**< controller's motor data */
+    sim_bases_t b;
+    double bw_hz;         /**< current-loop bandwidth */
+    double u_margin;      /**< usable fraction of Vdc / sqrt(3) for the i_d rule */
+    double int_d, int_q;  /**< integrators, V */
+    double id_ref, iq_ref;
+    double v_ab_q15[2];   /**< last command, Q15 of V_base (as sent to SVPWM) */
+    int16_t v_cmd[2];     /**< last command as Q15 integers */
+    double dt_comp_s;     /**< dead-time compensation, s */
+} sim_ctrl_t;
+
+void sim_ctrl_init(sim_ctrl_t *c, const sim_motor_t *m, double bw_hz);
+
+/** Reference currents for a torque at an electrical speed and bus voltage. */
+void sim_ctrl_torque_ref(sim_ctrl_t *c, double torque_nm, double w_e, double vdc);
+
+/**
+ * One control period: measured ADC samples, true angle and speed at the sample;
+ * writes the compare values and returns the voltage command (Q15) in v_cmd.
+ */
+void sim_ctrl_step(sim_ctrl_t *c, const sim_adc_t *adc, double theta_e, double w_e,
+                   uint16_t cmp[3]);
+
+#endif /* QFOC_SIM_H */

@@ -1,0 +1,336 @@
+/**
+ * @file test_sim_plant.c
+ * @brief The double-precision plant (sim/) against closed-form references:
+ *        steady-state phasor solution of the dq equations, the first-order
+ *        current response, dead-time voltage error, mechanics, load, ADCs and
+ *        the motor-file reader.  The estimator validation rests on this plant,
+ *        so the plant itself is checked first.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "sim.h"
+
+#define REF_MOTOR "specs/motors/reference.toml"
+
+static sim_motor_t g_motor;
+
+static int setup(void **state)
+{
+    (void)state;
+    return sim_motor_load(REF_MOTOR, &g_motor);
+}
+
+static void base_cfg(sim_cfg_t *cfg, double vdc, double td, bool locked, double we)
+{
+    memset(cfg, 0, sizeof *cfg);
+    cfg->motor = g_motor;
+    cfg->vdc_v = vdc;
+    cfg->dead_time_s = td;
+    cfg->speed_locked = locked;
+    cfg->locked_speed_e = we;
+    cfg->substeps = 20;
+}
+
+/* Compare values of an ideal sine-triangle PWM (no dead time) for a phase-to-neutral
+   voltage vector (alpha, beta), with min-max injection so that it is centred. */
+static void open_loop_cmp(const sim_t *s, double va, double vb, uint16_t cmp[3])
+{
+    const double vu = va;
+    const double vv = -0.5 * va + 0.8660254037844386 * vb;
+    const double vw = -0.5 * va - 0.8660254037844386 * vb;
+    const double mx = fmax(vu, fmax(vv, vw));
+    const double mn = fmin(vu, fmin(vv, vw));
+    const double off = -0.5 * (mx + mn);
+    const double p = (double)s->bases.period;
+    const double v[3] = { vu + off, vv + off, vw + off };
+    int k;
+    for (k = 0; k < 3; k++) {
+        cmp[k] = (uint16_t)lround(p * (0.5 + v[k] / s->cfg.vdc_v));
+    }
+}
+
+/* Motor file: every value of the reference motor as specs/reference-motor.md states. */
+static void test_motor_file(void **state)
+{
+    sim_bases_t b;
+    (void)state;
+    assert_string_equal(g_motor.name, "qfoc reference compressor IPM");
+    assert_true(g_motor.pole_pairs == 3.0);
+    assert_true(g_motor.rs_ohm == 0.35);
+    assert_true(g_motor.ld_h == 2.6e-3);
+    assert_true(g_motor.lq_h == 4.2e-3);
+    assert_true(g_motor.psi_f_wb == 0.065);
+    assert_true(g_motor.j_kgm2 == 3.0e-4);
+    assert_true(g_motor.b_nms == 1.0e-4);
+    assert_true(g_motor.rated_speed_rpm == 6000.0);
+    assert_true(g_motor.max_speed_rpm == 8000.0);
+    assert_true(g_motor.rated_current_a == 20.0);
+    assert_true(g_motor.vdc_nominal_v == 320.0);
+    assert_true(g_motor.vdc_min_v == 250.0 && g_motor.vdc_max_v == 420.0);
+    assert_true(g_motor.f_pwm_hz == 8000.0);
+    sim_bases(&g_motor, &b);
+    assert_true(fabs(b.w_base - 3141.5926535) < 1e-6);
+    assert_true(fabs(b.psi_base - 500.0 / 3141.5926535) < 1e-9);
+    assert_true(fabs(b.l_base - 12.5 / 3141.5926535) < 1e-12);
+    assert_int_equal(b.period, 5000);
+}
+
+static void test_motor_file_rejects(void **state)
+{
+    sim_motor_t m;
+    FILE *f;
+    (void)state;
+    assert_int_equal(sim_motor_load("build/no-such-motor.toml", &m), -1);
+    f = fopen("build/bad_motor.toml", "w");
+    assert_non_null(f);
+    fputs("[motor]\npole_pairs = three\n", f);
+    fclose(f);
+    assert_int_equal(sim_motor_load("build/bad_motor.toml", &m), -1);
+    f = fopen("build/bad_motor.toml", "w");
+    assert_non_null(f);
+    fputs("[motor]\npole_pairs = 3\n", f); /* every other key missing */
+    fclose(f);
+    assert_int_equal(sim_motor_load("build/bad_motor.toml", &m), -1);
+}
+
+/*
+ * Steady state: a sinusoidal voltage of constant dq components at a locked speed
+ * must give the dq currents of the phasor solution
+ *   [R, -w L_q; w L_d, R] [i_d; i_q] = [v_d; v_q - w psi_f].
+ */
+static void check_steady_state(double we, double vd, double vq)
+{
+    sim_cfg_t cfg;
+    sim_t s;
+    const sim_motor_t *m = &g_motor;
+    const double a11 = m->rs_ohm;
+    const double a12 = -we * m->lq_h;
+    const double a21 = we * m->ld_h;
+    const double a22 = m->rs_ohm;
+    const double b1 = vd;
+    const double b2 = vq - we * m->psi_f_wb;
+    const double det = a11 * a22 - a12 * a21;
+    const double id_ref = (b1 * a22 - a12 * b2) / det;
+    const double iq_ref = (a11 * b2 - a21 * b1) / det;
+    double id_sum = 0.0;
+    double iq_sum = 0.0;
+    int n = 0;
+    int k;
+
+    base_cfg(&cfg, 320.0, 0.0, true, we);
+    sim_init(&s, &cfg);
+    sim_set_state(&s, 0.0, we, id_ref, iq_ref);
+    for (k = 0; k < 4000; k++) {
+        uint16_t cmp[3];
+        /* voltage for the period after next (one period of delay in the plant) */
+        const double th = sim_theta_e(&s) + 1.5 * we * s.bases.t_s;
+        open_loop_cmp(&s, vd * cos(th) - vq * sin(th), vd * sin(th) + vq * cos(th), cmp);
+        sim_set_compare(&s, cmp);
+        sim_step_period(&s);
+        if (k >= 3000) {
+            id_sum += s.id;
+            iq_sum += s.iq;
+            n++;
+        }
+    }
+    /* the PWM average of each period is the commanded vector to within the compare
+       rounding (0.5 tick = 0.032 V) and the rotation of the vector inside one period
+       (sinc(w T / 2) < 0.4 % at 400 Hz): 1 % of the current magnitude */
+    {
+        const double mag = hypot(id_ref, iq_ref);
+        assert_true(fabs(id_sum / n - id_ref) < 0.01 * mag + 0.02);
+        assert_true(fabs(iq_sum / n - iq_ref) < 0.01 * mag + 0.02);
+    }
+}
+
+static void test_steady_state_phasor(void **state)
+{
+    (void)state;
+    check_steady_state(0.0, 3.5, 1.75);            /* DC: i = v / R = 10 A, 5 A */
+    check_steady_state(2.0 * SIM_PI * 100.0, -20.0, 60.0);
+    check_steady_state(2.0 * SIM_PI * 300.0, -120.0, 130.0);
+}
+
+/* First-order response at standstill: a d-axis voltage step gives
+   i_d(t) = V/R (1 - exp(-t R / L_d)) (RK4 with the PWM average voltage). */
+static void test_current_step_response(void **state)
+{
+    sim_cfg_t cfg;
+    sim_t s;
+    const double v = 7.0;
+    const double tau = g_motor.ld_h / g_motor.rs_ohm;
+    int k;
+    double worst = 0.0;
+    (void)state;
+    base_cfg(&cfg, 320.0, 0.0, true, 0.0);
+    sim_init(&s, &cfg);
+    {
+        uint16_t cmp[3];
+        open_loop_cmp(&s, v, 0.0, cmp);
+        /* put the step into both the active and the pending period */
+        memcpy(s.cmp_active, cmp, sizeof cmp);
+        sim_set_compare(&s, cmp);
+    }
+    for (k = 1; k <= 800; k++) {
+        double ref;
+        sim_step_period(&s);
+        ref = v / g_motor.rs_ohm * (1.0 - exp(-s.t / tau));
+        worst = fmax(worst, fabs(s.id - ref));
+    }
+    /* the compare rounding makes the average voltage exact to 0.5 tick of 5000:
+       0.032 V / 0.35 ohm = 0.09 A at the end value 20 A */
+    assert_true(worst < 0.1);
+    assert_true(fabs(s.iq) < 1e-9);
+}
+
+/* Dead time: every pole loses (i > 0) or gains (i < 0) Vdc td / T of its average. */
+static void test_dead_time_error(void **state)
+{
+    sim_cfg_t cfg;
+    sim_t s;
+    const double td = 2.0e-6;
+    const double vdc = 300.0;
+    const uint16_t cmp[3] = { 3000u, 2500u, 1800u };
+    double vp[3];
+    double va;
+    double vb;
+    double vn;
+    int k;
+    (void)state;
+    base_cfg(&cfg, vdc, td, true, 0.0);
+    sim_init(&s, &cfg);
+    /* i_d = 6 A at theta = 0: i_u = 6 A > 0, i_v = i_w = -3 A < 0 */
+    sim_set_state(&s, 0.0, 0.0, 6.0, 0.0);
+    memcpy(s.cmp_active, cmp, sizeof cmp);
+    sim_set_compare(&s, cmp);
+    sim_step_period(&s);
+    for (k = 0; k < 3; k++) {
+        vp[k] = vdc * ((double)cmp[k] / 5000.0 - 0.5);
+    }
+    vp[0] -= vdc * td * 8000.0;
+    vp[1] += vdc * td * 8000.0;
+    vp[2] += vdc * td * 8000.0;
+    vn = (vp[0] + vp[1] + vp[2]) / 3.0;
+    va = vp[0] - vn;
+    vb = ((vp[1] - vn) - (vp[2] - vn)) / sqrt(3.0);
+    assert_true(fabs(s.v_ab_avg[0] - va) < 1e-9);
+    assert_true(fabs(s.v_ab_avg[1] - vb) < 1e-9);
+}
+
+/* Mechanics: J dw/dt = T_e - T_L - B w.  The reference integrates the same
+   equation with the plant's period-average electromagnetic torque (so that the
+   check is independent of how well the controller holds the torque); a first-order
+   hold of the torque over one period (125 us, mechanical time constant J/B = 3 s)
+   keeps the two within 0.1 %. */
+static void test_mechanics(void **state)
+{
+    sim_cfg_t cfg;
+    sim_t s;
+    sim_ctrl_t c;
+    const double j = g_motor.j_kgm2;
+    const double b = g_motor.b_nms;
+    double w_ref = 0.0;
+    int k;
+    (void)state;
+    base_cfg(&cfg, 320.0, 0.0, false, 0.0);
+    cfg.load.t_mean = 0.1;
+    sim_init(&s, &cfg);
+    sim_ctrl_init(&c, &g_motor, 1000.0);
+    sim_ctrl_torque_ref(&c, 0.4, 0.0, 320.0);
+    sim_set_state(&s, 0.0, 0.0, c.id_ref, c.iq_ref);
+    for (k = 0; k < 800; k++) { /* 0.1 s */
+        sim_adc_t a;
+        uint16_t cmp[3];
+        sim_sample(&s, &a);
+        sim_ctrl_step(&c, &a, sim_theta_e(&s), sim_w_e(&s), cmp);
+        sim_set_compare(&s, cmp);
+        sim_step_period(&s);
+        w_ref += (s.torque_avg - 0.1 - b * w_ref) / j * s.bases.t_s;
+    }
+    /* (0.4 - 0.1) / 3e-4 x 0.1 s = 100 rad/s */
+    assert_true(w_ref > 95.0 && w_ref < 105.0);
+    assert_true(fabs(s.w_m - w_ref) < 0.001 * w_ref);
+}
+
+static void test_load_profile(void **state)
+{
+    sim_cfg_t cfg;
+    sim_t s;
+    (void)state;
+    base_cfg(&cfg, 320.0, 0.0, true, 0.0);
+    cfg.load.t_mean = 4.0;
+    cfg.load.t_1x = 1.0;
+    cfg.load.phi_1x = 0.0;
+    cfg.load.t_2x = 0.5;
+    cfg.load.phi_2x = SIM_PI / 2.0;
+    sim_init(&s, &cfg);
+    s.theta_m = 0.0;
+    assert_true(fabs(sim_load_torque(&s) - 4.5) < 1e-12);
+    s.theta_m = SIM_PI / 2.0;
+    assert_true(fabs(sim_load_torque(&s) - (4.0 + 1.0 - 0.5)) < 1e-12);
+}
+
+/* ADC: offset at mid-scale, 2048 counts = full scale, clamped, noise of the stated RMS. */
+static void test_adc(void **state)
+{
+    sim_cfg_t cfg;
+    sim_t s;
+    sim_adc_t a;
+    double sum = 0.0;
+    double sum2 = 0.0;
+    const int n = 20000;
+    int k;
+    (void)state;
+    base_cfg(&cfg, 320.0, 0.0, true, 0.0);
+    sim_init(&s, &cfg);
+    sim_set_state(&s, 0.0, 0.0, 10.0, 0.0); /* i_u = 10 A, i_v = -5 A */
+    sim_sample(&s, &a);
+    assert_int_equal(a.iu, 2048 + 512);
+    assert_int_equal(a.iv, 2048 - 256);
+    assert_int_equal(a.vdc, (uint16_t)lround(320.0 / 500.0 * 4096.0));
+    assert_int_equal(sim_adc_current_q15(a.iu), 8192); /* 10 A of 40 A */
+    assert_int_equal(sim_adc_vdc_q15(a.vdc), 2621 * 8);
+    sim_set_state(&s, 0.0, 0.0, 100.0, 0.0);
+    sim_sample(&s, &a);
+    assert_int_equal(a.iu, 4095);
+    assert_int_equal(a.iv, 0);
+    cfg.noise_i_rms_a = 0.5;
+    cfg.seed = 7u;
+    sim_init(&s, &cfg);
+    for (k = 0; k < n; k++) {
+        double x;
+        sim_sample(&s, &a);
+        x = ((double)a.iu - 2048.0) / 2048.0 * 40.0;
+        sum += x;
+        sum2 += x * x;
+    }
+    {
+        const double mean = sum / n;
+        const double rms = sqrt(sum2 / n - mean * mean);
+        /* quantisation adds 40/2048/sqrt(12) = 0.0056 A rms */
+        assert_true(fabs(mean) < 0.02);
+        assert_true(fabs(rms - 0.5) < 0.02);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_motor_file),
+        cmocka_unit_test(test_motor_file_rejects),
+        cmocka_unit_test(test_steady_state_phasor),
+        cmocka_unit_test(test_current_step_response),
+        cmocka_unit_test(test_dead_time_error),
+        cmocka_unit_test(test_mechanics),
+        cmocka_unit_test(test_load_profile),
+        cmocka_unit_test(test_adc),
+    };
+    return cmocka_run_group_tests_name("sim_plant", tests, setup, NULL);
+}
