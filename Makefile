@@ -33,7 +33,7 @@ HOST_OBJS := $(patsubst src/%.c,$(BUILD)/host/obj/%.o,$(SRCS))
 ARM_OBJS  := $(patsubst src/%.c,$(BUILD)/target/obj/%.o,$(SRCS))
 COV_OBJS  := $(patsubst src/%.c,$(BUILD)/cov/obj/%.o,$(SRCS))
 
-.PHONY: help deps lib test coverage prove cbmc misra target trace check demo clean
+.PHONY: help deps lib test coverage prove cbmc misra target trace check demo clean estimator-report
 
 help:
 	@echo "qfoc: make demo | make check   (README.md describes every target)"
@@ -115,6 +115,20 @@ target: deps $(BUILD)/target/libqfoc.a
 	@arm-none-eabi-size -t $(BUILD)/target/libqfoc.a | tail -n 1 | \
 	  awk '{printf "target: build/target/libqfoc.a (Cortex-M4F, -O2): text %s B, data %s B, bss %s B; no floating point, no runtime helpers\n", $$1, $$2, $$3}'
 
+# ---------------------------------------------------------------- estimator report
+# Debian's interpreter sees the python3-matplotlib package (a PATH python may not).
+PYTHON := $(shell [ -x /usr/bin/python3 ] && echo /usr/bin/python3 || echo python3)
+
+$(BUILD)/host/estimator_report: sim/apps/estimator_report.c $(SIM_SRCS) $(SIM_HDRS) $(BUILD)/host/libqfoc.a
+	@mkdir -p $(@D)
+	$(CC) $(TEST_CFLAGS) -O2 -Isim $< $(SIM_SRCS) $(BUILD)/host/libqfoc.a -lm -o $@
+
+## estimator-report: estimators validated on the plant: tables and plots in build/reports/
+estimator-report: deps $(BUILD)/host/estimator_report
+	@mkdir -p $(BUILD)/reports
+	@$(BUILD)/host/estimator_report specs/motors/reference.toml $(BUILD)/reports
+	@$(PYTHON) tools/plot_estimators.py $(BUILD)/reports
+
 # ---------------------------------------------------------------- demo
 $(BUILD)/host/accuracy: tools/accuracy.c $(BUILD)/host/libqfoc.a
 	$(CC) $(TEST_CFLAGS) $< $(BUILD)/host/libqfoc.a -lm -o $@
@@ -129,4 +143,4 @@ check: deps
 	@sh tools/check.sh
 
 clean:
-	rm -rf $(BUILD)/host $(BUILD)/target $(BUILD)/cov $(BUILD)/wp $(BUILD)/cbmc $(BUILD)/misra $(BUILD)/coverage
+	rm -rf $(BUILD)/host $(BUILD)/reports $(BUILD)/target $(BUILD)/cov $(BUILD)/wp $(BUILD)/cbmc $(BUILD)/misra $(BUILD)/coverage

@@ -19,34 +19,14 @@
 #include <stdlib.h>
 
 #include "qfoc/filter.h"
+#define TEST_SEED 777u
+#include "test_util.h"
 
 #define Q31_PER_Q15 65536.0
 #define Q31_SYM_MAX_Q15 (2147483647.0 / 65536.0)
 
 static const double pi_d = 3.14159265358979323846;
 
-static uint32_t lcg_state = 777u;
-
-static uint32_t lcg_next(void)
-{
-    lcg_state = (lcg_state * 1664525u) + 1013904223u;
-    return lcg_state;
-}
-
-static int16_t rand_i16(void)
-{
-    return (int16_t)((int32_t)(lcg_next() >> 16) - 32768);
-}
-
-static int32_t rand_range(int32_t lo, int32_t hi)
-{
-    return lo + (int32_t)((lcg_next() >> 8) % (uint32_t)(hi - lo + 1));
-}
-
-static double sat15d(double x)
-{
-    return (x > 32767.0) ? 32767.0 : ((x < -32767.0) ? -32767.0 : x);
-}
 
 static double clampd(double x, double lim)
 {

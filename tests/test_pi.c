@@ -16,27 +16,10 @@
 #include <math.h>
 
 #include "qfoc/pi.h"
+#include "test_util.h"
 
 /* ---- helpers ------------------------------------------------------------ */
 
-static uint32_t lcg_state = 12345u;
-
-static uint32_t lcg_next(void)
-{
-    lcg_state = (lcg_state * 1664525u) + 1013904223u;
-    return lcg_state;
-}
-
-/* uniform int16 over the full type range */
-static int16_t rand_i16(void)
-{
-    return (int16_t)((int32_t)(lcg_next() >> 16) - 32768);
-}
-
-static int32_t rand_range(int32_t lo, int32_t hi)
-{
-    return lo + (int32_t)((lcg_next() >> 8) % (uint32_t)(hi - lo + 1));
-}
 
 typedef struct {
     double kp;   /* real proportional gain */

@@ -11,6 +11,7 @@
 set -eu
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP"
+. tools/jobs.sh
 CBMC=${CBMC:-build/tools/cbmc/bin/cbmc}
 OUT=build/cbmc
 JOBS=${JOBS:-2}
@@ -21,7 +22,16 @@ CHECKS="--bounds-check --pointer-check --div-by-zero-check --signed-overflow-che
 --unsigned-overflow-check --pointer-overflow-check --conversion-check --undefined-shift-check \
 --float-overflow-check --nan-check --pointer-primitive-check --unwinding-assertions"
 
-dirs=${*:-$(ls -d proofs/cbmc/*/ 2>/dev/null | sed 's#/$##')}
+# longest first, by the times of the committed results (new harnesses first of all),
+# so that the two job slots finish close together
+order_by_time() {
+    for d in $(ls -d proofs/cbmc/*/ 2>/dev/null | sed 's#/$##'); do
+        t=$(sed -n "s/^| $(basename "$d") | [A-Z]* | [0-9]* | [0-9]* | [0-9]* | \([0-9]*\) |$/\1/p" \
+            proofs/cbmc/results.md 2>/dev/null)
+        echo "${t:-999999} $d"
+    done | sort -rn | cut -d' ' -f2
+}
+dirs=${*:-$(order_by_time)}
 
 mkval() {  # mkval FILE VAR: value of 'VAR = ...' in a config.mk
     sed -n "s/^$2[[:space:]]*[:?]*=[[:space:]]*//p" "$1" | tail -n 1
@@ -51,13 +61,13 @@ run_one() {
 }
 
 echo "cbmc: $("$CBMC" --version) on $(echo $dirs | wc -w) harnesses"
-for d in $dirs; do echo "$d"; done | {
-    while read -r d; do
-        run_one "$d" &
-        while [ "$(jobs -p | wc -l)" -ge "$JOBS" ]; do sleep 0.2; done
-    done
-    wait
-}
+pids=""
+for d in $dirs; do
+    run_one "$d" &
+    pids="$pids $!"
+    throttle
+done
+wait
 
 {
     echo "# CBMC results, per harness"

@@ -34,6 +34,7 @@ gate cbmc     make --no-print-directory cbmc
 gate misra    make --no-print-directory misra
 gate trace    make --no-print-directory trace
 gate target   make --no-print-directory target
+gate report   make --no-print-directory estimator-report
 
 echo
 echo "==================== summary ($(( $(date +%s) - start_all )) s)"

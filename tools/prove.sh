@@ -12,6 +12,7 @@
 set -eu
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP"
+. tools/jobs.sh
 OUT=${WP_OUT:-build/wp}
 JOBS=${JOBS:-2}
 TIMEOUT=${WP_TIMEOUT:-60}
@@ -24,7 +25,16 @@ rm -f "$OUT"/*.json "$OUT"/*.log "$OUT"/*.time
     for h in include/qfoc/*.h; do echo "#include \"qfoc/$(basename "$h")\""; done
 } > "$OUT/lemmas_unit.c"
 
-units=${*:-"$OUT/lemmas_unit.c proofs/wp/q15_unit.c $(ls src/*.c)"}
+# Longest units first, by the wall times of the last full run (proofs/wp/times.txt,
+# committed; a unit not listed there goes first), so the job slots finish close together.
+TIMES=proofs/wp/times.txt
+order_by_time() {
+    for u in src/*.c "$OUT/lemmas_unit.c" proofs/wp/q15_unit.c; do
+        t=$(sed -n "s/^$(basename "$u" .c) \([0-9]*\)$/\1/p" "$TIMES" 2>/dev/null)
+        echo "${t:-999999} $u"
+    done | sort -rn | cut -d' ' -f2
+}
+units=${*:-$(order_by_time)}
 
 prove_one() {
     unit=$1
@@ -64,11 +74,17 @@ prove_one() {
 rm -f "$OUT/failed"
 echo "prove: Frama-C WP (z3, cvc4, timeout ${TIMEOUT} s) on $(echo $units | wc -w) units"
 export OUT TIMEOUT
-for u in $units; do echo "$u"; done | {
-    while read -r u; do
-        prove_one "$u" &
-        while [ "$(jobs -p | wc -l)" -ge "$JOBS" ]; do sleep 0.2; done
-    done
-    wait
-}
+pids=""
+for u in $units; do
+    prove_one "$u" &
+    pids="$pids $!"
+    throttle
+done
+wait
+# after a full run, record the wall time of every unit for the next run's order
+if [ $# = 0 ]; then
+    for t in "$OUT"/*.time; do
+        [ -f "$t" ] && echo "$(basename "$t" .time) $(cat "$t")"
+    done | sort > "$TIMES"
+fi
 python3 tools/wp_report.py "$OUT" proofs/wp/results.md

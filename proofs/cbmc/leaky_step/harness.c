@@ -21,27 +21,8 @@
 #include <stdint.h>
 #include <stdbool.h>
 #include "qfoc/filter.h"
+#include "../harness_util.h"
 
-int16_t nondet_int16(void);
-int32_t nondet_int32(void);
-uint8_t nondet_uint8(void);
-
-/* q is x / 65536 rounded to nearest, ties away from zero, then saturated to the
-   symmetric Q15 range (checked by multiplication with a constant, no divider) */
-static bool is_rounded_sat(int64_t q, int64_t x)
-{
-    bool ok;
-    if (x > ((32767 * 65536) + 32767)) {
-        ok = (q == 32767);
-    } else if (x < -((32767 * 65536) + 32767)) {
-        ok = (q == -32767);
-    } else if (x >= 0) {
-        ok = (((q * 65536) - 32768) <= x) && (x < ((q * 65536) + 32768));
-    } else {
-        ok = (((q * 65536) - 32768) < x) && (x <= ((q * 65536) + 32768));
-    }
-    return ok;
-}
 
 int main(void)
 {

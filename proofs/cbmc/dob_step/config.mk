@@ -1,0 +1,2 @@
+SRCS = src/qfoc_emf.c
+UNWIND = 2

@@ -1,0 +1,2 @@
+SRCS = src/qfoc_emf.c src/qfoc_filter.c
+UNWIND = 1

@@ -1,0 +1,2 @@
+SRCS = src/qfoc_flux.c
+UNWIND = 1
