@@ -202,6 +202,13 @@ int est_run(const est_scenario_t *sc, est_result_t *res)
     m_est.lq_h *= sc->lq_fac;
     m_est.psi_f_wb *= sc->psi_fac;
     est_tune(&m_est, sc->design, &p);
+    if (sc->table != NULL) {
+        if (qfoc_params_check(sc->table) != QFOC_PARAMS_OK) {
+            return -1;
+        }
+        p.flux = sc->table->flux;
+        p.pll = sc->table->pll;
+    }
 
     memset(&cfg, 0, sizeof cfg);
     cfg.motor = *m;

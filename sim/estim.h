@@ -21,6 +21,7 @@
 #include "qfoc/emf.h"
 #include "qfoc/flux.h"
 #include "qfoc/pll.h"
+#include "qfoc/params.h"
 
 /** Estimators compared. */
 enum { EST_FLUX_PLL = 0, EST_EMF_ATAN, EST_DOB_ATAN, EST_DOB_ATO, EST_COUNT };
@@ -64,6 +65,10 @@ typedef struct {
     double t_window_s;         /**< measurement window */
     double init_error_deg;     /**< cold start: estimator states zero, PLL angle off by this */
     const est_design_t *design;
+    const qfoc_param_table_t *table; /**< if not NULL: the flux observer and the PLL take
+                                          their parameters from this generated table
+                                          (tables/), checked by qfoc_params_check(); the
+                                          parameter-error factors then do not apply to them */
     const char *trace_csv;     /**< if not NULL: write a per-sample trace here */
 } est_scenario_t;
 
@@ -88,7 +93,8 @@ typedef struct {
     double id_a, iq_a;     /**< operating point */
 } est_result_t;
 
-/** Run a scenario; returns 0, or -1 if the plant left its operating range. */
+/** Run a scenario; returns 0, or -1 if the plant left its operating range or the
+    scenario's table is refused by qfoc_params_check(). */
 int est_run(const est_scenario_t *sc, est_result_t *res);
 
 #endif /* QFOC_SIM_ESTIM_H */

@@ -24,6 +24,7 @@
 #include <cmocka.h>
 
 #include "estim.h"
+#include "reference_params.h"
 
 static sim_motor_t g_motor;
 static est_design_t g_design;
@@ -69,6 +70,7 @@ static void test_flux_pll_targets(void **state)
         est_scenario_t sc;
         est_result_t r;
         scenario(&sc, speeds[i]);
+        sc.table = &qfoc_params_reference;   /* flux observer and PLL from tables/ */
         run(&sc, &r);
         assert_true(fabs(r.f[EST_FLUX_PLL].err_mean_deg) <= 2.0);
         assert_true(r.f[EST_FLUX_PLL].err_max_deg <= 5.0);

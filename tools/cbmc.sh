@@ -5,6 +5,8 @@
 #   SRCS   = library sources the harness links (paths from the repository root)
 #   UNWIND = loop unwinding bound (checked: --unwinding-assertions)
 #   CBMC_EXTRA = optional further flags
+#   GOTO_INSTRUMENT = optional goto-instrument flags applied first (the harness and
+#                sources are then compiled with goto-cc), e.g. --remove-function-body F
 # Every harness runs with the full set of runtime checks below; the run fails unless
 # every property of every harness holds.  Results: build/cbmc/*.log and
 # proofs/cbmc/results.md (property count, result, unwinding bound, time).
@@ -44,9 +46,20 @@ run_one() {
     unwind=$(mkval "$d/config.mk" UNWIND)
     extra=$(mkval "$d/config.mk" CBMC_EXTRA)
     [ -n "$unwind" ] || unwind=1
+    gi=$(mkval "$d/config.mk" GOTO_INSTRUMENT)
     start=$(date +%s)
+    input="$d/harness.c $srcs"
+    if [ -n "$gi" ]; then
+        # the program is compiled with goto-cc and transformed by goto-instrument
+        # first (e.g. --remove-function-body F: F returns any value of its type)
+        # shellcheck disable=SC2086
+        { "$(dirname "$CBMC")/goto-cc" $input -Iinclude -DQFOC_CBMC -o "$OUT/$name.gb" &&
+          "$(dirname "$CBMC")/goto-instrument" $gi "$OUT/$name.gb" "$OUT/$name.gi.gb"; } \
+            > "$OUT/$name.gi.log" 2>&1 || echo "goto-instrument failed: $OUT/$name.gi.log" >> "$OUT/$name.gi.log"
+        input="$OUT/$name.gi.gb"
+    fi
     # shellcheck disable=SC2086
-    if "$CBMC" "$d/harness.c" $srcs -Iinclude -DQFOC_CBMC $CHECKS --unwind "$unwind" $extra \
+    if "$CBMC" $input -Iinclude -DQFOC_CBMC $CHECKS --unwind "$unwind" $extra \
         > "$OUT/$name.log" 2>&1; then
         res=PASS
     else

@@ -35,6 +35,7 @@ gate misra    make --no-print-directory misra
 gate trace    make --no-print-directory trace
 gate target   make --no-print-directory target
 gate report   make --no-print-directory estimator-report
+gate tune     make --no-print-directory tune-check
 
 echo
 echo "==================== summary ($(( $(date +%s) - start_all )) s)"

@@ -10,19 +10,20 @@ shift
 OUT=build/cov
 mkdir -p "$OUT/tests" "$OUT/sim" build/coverage
 find "$OUT" -name '*.gcda' -delete
-# The plant model (sim/) is test equipment, not library code: built without
-# coverage instrumentation and outside the gate.
+# The plant model (sim/) is test equipment and the generated parameter tables
+# (tables/) are constant data, not library code: built without coverage
+# instrumentation and outside the gate.
 sim_objs=
-for s in sim/*.c; do
+for s in sim/*.c tables/*.c; do
     [ -f "$s" ] || continue
-    o="$OUT/sim/$(basename "$s" .c).o"
-    gcc -std=c99 -O1 -g -Iinclude -Isim -c "$s" -o "$o"
+    o="$OUT/sim/$(basename "$(dirname "$s")")_$(basename "$s" .c).o"
+    gcc -std=c99 -O1 -g -Iinclude -Isim -Itables -c "$s" -o "$o"
     sim_objs="$sim_objs $o"
 done
 for t in "$@"; do
     n=$(basename "$t" .c)
     # shellcheck disable=SC2086
-    gcc -std=c99 -O0 -g --coverage -Iinclude -Isim -c "$t" -o "$OUT/tests/$n.o"
+    gcc -std=c99 -O0 -g --coverage -Iinclude -Isim -Itables -c "$t" -o "$OUT/tests/$n.o"
     # shellcheck disable=SC2086
     gcc --coverage "$OUT/tests/$n.o" $sim_objs $objs -lcmocka -lm -o "$OUT/tests/$n"
     "$OUT/tests/$n" > "$OUT/tests/$n.out" 2>&1 || { cat "$OUT/tests/$n.out"; echo "coverage: $n failed"; exit 1; }

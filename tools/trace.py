@@ -3,10 +3,11 @@
 
 Requirements are the '### REQ-<MOD>-NNN title' headings of specs/requirements/*.md.
 For each one, this finds where its ID is named:
-  contract  - include/qfoc/*.h (doxygen of the function whose contract states it)
+  contract  - include/qfoc/*.h (doxygen of the function whose contract states it), and
+              tools/qfoc_tune.py (the tuning tool's interface, for REQ-TUNE)
   wp        - specs/*.acsl and include/qfoc/*.h contracts (proved by make prove)
   cbmc      - proofs/cbmc/*/harness.c
-  test      - tests/*.c
+  test      - tests/*.c (CMocka) and tools/tests/*.py (pytest, the tuning tool)
 The gate fails when a requirement is named by no test and no proof artefact, or when
 a source names an ID that no requirement defines.  Writes build/trace/trace.md and
 prints 'trace: N requirements, N with tests, N with CBMC harnesses'.
@@ -38,9 +39,9 @@ def main() -> int:
                 if m:
                     reqs[m.group(1)] = (m.group(2), p)
     kinds = {
-        "contract": ids_in(sorted(glob.glob("include/qfoc/*.h"))),
+        "contract": ids_in(sorted(glob.glob("include/qfoc/*.h")) + ["tools/qfoc_tune.py"]),
         "cbmc": ids_in(sorted(glob.glob("proofs/cbmc/*/harness.c"))),
-        "test": ids_in(sorted(glob.glob("tests/*.c"))),
+        "test": ids_in(sorted(glob.glob("tests/*.c")) + sorted(glob.glob("tools/tests/*.py"))),
     }
     ok = True
     rows = []

@@ -6,6 +6,7 @@
  * usage: estimator_report MOTOR_FILE OUT_DIR
  */
 #include "estim.h"
+#include "reference_params.h"
 
 #include "qfoc/pll.h"
 
@@ -79,6 +80,7 @@ static int speed_sweep(const sim_motor_t *m, const est_design_t *d, const char *
             base_scenario(&sc, m, d);
             sc.speed_frac = speeds[i];
             sc.noise_i_rms_a = noise;
+            sc.table = &qfoc_params_reference;  /* the generated table (tables/) */
             if (est_run(&sc, &r) != 0) {
                 fprintf(md, "| %.0f | plant diverged |\n", speeds[i] * 100.0);
                 continue;
@@ -255,12 +257,16 @@ int main(int argc, char **argv)
                 "with the library's compensation, 12-bit current ADC, one period of computation "
                 "delay; speed locked, load %.1f N m, V_dc %.0f V, f_pwm %.0f Hz.  Controller: "
                 "double-precision current loop on the true angle.  Estimators: the Q15 library "
-                "modules fed with the ADC samples and the Q15 voltage commands.  Design: K_gain "
+                "modules fed with the ADC samples and the Q15 voltage commands; in sections 1 and 2 "
+                "the flux observer and the PLL take their parameters from the generated table "
+                "`tables/reference_params.c` (CRC 0x%08lX, checked), elsewhere from the same design "
+                "computed with the scaled motor data.  Design: K_gain "
                 "%.0f rad/s, PLL w_n 2 pi %.0f Hz, zeta %.2f, error clamp %.2f, speed filter "
                 "%.0f Hz, back-EMF filter %.0f Hz, DOB lambda %.2f.  Angle error = estimate - "
                 "true angle at the current sample, electrical degrees; window %.2f s after %.2f s "
                 "of settling from a cold start with the PLL %.0f deg off and at zero speed.\n",
-                m.dead_time_s * 1e6, m.nominal_torque_nm, m.vdc_nominal_v, m.f_pwm_hz, d.kg_rad_s,
+                m.dead_time_s * 1e6, m.nominal_torque_nm, m.vdc_nominal_v, m.f_pwm_hz,
+                (unsigned long)qfoc_params_reference.crc, d.kg_rad_s,
                 d.pll_wn_hz, d.pll_zeta, d.pll_clamp, d.speed_fc_hz, d.emf_fc_hz, d.dob_lambda,
                 0.25, 0.25, 90.0);
     fprintf(md, "\nTargets (flux observer + PLL, nominal parameters): |mean| <= 2 deg and max "

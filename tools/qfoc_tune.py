@@ -1,0 +1,1427 @@
+#!/usr/bin/env python3
+"""qfoc tuning and scaling tool: motor TOML -> parameter table, bound checks, loop analysis.
+
+Usage:
+    python3 tools/qfoc_tune.py MOTOR.toml [--out-dir DIR] [--table-dir DIR]
+                               [--set section.key=value ...] [--no-plots]
+
+What it does (every equation number is the source document's, chapter 2 unless named):
+
+1. Reads the motor-and-inverter file (sections [motor], [inverter], [sensing],
+   [scaling]; optional [design] and [limits] with the defaults of DESIGN_KEYS and
+   LIMIT_KEYS) and validates presence, type and sign of every field.
+2. Derives the per-unit bases and every scale factor of specs/scaling.md.
+3. Designs the loops:
+   - current loops d and q (pole cancellation tau_c = L / R, K T = 0.5, so
+     k_cp = L / (2 T_sigma), k_ci = R / (2 T_sigma), "Current Loop"),
+   - speed loop (tau_s = 1 / a = J / B, ksp = K / (2 K_t b) with K = 1 / T_ssigma,
+     T_ssigma = 2 T_sigma + T_filter + T_sam, "Speed Loop"),
+   - field-weakening PI (integral-dominant, crossover a decade below the current loop),
+   - PLL (2-27, 2-28) and flux observer (2-19 .. 2-24) exactly as sim/estim.c est_tune(),
+   - low-pass coefficients alpha = omega_c / f (2-33, 2-34),
+   and converts every gain to the library representation (pi.h: Q15 mantissa with a
+   LEFT shift; flux.h: Q15 mantissa with a RIGHT shift), reporting the rounding error.
+4. Checks the fixed-point bounds of chapter 2 for this scaling: Clarke (2-5, 2-6),
+   Park with exact angle (2-9, 2-10) and with angle error (2-11, 2-12), the flux
+   observer's steady state (2-25, 2-26), the inverse transforms with harmonics.
+5. Analyses the loops (chapter 4) with scipy.signal: continuous models as the
+   document writes them and discrete models (ZOH at T_s plus one sample of
+   computation delay z^-1) with the quantised gains; phase and gain margins,
+   closed-loop -3 dB bandwidth, step responses; Bode/step PNGs.
+6. Writes <table-dir>/<name>_params.c/.h (qfoc_param_table_t of include/qfoc/params.h,
+   CRC-32/ISO-HDLC over the little-endian serialisation) and <out-dir>/report.md.
+
+Exit codes: 0 = table and report written; 1 = a bound or a loop check failed (the
+report is written and marked FAILED, no table is written); 2 = bad input.
+
+Requirements: REQ-TUNE-001 (input), REQ-TUNE-002 (bases and scale factors),
+REQ-TUNE-003 (gains), REQ-TUNE-004 (bound check), REQ-TUNE-005 (loop analysis),
+REQ-TUNE-006 (table and CRC), REQ-TUNE-007 (report) in specs/requirements/tune.md.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+REPO_ROOT = Path(__file__).resolve().parent.parent
+TOOL_PATH = "tools/qfoc_tune.py"
+Q15_MAX = 32767
+PARAMS_MAGIC = 0x434F4651          # "QFOC" little-endian (params.h QFOC_PARAMS_MAGIC)
+PARAMS_VERSION = 1                 # params.h QFOC_PARAMS_VERSION
+FLUX_STATE_MAX_Q15 = 524287        # (2^31 - 1) / 4096: flux state Q4.27 range in Q15 counts
+PM_MIN_DEG = 45.0                  # required phase margin of every discrete loop
+COARSE_GAIN_PCT = 1.0              # rounding errors above this are listed as warnings
+SQRT3 = math.sqrt(3.0)
+
+
+class InputError(Exception):
+    """Bad input: missing or malformed field (exit code 2)."""
+
+
+# --------------------------------------------------------------------------------------
+# Input schema
+# --------------------------------------------------------------------------------------
+
+# (section, key): (kind, constraint, description); kind "str" | "int" | "num";
+# constraint "pos" (> 0), "nonneg" (>= 0) or None.
+REQUIRED_KEYS = {
+    ("motor", "name"): ("str", None, "motor name"),
+    ("motor", "pole_pairs"): ("int", "pos", "pole pairs n_p"),
+    ("motor", "rs_ohm"): ("num", "pos", "stator resistance per phase, ohm"),
+    ("motor", "ld_h"): ("num", "pos", "d-axis inductance, H"),
+    ("motor", "lq_h"): ("num", "pos", "q-axis inductance, H"),
+    ("motor", "psi_f_wb"): ("num", "pos", "magnet flux linkage (peak), Wb"),
+    ("motor", "j_kgm2"): ("num", "pos", "inertia, kg m^2"),
+    ("motor", "b_nms"): ("num", "pos", "viscous friction, N m s"),
+    ("motor", "rated_speed_rpm"): ("num", "pos", "rated speed, rpm"),
+    ("motor", "max_speed_rpm"): ("num", "pos", "maximum speed, rpm"),
+    ("motor", "rated_current_a"): ("num", "pos", "rated phase current (peak), A"),
+    ("motor", "nominal_torque_nm"): ("num", "nonneg", "nominal load torque, N m"),
+    ("inverter", "vdc_nominal_v"): ("num", "pos", "nominal DC bus, V"),
+    ("inverter", "vdc_min_v"): ("num", "pos", "lowest DC bus, V"),
+    ("inverter", "vdc_max_v"): ("num", "pos", "highest DC bus, V"),
+    ("inverter", "f_pwm_hz"): ("num", "pos", "PWM and control frequency, Hz"),
+    ("inverter", "f_timer_hz"): ("num", "pos", "PWM counter clock, Hz"),
+    ("inverter", "dead_time_s"): ("num", "nonneg", "dead time, s"),
+    ("sensing", "i_full_scale_a"): ("num", "pos", "current sensing full scale = I_base, A"),
+    ("sensing", "vdc_full_scale_v"): ("num", "pos", "DC-bus sensing full scale = V_base, V"),
+    ("sensing", "adc_bits"): ("int", "pos", "ADC resolution, bits"),
+    ("scaling", "f_base_hz"): ("num", "pos", "electrical frequency of speed 1.0, Hz"),
+}
+
+# Loop-design choices ([design]); None = derived default, resolved in resolve_design().
+DESIGN_KEYS = {
+    "t_filter_current_s": (0.0, "nonneg", "current-sensing filter time constant T_filter of T_sigma"),
+    "speed_tau_s": (None, "pos", "speed PI time constant tau_s; default J / B (document: tau_s = 1/a)"),
+    "speed_t_sam_s": (1.0e-3, "pos", "speed-loop sample time T_sam; default 1 ms (the speed PI runs "
+                                     "in the drive's 1 ms tick)"),
+    "pll_wn_hz": (100.0, "pos", "PLL natural frequency (est_design_default)"),
+    "pll_zeta": (0.9, "pos", "PLL damping"),
+    "pll_clamp": (0.75, "pos", "PLL normalised-error clamp"),
+    "pll_mag_min": (0.05, "pos", "PLL coasting threshold, fraction of psi_f"),
+    "speed_fc_hz": (20.0, "pos", "PLL speed low-pass corner (speed_alpha)"),
+    "kg_rad_s": (100.0, "pos", "flux observer high-pass corner K_gain, rad/s"),
+    "vdc_fc_hz": (100.0, "pos", "DC-bus low-pass corner (alpha_vdc)"),
+    "fw_v_max": (0.92, "pos", "field-weakening reference: |v| / (V_dc / sqrt 3)"),
+    "fw_crossover_ratio": (0.1, "pos", "FW crossover / current-loop crossover"),
+    "fw_zero_ratio": (4.0, "pos", "FW PI zero / FW crossover (integral-dominant)"),
+    "deadband_a": (None, "nonneg", "dead-time compensation current dead band, A; default I_base / 80"),
+    "clarke_phase_dev_deg": (10.0, "nonneg", "Clarke bound: phase of i_v within 120 deg +- this"),
+    "park_angle_err_deg": (180.0, "nonneg", "Park bound: largest angle error considered"),
+    "v_harmonic_fraction": (0.10, "nonneg", "inverse Park bound: A_d = A_q = fraction x |v|"),
+    "i_offset_a": (None, "nonneg", "flux bound: DC current offset, A; default I_base / 100"),
+    "observer_min_speed_rpm": (None, "pos", "flux bound: lowest observer speed; default 0.1 x rated"),
+}
+
+# Protection limits ([limits]); None = derived default.
+LIMIT_KEYS = {
+    "i_max_a": (None, "pos", "current-vector limit; default rated_current_a"),
+    "i_trip_a": (None, "pos", "phase over-current trip; default 1.5 x i_max_a"),
+    "speed_max_rpm": (None, "pos", "largest speed command; default max_speed_rpm"),
+    "vdc_uv_v": (None, "pos", "DC-bus under-voltage; default 0.9 x vdc_min_v"),
+    "vdc_ov_v": (None, "pos", "DC-bus over-voltage; default 1.05 x vdc_max_v"),
+    "vdc_svpwm_min_v": (None, "pos", "smallest DC bus used by SVPWM; default 0.4 x vdc_min_v"),
+}
+
+OPTIONAL_SECTIONS = {"design": DESIGN_KEYS, "limits": LIMIT_KEYS}
+
+
+def parse_override(text: str) -> tuple[str, str, object]:
+    """Parse one --set argument 'section.key=value' (value in TOML syntax, or a bare string)."""
+    if "=" not in text or "." not in text.split("=", 1)[0]:
+        raise InputError(f"--set {text!r}: expected section.key=value")
+    lhs, rhs = text.split("=", 1)
+    section, key = lhs.strip().split(".", 1)
+    try:
+        value = tomllib.loads(f"v = {rhs.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = rhs.strip()
+    known = {k for (s, k) in REQUIRED_KEYS if s == section}
+    known |= set(OPTIONAL_SECTIONS.get(section, {}))
+    if not known:
+        raise InputError(f"--set {text!r}: unknown section [{section}]")
+    if key not in known:
+        raise InputError(f"--set {text!r}: unknown key {key!r} in [{section}]")
+    return section, key, value
+
+
+def check_value(where: str, value: object, kind: str, constraint: str | None) -> object:
+    """Check one value's type and sign; return it (numbers as float, ints as int)."""
+    if kind == "str":
+        if not isinstance(value, str) or not value:
+            raise InputError(f"{where}: expected a non-empty string, got {value!r}")
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(f"{where}: expected a number, got {value!r}")
+    if kind == "int" and not (isinstance(value, int) or float(value).is_integer()):
+        raise InputError(f"{where}: expected an integer, got {value!r}")
+    if not math.isfinite(float(value)):
+        raise InputError(f"{where}: not finite: {value!r}")
+    if constraint == "pos" and not value > 0:
+        raise InputError(f"{where}: must be > 0, got {value!r}")
+    if constraint == "nonneg" and not value >= 0:
+        raise InputError(f"{where}: must be >= 0, got {value!r}")
+    return int(value) if kind == "int" else float(value)
+
+
+def load_config(path: Path, overrides: list[str]) -> dict:
+    """Read and validate the motor file with its --set overrides; return section dicts."""
+    try:
+        with open(path, "rb") as fh:
+            raw = tomllib.load(fh)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read: {exc.strerror}") from exc
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: TOML syntax error: {exc}") from exc
+    for text in overrides:
+        section, key, value = parse_override(text)
+        raw.setdefault(section, {})[key] = value
+    cfg: dict = {}
+    for (section, key), (kind, constraint, desc) in REQUIRED_KEYS.items():
+        sec = raw.get(section)
+        if not isinstance(sec, dict):
+            raise InputError(f"{path}: missing section [{section}]")
+        if key not in sec:
+            raise InputError(f"{path}: missing [{section}] {key} ({desc})")
+        cfg.setdefault(section, {})[key] = check_value(
+            f"{path}: [{section}] {key}", sec[key], kind, constraint)
+    for section, keys in OPTIONAL_SECTIONS.items():
+        sec = raw.get(section, {})
+        if not isinstance(sec, dict):
+            raise InputError(f"{path}: [{section}] must be a table")
+        for key in sec:
+            if key not in keys:
+                raise InputError(f"{path}: unknown key {key!r} in [{section}]")
+        cfg[section] = {}
+        for key, (default, constraint, _desc) in keys.items():
+            if key in sec:
+                cfg[section][key] = check_value(
+                    f"{path}: [{section}] {key}", sec[key], "num", constraint)
+            else:
+                cfg[section][key] = default
+    for section in ("motor", "inverter", "sensing", "scaling"):
+        known = {k for (s, k) in REQUIRED_KEYS if s == section}
+        for key in raw.get(section, {}):
+            if key not in known:
+                print(f"warning: {path}: [{section}] {key} is not used by the tuning tool",
+                      file=sys.stderr)
+    resolve_defaults(cfg)
+    check_consistency(cfg, path)
+    return cfg
+
+
+def resolve_defaults(cfg: dict) -> None:
+    """Fill the derived defaults of [design] and [limits] (documented in DESIGN_KEYS/LIMIT_KEYS)."""
+    m, inv, d, lim = cfg["motor"], cfg["inverter"], cfg["design"], cfg["limits"]
+    i_base = cfg["sensing"]["i_full_scale_a"]
+    cfg["defaulted"] = {f"design.{k}" for k, v in d.items() if v is None}
+    cfg["defaulted"] |= {f"limits.{k}" for k, v in lim.items() if v is None}
+    cfg["defaulted"] |= {f"design.{k}" for k, (dflt, _c, _s) in DESIGN_KEYS.items()
+                         if dflt is not None and d[k] == dflt}
+    if d["speed_tau_s"] is None:
+        d["speed_tau_s"] = m["j_kgm2"] / m["b_nms"]
+    if d["deadband_a"] is None:
+        d["deadband_a"] = i_base / 80.0
+    if d["i_offset_a"] is None:
+        d["i_offset_a"] = i_base / 100.0
+    if d["observer_min_speed_rpm"] is None:
+        d["observer_min_speed_rpm"] = 0.1 * m["rated_speed_rpm"]
+    if lim["i_max_a"] is None:
+        lim["i_max_a"] = m["rated_current_a"]
+    if lim["i_trip_a"] is None:
+        lim["i_trip_a"] = 1.5 * lim["i_max_a"]
+    if lim["speed_max_rpm"] is None:
+        lim["speed_max_rpm"] = m["max_speed_rpm"]
+    if lim["vdc_uv_v"] is None:
+        lim["vdc_uv_v"] = 0.9 * inv["vdc_min_v"]
+    if lim["vdc_ov_v"] is None:
+        lim["vdc_ov_v"] = 1.05 * inv["vdc_max_v"]
+    if lim["vdc_svpwm_min_v"] is None:
+        lim["vdc_svpwm_min_v"] = 0.4 * inv["vdc_min_v"]
+
+
+def check_consistency(cfg: dict, path: Path) -> None:
+    """Relations between fields that the per-field checks cannot see."""
+    m, inv, lim, d = cfg["motor"], cfg["inverter"], cfg["limits"], cfg["design"]
+    if not inv["vdc_min_v"] <= inv["vdc_nominal_v"] <= inv["vdc_max_v"]:
+        raise InputError(f"{path}: [inverter] needs vdc_min_v <= vdc_nominal_v <= vdc_max_v")
+    if m["max_speed_rpm"] < m["rated_speed_rpm"]:
+        raise InputError(f"{path}: [motor] max_speed_rpm < rated_speed_rpm")
+    f_pwm = inv["f_pwm_hz"]
+    if not (float(f_pwm).is_integer() and 1000 <= f_pwm <= 40000):
+        raise InputError(f"{path}: [inverter] f_pwm_hz must be an integer in 1000 .. 40000 "
+                         f"(params.h f_pwm_hz), got {f_pwm!r}")
+    if lim["i_trip_a"] < lim["i_max_a"]:
+        raise InputError(f"{path}: [limits] i_trip_a < i_max_a")
+    if lim["vdc_ov_v"] <= lim["vdc_uv_v"]:
+        raise InputError(f"{path}: [limits] vdc_ov_v <= vdc_uv_v")
+    if d["pll_clamp"] > 1.0 or d["fw_v_max"] > 1.0:
+        raise InputError(f"{path}: [design] pll_clamp and fw_v_max must be <= 1")
+
+
+# --------------------------------------------------------------------------------------
+# Number formats (identical to sim/estim.c est_q15 / est_qn / est_mant_left / est_mant_right)
+# --------------------------------------------------------------------------------------
+
+def q15(x: float) -> int:
+    """round(x * 32768), nearest with ties up, clamped to [-32767, 32767] (est_q15)."""
+    r = math.floor(x * 32768.0 + 0.5)
+    return int(max(-Q15_MAX, min(Q15_MAX, r)))
+
+
+def qn(x: float, frac_bits: int) -> int:
+    """round(x * 2^frac_bits), clamped to [0, 32767] (est_qn)."""
+    r = math.floor(math.ldexp(x, frac_bits) + 0.5)
+    return int(max(0, min(Q15_MAX, r)))
+
+
+def mant_left(x: float) -> tuple[int, int]:
+    """pi.h gain: x = mant / 32768 * 2^shift, smallest shift 0..15 (est_mant_left)."""
+    s = 0
+    while s < 15 and math.ldexp(x, 15 - s) > 32767.0:
+        s += 1
+    return qn(x, 15 - s), s
+
+
+def mant_right(x: float) -> tuple[int, int]:
+    """flux.h gain: x = mant / 2^(15 + shift), largest shift 0..15 (est_mant_right)."""
+    s = 0
+    while s < 15 and math.ldexp(x, 16 + s) < 32767.0:
+        s += 1
+    return qn(x, 15 + s), s
+
+
+def crc32_iso_hdlc(data: bytes) -> int:
+    """CRC-32/ISO-HDLC: poly 0x04C11DB7 reflected (0xEDB88320), init and xorout 0xFFFFFFFF."""
+    crc = 0xFFFFFFFF
+    for byte in data:
+        crc ^= byte
+        for _ in range(8):
+            crc = (crc >> 1) ^ (0xEDB88320 if crc & 1 else 0)
+    return crc ^ 0xFFFFFFFF
+
+
+def fmt(x: float, digits: int = 6) -> str:
+    """Compact, reproducible number format."""
+    if x == 0:
+        return "0"
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    return f"{x:.{digits}g}"
+
+
+# --------------------------------------------------------------------------------------
+# Bases and scale factors (specs/scaling.md sections 2 and 3)
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class Bases:
+    """Per-unit bases (sim/motor.c sim_bases())."""
+    v_base: float
+    i_base: float
+    f_base: float
+    w_base: float
+    psi_base: float
+    z_base: float
+    l_base: float
+    t_base: float
+    f_pwm: float
+    t_s: float
+    period: int
+
+
+def make_bases(cfg: dict) -> Bases:
+    """Derive the bases of specs/scaling.md section 2."""
+    v_base = cfg["sensing"]["vdc_full_scale_v"]
+    i_base = cfg["sensing"]["i_full_scale_a"]
+    f_base = cfg["scaling"]["f_base_hz"]
+    w_base = 2.0 * math.pi * f_base
+    f_pwm = cfg["inverter"]["f_pwm_hz"]
+    psi_base = v_base / w_base
+    return Bases(v_base=v_base, i_base=i_base, f_base=f_base, w_base=w_base,
+                 psi_base=psi_base, z_base=v_base / i_base, l_base=v_base / i_base / w_base,
+                 t_base=1.5 * cfg["motor"]["pole_pairs"] * psi_base * i_base,
+                 f_pwm=f_pwm, t_s=1.0 / f_pwm,
+                 period=int(round(cfg["inverter"]["f_timer_hz"] / (2.0 * f_pwm))))
+
+
+def base_rows(cfg: dict, b: Bases) -> list[tuple[str, str, str]]:
+    """(symbol, derivation with numbers, value) rows of the bases."""
+    n_p = cfg["motor"]["pole_pairs"]
+    return [
+        ("V_base", f"sensing.vdc_full_scale_v = {fmt(b.v_base)} V", f"{fmt(b.v_base)} V"),
+        ("I_base", f"sensing.i_full_scale_a = {fmt(b.i_base)} A", f"{fmt(b.i_base)} A"),
+        ("f_base", f"scaling.f_base_hz = {fmt(b.f_base)} Hz", f"{fmt(b.f_base)} Hz"),
+        ("w_base", f"2 pi f_base = 2 pi x {fmt(b.f_base)}", f"{fmt(b.w_base)} rad/s"),
+        ("psi_base", f"V_base / w_base = {fmt(b.v_base)} / {fmt(b.w_base)}",
+         f"{fmt(b.psi_base)} Wb"),
+        ("Z_base", f"V_base / I_base = {fmt(b.v_base)} / {fmt(b.i_base)}", f"{fmt(b.z_base)} ohm"),
+        ("L_base", f"Z_base / w_base = {fmt(b.z_base)} / {fmt(b.w_base)}",
+         f"{fmt(b.l_base * 1e3)} mH"),
+        ("T_base", f"3/2 n_p psi_base I_base = 1.5 x {n_p} x {fmt(b.psi_base)} x {fmt(b.i_base)}",
+         f"{fmt(b.t_base)} N m"),
+        ("T_s", f"1 / f_pwm = 1 / {fmt(b.f_pwm)}", f"{fmt(b.t_s * 1e6)} us"),
+        ("period", f"round(f_timer / (2 f_pwm)) = round({fmt(cfg['inverter']['f_timer_hz'])} / "
+                   f"(2 x {fmt(b.f_pwm)}))", f"{b.period} ticks"),
+    ]
+
+
+# --------------------------------------------------------------------------------------
+# Gains
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class Gain:
+    """One quantised quantity: real value, raw integer(s), representation, error."""
+    name: str
+    real: float
+    raw: int
+    shift: int | None
+    kind: str           # "left" (pi.h), "right" (flux.h), "q15", "q12", "int"
+    derivation: str
+
+    @property
+    def quantised(self) -> float:
+        """The real value that the raw integer represents."""
+        if self.kind == "left":
+            return self.raw / 32768.0 * 2.0 ** self.shift
+        if self.kind == "right":
+            return self.raw / 2.0 ** (15 + self.shift)
+        if self.kind == "q15":
+            return self.raw / 32768.0
+        if self.kind == "q12":
+            return self.raw / 4096.0
+        return float(self.raw)
+
+    @property
+    def rel_err(self) -> float:
+        """Relative rounding error (quantised - real) / real."""
+        return 0.0 if self.real == 0 else (self.quantised - self.real) / self.real
+
+    def repr_text(self) -> str:
+        """Human-readable representation, e.g. '14680 / 32768 x 2^0'."""
+        if self.kind == "left":
+            return f"{self.raw} / 32768 x 2^{self.shift}"
+        if self.kind == "right":
+            return f"{self.raw} / 2^(15+{self.shift})"
+        if self.kind == "q15":
+            return f"{self.raw} / 32768"
+        if self.kind == "q12":
+            return f"{self.raw} / 4096"
+        return str(self.raw)
+
+
+def g_left(name: str, x: float, derivation: str) -> Gain:
+    """A pi.h gain (mantissa, left shift)."""
+    mant, shift = mant_left(x)
+    return Gain(name, x, mant, shift, "left", derivation)
+
+
+def g_right(name: str, x: float, derivation: str) -> Gain:
+    """A flux.h gain (mantissa, right shift)."""
+    mant, shift = mant_right(x)
+    return Gain(name, x, mant, shift, "right", derivation)
+
+
+def g_q15(name: str, x: float, derivation: str) -> Gain:
+    """A Q15 value."""
+    return Gain(name, x, q15(x), None, "q15", derivation)
+
+
+@dataclass
+class Design:
+    """Everything derived from the motor file: real design values and quantised gains."""
+    cfg: dict
+    b: Bases
+    t_sigma: float = 0.0
+    t_ssigma: float = 0.0
+    k_t: float = 0.0
+    gains: dict = field(default_factory=dict)
+    phys: dict = field(default_factory=dict)   # physical design values for the report/analysis
+
+
+def design_loops(cfg: dict, b: Bases) -> Design:
+    """Design every loop and quantise every gain (the document's chapter 2 rules)."""
+    m, inv, d, lim = cfg["motor"], cfg["inverter"], cfg["design"], cfg["limits"]
+    ds = Design(cfg, b)
+    g, ph = ds.gains, ds.phys
+    n_p, R = m["pole_pairs"], m["rs_ohm"]
+    t_s = b.t_s
+    vb_ib = f"I_base / V_base = {fmt(b.i_base)} / {fmt(b.v_base)}"
+
+    # Current loops ("Current Loop"): T_sigma = T_pwm + T_sam + T_filter, with the PWM
+    # (zero-order hold) delay T_s / 2 and one sample of computation delay T_s: the
+    # voltage computed from the sample at t_k is applied during [t_k+1, t_k+2].
+    ds.t_sigma = 0.5 * t_s + t_s + d["t_filter_current_s"]
+    ph["T_sigma"] = ds.t_sigma
+    v_lim = inv["vdc_max_v"] / SQRT3
+    ph["v_lim"] = v_lim
+    for axis, l_h in (("d", m["ld_h"]), ("q", m["lq_h"])):
+        k_cp = l_h / (2.0 * ds.t_sigma)            # tau_c = L/R, k_cp = T_s/(2 T_sigma K_s)
+        k_ci = R / (2.0 * ds.t_sigma)              # k_ci = k_cp / tau_c
+        ph[f"k_cp_{axis}"], ph[f"k_ci_{axis}"] = k_cp, k_ci
+        g[f"pi_i{axis}.kp"] = g_left(
+            f"pi_i{axis}.kp", k_cp * b.i_base / b.v_base,
+            f"k_cp = L_{axis} / (2 T_sigma) = {fmt(l_h)} / (2 x {fmt(ds.t_sigma)}) = "
+            f"{fmt(k_cp)} ohm; x {vb_ib}")
+        g[f"pi_i{axis}.ki"] = g_left(
+            f"pi_i{axis}.ki", k_ci * t_s * b.i_base / b.v_base,
+            f"k_ci T = R / (2 T_sigma) T = {fmt(R)} / (2 x {fmt(ds.t_sigma)}) x {fmt(t_s)} = "
+            f"{fmt(k_ci * t_s)} ohm; x {vb_ib}")
+        g[f"pi_i{axis}.out"] = g_q15(
+            f"pi_i{axis}.out_max", v_lim / b.v_base,
+            f"V_dc,max / sqrt 3 / V_base = {fmt(inv['vdc_max_v'])} / sqrt 3 / {fmt(b.v_base)}")
+
+    # Speed loop ("Speed Loop"): T_ssigma = 2 T_sigma + T_filter + T_sam; tau_s = 1/a;
+    # ksp = K / (2 K_t b) with K = 1 / T_ssigma (K T = 0.5 as in the current loop).
+    t_filter_speed = 1.0 / (2.0 * math.pi * d["speed_fc_hz"])
+    ds.t_ssigma = 2.0 * ds.t_sigma + t_filter_speed + d["speed_t_sam_s"]
+    ds.k_t = 1.5 * n_p * m["psi_f_wb"]
+    b_mech = 1.0 / m["j_kgm2"]
+    a_mech = m["b_nms"] / m["j_kgm2"]
+    ksp = 1.0 / (2.0 * ds.t_ssigma * ds.k_t * b_mech)          # A per rad/s (mechanical)
+    tau_s = d["speed_tau_s"]
+    ph.update(T_ssigma=ds.t_ssigma, T_filter_speed=t_filter_speed, K_t=ds.k_t, b=b_mech,
+              a=a_mech, ksp=ksp, tau_s=tau_s)
+    kp_speed = ksp / n_p * b.w_base / b.i_base
+    g["pi_speed.kp"] = g_left(
+        "pi_speed.kp", kp_speed,
+        f"ksp = 1 / (2 T_ssigma K_t b) = 1 / (2 x {fmt(ds.t_ssigma)} x {fmt(ds.k_t)} x "
+        f"{fmt(b_mech)}) = {fmt(ksp)} A s/rad (mech); / n_p x w_base / I_base")
+    g["pi_speed.ki"] = g_left(
+        "pi_speed.ki", kp_speed * d["speed_t_sam_s"] / tau_s,
+        f"kp T_sam / tau_s = {fmt(kp_speed)} x {fmt(d['speed_t_sam_s'])} / {fmt(tau_s)}")
+    g["i_max"] = g_q15("i_max", lim["i_max_a"] / b.i_base,
+                       f"i_max / I_base = {fmt(lim['i_max_a'])} / {fmt(b.i_base)}")
+
+    # Field weakening: e = v_max - utilisation -> i_d reference in [-i_max, 0].  Plant gain
+    # d(utilisation)/d(i_d) <= w_max L_d / (V_dc,min / sqrt 3) (largest at top speed and
+    # lowest bus); crossover w_fw = ratio x 1/(2 T_sigma) (current-loop crossover), PI zero at
+    # zero_ratio x w_fw (integral-dominant): ki = w_fw / G, kp = ki / (zero_ratio w_fw).
+    w_max_e = lim["speed_max_rpm"] * n_p * 2.0 * math.pi / 60.0
+    g_fw = w_max_e * m["ld_h"] / (inv["vdc_min_v"] / SQRT3) * b.i_base
+    w_ci = 1.0 / (2.0 * ds.t_sigma)
+    w_fw = d["fw_crossover_ratio"] * w_ci
+    ki_fw = w_fw / g_fw
+    kp_fw = ki_fw / (d["fw_zero_ratio"] * w_fw)
+    ph.update(G_fw=g_fw, w_fw=w_fw, w_ci=w_ci, ki_fw=ki_fw, kp_fw=kp_fw, w_max_e=w_max_e)
+    g["pi_fw.kp"] = g_left("pi_fw.kp", kp_fw,
+                           f"1 / (zero_ratio G_fw) = 1 / ({fmt(d['fw_zero_ratio'])} x {fmt(g_fw)})")
+    g["pi_fw.ki"] = g_left("pi_fw.ki", ki_fw * t_s,
+                           f"w_fw / G_fw T = {fmt(w_fw)} / {fmt(g_fw)} x {fmt(t_s)}")
+    g["v_max"] = g_q15("v_max", d["fw_v_max"], "design.fw_v_max")
+
+    # PLL (2-27, 2-28) exactly as est_tune(): kp = 2 zeta wn / w_base, ki T = wn^2 T / w_base.
+    wn = 2.0 * math.pi * d["pll_wn_hz"]
+    g["pll.kp"] = g_left("pll.pi.kp", 2.0 * d["pll_zeta"] * wn / b.w_base,
+                         f"2 zeta w_n / w_base = 2 x {fmt(d['pll_zeta'])} x {fmt(wn)} / "
+                         f"{fmt(b.w_base)}")
+    g["pll.ki"] = g_left("pll.pi.ki", wn * wn * t_s / b.w_base,
+                         f"w_n^2 T / w_base = {fmt(wn)}^2 x {fmt(t_s)} / {fmt(b.w_base)}")
+    g["pll.err_clamp"] = g_q15("pll.err_clamp", d["pll_clamp"], "design.pll_clamp")
+    g["pll.mag_min"] = g_q15("pll.mag_min", d["pll_mag_min"] * m["psi_f_wb"] / b.psi_base,
+                             f"{fmt(d['pll_mag_min'])} psi_f / psi_base")
+    k_theta = b.f_base / b.f_pwm * 131072.0
+    g["pll.k_theta"] = Gain("pll.k_theta", k_theta, int(math.floor(k_theta + 0.5)), None, "int",
+                            f"round(f_base / f_pwm x 131072) = round({fmt(b.f_base)} / "
+                            f"{fmt(b.f_pwm)} x 131072)")
+    g["pll.speed_alpha"] = g_q15("pll.speed_alpha", 2.0 * math.pi * d["speed_fc_hz"] * t_s,
+                                 f"2 pi f_c / f_pwm = 2 pi x {fmt(d['speed_fc_hz'])} / "
+                                 f"{fmt(b.f_pwm)} (2-34)")
+    g["alpha_vdc"] = g_q15("alpha_vdc", 2.0 * math.pi * d["vdc_fc_hz"] * t_s,
+                           f"2 pi f_c / f_pwm = 2 pi x {fmt(d['vdc_fc_hz'])} / {fmt(b.f_pwm)} (2-34)")
+
+    # Flux observer (2-19 .. 2-24) exactly as est_tune(): g = T w_base, r = R / Z_base,
+    # l = L_q / L_base in Q12, kg = K_gain / w_base.
+    gval = t_s * b.w_base
+    g["flux.gain"] = g_right("flux.gain", gval,
+                             f"T w_base = {fmt(b.w_base)} / {fmt(b.f_pwm)}")
+    g["flux.r"] = g_q15("flux.r", R / b.z_base, f"R / Z_base = {fmt(R)} / {fmt(b.z_base)}")
+    g["flux.l"] = Gain("flux.l", m["lq_h"] / b.l_base, qn(m["lq_h"] / b.l_base, 12), None, "q12",
+                       f"L_q / L_base = {fmt(m['lq_h'])} / {fmt(b.l_base)} (Q12)")
+    g["flux.kg"] = g_q15("flux.kg", d["kg_rad_s"] / b.w_base,
+                         f"K_gain / w_base = {fmt(d['kg_rad_s'])} / {fmt(b.w_base)}")
+
+    # Machine constants and limits.
+    g["ld"] = Gain("ld", m["ld_h"] / b.l_base, qn(m["ld_h"] / b.l_base, 12), None, "q12",
+                   f"L_d / L_base = {fmt(m['ld_h'])} / {fmt(b.l_base)} (Q12)")
+    g["lq"] = Gain("lq", m["lq_h"] / b.l_base, qn(m["lq_h"] / b.l_base, 12), None, "q12",
+                   f"L_q / L_base = {fmt(m['lq_h'])} / {fmt(b.l_base)} (Q12)")
+    g["psi_f"] = g_q15("psi_f", m["psi_f_wb"] / b.psi_base,
+                       f"psi_f / psi_base = {fmt(m['psi_f_wb'])} / {fmt(b.psi_base)}")
+    g["i_trip"] = g_q15("i_trip", lim["i_trip_a"] / b.i_base,
+                        f"i_trip / I_base = {fmt(lim['i_trip_a'])} / {fmt(b.i_base)}")
+    sp = lim["speed_max_rpm"] * n_p / 60.0 / b.f_base
+    g["speed_max"] = g_q15("speed_max", sp, f"speed_max n_p / 60 / f_base = "
+                           f"{fmt(lim['speed_max_rpm'])} x {n_p} / 60 / {fmt(b.f_base)}")
+    for key in ("vdc_uv", "vdc_ov"):
+        g[key] = g_q15(key, lim[f"{key}_v"] / b.v_base,
+                       f"{fmt(lim[f'{key}_v'])} V / V_base")
+    g["svpwm.vdc_min"] = g_q15("svpwm.vdc_min", lim["vdc_svpwm_min_v"] / b.v_base,
+                               f"{fmt(lim['vdc_svpwm_min_v'])} V / V_base")
+    g["svpwm.i_deadband"] = g_q15("svpwm.i_deadband", d["deadband_a"] / b.i_base,
+                                  f"{fmt(d['deadband_a'])} A / I_base")
+    dt = inv["dead_time_s"] * inv["f_timer_hz"] / 2.0
+    g["svpwm.dt_comp"] = Gain("svpwm.dt_comp", dt, int(math.floor(dt + 0.5)), None, "int",
+                              f"t_d f_timer / 2 = {fmt(inv['dead_time_s'])} x "
+                              f"{fmt(inv['f_timer_hz'])} / 2 (one compare count = 2 ticks "
+                              f"of high time)")
+    return ds
+
+
+def scale_factor_rows(cfg: dict, ds: Design) -> list[tuple[str, str, str]]:
+    """(factor, derivation with numbers, value) rows of specs/scaling.md section 3."""
+    b, g = ds.b, ds.gains
+    lq = cfg["motor"]["lq_h"]
+    emf_l = lq / b.l_base / (b.t_s * b.w_base)
+    return [
+        ("1/sqrt(3) (Clarke)", "round(32768 / sqrt 3) = round(18918.6)", "18919 / 32768"),
+        ("sqrt(3)/2 (inverse Clarke)", "round(32768 sqrt 3 / 2) = round(28377.9)", "28378 / 32768"),
+        ("k_theta (2-28)", g["pll.k_theta"].derivation, str(g["pll.k_theta"].raw)),
+        ("flux gain g (2-19)", g["flux.gain"].derivation, g["flux.gain"].repr_text()),
+        ("r = R_pu", g["flux.r"].derivation, g["flux.r"].repr_text()),
+        ("l = L_q / L_base (flux, Q12)", g["flux.l"].derivation, g["flux.l"].repr_text()),
+        ("l (back-EMF, Q10)", f"L_q / (L_base T w_base) = {fmt(lq)} / ({fmt(b.l_base)} x "
+         f"{fmt(b.t_s * b.w_base)})", f"{qn(emf_l, 10)} / 1024"),
+        ("speed low-pass alpha (2-34)", g["pll.speed_alpha"].derivation,
+         g["pll.speed_alpha"].repr_text()),
+        ("DC-bus low-pass alpha (2-34)", g["alpha_vdc"].derivation, g["alpha_vdc"].repr_text()),
+        ("PWM period", f"f_timer / (2 f_pwm)", f"{b.period} ticks"),
+        ("phase time", "T_x = U_x / V_dc x period", f"{b.period} ticks per V_dc"),
+        ("dead-time compensation", g["svpwm.dt_comp"].derivation, f"{g['svpwm.dt_comp'].raw} counts"),
+    ]
+
+
+# --------------------------------------------------------------------------------------
+# Bound checks (chapter 2, "the discrete system computation")
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class Bound:
+    """One fixed-point bound: value against its limit, with the input that reaches it."""
+    name: str
+    equation: str
+    value: float
+    limit: float
+    worst_input: str
+    note: str
+
+    @property
+    def ok(self) -> bool:
+        """True when the bound holds."""
+        return self.value <= self.limit
+
+    @property
+    def margin_pct(self) -> float:
+        """(limit - value) / limit in percent (negative when violated)."""
+        return (self.limit - self.value) / self.limit * 100.0
+
+
+def park_peak(a_alpha: float, a_beta: float, phi1: float, delta: float) -> float:
+    """Largest |i_d|, |i_q| of Park (2-7, 2-8) applied with angle error delta to
+    i_alpha = a_alpha sin x, i_beta = a_beta sin(x - phi1).
+
+    Closed form of the document (2-9 .. 2-12), evaluated without the small-angle
+    approximation: the 2 w t term has amplitude A1 |sin(pi/4 - phi1/2)| and the DC terms
+    are P = A1 (sin d + cos(d - phi1)) / 2, Q = A1 (sin(d - phi1) - cos d) / 2, with
+    A1 = max(a_alpha, a_beta); the sampled sup over one period with the exact amplitudes
+    is taken as well and the larger value is returned.
+    """
+    a1 = max(a_alpha, a_beta)
+    ac = abs(math.sin(math.pi / 4.0 - phi1 / 2.0))
+    p = 0.5 * (math.sin(delta) + math.cos(delta - phi1))
+    q = 0.5 * (math.sin(delta - phi1) - math.cos(delta))
+    closed = a1 * (ac + max(abs(p), abs(q)))
+    x = np.linspace(0.0, 2.0 * math.pi, 721)
+    ia, ib = a_alpha * np.sin(x), a_beta * np.sin(x - phi1)
+    th = x - delta
+    i_d = ia * np.cos(th) + ib * np.sin(th)
+    i_q = -ia * np.sin(th) + ib * np.cos(th)
+    return max(closed, float(np.max(np.abs(i_d))), float(np.max(np.abs(i_q))))
+
+
+def check_bounds(cfg: dict, ds: Design) -> list[Bound]:
+    """Every fixed-point bound of chapter 2 for this scaling."""
+    b, g, m, d, lim = ds.b, ds.gains, cfg["motor"], cfg["design"], cfg["limits"]
+    bounds: list[Bound] = []
+    i_trip = lim["i_trip_a"]
+    amp = i_trip / b.i_base * 32768.0            # A of (2-1), Q15 counts
+    dev = math.radians(d["clarke_phase_dev_deg"])
+    phis = np.linspace(2.0 * math.pi / 3.0 - dev, 2.0 * math.pi / 3.0 + dev, 41)
+
+    # Clarke (2-5, 2-6): i_alpha = A sin wt; i_beta = A sqrt(m^2 + n^2) / sqrt 3 sin(wt - phi1),
+    # m = 1 + 2 cos phi, n = 2 sin phi.
+    worst, worst_phi = -1.0, 0.0
+    for phi in phis:
+        mn = math.hypot(1.0 + 2.0 * math.cos(phi), 2.0 * math.sin(phi))
+        val = amp * max(1.0, mn / SQRT3)
+        if val > worst:
+            worst, worst_phi = val, phi
+    bounds.append(Bound("Clarke", "2-5, 2-6 (A sqrt(m^2+n^2)/sqrt 3)", worst, Q15_MAX,
+                        f"i_trip = {fmt(i_trip)} A (A = {fmt(amp)}), phi = "
+                        f"{fmt(math.degrees(worst_phi), 4)} deg",
+                        f"phase of i_v within 120 +- {fmt(d['clarke_phase_dev_deg'])} deg"))
+
+    # Park with the exact angle (2-9, 2-10) and with an angle error (2-11, 2-12).
+    deltas = np.radians(np.linspace(-d["park_angle_err_deg"], d["park_angle_err_deg"], 73))
+    for label, eq, dset in (("Park, exact angle", "2-9, 2-10 (A1 (sqrt(m1^2+n1^2) + |P|))", [0.0]),
+                            ("Park, angle error", "2-11, 2-12 (A1 (sqrt(m2^2+n2^2) + |P1|))",
+                             deltas)):
+        worst, arg = -1.0, (0.0, 0.0)
+        for phi in phis:
+            mm, nn = 1.0 + 2.0 * math.cos(phi), 2.0 * math.sin(phi)
+            a_beta = amp * math.hypot(mm, nn) / SQRT3
+            phi1 = math.atan2(nn, mm)
+            for delta in dset:
+                val = park_peak(amp, a_beta, phi1, float(delta))
+                if val > worst:
+                    worst, arg = val, (phi, float(delta))
+        bounds.append(Bound(label, eq, worst, Q15_MAX,
+                            f"i_trip = {fmt(i_trip)} A, phi = {fmt(math.degrees(arg[0]), 4)} deg, "
+                            f"angle error {fmt(math.degrees(arg[1]), 4)} deg",
+                            "angle error up to +-" + fmt(d["park_angle_err_deg"]) + " deg"
+                            if dset is not None and len(dset) > 1 else "exact angle"))
+
+    # Flux observer steady state (2-25, 2-26) with the quantised g and kg: at speed w (pu)
+    # the estimate is |H| |psi_a|, H = (z - 1) / (z - 1 + g kg), z = exp(j w g) (flux.h);
+    # |psi_a| <= psi_f + |L_d - L_q| i_max (active flux, i_d down to -i_max); a DC current
+    # offset i_off adds R i_off / kg (2-26 with u = 0).  psi_temp = psi + L_q i (2-25)
+    # against the Q4.27 state range.
+    gq = g["flux.gain"].quantised
+    kgq = g["flux.kg"].quantised
+    psi_a = (m["psi_f_wb"] + abs(m["ld_h"] - m["lq_h"]) * lim["i_max_a"]) / b.psi_base
+    offset = g["flux.r"].quantised * (d["i_offset_a"] / b.i_base) / kgq if kgq > 0 else math.inf
+    li = g["flux.l"].quantised * lim["i_max_a"] / b.i_base
+    w_low = d["observer_min_speed_rpm"] * m["pole_pairs"] / 60.0 / b.f_base
+    w_top = g["speed_max"].real
+    for label, w in (("lowest observer speed", w_low), ("highest speed", w_top)):
+        z = complex(math.cos(w * gq), math.sin(w * gq))
+        h = abs((z - 1.0) / (z - 1.0 + gq * kgq))
+        psi = (h * psi_a + offset) * 32768.0
+        where = (f"w = {fmt(w, 4)} pu ({fmt(w * b.f_base, 4)} Hz), |H| = {fmt(h, 5)}, "
+                 f"|psi_a| = {fmt(psi_a, 4)} pu, offset {fmt(d['i_offset_a'])} A")
+        bounds.append(Bound(f"flux estimate at {label}", "2-26 (psi = (u - R i) / kg)", psi,
+                            Q15_MAX, where, "output range +-1 pu"))
+        bounds.append(Bound(f"flux psi_temp at {label}", "2-25 (psi_temp = psi + L i)",
+                            psi + li * 32768.0, FLUX_STATE_MAX_Q15,
+                            where + f", L_q i_max = {fmt(li, 4)} pu", "state range Q4.27, 16 pu"))
+
+    # Inverse Park with harmonics: U_d = M + A_d sin(wt + phi_d), U_q = N + A_q sin(wt + phi_q),
+    # |(M, N)| = Z = V_dc,max / sqrt 3 (largest vector of the linear SVPWM range),
+    # A_d = A_q = h Z; |U_alpha| <= Z + A_dq1 + C1, |U_beta| <= Z + A_dq2 + C2 (document),
+    # maximised over phi_d, phi_q.
+    zv = cfg["inverter"]["vdc_max_v"] / SQRT3 / b.v_base * 32768.0
+    ad = aq = d["v_harmonic_fraction"] * zv
+    pd, pq = np.meshgrid(np.linspace(0, 2 * math.pi, 73), np.linspace(0, 2 * math.pi, 73))
+    s1 = ad * np.cos(pd) - aq * np.sin(pq)
+    s2 = ad * np.sin(pd) + aq * np.cos(pq)
+    a_dq = 0.5 * np.hypot(s1, s2)
+    c1 = 0.5 * np.abs(ad * np.sin(pd) - aq * np.cos(pq))
+    c2 = 0.5 * np.abs(ad * np.cos(pd) + aq * np.sin(pq))
+    ip = float(np.max(zv + a_dq + np.maximum(c1, c2)))
+    hin = (f"|v| = V_dc,max / sqrt 3 = {fmt(cfg['inverter']['vdc_max_v'] / SQRT3)} V "
+           f"(Z = {fmt(zv)}), A_d = A_q = {fmt(100 * d['v_harmonic_fraction'])} % of Z")
+    bounds.append(Bound("inverse Park with harmonics", "Z + A_dq + C", ip, Q15_MAX, hin,
+                        "worst phases of the harmonics"))
+    # Inverse Clarke: every phase voltage is a projection of the alpha-beta vector, whose
+    # magnitude equals |U_dq| <= Z + sqrt(A_d^2 + A_q^2).
+    bounds.append(Bound("inverse Clarke with harmonics", "|U_x| <= Z + sqrt(A_d^2 + A_q^2)",
+                        zv + math.hypot(ad, aq), Q15_MAX, hin, "amplitude-invariant inverse"))
+    return bounds
+
+
+# --------------------------------------------------------------------------------------
+# Parameter table (include/qfoc/params.h)
+# --------------------------------------------------------------------------------------
+
+CTYPES = {"u8": (1, False), "u16": (2, False), "i16": (2, True), "u32": (4, False)}
+
+
+@dataclass
+class Field:
+    """One integer field of qfoc_param_table_t."""
+    name: str
+    ctype: str
+    value: int
+    comment: str
+
+
+@dataclass
+class Group:
+    """A sub-structure of qfoc_param_table_t, fields in declaration order."""
+    name: str
+    items: list
+
+
+def range_checks(table: list) -> list[Bound]:
+    """Field ranges documented in params.h, pi.h, svpwm.h, flux.h and pll.h."""
+    flat = {name: f.value for name, f in flatten(table)}
+    out = []
+
+    def need(name: str, lo: int, hi: int) -> None:
+        v = flat[name]
+        if not lo <= v <= hi:
+            out.append(Bound(f"table field {name}", "params.h range", float(v), float(hi),
+                             f"{name} = {v}, allowed {lo} .. {hi}", "representation"))
+
+    need("f_pwm_hz", 1000, 40000)
+    for key in ("v_base_mv", "i_base_ma", "f_base_mhz"):
+        need(key, 1, 0xFFFFFFFF)
+    need("svpwm.period", 100, 32767)
+    need("svpwm.dt_comp", 0, flat["svpwm.period"] // 4)
+    need("svpwm.i_deadband", 0, Q15_MAX)
+    need("svpwm.vdc_min", 1, Q15_MAX)
+    for pi in ("pi_id", "pi_iq", "pi_speed", "pi_fw", "pll.pi"):
+        for k in ("kp", "ki"):
+            need(f"{pi}.{k}", 0, Q15_MAX)
+            need(f"{pi}.{k}_shift", 0, 15)
+        need(f"{pi}.out_min", -Q15_MAX, flat[f"{pi}.out_max"])
+        need(f"{pi}.out_max", flat[f"{pi}.out_min"], Q15_MAX)
+    for k in ("flux.gain", "flux.r", "flux.l", "flux.kg", "ld", "lq", "psi_f"):
+        need(k, 0, Q15_MAX)
+    need("flux.gain_shift", 0, 15)
+    for k in ("pll.err_clamp", "pll.mag_min", "pll.k_theta", "pll.speed_alpha", "alpha_vdc",
+              "i_max", "speed_max", "vdc_uv", "v_max"):
+        need(k, 1, Q15_MAX)
+    need("i_trip", flat["i_max"], Q15_MAX)
+    need("vdc_ov", flat["vdc_uv"] + 1, Q15_MAX)
+    return out
+
+
+def gain_fields(prefix: str, kp: Gain, ki: Gain, out_min: int, out_max: int,
+                limit_note: str) -> list[Field]:
+    """The six fields of a qfoc_pi_params_t."""
+    def note(gn: Gain) -> str:
+        return (f"{fmt(gn.real)} = {gn.derivation}; stored {fmt(gn.quantised)}, "
+                f"error {gn.rel_err * 100:+.3f} %")
+    return [
+        Field("kp", "i16", kp.raw, f"kp {note(kp)}"),
+        Field("kp_shift", "u8", kp.shift, f"kp_real = kp / 32768 x 2^{kp.shift}"),
+        Field("ki", "i16", ki.raw, f"ki T {note(ki)}"),
+        Field("ki_shift", "u8", ki.shift, f"kiT_real = ki / 32768 x 2^{ki.shift}"),
+        Field("out_min", "i16", out_min, f"{fmt(out_min / 32768.0)} pu: {limit_note}"),
+        Field("out_max", "i16", out_max, f"{fmt(out_max / 32768.0)} pu: {limit_note}"),
+    ]
+
+
+def qnote(gn: Gain) -> str:
+    """Comment text for a quantised value."""
+    return f"{fmt(gn.real)} = {gn.derivation}"
+
+
+def build_table(cfg: dict, ds: Design) -> list:
+    """The qfoc_param_table_t content in declaration order (crc excluded)."""
+    b, g = ds.b, ds.gains
+    v_out = g["pi_id.out"].raw
+    i_max = g["i_max"].raw
+    return [
+        Field("magic", "u32", PARAMS_MAGIC, "QFOC_PARAMS_MAGIC, ASCII \"QFOC\" little-endian"),
+        Field("version", "u16", PARAMS_VERSION, "QFOC_PARAMS_VERSION"),
+        Field("f_pwm_hz", "u16", int(b.f_pwm), f"f_pwm = {fmt(b.f_pwm)} Hz, T_s = "
+              f"{fmt(b.t_s * 1e6)} us"),
+        Field("v_base_mv", "u32", int(round(b.v_base * 1000)), f"V_base = {fmt(b.v_base)} V"),
+        Field("i_base_ma", "u32", int(round(b.i_base * 1000)), f"I_base = {fmt(b.i_base)} A"),
+        Field("f_base_mhz", "u32", int(round(b.f_base * 1000)),
+              f"f_base = {fmt(b.f_base)} Hz, w_base = {fmt(b.w_base)} rad/s"),
+        Group("svpwm", [
+            Field("period", "u16", b.period, f"f_timer / (2 f_pwm) = "
+                  f"{fmt(cfg['inverter']['f_timer_hz'])} / (2 x {fmt(b.f_pwm)}) ticks"),
+            Field("dt_comp", "u16", g["svpwm.dt_comp"].raw, qnote(g["svpwm.dt_comp"])),
+            Field("i_deadband", "i16", g["svpwm.i_deadband"].raw, qnote(g["svpwm.i_deadband"])),
+            Field("vdc_min", "i16", g["svpwm.vdc_min"].raw, qnote(g["svpwm.vdc_min"])),
+        ]),
+        Group("pi_id", gain_fields("pi_id", g["pi_id.kp"], g["pi_id.ki"], -v_out, v_out,
+                                   g["pi_id.out"].derivation)),
+        Group("pi_iq", gain_fields("pi_iq", g["pi_iq.kp"], g["pi_iq.ki"], -v_out, v_out,
+                                   g["pi_iq.out"].derivation)),
+        Group("pi_speed", gain_fields("pi_speed", g["pi_speed.kp"], g["pi_speed.ki"], -i_max,
+                                      i_max, "+-i_max (i_q reference)")),
+        Group("pi_fw", gain_fields("pi_fw", g["pi_fw.kp"], g["pi_fw.ki"], -i_max, 0,
+                                   "i_d reference in [-i_max, 0]")),
+        Group("flux", [
+            Field("gain", "i16", g["flux.gain"].raw,
+                  f"g {qnote(g['flux.gain'])} = gain / 2^(15+{g['flux.gain'].shift})"),
+            Field("gain_shift", "u8", g["flux.gain"].shift, "right shift: g = gain / 2^(15+shift)"),
+            Field("r", "i16", g["flux.r"].raw, qnote(g["flux.r"])),
+            Field("l", "i16", g["flux.l"].raw, qnote(g["flux.l"])),
+            Field("kg", "i16", g["flux.kg"].raw, qnote(g["flux.kg"])),
+        ]),
+        Group("pll", [
+            Group("pi", gain_fields("pll.pi", g["pll.kp"], g["pll.ki"], -Q15_MAX, Q15_MAX,
+                                    "speed range (est_tune)")),
+            Field("err_clamp", "i16", g["pll.err_clamp"].raw, qnote(g["pll.err_clamp"])),
+            Field("mag_min", "i16", g["pll.mag_min"].raw, qnote(g["pll.mag_min"])),
+            Field("k_theta", "u16", g["pll.k_theta"].raw, qnote(g["pll.k_theta"])),
+            Field("speed_alpha", "i16", g["pll.speed_alpha"].raw, qnote(g["pll.speed_alpha"])),
+        ]),
+        Field("alpha_vdc", "i16", g["alpha_vdc"].raw, qnote(g["alpha_vdc"])),
+        Field("ld", "i16", g["ld"].raw, qnote(g["ld"])),
+        Field("lq", "i16", g["lq"].raw, qnote(g["lq"])),
+        Field("psi_f", "i16", g["psi_f"].raw, qnote(g["psi_f"])),
+        Field("i_max", "i16", g["i_max"].raw, qnote(g["i_max"])),
+        Field("i_trip", "i16", g["i_trip"].raw, qnote(g["i_trip"])),
+        Field("speed_max", "i16", g["speed_max"].raw, qnote(g["speed_max"])),
+        Field("vdc_uv", "i16", g["vdc_uv"].raw, qnote(g["vdc_uv"])),
+        Field("vdc_ov", "i16", g["vdc_ov"].raw, qnote(g["vdc_ov"])),
+        Field("v_max", "i16", g["v_max"].raw, qnote(g["v_max"])),
+    ]
+
+
+def flatten(items: list, prefix: str = "") -> list[tuple[str, Field]]:
+    """(dotted name, field) pairs in declaration order."""
+    out = []
+    for it in items:
+        if isinstance(it, Group):
+            out += flatten(it.items, f"{prefix}{it.name}.")
+        else:
+            out.append((prefix + it.name, it))
+    return out
+
+
+def serialise(items: list) -> bytes:
+    """params.h serialisation: every field in order, little-endian in its own width."""
+    data = bytearray()
+    for _name, f in flatten(items):
+        width, signed = CTYPES[f.ctype]
+        data += int(f.value).to_bytes(width, "little", signed=signed)
+    return bytes(data)
+
+
+def c_literal(f: Field) -> str:
+    """MISRA-friendly integer literal of a field."""
+    if f.ctype == "u32":
+        return f"0x{f.value:08X}u" if f.name in ("magic", "crc") else f"{f.value}u"
+    if f.ctype in ("u8", "u16"):
+        return f"{f.value}u"
+    return f"(int16_t){f.value}" if f.value < 0 else str(f.value)
+
+
+def c_comment(text: str) -> str:
+    """A C comment body without comment terminators."""
+    return text.replace("*/", "* /").replace("/*", "/ *")
+
+
+def emit_items(items: list, indent: int) -> list[str]:
+    """Designated-initialiser lines of a structure body."""
+    pad = " " * indent
+    lines = []
+    for i, it in enumerate(items):
+        comma = "," if i < len(items) - 1 else ""
+        if isinstance(it, Group):
+            lines.append(f"{pad}.{it.name} = {{")
+            lines += emit_items(it.items, indent + 4)
+            lines.append(f"{pad}}}{comma}")
+        else:
+            lines.append(f"{pad}.{it.name} = {c_literal(it)}{comma}"
+                         f" /* {c_comment(it.comment)} */")
+    return lines
+
+
+def c_sources(name: str, toml_rel: str, overrides: list[str], cfg: dict,
+              items: list, crc: int) -> tuple[str, str]:
+    """Text of <name>_params.c and <name>_params.h (byte-for-byte reproducible)."""
+    head = [
+        "/**",
+        f" * @file {name}_params.{{EXT}}",
+        f" * @brief qfoc parameter table of \"{c_comment(cfg['motor']['name'])}\".",
+        " *",
+        f" * Generated by {TOOL_PATH} from {toml_rel}; do not edit: change the motor",
+        " * file and run the tool again.  Layout, scalings and CRC: include/qfoc/params.h.",
+    ]
+    if overrides:
+        head.append(" * Overrides: " + c_comment(" ".join(sorted(overrides))) + ".")
+    head.append(" */")
+    guard = f"QFOC_PARAMS_{name.upper()}_H"
+    h = [ln.replace("{EXT}", "h") for ln in head] + [
+        f"#ifndef {guard}", f"#define {guard}", "", "#include \"qfoc/params.h\"", "",
+        f"/** Parameter table of {c_comment(cfg['motor']['name'])} (CRC 0x{crc:08X}). */",
+        f"extern const qfoc_param_table_t qfoc_params_{name};", "", f"#endif /* {guard} */", ""]
+    c = [ln.replace("{EXT}", "c") for ln in head] + [
+        "#include \"qfoc/params.h\"", f"#include \"{name}_params.h\"", "",
+        f"const qfoc_param_table_t qfoc_params_{name} = {{"]
+    body = items + [Field("crc", "u32", crc, "CRC-32/ISO-HDLC of every field above")]
+    c += emit_items(body, 4)
+    c += ["};", ""]
+    return "\n".join(c), "\n".join(h)
+
+
+# --------------------------------------------------------------------------------------
+# Loop analysis (chapter 4)
+# --------------------------------------------------------------------------------------
+
+def pmul(*polys) -> np.ndarray:
+    """Product of polynomials (highest power first)."""
+    out = np.array([1.0])
+    for p in polys:
+        out = np.polymul(out, np.asarray(p, dtype=float))
+    return out
+
+
+def zoh(num, den, t_s: float) -> tuple[np.ndarray, np.ndarray]:
+    """Zero-order-hold discretisation of num/den at T_s."""
+    from scipy.signal import cont2discrete
+    nd, dd, _ = cont2discrete((num, den), t_s, method="zoh")
+    nd = np.trim_zeros(np.atleast_1d(np.squeeze(nd)), "f")
+    return (nd if nd.size else np.array([0.0])), np.asarray(dd, dtype=float)
+
+
+@dataclass
+class LoopModel:
+    """A feedback loop: forward path F = fn/fd, feedback path H = hn/hd; dt None = continuous."""
+    fn: np.ndarray
+    fd: np.ndarray
+    hn: np.ndarray
+    hd: np.ndarray
+    dt: float | None
+
+    def open_loop(self) -> tuple[np.ndarray, np.ndarray]:
+        """L = F H."""
+        return pmul(self.fn, self.hn), pmul(self.fd, self.hd)
+
+    def closed_loop(self) -> tuple[np.ndarray, np.ndarray]:
+        """T = F / (1 + F H)."""
+        num = pmul(self.fn, self.hd)
+        den = np.polyadd(pmul(self.fd, self.hd), pmul(self.fn, self.hn))
+        return num, den
+
+    def freq(self, num, den, w: np.ndarray) -> np.ndarray:
+        """Frequency response at w (rad/s)."""
+        x = np.exp(1j * w * self.dt) if self.dt else 1j * w
+        return np.polyval(num, x) / np.polyval(den, x)
+
+    def stable(self) -> bool:
+        """Closed-loop poles in the left half plane / inside the unit circle."""
+        poles = np.roots(self.closed_loop()[1])
+        if self.dt:
+            return bool(np.all(np.abs(poles) < 1.0))
+        return bool(np.all(poles.real < 0.0))
+
+
+@dataclass
+class LoopResult:
+    """Margins and bandwidth of one model."""
+    pm_deg: float
+    gm_db: float
+    w_c: float
+    bw_hz: float
+    stable: bool
+    overshoot_pct: float
+    w: np.ndarray
+    l_resp: np.ndarray
+    t: np.ndarray
+    y: np.ndarray
+
+
+def analyse(model: LoopModel, w_top: float) -> LoopResult:
+    """Phase margin, gain margin, crossover, -3 dB bandwidth and step response of a loop."""
+    from scipy import signal
+    w_hi = (math.pi / model.dt) if model.dt else w_top
+    w = np.logspace(-2, math.log10(w_hi), 20000)
+    if model.dt:
+        w[-1] = math.pi / model.dt          # the Nyquist point itself (phase crossovers there)
+    ln, ld = model.open_loop()
+    lr = model.freq(ln, ld, w)
+    mag = np.abs(lr)
+    ph = np.degrees(np.unwrap(np.angle(lr)))
+    if ph[0] > 0:
+        ph -= 360.0
+    pm, wc = math.inf, math.nan
+    idx = np.nonzero((mag[:-1] >= 1.0) & (mag[1:] < 1.0))[0]
+    for i in idx:
+        f = (math.log(mag[i])) / (math.log(mag[i]) - math.log(mag[i + 1]))
+        phc = ph[i] + f * (ph[i + 1] - ph[i])
+        wci = w[i] * (w[i + 1] / w[i]) ** f
+        pmi = (phc + 180.0 + 180.0) % 360.0 - 180.0
+        if pmi < pm:
+            pm, wc = pmi, wci
+    gm = math.inf
+    for k in range(-3, 1):
+        line = -180.0 + 360.0 * k
+        idx = np.nonzero((ph[:-1] > line) & (ph[1:] <= line + 1e-6))[0]
+        for i in idx:
+            f = min(1.0, (ph[i] - line) / (ph[i] - ph[i + 1]))
+            mg = math.exp(math.log(mag[i]) + f * (math.log(mag[i + 1]) - math.log(mag[i])))
+            gm = min(gm, -20.0 * math.log10(mg))
+    cn, cd = model.closed_loop()
+    tr = np.abs(model.freq(cn, cd, w))
+    dc = abs(np.polyval(cn, 1.0 if model.dt else 0.0) / np.polyval(cd, 1.0 if model.dt else 0.0))
+    below = np.nonzero(tr < dc / math.sqrt(2.0))[0]
+    bw = w[below[0]] / (2.0 * math.pi) if below.size else math.inf
+    stable = model.stable()
+    t_end = min(20.0 / max(wc if math.isfinite(wc) else 1.0, 1e-3), 2.0)
+    if model.dt:
+        n = int(min(max(t_end / model.dt, 50), 40000))
+        t, yy = signal.dstep(signal.dlti(cn, cd, dt=model.dt), n=n)
+        y = np.squeeze(yy[0])
+    else:
+        t = np.linspace(0.0, t_end, 2000)
+        t, y = signal.step(signal.lti(cn, cd), T=t)
+    final = y[-1] if abs(y[-1]) > 1e-12 else 1.0
+    overshoot = max(0.0, (float(np.max(y)) - final) / final * 100.0) if stable else math.inf
+    return LoopResult(pm, gm, wc, bw, stable, overshoot, w, lr, np.asarray(t), np.asarray(y))
+
+
+def build_loops(cfg: dict, ds: Design) -> dict[str, tuple[LoopModel, LoopModel]]:
+    """(continuous, discrete) models of the current loops, speed loop, FW loop and PLL.
+
+    Continuous: the document's models with the quantised gains (delays lumped in
+    1 / (T_sigma s + 1), 1 / (T_ssigma s + 1)).  Discrete at T_s: PI as implemented by
+    qfoc_pi_step (u = kp e + I, I(k) = I(k-1) + ki T e(k): kp + kiT z / (z - 1)), one
+    sample of computation delay z^-1, zero-order hold of the plant.
+    """
+    m, b, g, ph = cfg["motor"], ds.b, ds.gains, ds.phys
+    t = b.t_s
+    one = np.array([1.0])
+    delay = (one, np.array([1.0, 0.0]))
+    loops: dict = {}
+
+    def pi_z(kp: float, kit: float) -> tuple[np.ndarray, np.ndarray]:
+        return np.array([kp + kit, -kp]), np.array([1.0, -1.0])
+
+    current_cl = {}
+    for axis, l_h in (("d", m["ld_h"]), ("q", m["lq_h"])):
+        k_cp = g[f"pi_i{axis}.kp"].quantised * b.v_base / b.i_base
+        k_cit = g[f"pi_i{axis}.ki"].quantised * b.v_base / b.i_base
+        k_ci = k_cit / t
+        tf = cfg["design"]["t_filter_current_s"]
+        cont = LoopModel(pmul([k_cp, k_ci]), pmul([1.0, 0.0], [ds.t_sigma, 1.0], [l_h, m["rs_ohm"]]),
+                         one, one, None)
+        pn, pd = zoh([1.0], [l_h, m["rs_ohm"]], t)
+        cn, cd = pi_z(k_cp, k_cit)
+        hn, hd = (zoh([1.0], [tf, 1.0], t) if tf > 0 else (one, one))
+        disc = LoopModel(pmul(cn, delay[0], pn), pmul(cd, delay[1], pd), hn, hd, t)
+        loops[f"current {axis}"] = (cont, disc)
+        current_cl[axis] = disc.closed_loop()
+
+    # Speed loop: i_q reference -> (current loop) -> K_t -> b / (s + a) -> w_m.
+    kp_s = g["pi_speed.kp"].quantised * b.i_base / b.w_base * m["pole_pairs"]
+    kit_s = g["pi_speed.ki"].quantised * b.i_base / b.w_base * m["pole_pairs"]
+    t_sam = cfg["design"]["speed_t_sam_s"]
+    ki_s = kit_s / t_sam
+    cont = LoopModel(pmul([kp_s, ki_s], [ds.k_t * ph["b"]]),
+                     pmul([1.0, 0.0], [ds.t_ssigma, 1.0], [1.0, ph["a"]]), one, one, None)
+    # Discrete at the speed loop's own sample time T_sam (the 1 ms tick): zero-order hold
+    # of the closed current loop and the mechanics, one T_sam of computation delay, the PI
+    # as qfoc_pi_step at T_sam, and the speed low-pass (which runs at the PWM rate)
+    # as its continuous equivalent 1 / (T_f s + 1), held at T_sam.
+    if abs(t_sam - t) <= 1e-12:
+        pn, pd = zoh([ds.k_t * ph["b"]], pmul([2.0 * ds.t_sigma, 1.0], [1.0, ph["a"]]), t)
+        alpha = g["pll.speed_alpha"].quantised
+        hn, hd = np.array([alpha, 0.0]), np.array([1.0, alpha - 1.0])
+    else:
+        pn, pd = zoh([ds.k_t * ph["b"]], pmul([2.0 * ds.t_sigma, 1.0], [1.0, ph["a"]]), t_sam)
+        hn, hd = zoh([1.0], [ph["T_filter_speed"], 1.0], t_sam)
+    cn, cd = pi_z(kp_s, kit_s)
+    disc = LoopModel(pmul(cn, delay[0], pn), pmul(cd, delay[1], pd), hn, hd, t_sam)
+    loops["speed"] = (cont, disc)
+
+    # Field weakening: e = v_max - utilisation -> i_d reference -> d current loop -> G_fw.
+    kp_f = g["pi_fw.kp"].quantised
+    kit_f = g["pi_fw.ki"].quantised
+    gfw = ph["G_fw"]
+    cont = LoopModel(pmul([kp_f, kit_f / t], [gfw]), pmul([1.0, 0.0], [2.0 * ds.t_sigma, 1.0]),
+                     one, one, None)
+    cn, cd = pi_z(kp_f, kit_f)
+    dn, dd = current_cl["d"]
+    disc = LoopModel(pmul(cn, delay[0], dn, [gfw]), pmul(cd, delay[1], dd), one, one, t)
+    loops["field weakening"] = (cont, disc)
+
+    # PLL (2-27, 2-28): error ~ theta_r - theta (rad), speed (pu) -> theta += speed w_base T.
+    kp_p, kit_p = g["pll.kp"].quantised, g["pll.ki"].quantised
+    cont = LoopModel(pmul([kp_p, kit_p / t], [b.w_base]), np.array([1.0, 0.0, 0.0]), one, one,
+                     None)
+    cn, cd = pi_z(kp_p, kit_p)
+    disc = LoopModel(pmul(cn, [b.w_base * t]), pmul(cd, [1.0, -1.0]), one, one, t)
+    loops["PLL"] = (cont, disc)
+    return loops
+
+
+def run_analysis(cfg: dict, ds: Design) -> dict[str, tuple[LoopResult, LoopResult]]:
+    """Analyse every loop, continuous and discrete."""
+    w_top = 10.0 * math.pi / ds.b.t_s
+    return {name: (analyse(c, w_top), analyse(dm, w_top))
+            for name, (c, dm) in build_loops(cfg, ds).items()}
+
+
+def plot_loops(results: dict, out_dir: Path) -> list[str]:
+    """One PNG per loop: open-loop Bode (continuous and discrete) and closed-loop step."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    names = []
+    for name, (rc, rd) in results.items():
+        fig, axes = plt.subplots(3, 1, figsize=(7.5, 9.0))
+        for r, label, style in ((rc, "continuous", "-"), (rd, "discrete", "--")):
+            axes[0].semilogx(r.w / (2 * math.pi), 20 * np.log10(np.abs(r.l_resp)), style, label=label)
+            ph = np.degrees(np.unwrap(np.angle(r.l_resp)))
+            if ph[0] > 0:
+                ph = ph - 360.0
+            axes[1].semilogx(r.w / (2 * math.pi), ph, style, label=label)
+            axes[2].plot(r.t * 1e3, r.y, style, label=label)
+        axes[0].axhline(0.0, color="grey", lw=0.5)
+        axes[1].axhline(-180.0, color="grey", lw=0.5)
+        axes[0].set_ylabel("|L| (dB)")
+        axes[1].set_ylabel("arg L (deg)")
+        axes[1].set_xlabel("frequency (Hz)")
+        axes[2].set_xlabel("time (ms)")
+        axes[2].set_ylabel("closed-loop step")
+        axes[0].set_title(f"{name} loop: PM {rc.pm_deg:.1f} / {rd.pm_deg:.1f} deg "
+                          "(continuous / discrete)")
+        for ax in axes:
+            ax.grid(True, which="both", lw=0.3)
+            ax.legend(loc="best", fontsize=8)
+        fig.tight_layout()
+        fname = "loop_" + name.replace(" ", "_") + ".png"
+        fig.savefig(out_dir / fname, dpi=90, metadata={"Software": None})
+        plt.close(fig)
+        names.append(fname)
+    return names
+
+
+# --------------------------------------------------------------------------------------
+# Report
+# --------------------------------------------------------------------------------------
+
+def md_table(header: list[str], rows: list[list[str]]) -> list[str]:
+    """A Markdown table."""
+    out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    out += ["| " + " | ".join(str(c).replace("|", "\\|") for c in r) + " |" for r in rows]
+    return out
+
+
+def gain_rows(ds: Design) -> list[list[str]]:
+    """Rows of the gains table."""
+    keys = ["pi_id.kp", "pi_id.ki", "pi_iq.kp", "pi_iq.ki", "pi_id.out", "pi_speed.kp",
+            "pi_speed.ki", "pi_fw.kp", "pi_fw.ki", "v_max", "pll.kp", "pll.ki", "pll.err_clamp",
+            "pll.mag_min", "pll.k_theta", "pll.speed_alpha", "alpha_vdc", "flux.gain", "flux.r",
+            "flux.l", "flux.kg", "ld", "lq", "psi_f", "i_max", "i_trip", "speed_max", "vdc_uv",
+            "vdc_ov", "svpwm.vdc_min", "svpwm.i_deadband", "svpwm.dt_comp"]
+    rows = []
+    for k in keys:
+        gn = ds.gains[k]
+        rows.append([gn.name, fmt(gn.real), str(gn.raw), "" if gn.shift is None else
+                     f"{gn.shift} ({gn.kind})", fmt(gn.quantised), f"{gn.rel_err * 100:+.4f} %",
+                     gn.derivation])
+    return rows
+
+
+def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds: Design,
+                 bounds: list[Bound], results: dict | None, pngs: list[str],
+                 failures: list[str], crc: int | None) -> None:
+    """Write report.md."""
+    b, ph = ds.b, ds.phys
+    status = "FAILED" if failures else "PASSED"
+    lines = [f"# qfoc tuning report: {cfg['motor']['name']}", "",
+             f"Status: **{status}**", "",
+             f"Motor file: `{toml_rel}`" + (f", overrides: `{' '.join(overrides)}`"
+                                            if overrides else ""),
+             f"Generated by `{TOOL_PATH}`." + (f" Table CRC-32: `0x{crc:08X}`." if crc is not None
+                                              else " No table written."), ""]
+    if failures:
+        lines += ["## Failures", ""] + [f"- {f}" for f in failures] + [""]
+    coarse = [gn for gn in ds.gains.values() if abs(gn.rel_err) > COARSE_GAIN_PCT / 100.0]
+    if coarse:
+        lines += ["## Warnings", ""]
+        lines += [f"- {gn.name}: rounding error {gn.rel_err * 100:+.2f} % (raw {gn.raw}): the "
+                  "value is close to the resolution of its representation" for gn in coarse]
+        lines.append("")
+    lines += ["## 1. Design choices ([design], [limits])", ""]
+    rows = []
+    for sec, keys in OPTIONAL_SECTIONS.items():
+        for k, (_d, _c, desc) in keys.items():
+            src = "default" if f"{sec}.{k}" in cfg["defaulted"] else "motor file / --set"
+            rows.append([f"{sec}.{k}", fmt(cfg[sec][k]), src, desc])
+    lines += md_table(["key", "value", "source", "meaning"], rows) + [""]
+    lines += ["## 2. Bases (specs/scaling.md section 2)", ""]
+    lines += md_table(["symbol", "derivation", "value"], [list(r) for r in base_rows(cfg, b)])
+    lines += ["", "## 3. Scale factors (specs/scaling.md section 3)", ""]
+    lines += md_table(["factor", "derivation", "value"],
+                      [list(r) for r in scale_factor_rows(cfg, ds)])
+    lines += ["", "## 4. Loop design and gains", "",
+              f"- Current loops (chapter 2, \"Current Loop\"): T_sigma = T_pwm + T_sam + T_filter "
+              f"= T_s/2 + T_s + {fmt(cfg['design']['t_filter_current_s'])} = "
+              f"{fmt(ph['T_sigma'] * 1e6)} us; tau_c = L/R; K T = 0.5: k_cp = L / (2 T_sigma) = "
+              f"{fmt(ph['k_cp_d'])} / {fmt(ph['k_cp_q'])} ohm (d / q), k_ci = R / (2 T_sigma) = "
+              f"{fmt(ph['k_ci_d'])} ohm/s; per unit kp = k_cp I_base / V_base, "
+              f"ki T = k_ci T_s I_base / V_base; limits +-V_dc,max / sqrt 3 = {fmt(ph['v_lim'])} V.",
+              f"- Speed loop (\"Speed Loop\"): T_ssigma = 2 T_sigma + T_filter + T_sam = "
+              f"{fmt(ph['T_ssigma'] * 1e3)} ms (T_filter = 1 / (2 pi f_c) of the PLL speed filter = "
+              f"{fmt(ph['T_filter_speed'] * 1e3)} ms); K_t = 3/2 n_p psi_f = {fmt(ph['K_t'])} N m/A; "
+              f"b = 1/J = {fmt(ph['b'])}, a = B/J = {fmt(ph['a'])}; tau_s = {fmt(ph['tau_s'])} s; "
+              f"ksp = K / (2 K_t b), K = 1 / T_ssigma: {fmt(ph['ksp'])} A s/rad (mechanical); "
+              f"input speed error in Q15 of w_base (electrical), output i_q in Q15 of I_base.",
+              f"- Field weakening: error v_max - utilisation -> i_d reference in [-i_max, 0]; plant "
+              f"gain G_fw = w_max L_d I_base / (V_dc,min / sqrt 3) = {fmt(ph['G_fw'])} pu/pu "
+              f"(largest: top speed, lowest bus); crossover w_fw = "
+              f"{fmt(cfg['design']['fw_crossover_ratio'])} x 1/(2 T_sigma) = {fmt(ph['w_fw'])} rad/s "
+              f"(a decade below the current loop); integral-dominant: ki = w_fw / G_fw = "
+              f"{fmt(ph['ki_fw'])} 1/s, kp = ki / ({fmt(cfg['design']['fw_zero_ratio'])} w_fw) = "
+              f"{fmt(ph['kp_fw'])}.",
+              "- PLL (2-27, 2-28) and flux observer (2-19 .. 2-24): exactly as sim/estim.c "
+              "est_tune().", "",
+              "Gains: `left` = pi.h (real = raw / 32768 x 2^shift, smallest shift), `right` = "
+              "flux.h (real = raw / 2^(15 + shift), largest shift).", ""]
+    lines += md_table(["quantity", "real value", "raw", "shift", "stored value", "rounding error",
+                       "derivation"], gain_rows(ds))
+    lines += ["", "## 5. Fixed-point bounds (chapter 2)", "",
+              "Margin = (limit - value) / limit.  Assumptions: Clarke and Park at the trip current "
+              "with the phase of i_v within 120 deg +- design.clarke_phase_dev_deg; Park angle "
+              "error up to design.park_angle_err_deg; flux at the lowest observer speed and the "
+              "highest speed with |psi_a| = psi_f + |L_d - L_q| i_max and a DC current offset "
+              "design.i_offset_a; inverse transforms at V_dc,max / sqrt 3 with harmonics "
+              "A_d = A_q = design.v_harmonic_fraction x |v|.", ""]
+    lines += md_table(["bound", "equation", "value", "limit", "margin", "worst input"],
+                      [[bd.name, bd.equation, fmt(bd.value), fmt(bd.limit),
+                        f"{bd.margin_pct:.1f} %" + ("" if bd.ok else " VIOLATED"), bd.worst_input]
+                       for bd in bounds])
+    if results:
+        lines += ["", "## 6. Loop analysis (chapter 4)", "",
+                  "Continuous: the document's models with the stored gains.  Discrete: T_s = "
+                  f"{fmt(b.t_s * 1e6)} us, zero-order hold of the plant, z^-1 computation delay, "
+                  "PI as qfoc_pi_step (kp + kiT z/(z-1)); speed loop with the speed low-pass "
+                  "alpha z/(z-1+alpha) in the feedback; FW loop through the discrete closed d "
+                  "current loop; PLL linearised (error = angle error in rad).  Required: discrete "
+                  f"loop stable with PM >= {fmt(PM_MIN_DEG)} deg.  The discrete current loops "
+                  "show a wider bandwidth than the continuous ones: the continuous model lumps the "
+                  "1.5 T_s delay into 1 / (T_sigma s + 1), which has the delay's phase but not its "
+                  "unit magnitude, so its closed loop rolls off earlier; a continuous model with the "
+                  "exact delay exp(-1.5 T_s s) agrees with the discrete one (on the reference motor "
+                  "955 Hz against 1001 Hz), and the phase margins of both models agree.", ""]
+        rows = []
+        for name, (rc, rd) in results.items():
+            rows.append([name,
+                         f"{rc.pm_deg:.1f} / {rd.pm_deg:.1f}",
+                         f"{fmt(rc.gm_db, 4)} / {fmt(rd.gm_db, 4)}",
+                         f"{fmt(rc.w_c / (2 * math.pi), 4)} / {fmt(rd.w_c / (2 * math.pi), 4)}",
+                         f"{fmt(rc.bw_hz, 4)} / {fmt(rd.bw_hz, 4)}",
+                         f"{rc.overshoot_pct:.1f} / {rd.overshoot_pct:.1f}",
+                         "yes" if rd.stable else "NO"])
+        lines += md_table(["loop", "PM deg (cont / disc)", "GM dB (cont / disc)",
+                           "crossover Hz (cont / disc)", "bandwidth -3 dB Hz (cont / disc)",
+                           "step overshoot % (cont / disc)", "discrete stable"], rows)
+    if pngs:
+        lines += ["", "## 7. Figures", ""]
+        lines += [f"![{p}]({p})" for p in pngs]
+    lines.append("")
+    path.write_text("\n".join(lines), encoding="utf-8")
+
+
+# --------------------------------------------------------------------------------------
+# Main
+# --------------------------------------------------------------------------------------
+
+def rel_to_repo(path: Path) -> str:
+    """The path relative to the repository root when inside it, else as given."""
+    try:
+        return Path(os.path.relpath(path.resolve(), REPO_ROOT)).as_posix() \
+            if path.resolve().is_relative_to(REPO_ROOT) else path.as_posix()
+    except ValueError:
+        return path.as_posix()
+
+
+def c_name(stem: str) -> str:
+    """A C identifier from the TOML file stem."""
+    name = "".join(ch if ch.isalnum() else "_" for ch in stem.lower())
+    return name if name and not name[0].isdigit() else "m_" + name
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Command-line entry point; returns the exit code."""
+    ap = argparse.ArgumentParser(
+        prog="qfoc_tune.py",
+        description="qfoc tuning and scaling tool: reads a motor TOML, derives bases and Q15 "
+                    "scale factors, designs the current, speed, field-weakening and PLL loops "
+                    "(document chapter 2), checks the fixed-point bounds (2-5 .. 2-12, 2-25, "
+                    "2-26, inverse transforms), analyses the loops (chapter 4) and writes the "
+                    "parameter table (include/qfoc/params.h) and a report.",
+        epilog="Exit codes: 0 ok; 1 bound or loop check failed (report marked FAILED, no "
+               "table written); 2 bad input.")
+    ap.add_argument("motor", type=Path, help="motor and inverter file, e.g. "
+                                             "specs/motors/reference.toml")
+    ap.add_argument("--out-dir", type=Path, help="report directory (default build/tune/<name>/)")
+    ap.add_argument("--table-dir", type=Path, default=Path("tables"),
+                    help="directory of <name>_params.c/.h (default tables/)")
+    ap.add_argument("--set", dest="overrides", action="append", default=[],
+                    metavar="SECTION.KEY=VALUE", help="override a motor-file value (repeatable)")
+    ap.add_argument("--no-plots", action="store_true", help="skip the PNG figures")
+    args = ap.parse_args(argv)
+
+    try:
+        cfg = load_config(args.motor, args.overrides)
+    except InputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    name = c_name(args.motor.stem)
+    toml_rel = rel_to_repo(args.motor)
+    out_dir = args.out_dir if args.out_dir else Path("build") / "tune" / name
+
+    b = make_bases(cfg)
+    ds = design_loops(cfg, b)
+    items = build_table(cfg, ds)
+    bounds = check_bounds(cfg, ds) + range_checks(items)
+    failures = []
+    for bd in bounds:
+        if not bd.ok:
+            failures.append(f"bound violated: {bd.name} ({bd.equation}): {fmt(bd.value)} > "
+                            f"{fmt(bd.limit)} for {bd.worst_input}")
+    results = run_analysis(cfg, ds)
+    for lname, (_rc, rd) in results.items():
+        if not rd.stable:
+            failures.append(f"loop check failed: {lname} loop: discrete closed loop unstable")
+        elif not rd.pm_deg >= PM_MIN_DEG:
+            failures.append(f"loop check failed: {lname} loop: discrete phase margin "
+                            f"{rd.pm_deg:.1f} deg < {fmt(PM_MIN_DEG)} deg")
+
+    print(f"qfoc_tune: {cfg['motor']['name']} ({toml_rel})")
+    print("bases:")
+    for sym, der, val in base_rows(cfg, b):
+        print(f"  {sym:9s} = {val:16s} {der}")
+    print("scale factors:")
+    for sym, der, val in scale_factor_rows(cfg, ds):
+        print(f"  {sym:30s} = {val:18s} {der}")
+    print("gains (real, raw, shift, rounding error):")
+    for row in gain_rows(ds):
+        print(f"  {row[0]:18s} {row[1]:>12s} {row[2]:>7s} {row[3]:>10s} {row[5]:>11s}")
+    print("bounds (value, limit, margin):")
+    for bd in bounds:
+        print(f"  {bd.name:36s} {bd.equation:38s} {fmt(bd.value):>10s} {fmt(bd.limit):>8s} "
+              f"{bd.margin_pct:6.1f} %")
+    print("loops (PM deg cont/disc, GM dB cont/disc, bandwidth Hz cont/disc):")
+    for lname, (rc, rd) in results.items():
+        print(f"  {lname:16s} {rc.pm_deg:6.1f} / {rd.pm_deg:6.1f}   {fmt(rc.gm_db, 4):>6s} / "
+              f"{fmt(rd.gm_db, 4):>6s}   {fmt(rc.bw_hz, 4):>7s} / {fmt(rd.bw_hz, 4):>7s}")
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    pngs = [] if args.no_plots else plot_loops(results, out_dir)
+    crc = None
+    if not failures:
+        crc = crc32_iso_hdlc(serialise(items))
+        c_text, h_text = c_sources(name, toml_rel, args.overrides, cfg, items, crc)
+        args.table_dir.mkdir(parents=True, exist_ok=True)
+        (args.table_dir / f"{name}_params.c").write_text(c_text, encoding="utf-8")
+        (args.table_dir / f"{name}_params.h").write_text(h_text, encoding="utf-8")
+    write_report(out_dir / "report.md", cfg, toml_rel, args.overrides, ds, bounds,
+                 results, pngs, failures, crc)
+    for gn in ds.gains.values():
+        if abs(gn.rel_err) > COARSE_GAIN_PCT / 100.0:
+            print(f"warning: {gn.name}: rounding error {gn.rel_err * 100:+.2f} % (raw {gn.raw})",
+                  file=sys.stderr)
+    for f in failures:
+        print(f, file=sys.stderr)
+    if failures:
+        print(f"FAILED: report {out_dir / 'report.md'}, no table written", file=sys.stderr)
+        return 1
+    print(f"wrote {args.table_dir / (name + '_params.c')}, {args.table_dir / (name + '_params.h')}, "
+          f"{out_dir / 'report.md'} (CRC 0x{crc:08X})")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
