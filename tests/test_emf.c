@@ -56,6 +56,23 @@ static int16_t rand_input(void)
     return v;
 }
 
+/* a voltage and a current sample: random Q15 inputs with the corners mixed in */
+static void random_inputs(qfoc_ab_t *u, qfoc_ab_t *i)
+{
+    u->alpha = rand_input();
+    u->beta = rand_input();
+    i->alpha = rand_input();
+    i->beta = rand_input();
+}
+
+/* the safe state's output: EMF 0, angle 0 */
+static void assert_safe_output(const qfoc_emf_out_t *out)
+{
+    assert_int_equal(out->emf.alpha, 0);
+    assert_int_equal(out->emf.beta, 0);
+    assert_int_equal(out->theta, 0);
+}
+
 /* angle difference a - b in degrees, wrapped to (-180, 180] */
 static double ang_diff_deg(double a, double b)
 {
@@ -213,10 +230,7 @@ static void test_emf_step_random_vs_reference(void **state)
         e.i_prev.beta = (qfoc_q15_t)rand_range(-32767, 32767);
         e.active = true;
         assert_true(qfoc_emf_is_valid(&e));
-        u.alpha = rand_input();
-        u.beta = rand_input();
-        i.alpha = rand_input();
-        i.beta = rand_input();
+        random_inputs(&u, &i);
         ra = emf_raw_ref(u.alpha, i.alpha, e.i_prev.alpha, e.params.r, e.params.l);
         rb = emf_raw_ref(u.beta, i.beta, e.i_prev.beta, e.params.r, e.params.l);
         if ((fabs(ra) >= 32767.0) || (fabs(rb) >= 32767.0)) {
@@ -292,10 +306,7 @@ static void test_dob_step_random_vs_reference(void **state)
         d.e_prev.alpha = (qfoc_q15_t)rand_range(-32767, 32767);
         d.e_prev.beta = (qfoc_q15_t)rand_range(-32767, 32767);
         assert_true(qfoc_dob_is_valid(&d));
-        u.alpha = rand_input();
-        u.beta = rand_input();
-        i.alpha = rand_input();
-        i.beta = rand_input();
+        random_inputs(&u, &i);
         uu[0] = u.alpha;
         uu[1] = u.beta;
         ii[0] = i.alpha;
@@ -758,14 +769,9 @@ static void test_emf_init_rejects(void **state)
             qfoc_ab_t u;
             qfoc_ab_t i;
             qfoc_emf_out_t out;
-            u.alpha = rand_input();
-            u.beta = rand_input();
-            i.alpha = rand_input();
-            i.beta = rand_input();
+            random_inputs(&u, &i);
             qfoc_emf_step(&e, &u, &i, &out);
-            assert_int_equal(out.emf.alpha, 0);
-            assert_int_equal(out.emf.beta, 0);
-            assert_int_equal(out.theta, 0);
+            assert_safe_output(&out);
             assert_int_equal(qfoc_emf_lag(&e, u.alpha), 0);
             assert_true(qfoc_emf_is_valid(&e));
         }
@@ -817,14 +823,9 @@ static void test_dob_init_rejects(void **state)
             qfoc_ab_t u;
             qfoc_ab_t i;
             qfoc_emf_out_t out;
-            u.alpha = rand_input();
-            u.beta = rand_input();
-            i.alpha = rand_input();
-            i.beta = rand_input();
+            random_inputs(&u, &i);
             qfoc_dob_step(&d, &u, &i, &out);
-            assert_int_equal(out.emf.alpha, 0);
-            assert_int_equal(out.emf.beta, 0);
-            assert_int_equal(out.theta, 0);
+            assert_safe_output(&out);
             assert_int_equal(qfoc_dob_lag(&d, u.beta), 0);
             assert_true(qfoc_dob_is_valid(&d));
         }
