@@ -106,14 +106,20 @@ double sim_torque(const sim_t *s)
     return sim_te(&s->cfg.motor, s->id, s->iq);
 }
 
-static double sim_tl(const sim_load_t *l, double theta_m)
+static double sim_tl(const sim_load_t *l, double theta_m, double w_m)
 {
-    return l->t_mean + l->t_1x * sin(theta_m + l->phi_1x) + l->t_2x * sin(2.0 * theta_m + l->phi_2x);
+    double t = l->t_mean + l->t_1x * sin(theta_m + l->phi_1x) + l->t_2x * sin(2.0 * theta_m + l->phi_2x);
+    if (l->knee_rpm > 0.0) {
+        /* passive load: opposes the motion, fades in over +-knee_rpm */
+        const double x = w_m * 60.0 / (2.0 * SIM_PI) / l->knee_rpm;
+        t *= (x > 1.0) ? 1.0 : ((x < -1.0) ? -1.0 : x);
+    }
+    return t;
 }
 
 double sim_load_torque(const sim_t *s)
 {
-    return sim_tl(&s->cfg.load, s->theta_m);
+    return sim_tl(&s->cfg.load, s->theta_m, s->w_m);
 }
 
 void sim_init(sim_t *s, const sim_cfg_t *cfg)
@@ -127,6 +133,9 @@ void sim_init(sim_t *s, const sim_cfg_t *cfg)
     s->rng = (cfg->seed != 0u) ? cfg->seed : 0x12345678u;
     s->cmp_active[0] = s->cmp_active[1] = s->cmp_active[2] = (uint16_t)(s->bases.period / 2u);
     memcpy(s->cmp_pending, s->cmp_active, sizeof s->cmp_pending);
+    s->en_active = true;
+    s->en_pending = true;
+    s->extinct = false;
     if (s->cfg.speed_locked) {
         s->w_m = s->cfg.locked_speed_e / s->cfg.motor.pole_pairs;
     }
@@ -233,7 +242,7 @@ static void sim_deriv(const sim_t *s, const sim_x_t *x, const double v_ab[2], si
     if (s->cfg.speed_locked) {
         dx->w_m = 0.0;
     } else {
-        dx->w_m = (sim_te(m, x->id, x->iq) - sim_tl(&s->cfg.load, x->th_m) - m->b_nms * x->w_m) /
+        dx->w_m = (sim_te(m, x->id, x->iq) - sim_tl(&s->cfg.load, x->th_m, x->w_m) - m->b_nms * x->w_m) /
                   m->j_kgm2;
     }
     dx->th_m = x->w_m;
@@ -278,7 +287,12 @@ void sim_step_period(sim_t *s)
         iph[1] = -0.5 * i_ab[0] + 0.5 * SIM_SQRT3 * i_ab[1];
         iph[2] = -0.5 * i_ab[0] - 0.5 * SIM_SQRT3 * i_ab[1];
         for (j = 0; j < 3; j++) {
-            vp[j] = sim_pole_avg(a, a + h, T, tx[j], td, iph[j], vdc);
+            if (s->en_active) {
+                vp[j] = sim_pole_avg(a, a + h, T, tx[j], td, iph[j], vdc);
+            } else {
+                /* switches off: the diode of the current's direction conducts */
+                vp[j] = (iph[j] > 0.0) ? -0.5 * vdc : 0.5 * vdc;
+            }
         }
         vn0 = (vp[0] + vp[1] + vp[2]) / 3.0;
         /* phase-to-neutral voltages, then amplitude-invariant Clarke */
@@ -296,6 +310,13 @@ void sim_step_period(sim_t *s)
         s->iq = x.iq + h / 6.0 * (k1.iq + 2.0 * k2.iq + 2.0 * k3.iq + k4.iq);
         s->w_m = x.w_m + h / 6.0 * (k1.w_m + 2.0 * k2.w_m + 2.0 * k3.w_m + k4.w_m);
         s->theta_m = x.th_m + h / 6.0 * (k1.th_m + 2.0 * k2.th_m + 2.0 * k3.th_m + k4.th_m);
+        if (!s->en_active && (s->extinct || hypot(s->id, s->iq) < 0.3)) {
+            s->extinct = true;
+            s->id = 0.0;
+            s->iq = 0.0;
+            v_ab[0] = 0.0;
+            v_ab[1] = 0.0;
+        }
         vsum[0] += v_ab[0];
         vsum[1] += v_ab[1];
         tsum += sim_te(&s->cfg.motor, s->id, s->iq);
@@ -311,4 +332,13 @@ void sim_step_period(sim_t *s)
     s->torque_avg = tsum / (double)n;
     s->t += T;
     memcpy(s->cmp_active, s->cmp_pending, sizeof s->cmp_active);
+    if (s->en_pending && !s->en_active) {
+        s->extinct = false;
+    }
+    s->en_active = s->en_pending;
+}
+
+void sim_set_enable(sim_t *s, bool enable)
+{
+    s->en_pending = enable;
 }

@@ -88,6 +88,10 @@ typedef struct {
     double phi_1x;  /**< its phase (rad) */
     double t_2x;    /**< amplitude at 2x */
     double phi_2x;  /**< its phase (rad) */
+    double knee_rpm;/**< 0: the torque above at any speed (an active load, as on a
+                         dynamometer); > 0: a passive load (a compressor): it opposes the
+                         motion and fades in linearly over +-knee_rpm, so it never drives
+                         the rotor backwards at standstill */
 } sim_load_t;
 
 /** Scenario settings of a plant instance. */
@@ -125,6 +129,9 @@ typedef struct {
     uint16_t cmp_pending[3];  /**< written this period, active from the next */
     double v_ab_avg[2];       /**< average alpha/beta phase voltage of the last period */
     double torque_avg;        /**< average electromagnetic torque of the last period */
+    bool en_active;           /**< inverter switching in the current period */
+    bool en_pending;          /**< written this period, active from the next */
+    bool extinct;             /**< switching off and the currents have died out */
     uint32_t rng;
 } sim_t;
 
@@ -142,6 +149,15 @@ void sim_set_compare(sim_t *s, const uint16_t cmp[3]);
 
 /** Integrate one PWM period; then the pending compare values become active. */
 void sim_step_period(sim_t *s);
+
+/**
+ * Inverter enable for the next period (like the compare values).  Disabled: all six
+ * switches off; each pole follows its current through the freewheeling diodes
+ * (low for a positive current, high for a negative one), so the currents decay
+ * against the DC bus; once the current vector is below 0.3 A it is taken as zero
+ * (no conduction while the line-to-line back-EMF stays below V_dc).
+ */
+void sim_set_enable(sim_t *s, bool enable);
 
 /* truth, for references and reports */
 double sim_theta_e(const sim_t *s);          /**< electrical angle, rad, [0, 2 pi) */

@@ -131,6 +131,78 @@ static uint32_t qfoc_crc_limits(uint32_t crc, const qfoc_param_table_t *t)
     return qfoc_crc_i16(c, t->v_max);
 }
 
+/* drive configuration, speed and calibration fields: pole_pairs .. i_align */
+/*@ requires valid_d: \valid_read(d);
+    assigns \nothing; */
+static uint32_t qfoc_crc_drive_start(uint32_t crc, const qfoc_drive_cfg_t *d)
+{
+    uint32_t c = qfoc_crc32_byte(crc, d->pole_pairs);
+    c = qfoc_crc_u16(c, d->k_rpm);
+    c = qfoc_crc_u16(c, d->k_speed_rpm);
+    c = qfoc_crc_u16(c, d->rpm_min);
+    c = qfoc_crc_u16(c, d->rpm_max);
+    c = qfoc_crc_i16(c, d->speed_ramp);
+    c = qfoc_crc_u16(c, d->precharge_ms);
+    c = qfoc_crc32_byte(c, d->offset_shift);
+    c = qfoc_crc_u16(c, d->offset_window);
+    return qfoc_crc_i16(c, d->i_align);
+}
+
+/* drive configuration, ALIGN time to the closed-loop hold: align_ms .. cl_hold_ms */
+/*@ requires valid_d: \valid_read(d);
+    assigns \nothing; */
+static uint32_t qfoc_crc_drive_run(uint32_t crc, const qfoc_drive_cfg_t *d)
+{
+    uint32_t c = qfoc_crc_u16(crc, d->align_ms);
+    c = qfoc_crc_i16(c, d->i_start);
+    c = qfoc_crc_i16(c, d->of_accel);
+    c = qfoc_crc_i16(c, d->of_speed);
+    c = qfoc_crc_u16(c, d->ho_angle);
+    c = qfoc_crc_u16(c, d->ho_dwell_ms);
+    c = qfoc_crc_u16(c, d->ol_timeout_ms);
+    return qfoc_crc_u16(c, d->cl_hold_ms);
+}
+
+/* drive configuration, protection: t_ipm_max .. clear_ms */
+/*@ requires valid_d: \valid_read(d);
+    assigns \nothing; */
+static uint32_t qfoc_crc_drive_prot(uint32_t crc, const qfoc_drive_cfg_t *d)
+{
+    uint32_t c = qfoc_crc_i16(crc, d->t_ipm_max);
+    c = qfoc_crc_i16(c, d->t_pcb_max);
+    c = qfoc_crc_u16(c, d->vdc_ms);
+    c = qfoc_crc_u16(c, d->temp_ms);
+    c = qfoc_crc_i16(c, d->stall_err);
+    c = qfoc_crc_i16(c, d->flux_tol);
+    c = qfoc_crc_u16(c, d->stall_ms);
+    c = qfoc_crc_i16(c, d->phase_alpha);
+    c = qfoc_crc_i16(c, d->phase_i_min);
+    c = qfoc_crc_i16(c, d->phase_ratio);
+    c = qfoc_crc_u16(c, d->phase_ms);
+    c = qfoc_crc_u16(c, d->link_timeout_ms);
+    return qfoc_crc_u16(c, d->clear_ms);
+}
+
+/* drive configuration, features and link identifiers: fw_level .. can_id_b */
+/*@ requires valid_d: \valid_read(d);
+    assigns \nothing; */
+static uint32_t qfoc_crc_drive_feat(uint32_t crc, const qfoc_drive_cfg_t *d)
+{
+    uint32_t c = qfoc_crc_i16(crc, d->fw_level);
+    c = qfoc_crc_i16(c, d->fw_alpha);
+    c = qfoc_crc_i16(c, d->tc_gain);
+    c = qfoc_crc_i16(c, d->tc_amp_max);
+    c = qfoc_crc_i16(c, d->tc_speed_min);
+    c = qfoc_crc_i16(c, d->tc_speed_max);
+    c = qfoc_crc_i16(c, d->para_speed);
+    c = qfoc_crc_i16(c, d->ld_hs);
+    c = qfoc_crc_i16(c, d->lq_hs);
+    c = qfoc_crc32_byte(c, d->lin_id_cmd);
+    c = qfoc_crc32_byte(c, d->lin_id_status);
+    c = qfoc_crc_u16(c, d->can_id_a);
+    return qfoc_crc_u16(c, d->can_id_b);
+}
+
 /* public interface, also called by qfoc_params_check (DEV-002) */
 /* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
 uint32_t qfoc_params_crc(const qfoc_param_table_t *t)
@@ -145,6 +217,10 @@ uint32_t qfoc_params_crc(const qfoc_param_table_t *t)
     c = qfoc_crc_flux(c, &t->flux);
     c = qfoc_crc_pll(c, &t->pll);
     c = qfoc_crc_limits(c, t);
+    c = qfoc_crc_drive_start(c, &t->drive);
+    c = qfoc_crc_drive_run(c, &t->drive);
+    c = qfoc_crc_drive_prot(c, &t->drive);
+    c = qfoc_crc_drive_feat(c, &t->drive);
     return c ^ QFOC_CRC32_XOROUT;
 }
 
@@ -191,6 +267,28 @@ static bool qfoc_params_limits_ok(const qfoc_param_table_t *t)
     return motor && limits && refs;
 }
 
+/* the drive configuration within the table's limits: currents within i_max, speeds
+   within speed_max; the largest target rpm_max converted to Q15 with k_rpm (Q12,
+   rounded): at most (65535 x 65535 + 2048) / 4096 = 1048543, the sum below
+   4294838273 < 2^32 */
+/*@ requires valid_t: \valid_read(t);
+    assigns \nothing;
+    ensures result: \result <==> ParamsDriveCrossOk(t); */
+static bool qfoc_params_drive_cross_ok(const qfoc_param_table_t *t)
+{
+    const uint32_t rpm_max = (uint32_t)t->drive.rpm_max;
+    const uint32_t k_rpm = (uint32_t)t->drive.k_rpm;
+    uint32_t prod;
+    uint32_t top;
+
+    /*@ assert prod_bound: rpm_max * k_rpm <= 65535 * 65535; */
+    prod = rpm_max * k_rpm;
+    top = (prod + 2048u) / 4096u;   /* (x + 2048) >> 12 of x >= 0: at most 1048543 */
+    return (t->drive.i_align <= t->i_max) && (t->drive.i_start <= t->i_max)
+           && (t->drive.tc_amp_max <= t->i_max) && (t->drive.of_speed <= t->speed_max)
+           && ((int32_t)top <= (int32_t)t->speed_max);
+}
+
 /* public interface, also called by qfoc_params_check (DEV-002) */
 /* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
 bool qfoc_params_is_valid(const qfoc_param_table_t *t)
@@ -198,7 +296,9 @@ bool qfoc_params_is_valid(const qfoc_param_table_t *t)
     const bool scaling = qfoc_params_scaling_ok(t);
     const bool blocks = qfoc_params_blocks_ok(t);
     const bool limits = qfoc_params_limits_ok(t);
-    return scaling && blocks && limits;
+    const bool drive = qfoc_drive_cfg_is_valid(&t->drive);
+    const bool cross = qfoc_params_drive_cross_ok(t);
+    return scaling && blocks && limits && drive && cross;
 }
 
 /* public interface, also called by qfoc_params_load (DEV-002) */

@@ -10,7 +10,7 @@
 
 const qfoc_param_table_t qfoc_params_reference = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 1u, /* QFOC_PARAMS_VERSION */
+    .version = 2u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 8000u, /* f_pwm = 8000 Hz, T_s = 125 us */
     .v_base_mv = 500000u, /* V_base = 500 V */
     .i_base_ma = 40000u, /* I_base = 40 A */
@@ -40,7 +40,7 @@ const qfoc_param_table_t qfoc_params_reference = {
     .pi_speed = {
         .kp = 23569, /* kp 1.43855 = ksp = 1 / (2 T_ssigma K_t b) = 1 / (2 x 0.00933275 x 0.2925 x 3333.33) = 0.0549485 A s/rad (mech); / n_p x w_base / I_base; stored 1.43854, error -0.001 % */
         .kp_shift = 1u, /* kp_real = kp / 32768 x 2^1 */
-        .ki = 16, /* ki T 0.000479516 = kp T_sam / tau_s = 1.43855 x 0.001 / 3; stored 0.000488281, error +1.828 % */
+        .ki = 589, /* ki T 0.0179819 = kp T_sam / tau_s = 1.43855 x 0.001 / 0.08; stored 0.0179749, error -0.039 % */
         .ki_shift = 0u, /* kiT_real = ki / 32768 x 2^0 */
         .out_min = (int16_t)-16384, /* -0.5 pu: +-i_max (i_q reference) */
         .out_max = 16384 /* 0.5 pu: +-i_max (i_q reference) */
@@ -84,5 +84,51 @@ const qfoc_param_table_t qfoc_params_reference = {
     .vdc_uv = 14746, /* 0.45 = 225 V / V_base */
     .vdc_ov = 28901, /* 0.882 = 441 V / V_base */
     .v_max = 30147, /* 0.92 = design.fw_v_max */
-    .crc = 0x4C20AC36u /* CRC-32/ISO-HDLC of every field above */
+    .drive = {
+        .pole_pairs = 3u, /* motor.pole_pairs */
+        .k_rpm = 13421u, /* 13421.8 = n_p 32768 / (60 f_base) x 4096 = 3 x 32768 / (60 x 500) x 4096 (Q12) */
+        .k_speed_rpm = 10000u, /* 10000 = 60 f_base / (n_p 32768) x 32768 = 60 x 500 / 3 (Q15) */
+        .rpm_min = 1000u, /* 1000 rpm (drive.rpm_min, default) */
+        .rpm_max = 8000u, /* 8000 rpm = motor.max_speed_rpm */
+        .speed_ramp = 10, /* 0.0003 = 3000 rpm/s x 1 ms x n_p / 60 / f_base = 3 / 60 / 500 (per ms); stored 0.000305176, error +1.73 % */
+        .precharge_ms = 200u, /* 200 ms (drive.precharge_ms, default) */
+        .offset_shift = 6u, /* 2^6 = 64 samples per offset */
+        .offset_window = 100u, /* 100 counts = 4.88 % of 2048 = 1.953 A */
+        .i_align = 8192, /* 0.25 = 10 A / I_base = 10 / 40; stored 0.25, error +0.00 % */
+        .align_ms = 300u, /* 300 ms (drive.align_ms, default) */
+        .i_start = 16384, /* 0.5 = 20 A / I_base = 20 / 40; stored 0.5, error +0.00 % */
+        .of_accel = 3, /* 0.0001 = 1000 rpm/s x 1 ms x n_p / 60 / f_base = 3 / 60 / 500 (per ms); stored 9.15527e-05, error -8.45 % */
+        .of_speed = 3277, /* 0.1 = 1000 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.100006, error +0.01 % */
+        .ho_angle = 2731u, /* 2730.67 = 15 deg / 360 x 65536 */
+        .ho_dwell_ms = 50u, /* 50 ms (drive.ho_dwell_ms, default) */
+        .ol_timeout_ms = 4000u, /* 4000 ms (drive.ol_timeout_ms, default) */
+        .cl_hold_ms = 2000u, /* 2000 ms (drive.cl_hold_ms, default) */
+        .t_ipm_max = 1100, /* 110 degC x 10 */
+        .t_pcb_max = 1000, /* 100 degC x 10 */
+        .vdc_ms = 2u, /* 2 ms (drive.vdc_ms, default) */
+        .temp_ms = 10u, /* 10 ms (drive.temp_ms, default) */
+        .stall_err = 5898, /* 0.18 = 1800 rpm x n_p / 60 / f_base = 3 / 60 / 500 (0.3 x rated 0.6 pu); stored 0.179993, error -0.00 % */
+        .flux_tol = 6691, /* 0.204204 = 0.5 psi_f / psi_base = 0.5 x 0.065 / 0.159155; stored 0.204193, error -0.01 % */
+        .stall_ms = 500u, /* 500 ms (drive.stall_ms, default) */
+        .phase_alpha = 129, /* 0.00392699 = 2 pi f_c / f_pwm = 2 pi x 5 / 8000 (2-34); stored 0.00393677, error +0.25 % */
+        .phase_i_min = 1638, /* 0.05 = 2 A / I_base = 2 / 40; stored 0.0499878, error -0.02 % */
+        .phase_ratio = 8192, /* 0.25 = drive.phase_ratio, default; stored 0.25, error +0.00 % */
+        .phase_ms = 100u, /* 100 ms (drive.phase_ms, default) */
+        .link_timeout_ms = 500u, /* 500 ms (drive.link_timeout_ms, default) */
+        .clear_ms = 5000u, /* 5000 ms (drive.clear_ms, default) */
+        .fw_level = 30147, /* 0.92 = FWK_LVL, design.fw_v_max (default); stored 0.920013, error +0.00 % */
+        .fw_alpha = 1287, /* 0.0392699 = 2 pi f_c / f_pwm = 2 pi x 50 / 8000 (2-34); stored 0.0392761, error +0.02 % */
+        .tc_gain = 1000, /* 0.0305176 = drive.tc_gain_q15 / 32768 (provisional) */
+        .tc_amp_max = 8192, /* 0.25 = 10 A / I_base = 10 / 40 (provisional); stored 0.25, error +0.00 % */
+        .tc_speed_min = 1638, /* 0.05 = 500 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.0499878, error -0.02 % */
+        .tc_speed_max = 9830, /* 0.3 = 3000 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.299988, error -0.00 % */
+        .para_speed = 18350, /* 0.56 = 5600 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.559998, error -0.00 % */
+        .ld_hs = 2677, /* 0.653451 = motor.ld_h (no ld_hs_h) / L_base = 0.0026 / 0.00397887 (Q12) */
+        .lq_hs = 4324, /* 1.05558 = motor.lq_h (no lq_hs_h) / L_base = 0.0042 / 0.00397887 (Q12) */
+        .lin_id_cmd = 0x10u, /* LIN command frame (drive.lin_id_cmd, default) */
+        .lin_id_status = 0x11u, /* LIN status frame (drive.lin_id_status, default) */
+        .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
+        .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
+    },
+    .crc = 0x586414EFu /* CRC-32/ISO-HDLC of every field above */
 };

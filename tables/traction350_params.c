@@ -10,7 +10,7 @@
 
 const qfoc_param_table_t qfoc_params_traction350 = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 1u, /* QFOC_PARAMS_VERSION */
+    .version = 2u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 16000u, /* f_pwm = 16000 Hz, T_s = 62.5 us */
     .v_base_mv = 6000000u, /* V_base = 6000 V */
     .i_base_ma = 600000u, /* I_base = 600 A */
@@ -84,5 +84,51 @@ const qfoc_param_table_t qfoc_params_traction350 = {
     .vdc_uv = 2703, /* 0.0825 = 495 V / V_base */
     .vdc_ov = 4301, /* 0.13125 = 787.5 V / V_base */
     .v_max = 30147, /* 0.92 = design.fw_v_max */
-    .crc = 0x7C1C9B53u /* CRC-32/ISO-HDLC of every field above */
+    .drive = {
+        .pole_pairs = 8u, /* motor.pole_pairs */
+        .k_rpm = 17895u, /* 17895.7 = n_p 32768 / (60 f_base) x 4096 = 8 x 32768 / (60 x 1000) x 4096 (Q12) */
+        .k_speed_rpm = 7500u, /* 7500 = 60 f_base / (n_p 32768) x 32768 = 60 x 1000 / 8 (Q15) */
+        .rpm_min = 1000u, /* 1000 rpm (drive.rpm_min, default) */
+        .rpm_max = 6000u, /* 6000 rpm = motor.max_speed_rpm */
+        .speed_ramp = 13, /* 0.0004 = 3000 rpm/s x 1 ms x n_p / 60 / f_base = 8 / 60 / 1000 (per ms); stored 0.000396729, error -0.82 % */
+        .precharge_ms = 200u, /* 200 ms (drive.precharge_ms, default) */
+        .offset_shift = 6u, /* 2^6 = 64 samples per offset */
+        .offset_window = 100u, /* 100 counts = 4.88 % of 2048 = 29.3 A */
+        .i_align = 9011, /* 0.275 = 165 A / I_base = 165 / 600; stored 0.274994, error -0.00 % */
+        .align_ms = 300u, /* 300 ms (drive.align_ms, default) */
+        .i_start = 18022, /* 0.55 = 330 A / I_base = 330 / 600; stored 0.549988, error -0.00 % */
+        .of_accel = 4, /* 0.000133333 = 1000 rpm/s x 1 ms x n_p / 60 / f_base = 8 / 60 / 1000 (per ms); stored 0.00012207, error -8.45 % */
+        .of_speed = 4369, /* 0.133333 = 1000 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.133331, error -0.00 % */
+        .ho_angle = 2731u, /* 2730.67 = 15 deg / 360 x 65536 */
+        .ho_dwell_ms = 50u, /* 50 ms (drive.ho_dwell_ms, default) */
+        .ol_timeout_ms = 4000u, /* 4000 ms (drive.ol_timeout_ms, default) */
+        .cl_hold_ms = 2000u, /* 2000 ms (drive.cl_hold_ms, default) */
+        .t_ipm_max = 1100, /* 110 degC x 10 */
+        .t_pcb_max = 1000, /* 100 degC x 10 */
+        .vdc_ms = 2u, /* 2 ms (drive.vdc_ms, default) */
+        .temp_ms = 10u, /* 10 ms (drive.temp_ms, default) */
+        .stall_err = 7550, /* 0.2304 = 1728 rpm x n_p / 60 / f_base = 8 / 60 / 1000 (0.3 x rated 0.768 pu); stored 0.230408, error +0.00 % */
+        .flux_tol = 4118, /* 0.125664 = 0.5 psi_f / psi_base = 0.5 x 0.24 / 0.95493; stored 0.125671, error +0.01 % */
+        .stall_ms = 500u, /* 500 ms (drive.stall_ms, default) */
+        .phase_alpha = 64, /* 0.0019635 = 2 pi f_c / f_pwm = 2 pi x 5 / 16000 (2-34); stored 0.00195312, error -0.53 % */
+        .phase_i_min = 1802, /* 0.055 = 33 A / I_base = 33 / 600; stored 0.0549927, error -0.01 % */
+        .phase_ratio = 8192, /* 0.25 = drive.phase_ratio, default; stored 0.25, error +0.00 % */
+        .phase_ms = 100u, /* 100 ms (drive.phase_ms, default) */
+        .link_timeout_ms = 500u, /* 500 ms (drive.link_timeout_ms, default) */
+        .clear_ms = 5000u, /* 5000 ms (drive.clear_ms, default) */
+        .fw_level = 30147, /* 0.92 = FWK_LVL, design.fw_v_max (default); stored 0.920013, error +0.00 % */
+        .fw_alpha = 643, /* 0.019635 = 2 pi f_c / f_pwm = 2 pi x 50 / 16000 (2-34); stored 0.0196228, error -0.06 % */
+        .tc_gain = 1000, /* 0.0305176 = drive.tc_gain_q15 / 32768 (provisional) */
+        .tc_amp_max = 9011, /* 0.275 = 165 A / I_base = 165 / 600 (provisional); stored 0.274994, error -0.00 % */
+        .tc_speed_min = 2185, /* 0.0666667 = 500 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.0666809, error +0.02 % */
+        .tc_speed_max = 13107, /* 0.4 = 3000 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.399994, error -0.00 % */
+        .para_speed = 18350, /* 0.56 = 4200 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.559998, error -0.00 % */
+        .ld_hs = 2316, /* 0.565487 = motor.ld_h (no ld_hs_h) / L_base = 0.0009 / 0.00159155 (Q12) */
+        .lq_hs = 6177, /* 1.50796 = motor.lq_h (no lq_hs_h) / L_base = 0.0024 / 0.00159155 (Q12) */
+        .lin_id_cmd = 0x10u, /* LIN command frame (drive.lin_id_cmd, default) */
+        .lin_id_status = 0x11u, /* LIN status frame (drive.lin_id_status, default) */
+        .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
+        .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
+    },
+    .crc = 0x41184B66u /* CRC-32/ISO-HDLC of every field above */
 };

@@ -7,7 +7,9 @@
  * serialisation written here from params.h's description, and against the published
  * check value 0xCBF43926 of "123456789".  The generated tables must pass the library's
  * check, agree with the estimator design of sim/estim.c, and every corruption must be
- * refused with the right status.
+ * refused with the right status.  Layout version 2: the drive configuration
+ * (drive_cfg.h) is serialised after v_max, and its cross-field conditions with the
+ * table's limits (params.h) are tested at their boundaries.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -50,7 +52,7 @@ static uint32_t crc_ref(const uint8_t *buf, size_t len)
 }
 
 typedef struct {
-    uint8_t b[256];
+    uint8_t b[512];
     size_t n;
 } ser_t;
 
@@ -71,6 +73,55 @@ static void put_pi(ser_t *s, const qfoc_pi_params_t *p)
     put(s, p->ki_shift, 1);
     put(s, (uint16_t)p->out_min, 2);
     put(s, (uint16_t)p->out_max, 2);
+}
+
+/* drive_cfg.h, declaration order: 4 one-byte and 40 two-byte fields */
+static void put_drive(ser_t *s, const qfoc_drive_cfg_t *d)
+{
+    put(s, d->pole_pairs, 1);
+    put(s, d->k_rpm, 2);
+    put(s, d->k_speed_rpm, 2);
+    put(s, d->rpm_min, 2);
+    put(s, d->rpm_max, 2);
+    put(s, (uint16_t)d->speed_ramp, 2);
+    put(s, d->precharge_ms, 2);
+    put(s, d->offset_shift, 1);
+    put(s, d->offset_window, 2);
+    put(s, (uint16_t)d->i_align, 2);
+    put(s, d->align_ms, 2);
+    put(s, (uint16_t)d->i_start, 2);
+    put(s, (uint16_t)d->of_accel, 2);
+    put(s, (uint16_t)d->of_speed, 2);
+    put(s, d->ho_angle, 2);
+    put(s, d->ho_dwell_ms, 2);
+    put(s, d->ol_timeout_ms, 2);
+    put(s, d->cl_hold_ms, 2);
+    put(s, (uint16_t)d->t_ipm_max, 2);
+    put(s, (uint16_t)d->t_pcb_max, 2);
+    put(s, d->vdc_ms, 2);
+    put(s, d->temp_ms, 2);
+    put(s, (uint16_t)d->stall_err, 2);
+    put(s, (uint16_t)d->flux_tol, 2);
+    put(s, d->stall_ms, 2);
+    put(s, (uint16_t)d->phase_alpha, 2);
+    put(s, (uint16_t)d->phase_i_min, 2);
+    put(s, (uint16_t)d->phase_ratio, 2);
+    put(s, d->phase_ms, 2);
+    put(s, d->link_timeout_ms, 2);
+    put(s, d->clear_ms, 2);
+    put(s, (uint16_t)d->fw_level, 2);
+    put(s, (uint16_t)d->fw_alpha, 2);
+    put(s, (uint16_t)d->tc_gain, 2);
+    put(s, (uint16_t)d->tc_amp_max, 2);
+    put(s, (uint16_t)d->tc_speed_min, 2);
+    put(s, (uint16_t)d->tc_speed_max, 2);
+    put(s, (uint16_t)d->para_speed, 2);
+    put(s, (uint16_t)d->ld_hs, 2);
+    put(s, (uint16_t)d->lq_hs, 2);
+    put(s, d->lin_id_cmd, 1);
+    put(s, d->lin_id_status, 1);
+    put(s, d->can_id_a, 2);
+    put(s, d->can_id_b, 2);
 }
 
 /* params.h: every field before crc, declaration order, little-endian, own width */
@@ -112,6 +163,8 @@ static uint32_t table_crc_ref(const qfoc_param_table_t *t)
     put(&s, (uint16_t)t->vdc_uv, 2);
     put(&s, (uint16_t)t->vdc_ov, 2);
     put(&s, (uint16_t)t->v_max, 2);
+    put_drive(&s, &t->drive);
+    assert_int_equal(s.n, 199u);   /* params.h: 115 bytes up to v_max, 84 of drive */
     return crc_ref(s.b, s.n);
 }
 
@@ -189,72 +242,77 @@ static void test_par_004_generated_tables_pass(void **state)
     }
 }
 
-/* REQ-PAR-002, REQ-PAR-005: every single-bit flip anywhere in the serialised fields
-   of the reference table is refused (CRC-32 detects every 1-bit error), with
-   ERR_ID when it hits magic or version, and the RAM copy is left untouched. */
+/* every serialised field of the table (and the stored CRC): offset and width */
+typedef struct {
+    const char *name;
+    size_t off;
+    size_t size;
+} tfield_t;
+
+#define TF(m) { #m, offsetof(qfoc_param_table_t, m), sizeof(((qfoc_param_table_t *)0)->m) }
+#define TF_PI(p) TF(p.kp), TF(p.kp_shift), TF(p.ki), TF(p.ki_shift), TF(p.out_min), TF(p.out_max)
+
+static const tfield_t tfields[] = {
+    TF(magic), TF(version), TF(f_pwm_hz), TF(v_base_mv), TF(i_base_ma), TF(f_base_mhz),
+    TF(svpwm.period), TF(svpwm.dt_comp), TF(svpwm.i_deadband), TF(svpwm.vdc_min),
+    TF_PI(pi_id), TF_PI(pi_iq), TF_PI(pi_speed), TF_PI(pi_fw),
+    TF(flux.gain), TF(flux.gain_shift), TF(flux.r), TF(flux.l), TF(flux.kg),
+    TF_PI(pll.pi), TF(pll.err_clamp), TF(pll.mag_min), TF(pll.k_theta), TF(pll.speed_alpha),
+    TF(alpha_vdc), TF(ld), TF(lq), TF(psi_f), TF(i_max), TF(i_trip), TF(speed_max),
+    TF(vdc_uv), TF(vdc_ov), TF(v_max),
+    TF(drive.pole_pairs), TF(drive.k_rpm), TF(drive.k_speed_rpm), TF(drive.rpm_min),
+    TF(drive.rpm_max), TF(drive.speed_ramp), TF(drive.precharge_ms), TF(drive.offset_shift),
+    TF(drive.offset_window), TF(drive.i_align), TF(drive.align_ms), TF(drive.i_start),
+    TF(drive.of_accel), TF(drive.of_speed), TF(drive.ho_angle), TF(drive.ho_dwell_ms),
+    TF(drive.ol_timeout_ms), TF(drive.cl_hold_ms), TF(drive.t_ipm_max), TF(drive.t_pcb_max),
+    TF(drive.vdc_ms), TF(drive.temp_ms), TF(drive.stall_err), TF(drive.flux_tol),
+    TF(drive.stall_ms), TF(drive.phase_alpha), TF(drive.phase_i_min), TF(drive.phase_ratio),
+    TF(drive.phase_ms), TF(drive.link_timeout_ms), TF(drive.clear_ms), TF(drive.fw_level),
+    TF(drive.fw_alpha), TF(drive.tc_gain), TF(drive.tc_amp_max), TF(drive.tc_speed_min),
+    TF(drive.tc_speed_max), TF(drive.para_speed), TF(drive.ld_hs), TF(drive.lq_hs),
+    TF(drive.lin_id_cmd), TF(drive.lin_id_status), TF(drive.can_id_a), TF(drive.can_id_b),
+    TF(crc),
+};
+#define NTFIELDS (sizeof tfields / sizeof tfields[0])
+
+/* REQ-PAR-002, REQ-PAR-005, REQ-PAR-006: every single-bit flip of every field of the
+   reference table (the drive configuration and the stored CRC included) is refused
+   (CRC-32 detects every 1-bit error), with ERR_ID when it hits magic or version, and the
+   RAM copy is left untouched. */
 static void test_par_002_bit_flips_refused(void **state)
 {
-    uint32_t field;
+    size_t k;
+    size_t bytes = 0u;
+    uint32_t flips = 0u;
     (void)state;
-    /* flip through the public fields: the serialisation covers each of them */
-    for (field = 0u; field < 38u; field++) {
+    for (k = 0u; k < NTFIELDS; k++) {
+        const tfield_t *f = &tfields[k];
+        const bool ident = (strcmp(f->name, "magic") == 0) || (strcmp(f->name, "version") == 0);
         uint32_t bit;
-        for (bit = 0u; bit < 16u; bit++) {
+        if (strcmp(f->name, "crc") != 0) {
+            bytes += f->size;
+        }
+        for (bit = 0u; bit < 8u * (uint32_t)f->size; bit++) {
             qfoc_param_table_t t = qfoc_params_reference;
             qfoc_param_table_t ram;
             qfoc_param_table_t before;
-            int32_t expect = QFOC_PARAMS_ERR_CRC;
-            const uint16_t m = (uint16_t)(1u << bit);
-            switch (field) {
-            case 0u: t.magic ^= (uint32_t)m << 8; expect = QFOC_PARAMS_ERR_ID; break;
-            case 1u: t.version ^= m; expect = QFOC_PARAMS_ERR_ID; break;
-            case 2u: t.f_pwm_hz ^= m; break;
-            case 3u: t.v_base_mv ^= (uint32_t)m << 16; break;
-            case 4u: t.i_base_ma ^= m; break;
-            case 5u: t.f_base_mhz ^= m; break;
-            case 6u: t.svpwm.period ^= m; break;
-            case 7u: t.svpwm.dt_comp ^= m; break;
-            case 8u: t.svpwm.i_deadband = (int16_t)(t.svpwm.i_deadband ^ (int16_t)m); break;
-            case 9u: t.svpwm.vdc_min = (int16_t)(t.svpwm.vdc_min ^ (int16_t)m); break;
-            case 10u: t.pi_id.kp = (int16_t)(t.pi_id.kp ^ (int16_t)m); break;
-            case 11u: t.pi_iq.ki = (int16_t)(t.pi_iq.ki ^ (int16_t)m); break;
-            case 12u: t.pi_speed.out_min = (int16_t)(t.pi_speed.out_min ^ (int16_t)m); break;
-            case 13u: t.pi_fw.out_max = (int16_t)(t.pi_fw.out_max ^ (int16_t)m); break;
-            case 14u: t.pi_id.kp_shift = (uint8_t)(t.pi_id.kp_shift ^ (uint8_t)(m & 0xFFu)); break;
-            case 15u: t.flux.gain = (int16_t)(t.flux.gain ^ (int16_t)m); break;
-            case 16u: t.flux.gain_shift = (uint8_t)(t.flux.gain_shift ^ (uint8_t)(m >> 8)); break;
-            case 17u: t.flux.r = (int16_t)(t.flux.r ^ (int16_t)m); break;
-            case 18u: t.flux.l = (int16_t)(t.flux.l ^ (int16_t)m); break;
-            case 19u: t.flux.kg = (int16_t)(t.flux.kg ^ (int16_t)m); break;
-            case 20u: t.pll.pi.kp = (int16_t)(t.pll.pi.kp ^ (int16_t)m); break;
-            case 21u: t.pll.err_clamp = (int16_t)(t.pll.err_clamp ^ (int16_t)m); break;
-            case 22u: t.pll.mag_min = (int16_t)(t.pll.mag_min ^ (int16_t)m); break;
-            case 23u: t.pll.k_theta ^= m; break;
-            case 24u: t.pll.speed_alpha = (int16_t)(t.pll.speed_alpha ^ (int16_t)m); break;
-            case 25u: t.alpha_vdc = (int16_t)(t.alpha_vdc ^ (int16_t)m); break;
-            case 26u: t.ld = (int16_t)(t.ld ^ (int16_t)m); break;
-            case 27u: t.lq = (int16_t)(t.lq ^ (int16_t)m); break;
-            case 28u: t.psi_f = (int16_t)(t.psi_f ^ (int16_t)m); break;
-            case 29u: t.i_max = (int16_t)(t.i_max ^ (int16_t)m); break;
-            case 30u: t.i_trip = (int16_t)(t.i_trip ^ (int16_t)m); break;
-            case 31u: t.speed_max = (int16_t)(t.speed_max ^ (int16_t)m); break;
-            case 32u: t.vdc_uv = (int16_t)(t.vdc_uv ^ (int16_t)m); break;
-            case 33u: t.vdc_ov = (int16_t)(t.vdc_ov ^ (int16_t)m); break;
-            case 34u: t.v_max = (int16_t)(t.v_max ^ (int16_t)m); break;
-            case 35u: t.crc ^= (uint32_t)m << 16; break;
-            case 36u: t.crc ^= m; break;
-            default: t.pll.pi.out_min = (int16_t)(t.pll.pi.out_min ^ (int16_t)m); break;
-            }
-            if ((field == 14u && (m & 0xFFu) == 0u) || (field == 16u && (m >> 8) == 0u)) {
-                continue; /* the 8-bit fields only have 8 bits to flip */
-            }
+            uint8_t *p = (uint8_t *)&t + f->off + bit / 8u;
+            const int32_t expect = ident ? QFOC_PARAMS_ERR_ID : QFOC_PARAMS_ERR_CRC;
+            *p = (uint8_t)(*p ^ (uint8_t)(1u << (bit % 8u)));
             memset(&ram, 0x5A, sizeof ram);
             before = ram;
-            assert_int_equal(qfoc_params_check(&t), expect);
+            if (qfoc_params_check(&t) != expect) {
+                fail_msg("flip of bit %u of %s: status %d", (unsigned)bit, f->name,
+                         (int)qfoc_params_check(&t));
+            }
             assert_int_equal(qfoc_params_load(&ram, &t), expect);
             assert_memory_equal(&ram, &before, sizeof ram);
+            flips++;
         }
     }
+    assert_int_equal(bytes, 199u);   /* the list covers the whole serialisation */
+    print_message("params: %u single-bit flips over %u fields refused\n", (unsigned)flips,
+                  (unsigned)NTFIELDS);
 }
 
 /* REQ-PAR-003: each range condition, broken alone in a table with a correct CRC, is
@@ -308,7 +366,152 @@ static void test_par_003_ranges(void **state)
     EXPECT_RANGE(t.vdc_ov = t.vdc_uv, QFOC_PARAMS_ERR_RANGE);
     EXPECT_RANGE(t.v_max = (int16_t)-32768, QFOC_PARAMS_ERR_RANGE);
     EXPECT_RANGE(t.v_max = 32767, QFOC_PARAMS_OK);
+    /* REQ-PAR-006: the drive configuration is checked by its own module */
+    EXPECT_RANGE(t.drive.pole_pairs = 0u, QFOC_PARAMS_ERR_RANGE);
+    EXPECT_RANGE(t.drive.pole_pairs = 16u, QFOC_PARAMS_OK);
+    EXPECT_RANGE(t.drive.vdc_ms = 11u, QFOC_PARAMS_ERR_RANGE);
+    EXPECT_RANGE(t.drive.lin_id_status = t.drive.lin_id_cmd, QFOC_PARAMS_ERR_RANGE);
+    EXPECT_RANGE(t.drive.can_id_b = 0x800u, QFOC_PARAMS_ERR_RANGE);
+    EXPECT_RANGE(t.drive.t_ipm_max = 2001, QFOC_PARAMS_ERR_RANGE);
 #undef EXPECT_RANGE
+}
+
+/* the drive's conversion of a target in rpm to Q15 speed, written from params.h in
+   64-bit arithmetic: round(rpm x k_rpm / 4096) */
+static int64_t rpm_to_q15(uint32_t rpm, uint32_t k_rpm)
+{
+    return ((int64_t)rpm * (int64_t)k_rpm + 2048) / 4096;
+}
+
+/* REQ-PAR-007: each cross-field condition between the drive configuration and the table's
+   limits at its boundary: the limit value accepted, one past it refused (ERR_RANGE with a
+   correct CRC), also with the limit itself moved. */
+static void test_par_007_cross_field(void **state)
+{
+    qfoc_param_table_t t;
+    uint32_t rpm;
+    uint32_t k;
+    (void)state;
+#define EXPECT_RANGE(stmt, ok)                                       \
+    do {                                                             \
+        t = qfoc_params_reference;                                   \
+        stmt;                                                        \
+        reseal(&t);                                                  \
+        assert_int_equal(qfoc_params_is_valid(&t), (ok));            \
+        assert_int_equal(qfoc_params_check(&t),                      \
+                         (ok) ? QFOC_PARAMS_OK : QFOC_PARAMS_ERR_RANGE); \
+    } while (0)
+    EXPECT_RANGE(t.drive.i_align = t.i_max, true);
+    EXPECT_RANGE(t.drive.i_align = (int16_t)(t.i_max + 1), false);
+    EXPECT_RANGE(t.drive.i_start = t.i_max, true);
+    EXPECT_RANGE(t.drive.i_start = (int16_t)(t.i_max + 1), false);
+    EXPECT_RANGE(t.drive.tc_amp_max = t.i_max, true);
+    EXPECT_RANGE(t.drive.tc_amp_max = (int16_t)(t.i_max + 1), false);
+    EXPECT_RANGE((t.i_max = 20000, t.i_trip = 20000, t.drive.i_start = 20000), true);
+    EXPECT_RANGE((t.i_max = 20000, t.i_trip = 20000, t.drive.i_align = 20001), false);
+    EXPECT_RANGE(t.drive.of_speed = t.speed_max, true);
+    EXPECT_RANGE(t.drive.of_speed = (int16_t)(t.speed_max + 1), false);
+    EXPECT_RANGE((t.speed_max = 32767, t.drive.of_speed = 32767), true);
+    EXPECT_RANGE((t.speed_max = 1, t.drive.of_speed = 1, t.drive.rpm_min = 1u,
+                  t.drive.rpm_max = 1u, t.drive.k_rpm = 6143u), true);   /* (6143+2048)>>12 = 1 */
+    EXPECT_RANGE((t.speed_max = 1, t.drive.of_speed = 1, t.drive.rpm_min = 1u,
+                  t.drive.rpm_max = 1u, t.drive.k_rpm = 6144u), false);  /* = 2 */
+    /* rpm_max: the largest rpm whose converted speed is within speed_max, and one more */
+    t = qfoc_params_reference;
+    rpm = 65535u;
+    while (rpm_to_q15(rpm, t.drive.k_rpm) > t.speed_max) {
+        rpm--;
+    }
+    EXPECT_RANGE(t.drive.rpm_max = (uint16_t)rpm, true);
+    EXPECT_RANGE(t.drive.rpm_max = (uint16_t)(rpm + 1u), false);
+    /* the largest product: 65535 x 65535 (no wrap in the library's uint32_t sum) */
+    EXPECT_RANGE((t.speed_max = 32767, t.drive.rpm_max = 65535u, t.drive.k_rpm = 65535u),
+                 false);
+    EXPECT_RANGE((t.speed_max = 32767, t.drive.rpm_max = 2047u, t.drive.k_rpm = 65535u),
+                 true);    /* (2047 x 65535 + 2048) >> 12 = 32751 */
+    EXPECT_RANGE((t.speed_max = 32767, t.drive.rpm_max = 2048u, t.drive.k_rpm = 65535u),
+                 false);   /* (2048 x 65535 + 2048) >> 12 = 32768 */
+#undef EXPECT_RANGE
+    /* random rpm_max, k_rpm, speed_max against the 64-bit reference */
+    lcg_state = 99u;
+    for (k = 0u; k < 20000u; k++) {
+        t = qfoc_params_reference;
+        t.drive.k_rpm = (uint16_t)rand_range(1, 65535);
+        t.drive.rpm_max = (uint16_t)rand_range(1, 65535);
+        t.drive.rpm_min = 1u;
+        t.speed_max = (int16_t)rand_range(t.drive.of_speed, 32767);
+        assert_int_equal(qfoc_params_is_valid(&t),
+                         rpm_to_q15(t.drive.rpm_max, t.drive.k_rpm) <= t.speed_max);
+    }
+}
+
+/* REQ-PAR-006: the generated reference table carries the drive configuration the
+   defaults of tools/qfoc_tune.py give for specs/motors/reference.toml (n_p 3,
+   f_base 500 Hz, I_base 40 A, f_pwm 8 kHz, rated 20 A and 6000 rpm, max 8000 rpm),
+   recomputed here in double precision from the formulas of the tool's documentation. */
+static void test_par_006_reference_drive_defaults(void **state)
+{
+    const qfoc_drive_cfg_t *d = &qfoc_params_reference.drive;
+    const double np = 3.0;
+    const double fb = 500.0;
+    const double ib = 40.0;
+    const double fpwm = 8000.0;
+    const double rpm_pu = np / 60.0 / fb;     /* Q15 speed (pu) per mechanical rpm */
+    const double pi2 = 2.0 * 3.14159265358979323846;
+    (void)state;
+    assert_true(qfoc_drive_cfg_is_valid(d));
+    assert_int_equal(d->pole_pairs, 3u);
+    /* rounded down so that the maximum speed in rpm converts within speed_max */
+    assert_int_equal(d->k_rpm, (uint16_t)floor(np * 32768.0 / (60.0 * fb) * 4096.0));
+    assert_int_equal(d->k_speed_rpm, (uint16_t)floor(60.0 * fb / (np * 32768.0) * 32768.0 + 0.5));
+    assert_int_equal(d->rpm_min, 1000u);
+    /* max_speed_rpm 8000 lowered to the largest rpm within speed_max */
+    assert_true(rpm_to_q15(d->rpm_max, d->k_rpm) <= qfoc_params_reference.speed_max);
+    assert_true(rpm_to_q15(d->rpm_max + 1u, d->k_rpm) > qfoc_params_reference.speed_max);
+    assert_int_equal(d->rpm_max, 8000u);
+    assert_int_equal(d->speed_ramp, (int16_t)floor(3000.0e-3 * rpm_pu * 32768.0 + 0.5));
+    assert_int_equal(d->precharge_ms, 200u);
+    assert_int_equal(d->offset_shift, 6u);
+    assert_int_equal(d->offset_window, 100u);
+    assert_int_equal(d->i_align, (int16_t)floor(0.5 * 20.0 / ib * 32768.0 + 0.5));
+    assert_int_equal(d->align_ms, 300u);
+    assert_int_equal(d->i_start, (int16_t)floor(20.0 / ib * 32768.0 + 0.5));
+    assert_int_equal(d->of_accel, (int16_t)floor(1000.0e-3 * rpm_pu * 32768.0 + 0.5));
+    assert_int_equal(d->of_speed, (int16_t)floor(1000.0 * rpm_pu * 32768.0 + 0.5));
+    assert_int_equal(d->ho_angle, (uint16_t)floor(15.0 / 360.0 * 65536.0 + 0.5));
+    assert_int_equal(d->ho_dwell_ms, 50u);
+    assert_int_equal(d->ol_timeout_ms, 4000u);
+    assert_int_equal(d->cl_hold_ms, 2000u);
+    assert_int_equal(d->t_ipm_max, 1100);
+    assert_int_equal(d->t_pcb_max, 1000);
+    assert_int_equal(d->vdc_ms, 2u);
+    assert_int_equal(d->temp_ms, 10u);
+    assert_int_equal(d->stall_err, (int16_t)floor(0.3 * 6000.0 * rpm_pu * 32768.0 + 0.5));
+    /* 0.5 psi_f / psi_base, psi_base = V_base / w_base = 500 V / (2 pi 500 Hz) */
+    assert_int_equal(d->flux_tol,
+                     (int16_t)floor(0.5 * 0.065 / (500.0 / (pi2 * fb)) * 32768.0 + 0.5));
+    assert_int_equal(d->stall_ms, 500u);
+    assert_int_equal(d->phase_alpha, (int16_t)floor(pi2 * 5.0 / fpwm * 32768.0 + 0.5));
+    assert_int_equal(d->phase_i_min, (int16_t)floor(0.1 * 20.0 / ib * 32768.0 + 0.5));
+    assert_int_equal(d->phase_ratio, 8192);
+    assert_int_equal(d->phase_ms, 100u);
+    assert_int_equal(d->link_timeout_ms, 500u);
+    assert_int_equal(d->clear_ms, 5000u);
+    assert_int_equal(d->fw_level, (int16_t)floor(0.92 * 32768.0 + 0.5));
+    assert_int_equal(d->fw_alpha, (int16_t)floor(pi2 * 50.0 / fpwm * 32768.0 + 0.5));
+    assert_int_equal(d->tc_gain, 1000);
+    assert_int_equal(d->tc_amp_max, (int16_t)floor(0.5 * 20.0 / ib * 32768.0 + 0.5));
+    assert_int_equal(d->tc_speed_min, (int16_t)floor(500.0 * rpm_pu * 32768.0 + 0.5));
+    assert_int_equal(d->tc_speed_max, (int16_t)floor(3000.0 * rpm_pu * 32768.0 + 0.5));
+    assert_int_equal(d->para_speed, (int16_t)floor(0.7 * 8000.0 * rpm_pu * 32768.0 + 0.5));
+    assert_int_equal(d->ld_hs, qfoc_params_reference.ld);
+    assert_int_equal(d->lq_hs, qfoc_params_reference.lq);
+    assert_int_equal(d->lin_id_cmd, 0x10u);
+    assert_int_equal(d->lin_id_status, 0x11u);
+    assert_int_equal(d->can_id_a, 0x310u);
+    assert_int_equal(d->can_id_b, 0x311u);
+    print_message("reference drive: rpm_max %u (k_rpm %u, speed_max %d)\n",
+                  (unsigned)d->rpm_max, (unsigned)d->k_rpm, (int)qfoc_params_reference.speed_max);
 }
 
 /* REQ-PAR-001: magic and version are checked before the CRC: a foreign table with a
@@ -328,6 +531,12 @@ static void test_par_001_identity(void **state)
     t.magic = 0u;
     t.crc ^= 1u;
     assert_int_equal(qfoc_params_check(&t), QFOC_PARAMS_ERR_ID);
+    /* REQ-PAR-006: a layout-1 table (version 1, its CRC correct) is foreign */
+    t = qfoc_params_reference;
+    t.version = 1u;
+    reseal(&t);
+    assert_int_equal(qfoc_params_check(&t), QFOC_PARAMS_ERR_ID);
+    assert_int_equal(QFOC_PARAMS_VERSION, 2u);
 }
 
 /* REQ-PAR-004: the generated reference table carries the estimator parameters of the
@@ -366,6 +575,8 @@ int main(void)
         cmocka_unit_test(test_par_002_bit_flips_refused),
         cmocka_unit_test(test_par_003_ranges),
         cmocka_unit_test(test_par_001_identity),
+        cmocka_unit_test(test_par_007_cross_field),
+        cmocka_unit_test(test_par_006_reference_drive_defaults),
         cmocka_unit_test(test_par_004_reference_matches_estimator_design),
     };
     return cmocka_run_group_tests(tests, setup, NULL);

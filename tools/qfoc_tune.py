@@ -8,8 +8,9 @@ Usage:
 What it does (every equation number is the source document's, chapter 2 unless named):
 
 1. Reads the motor-and-inverter file (sections [motor], [inverter], [sensing],
-   [scaling]; optional [design] and [limits] with the defaults of DESIGN_KEYS and
-   LIMIT_KEYS) and validates presence, type and sign of every field.
+   [scaling]; optional [design], [limits] and [drive] with the defaults of DESIGN_KEYS,
+   LIMIT_KEYS and DRIVE_KEYS; optional [motor] ld_hs_h, lq_hs_h) and validates presence,
+   type and sign of every field.
 2. Derives the per-unit bases and every scale factor of specs/scaling.md.
 3. Designs the loops:
    - current loops d and q (pole cancellation tau_c = L / R, K T = 0.5, so
@@ -28,7 +29,11 @@ What it does (every equation number is the source document's, chapter 2 unless n
    document writes them and discrete models (ZOH at T_s plus one sample of
    computation delay z^-1) with the quantised gains; phase and gain margins,
    closed-loop -3 dB bandwidth, step responses; Bode/step PNGs.
-6. Writes <table-dir>/<name>_params.c/.h (qfoc_param_table_t of include/qfoc/params.h,
+6. Derives the drive configuration (include/qfoc/drive_cfg.h, table layout version 2:
+   start-up, protection, link and feature settings) from [drive] and its defaults
+   (drive_fields()), checks every field's range and the cross-field conditions of
+   params.h (range_checks()).
+7. Writes <table-dir>/<name>_params.c/.h (qfoc_param_table_t of include/qfoc/params.h,
    CRC-32/ISO-HDLC over the little-endian serialisation) and <out-dir>/report.md.
 
 Exit codes: 0 = table and report written; 1 = a bound or a loop check failed (the
@@ -54,7 +59,7 @@ REPO_ROOT = Path(__file__).resolve().parent.parent
 TOOL_PATH = "tools/qfoc_tune.py"
 Q15_MAX = 32767
 PARAMS_MAGIC = 0x434F4651          # "QFOC" little-endian (params.h QFOC_PARAMS_MAGIC)
-PARAMS_VERSION = 1                 # params.h QFOC_PARAMS_VERSION
+PARAMS_VERSION = 2                 # params.h QFOC_PARAMS_VERSION (2: drive configuration)
 FLUX_STATE_MAX_Q15 = 524287        # (2^31 - 1) / 4096: flux state Q4.27 range in Q15 counts
 PM_MIN_DEG = 45.0                  # required phase margin of every discrete loop
 COARSE_GAIN_PCT = 1.0              # rounding errors above this are listed as warnings
@@ -130,7 +135,74 @@ LIMIT_KEYS = {
     "vdc_svpwm_min_v": (None, "pos", "smallest DC bus used by SVPWM; default 0.4 x vdc_min_v"),
 }
 
-OPTIONAL_SECTIONS = {"design": DESIGN_KEYS, "limits": LIMIT_KEYS}
+# Optional [motor] keys: the inductances used above drive.para_speed (the document's
+# motorParaChange); default: the L_d, L_q of the motor file.
+OPTIONAL_MOTOR_KEYS = {
+    "ld_hs_h": ("pos", "d-axis inductance at high speed, H; default ld_h"),
+    "lq_hs_h": ("pos", "q-axis inductance at high speed, H; default lq_h"),
+}
+
+# Drive configuration ([drive], include/qfoc/drive_cfg.h); None = derived default.
+# Speeds in mechanical rpm, currents in A (peak), times in ms, temperatures in degC.
+DRIVE_KEYS = {
+    "rpm_min": (1000.0, "pos", "smallest running target, rpm (drive.rpm_min)"),
+    "rpm_max": (None, "pos", "largest target, rpm; default motor.max_speed_rpm, lowered to "
+                             "the largest rpm whose Q15 speed (rpm k_rpm + 2048) >> 12 is "
+                             "within speed_max"),
+    "accel_rpm_s": (3000.0, "pos", "closed-loop speed ramp, rpm/s (drive.speed_ramp)"),
+    "precharge_ms": (200, "pos", "DC bus above vdc_uv this long before offset calibration"),
+    "offset_shift": (6, "pos", "2^offset_shift current samples averaged per offset"),
+    "offset_window_counts": (100, "nonneg", "largest |offset - 2048|, ADC counts (100 = "
+                                            "4.9 % of the 2048-count half scale)"),
+    "i_align_a": (None, "pos", "ALIGN d current, A; default 0.5 x rated_current_a"),
+    "align_ms": (300, "pos", "ALIGN time (ramp over the first half, hold)"),
+    "i_start_a": (None, "pos", "OPEN_LOOP (I/f) current amplitude, A; default rated_current_a"),
+    "of_accel_rpm_s": (1000.0, "pos", "OPEN_LOOP speed ramp, rpm/s"),
+    "of_speed_rpm": (1000.0, "pos", "OPEN_LOOP end speed, rpm"),
+    "ho_angle_deg": (15.0, "pos", "handover: |theta_est - theta_ol| below this, electrical deg"),
+    "ho_dwell_ms": (50, "pos", "handover: angle condition held this long"),
+    "ol_timeout_ms": (4000, "pos", "no handover this long after OPEN_LOOP entry: stall (the "
+                                      "handover waits for cl_hold_ms after RUN entry)"),
+    "cl_hold_ms": (2000, "nonneg", "no ramp to the target before this long after RUN entry "
+                                   "(the document's 2 s)"),
+    "t_ipm_max_degc": (110.0, None, "IPM over-temperature, degC"),
+    "t_pcb_max_degc": (100.0, None, "PCB over-temperature, degC"),
+    "vdc_ms": (2, "pos", "DC-bus OV/UV debounce, ms"),
+    "temp_ms": (10, "pos", "over-temperature debounce, ms"),
+    "stall_err_rpm": (None, "pos", "stall: |speed ref - estimate| above this, rpm; default "
+                                   "0.3 x rated_speed_rpm"),
+    "flux_tol_frac": (0.5, "pos", "stall: flux-magnitude error above this fraction of psi_f"),
+    "stall_ms": (500, "pos", "stall condition held this long"),
+    "phase_fc_hz": (5.0, "pos", "phase-loss monitor low-pass corner, Hz"),
+    "phase_i_min_a": (None, "pos", "phase loss checked above this filtered |i|, A; default "
+                                   "0.1 x rated_current_a"),
+    "phase_ratio": (0.25, "nonneg", "phase loss: smallest / largest filtered |i| below this"),
+    "phase_ms": (100, "pos", "phase-loss condition held this long"),
+    "link_timeout_ms": (500, "pos", "command link lost after this long without a valid command"),
+    "clear_ms": (5000, "pos", "stopped this long before a fault clear is accepted"),
+    "fw_level": (None, "pos", "field-weakening utilisation target FWK_LVL; default "
+                              "design.fw_v_max"),
+    "fw_fc_hz": (50.0, "pos", "field-weakening utilisation low-pass corner, Hz"),
+    "tc_gain_q15": (1000, "nonneg", "torque-compensation learning gain, Q15 counts "
+                                    "(provisional)"),
+    "tc_amp_max_a": (None, "nonneg", "torque-compensation amplitude limit per harmonic, A; "
+                                     "default 0.5 x rated_current_a (provisional)"),
+    "tc_speed_min_rpm": (500.0, "nonneg", "torque compensation from this speed, rpm"),
+    "tc_speed_max_rpm": (3000.0, "nonneg", "torque compensation up to this speed, rpm"),
+    "para_speed_rpm": (None, "pos", "high-speed inductances above this speed, rpm; default "
+                                    "0.7 x max_speed_rpm"),
+    "lin_id_cmd": (0x10, "nonneg", "LIN identifier of the command frame"),
+    "lin_id_status": (0x11, "nonneg", "LIN identifier of the status frame"),
+    "can_id_a": (0x310, "nonneg", "CAN status identifier, even frames"),
+    "can_id_b": (0x311, "nonneg", "CAN status identifier, odd frames"),
+}
+# [drive] keys that must be integers (times, counts, identifiers, the gain in counts).
+DRIVE_INT_KEYS = {"precharge_ms", "offset_shift", "offset_window_counts", "align_ms",
+                  "ho_dwell_ms", "ol_timeout_ms", "cl_hold_ms", "vdc_ms", "temp_ms", "stall_ms",
+                  "phase_ms", "link_timeout_ms", "clear_ms", "tc_gain_q15", "lin_id_cmd",
+                  "lin_id_status", "can_id_a", "can_id_b"}
+
+OPTIONAL_SECTIONS = {"design": DESIGN_KEYS, "limits": LIMIT_KEYS, "drive": DRIVE_KEYS}
 
 
 def parse_override(text: str) -> tuple[str, str, object]:
@@ -145,6 +217,8 @@ def parse_override(text: str) -> tuple[str, str, object]:
         value = rhs.strip()
     known = {k for (s, k) in REQUIRED_KEYS if s == section}
     known |= set(OPTIONAL_SECTIONS.get(section, {}))
+    if section == "motor":
+        known |= set(OPTIONAL_MOTOR_KEYS)
     if not known:
         raise InputError(f"--set {text!r}: unknown section [{section}]")
     if key not in known:
@@ -201,13 +275,20 @@ def load_config(path: Path, overrides: list[str]) -> dict:
                 raise InputError(f"{path}: unknown key {key!r} in [{section}]")
         cfg[section] = {}
         for key, (default, constraint, _desc) in keys.items():
+            kind = "int" if section == "drive" and key in DRIVE_INT_KEYS else "num"
             if key in sec:
                 cfg[section][key] = check_value(
-                    f"{path}: [{section}] {key}", sec[key], "num", constraint)
+                    f"{path}: [{section}] {key}", sec[key], kind, constraint)
             else:
                 cfg[section][key] = default
+    for key, (constraint, _desc) in OPTIONAL_MOTOR_KEYS.items():
+        val = raw["motor"].get(key)
+        cfg["motor"][key] = None if val is None else check_value(
+            f"{path}: [motor] {key}", val, "num", constraint)
     for section in ("motor", "inverter", "sensing", "scaling"):
         known = {k for (s, k) in REQUIRED_KEYS if s == section}
+        if section == "motor":
+            known |= set(OPTIONAL_MOTOR_KEYS)
         for key in raw.get(section, {}):
             if key not in known:
                 print(f"warning: {path}: [{section}] {key} is not used by the tuning tool",
@@ -225,6 +306,9 @@ def resolve_defaults(cfg: dict) -> None:
     cfg["defaulted"] |= {f"limits.{k}" for k, v in lim.items() if v is None}
     cfg["defaulted"] |= {f"design.{k}" for k, (dflt, _c, _s) in DESIGN_KEYS.items()
                          if dflt is not None and d[k] == dflt}
+    dr = cfg["drive"]
+    cfg["defaulted"] |= {f"drive.{k}" for k, (dflt, _c, _s) in DRIVE_KEYS.items()
+                         if dr[k] is None or dr[k] == dflt}
     if d["speed_tau_s"] is None:
         d["speed_tau_s"] = m["j_kgm2"] / m["b_nms"]
     if d["deadband_a"] is None:
@@ -245,6 +329,22 @@ def resolve_defaults(cfg: dict) -> None:
         lim["vdc_ov_v"] = 1.05 * inv["vdc_max_v"]
     if lim["vdc_svpwm_min_v"] is None:
         lim["vdc_svpwm_min_v"] = 0.4 * inv["vdc_min_v"]
+    # [drive]: rpm_max is resolved in drive_fields() (it needs the quantised k_rpm and
+    # speed_max); the others here.
+    if dr["i_align_a"] is None:
+        dr["i_align_a"] = 0.5 * m["rated_current_a"]
+    if dr["i_start_a"] is None:
+        dr["i_start_a"] = m["rated_current_a"]
+    if dr["stall_err_rpm"] is None:
+        dr["stall_err_rpm"] = 0.3 * m["rated_speed_rpm"]
+    if dr["phase_i_min_a"] is None:
+        dr["phase_i_min_a"] = 0.1 * m["rated_current_a"]
+    if dr["fw_level"] is None:
+        dr["fw_level"] = d["fw_v_max"]
+    if dr["tc_amp_max_a"] is None:
+        dr["tc_amp_max_a"] = 0.5 * m["rated_current_a"]
+    if dr["para_speed_rpm"] is None:
+        dr["para_speed_rpm"] = 0.7 * m["max_speed_rpm"]
 
 
 def check_consistency(cfg: dict, path: Path) -> None:
@@ -612,15 +712,18 @@ class Bound:
     limit: float
     worst_input: str
     note: str
+    violated: bool = False    # set for a range check failed at its lower end
 
     @property
     def ok(self) -> bool:
         """True when the bound holds."""
-        return self.value <= self.limit
+        return not self.violated and self.value <= self.limit
 
     @property
     def margin_pct(self) -> float:
         """(limit - value) / limit in percent (negative when violated)."""
+        if self.limit == 0:
+            return 0.0 if self.ok else -100.0
         return (self.limit - self.value) / self.limit * 100.0
 
 
@@ -760,16 +863,62 @@ class Group:
     items: list
 
 
+# drive_cfg.h ranges of the fields whose bounds are constants: (low, high).
+DRIVE_RANGES = {
+    "pole_pairs": (1, 16), "k_rpm": (1, 65535), "k_speed_rpm": (1, 65535),
+    "speed_ramp": (1, Q15_MAX), "precharge_ms": (1, 60000), "offset_shift": (4, 10),
+    "offset_window": (0, 2047), "i_align": (1, Q15_MAX), "align_ms": (2, 60000),
+    "i_start": (1, Q15_MAX), "of_accel": (1, Q15_MAX), "of_speed": (1, Q15_MAX),
+    "ho_angle": (1, 16384), "ho_dwell_ms": (1, 60000), "ol_timeout_ms": (1, 60000),
+    "cl_hold_ms": (0, 60000), "t_ipm_max": (-400, 2000), "t_pcb_max": (-400, 2000),
+    "vdc_ms": (1, 10), "temp_ms": (1, 10), "stall_err": (1, Q15_MAX), "flux_tol": (1, Q15_MAX),
+    "stall_ms": (1, 60000), "phase_alpha": (1, Q15_MAX), "phase_i_min": (1, Q15_MAX),
+    "phase_ratio": (0, Q15_MAX), "phase_ms": (1, 60000), "link_timeout_ms": (1, 60000),
+    "clear_ms": (1, 60000), "fw_level": (1, Q15_MAX), "fw_alpha": (1, Q15_MAX),
+    "tc_gain": (0, Q15_MAX), "tc_amp_max": (0, Q15_MAX), "tc_speed_max": (0, Q15_MAX),
+    "para_speed": (1, Q15_MAX), "ld_hs": (0, Q15_MAX), "lq_hs": (0, Q15_MAX),
+    "lin_id_cmd": (0, 0x3B), "lin_id_status": (0, 0x3B), "can_id_a": (0, 0x7FF),
+    "can_id_b": (0, 0x7FF),
+}
+
+
+def rpm_to_q15(rpm: int, k_rpm: int) -> int:
+    """The drive's conversion of a target in rpm to Q15 speed: (rpm k_rpm + 2048) >> 12."""
+    return (rpm * k_rpm + 2048) >> 12
+
+
+def drive_range_text(name: str, flat: dict) -> str:
+    """The admissible range of drive.<name> as the report lists it (with the table's limits)."""
+    cross = {"i_align": "i_max", "i_start": "i_max", "tc_amp_max": "i_max",
+             "of_speed": "speed_max"}
+    if name == "rpm_min":
+        return "1 .. rpm_max"
+    if name == "rpm_max":
+        return "rpm_min .. 65535, (rpm_max k_rpm + 2048) >> 12 <= speed_max"
+    if name == "tc_speed_min":
+        return "0 .. tc_speed_max"
+    lo, hi = DRIVE_RANGES[name]
+    text = f"{lo} .. {hi}"
+    if name in cross:
+        text += f", <= {cross[name]} = {flat[cross[name]]}"
+    if name == "lin_id_status":
+        text += ", != lin_id_cmd"
+    return text
+
+
 def range_checks(table: list) -> list[Bound]:
-    """Field ranges documented in params.h, pi.h, svpwm.h, flux.h and pll.h."""
+    """Field ranges documented in params.h, pi.h, svpwm.h, flux.h, pll.h and drive_cfg.h,
+    and the cross-field conditions of params.h between the drive configuration and the
+    table's limits."""
     flat = {name: f.value for name, f in flatten(table)}
     out = []
 
-    def need(name: str, lo: int, hi: int) -> None:
+    def need(name: str, lo: int, hi: int, eq: str = "params.h range") -> None:
         v = flat[name]
         if not lo <= v <= hi:
-            out.append(Bound(f"table field {name}", "params.h range", float(v), float(hi),
-                             f"{name} = {v}, allowed {lo} .. {hi}", "representation"))
+            out.append(Bound(f"table field {name}", eq, float(v), float(hi),
+                             f"{name} = {v}, allowed {lo} .. {hi}", "representation",
+                             violated=True))
 
     need("f_pwm_hz", 1000, 40000)
     for key in ("v_base_mv", "i_base_ma", "f_base_mhz"):
@@ -792,7 +941,168 @@ def range_checks(table: list) -> list[Bound]:
         need(k, 1, Q15_MAX)
     need("i_trip", flat["i_max"], Q15_MAX)
     need("vdc_ov", flat["vdc_uv"] + 1, Q15_MAX)
+    # drive_cfg.h ranges, then the cross-field conditions of params.h
+    for key, (lo, hi) in DRIVE_RANGES.items():
+        need(f"drive.{key}", lo, hi, "drive_cfg.h range")
+    need("drive.rpm_max", 1, 65535, "drive_cfg.h range")
+    need("drive.rpm_min", 1, flat["drive.rpm_max"], "drive_cfg.h range")
+    need("drive.tc_speed_min", 0, flat["drive.tc_speed_max"], "drive_cfg.h range")
+    if flat["drive.lin_id_status"] == flat["drive.lin_id_cmd"]:
+        out.append(Bound("table field drive.lin_id_status", "drive_cfg.h lin_id_status != "
+                         "lin_id_cmd", 2.0, 1.0, f"lin_id_status = lin_id_cmd = "
+                         f"{flat['drive.lin_id_cmd']}: the two frames need different "
+                         "identifiers (value: frames per identifier)", "representation"))
+    for key in ("drive.i_align", "drive.i_start", "drive.tc_amp_max"):
+        need(key, 0, flat["i_max"], "params.h drive current <= i_max")
+    need("drive.of_speed", 0, flat["speed_max"], "params.h drive.of_speed <= speed_max")
+    top = rpm_to_q15(flat["drive.rpm_max"], flat["drive.k_rpm"])
+    if top > flat["speed_max"]:
+        out.append(Bound("table field drive.rpm_max", "params.h (rpm_max k_rpm + 2048) >> 12 "
+                         "<= speed_max", float(top), float(flat["speed_max"]),
+                         f"rpm_max = {flat['drive.rpm_max']}, k_rpm = {flat['drive.k_rpm']}: "
+                         f"{top} > speed_max = {flat['speed_max']}", "representation"))
     return out
+
+
+def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
+    """The qfoc_drive_cfg_t content (drive_cfg.h order) with the derivation of every value,
+    and the notes the report lists (defaults that had to be adjusted)."""
+    b, g, m, dr = ds.b, ds.gains, cfg["motor"], cfg["drive"]
+    n_p = m["pole_pairs"]
+    notes: list[str] = []
+    rpm_q15 = f"n_p / 60 / f_base = {n_p} / 60 / {fmt(b.f_base)}"
+
+    def rnd(x: float) -> int:
+        return int(math.floor(x + 0.5))
+
+    def amps(a: float) -> str:
+        return f"{fmt(a)} A / I_base = {fmt(a)} / {fmt(b.i_base)}"
+
+    def q15_field(name: str, x: float, text: str) -> Field:
+        raw = q15(x)
+        if x != 0 and abs(raw / 32768.0 - x) > COARSE_GAIN_PCT / 100.0 * abs(x):
+            notes.append(f"drive.{name}: rounding error {(raw / 32768.0 - x) / x * 100:+.2f} % "
+                         f"(raw {raw}): the value is close to the Q15 resolution")
+        err = "" if x == 0 else f"; stored {fmt(raw / 32768.0)}, error " \
+                                f"{(raw / 32768.0 - x) / x * 100:+.2f} %"
+        return Field(name, "i16", raw, f"{fmt(x)} = {text}{err}")
+
+    def src(key: str) -> str:
+        return f"drive.{key}" + (", default" if f"drive.{key}" in cfg["defaulted"] else "")
+
+    def ms_field(name: str, key: str) -> Field:
+        return Field(name, "u16", int(dr[key]), f"{int(dr[key])} ms ({src(key)})")
+
+    k_rpm_real = n_p * 32768.0 / (60.0 * b.f_base) * 4096.0
+    # rounded down (at most 1 / 4096 of a speed LSB per rpm low), so that the motor's
+    # maximum speed in rpm converts to at most speed_max
+    k_rpm = int(math.floor(k_rpm_real))
+    k_speed_real = 60.0 * b.f_base / (n_p * 32768.0) * 32768.0
+    k_speed = rnd(k_speed_real)
+    speed_max = g["speed_max"].raw
+    if dr["rpm_max"] is None:
+        want = int(math.floor(m["max_speed_rpm"]))
+        fit = ((speed_max + 1) * 4096 - 2049) // k_rpm if k_rpm > 0 else want
+        rpm_max = max(0, min(want, fit))
+        if rpm_max < want:
+            why = (f"{rpm_max} rpm: motor.max_speed_rpm {want} lowered to the largest rpm with "
+                   f"(rpm k_rpm + 2048) >> 12 <= speed_max = {speed_max} ({want} rpm -> "
+                   f"{rpm_to_q15(want, k_rpm)}: k_rpm and speed_max rounded)")
+            notes.append(f"drive.rpm_max = {why}; set drive.rpm_max or limits.speed_max_rpm "
+                         "to choose otherwise")
+        else:
+            why = f"{rpm_max} rpm = motor.max_speed_rpm"
+    else:
+        rpm_max = int(math.floor(dr["rpm_max"]))
+        why = f"{rpm_max} rpm (drive.rpm_max)"
+    ds.phys["drive.rpm_max"] = rpm_max
+    ds.phys["drive_notes"] = notes
+    rpm_min = int(math.floor(dr["rpm_min"]))
+    ld_hs_h = m["ld_hs_h"] if m["ld_hs_h"] is not None else m["ld_h"]
+    lq_hs_h = m["lq_hs_h"] if m["lq_hs_h"] is not None else m["lq_h"]
+    ld_src = "motor.ld_hs_h" if m["ld_hs_h"] is not None else "motor.ld_h (no ld_hs_h)"
+    lq_src = "motor.lq_hs_h" if m["lq_hs_h"] is not None else "motor.lq_h (no lq_hs_h)"
+    rated_e = m["rated_speed_rpm"] * n_p / 60.0 / b.f_base
+    fields = [
+        Field("pole_pairs", "u8", n_p, "motor.pole_pairs"),
+        Field("k_rpm", "u16", k_rpm, f"{fmt(k_rpm_real)} = n_p 32768 / (60 f_base) x 4096 = "
+              f"{n_p} x 32768 / (60 x {fmt(b.f_base)}) x 4096 (Q12)"),
+        Field("k_speed_rpm", "u16", k_speed, f"{fmt(k_speed_real)} = 60 f_base / (n_p 32768) x "
+              f"32768 = 60 x {fmt(b.f_base)} / {n_p} (Q15)"),
+        Field("rpm_min", "u16", rpm_min, f"{rpm_min} rpm ({src('rpm_min')})"),
+        Field("rpm_max", "u16", rpm_max, why),
+        q15_field("speed_ramp", dr["accel_rpm_s"] * 1e-3 * n_p / 60.0 / b.f_base,
+                  f"{fmt(dr['accel_rpm_s'])} rpm/s x 1 ms x {rpm_q15} (per ms)"),
+        ms_field("precharge_ms", "precharge_ms"),
+        Field("offset_shift", "u8", int(dr["offset_shift"]),
+              f"2^{int(dr['offset_shift'])} = {2 ** int(dr['offset_shift'])} samples per offset"),
+        Field("offset_window", "u16", int(dr["offset_window_counts"]),
+              f"{int(dr['offset_window_counts'])} counts = "
+              f"{fmt(dr['offset_window_counts'] / 2048.0 * 100.0, 3)} % of 2048 = "
+              f"{fmt(dr['offset_window_counts'] / 2048.0 * b.i_base, 4)} A"),
+        q15_field("i_align", dr["i_align_a"] / b.i_base, amps(dr["i_align_a"])),
+        ms_field("align_ms", "align_ms"),
+        q15_field("i_start", dr["i_start_a"] / b.i_base, amps(dr["i_start_a"])),
+        q15_field("of_accel", dr["of_accel_rpm_s"] * 1e-3 * n_p / 60.0 / b.f_base,
+                  f"{fmt(dr['of_accel_rpm_s'])} rpm/s x 1 ms x {rpm_q15} (per ms)"),
+        q15_field("of_speed", dr["of_speed_rpm"] * n_p / 60.0 / b.f_base,
+                  f"{fmt(dr['of_speed_rpm'])} rpm x {rpm_q15}"),
+        Field("ho_angle", "u16", rnd(dr["ho_angle_deg"] / 360.0 * 65536.0),
+              f"{fmt(dr['ho_angle_deg'] / 360.0 * 65536.0)} = {fmt(dr['ho_angle_deg'])} deg / "
+              f"360 x 65536"),
+        ms_field("ho_dwell_ms", "ho_dwell_ms"),
+        ms_field("ol_timeout_ms", "ol_timeout_ms"),
+        ms_field("cl_hold_ms", "cl_hold_ms"),
+        Field("t_ipm_max", "i16", rnd(dr["t_ipm_max_degc"] * 10.0),
+              f"{fmt(dr['t_ipm_max_degc'])} degC x 10"),
+        Field("t_pcb_max", "i16", rnd(dr["t_pcb_max_degc"] * 10.0),
+              f"{fmt(dr['t_pcb_max_degc'])} degC x 10"),
+        ms_field("vdc_ms", "vdc_ms"),
+        ms_field("temp_ms", "temp_ms"),
+        q15_field("stall_err", dr["stall_err_rpm"] * n_p / 60.0 / b.f_base,
+                  f"{fmt(dr['stall_err_rpm'])} rpm x {rpm_q15}"
+                  + (f" (0.3 x rated {fmt(rated_e, 4)} pu)" if "drive.stall_err_rpm"
+                     in cfg["defaulted"] else "")),
+        q15_field("flux_tol", dr["flux_tol_frac"] * m["psi_f_wb"] / b.psi_base,
+                  f"{fmt(dr['flux_tol_frac'])} psi_f / psi_base = {fmt(dr['flux_tol_frac'])} x "
+                  f"{fmt(m['psi_f_wb'])} / {fmt(b.psi_base)}"),
+        ms_field("stall_ms", "stall_ms"),
+        q15_field("phase_alpha", 2.0 * math.pi * dr["phase_fc_hz"] / b.f_pwm,
+                  f"2 pi f_c / f_pwm = 2 pi x {fmt(dr['phase_fc_hz'])} / {fmt(b.f_pwm)} (2-34)"),
+        q15_field("phase_i_min", dr["phase_i_min_a"] / b.i_base,
+                  amps(dr["phase_i_min_a"])),
+        q15_field("phase_ratio", dr["phase_ratio"], src("phase_ratio")),
+        ms_field("phase_ms", "phase_ms"),
+        ms_field("link_timeout_ms", "link_timeout_ms"),
+        ms_field("clear_ms", "clear_ms"),
+        q15_field("fw_level", dr["fw_level"], "FWK_LVL, " + (
+            "design.fw_v_max (default)" if "drive.fw_level" in cfg["defaulted"] else
+            "drive.fw_level")),
+        q15_field("fw_alpha", 2.0 * math.pi * dr["fw_fc_hz"] / b.f_pwm,
+                  f"2 pi f_c / f_pwm = 2 pi x {fmt(dr['fw_fc_hz'])} / {fmt(b.f_pwm)} (2-34)"),
+        Field("tc_gain", "i16", int(dr["tc_gain_q15"]),
+              f"{fmt(dr['tc_gain_q15'] / 32768.0)} = drive.tc_gain_q15 / 32768 (provisional)"),
+        q15_field("tc_amp_max", dr["tc_amp_max_a"] / b.i_base,
+                  amps(dr["tc_amp_max_a"]) + " (provisional)"),
+        q15_field("tc_speed_min", dr["tc_speed_min_rpm"] * n_p / 60.0 / b.f_base,
+                  f"{fmt(dr['tc_speed_min_rpm'])} rpm x {rpm_q15}"),
+        q15_field("tc_speed_max", dr["tc_speed_max_rpm"] * n_p / 60.0 / b.f_base,
+                  f"{fmt(dr['tc_speed_max_rpm'])} rpm x {rpm_q15}"),
+        q15_field("para_speed", dr["para_speed_rpm"] * n_p / 60.0 / b.f_base,
+                  f"{fmt(dr['para_speed_rpm'])} rpm x {rpm_q15}"),
+        Field("ld_hs", "i16", qn(ld_hs_h / b.l_base, 12),
+              f"{fmt(ld_hs_h / b.l_base)} = {ld_src} / L_base = {fmt(ld_hs_h)} / "
+              f"{fmt(b.l_base)} (Q12)"),
+        Field("lq_hs", "i16", qn(lq_hs_h / b.l_base, 12),
+              f"{fmt(lq_hs_h / b.l_base)} = {lq_src} / L_base = {fmt(lq_hs_h)} / "
+              f"{fmt(b.l_base)} (Q12)"),
+        Field("lin_id_cmd", "u8", int(dr["lin_id_cmd"]), f"LIN command frame ({src('lin_id_cmd')})"),
+        Field("lin_id_status", "u8", int(dr["lin_id_status"]),
+              f"LIN status frame ({src('lin_id_status')})"),
+        Field("can_id_a", "u16", int(dr["can_id_a"]), f"CAN status, even frames ({src('can_id_a')})"),
+        Field("can_id_b", "u16", int(dr["can_id_b"]), f"CAN status, odd frames ({src('can_id_b')})"),
+    ]
+    return fields, notes
 
 
 def gain_fields(prefix: str, kp: Gain, ki: Gain, out_min: int, out_max: int,
@@ -871,6 +1181,7 @@ def build_table(cfg: dict, ds: Design) -> list:
         Field("vdc_uv", "i16", g["vdc_uv"].raw, qnote(g["vdc_uv"])),
         Field("vdc_ov", "i16", g["vdc_ov"].raw, qnote(g["vdc_ov"])),
         Field("v_max", "i16", g["v_max"].raw, qnote(g["v_max"])),
+        Group("drive", drive_fields(cfg, ds)[0]),
     ]
 
 
@@ -898,6 +1209,10 @@ def c_literal(f: Field) -> str:
     """MISRA-friendly integer literal of a field."""
     if f.ctype == "u32":
         return f"0x{f.value:08X}u" if f.name in ("magic", "crc") else f"{f.value}u"
+    if f.name in ("lin_id_cmd", "lin_id_status"):
+        return f"0x{f.value:02X}u"
+    if f.name in ("can_id_a", "can_id_b"):
+        return f"0x{f.value:03X}u"
     if f.ctype in ("u8", "u16"):
         return f"{f.value}u"
     return f"(int16_t){f.value}" if f.value < 0 else str(f.value)
@@ -1212,6 +1527,13 @@ def gain_rows(ds: Design) -> list[list[str]]:
     return rows
 
 
+def drive_rows(cfg: dict, ds: Design) -> list[list[str]]:
+    """Rows of the drive-configuration table: field, value, derivation, range."""
+    flat = {"i_max": ds.gains["i_max"].raw, "speed_max": ds.gains["speed_max"].raw}
+    return [[f"drive.{f.name}", c_literal(f), f.comment, drive_range_text(f.name, flat)]
+            for f in drive_fields(cfg, ds)[0]]
+
+
 def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds: Design,
                  bounds: list[Bound], results: dict | None, pngs: list[str],
                  failures: list[str], crc: int | None) -> None:
@@ -1232,12 +1554,16 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
         lines += [f"- {gn.name}: rounding error {gn.rel_err * 100:+.2f} % (raw {gn.raw}): the "
                   "value is close to the resolution of its representation" for gn in coarse]
         lines.append("")
-    lines += ["## 1. Design choices ([design], [limits])", ""]
+    notes = drive_fields(cfg, ds)[1]
+    if notes:
+        lines += ["## Notes", ""] + [f"- {n}" for n in notes] + [""]
+    lines += ["## 1. Design choices ([design], [limits], [drive])", ""]
     rows = []
     for sec, keys in OPTIONAL_SECTIONS.items():
         for k, (_d, _c, desc) in keys.items():
             src = "default" if f"{sec}.{k}" in cfg["defaulted"] else "motor file / --set"
-            rows.append([f"{sec}.{k}", fmt(cfg[sec][k]), src, desc])
+            val = cfg[sec][k] if cfg[sec][k] is not None else ds.phys[f"{sec}.{k}"]
+            rows.append([f"{sec}.{k}", fmt(val), src, desc])
     lines += md_table(["key", "value", "source", "meaning"], rows) + [""]
     lines += ["## 2. Bases (specs/scaling.md section 2)", ""]
     lines += md_table(["symbol", "derivation", "value"], [list(r) for r in base_rows(cfg, b)])
@@ -1270,7 +1596,13 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
               "flux.h (real = raw / 2^(15 + shift), largest shift).", ""]
     lines += md_table(["quantity", "real value", "raw", "shift", "stored value", "rounding error",
                        "derivation"], gain_rows(ds))
-    lines += ["", "## 5. Fixed-point bounds (chapter 2)", "",
+    lines += ["", "## 5. Drive configuration (include/qfoc/drive_cfg.h, table field drive)", "",
+              "Defaults and overrides: section 1, keys drive.*.  Speeds are electrical Q15 of "
+              "w_base converted from mechanical rpm with n_p / 60 / f_base; currents Q15 of "
+              "I_base; times in ms of the 1 ms tick.  The range column is what "
+              "qfoc_drive_cfg_is_valid() and qfoc_params_is_valid() accept.", ""]
+    lines += md_table(["field", "value", "derivation", "range"], drive_rows(cfg, ds))
+    lines += ["", "## 6. Fixed-point bounds (chapter 2)", "",
               "Margin = (limit - value) / limit.  Assumptions: Clarke and Park at the trip current "
               "with the phase of i_v within 120 deg +- design.clarke_phase_dev_deg; Park angle "
               "error up to design.park_angle_err_deg; flux at the lowest observer speed and the "
@@ -1282,7 +1614,7 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
                         f"{bd.margin_pct:.1f} %" + ("" if bd.ok else " VIOLATED"), bd.worst_input]
                        for bd in bounds])
     if results:
-        lines += ["", "## 6. Loop analysis (chapter 4)", "",
+        lines += ["", "## 7. Loop analysis (chapter 4)", "",
                   "Continuous: the document's models with the stored gains.  Discrete: T_s = "
                   f"{fmt(b.t_s * 1e6)} us, zero-order hold of the plant, z^-1 computation delay, "
                   "PI as qfoc_pi_step (kp + kiT z/(z-1)); speed loop with the speed low-pass "
@@ -1307,7 +1639,7 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
                            "crossover Hz (cont / disc)", "bandwidth -3 dB Hz (cont / disc)",
                            "step overshoot % (cont / disc)", "discrete stable"], rows)
     if pngs:
-        lines += ["", "## 7. Figures", ""]
+        lines += ["", "## 8. Figures", ""]
         lines += [f"![{p}]({p})" for p in pngs]
     lines.append("")
     path.write_text("\n".join(lines), encoding="utf-8")
@@ -1368,7 +1700,9 @@ def main(argv: list[str] | None = None) -> int:
     bounds = check_bounds(cfg, ds) + range_checks(items)
     failures = []
     for bd in bounds:
-        if not bd.ok:
+        if bd.violated:
+            failures.append(f"bound violated: {bd.name} ({bd.equation}): {bd.worst_input}")
+        elif not bd.ok:
             failures.append(f"bound violated: {bd.name} ({bd.equation}): {fmt(bd.value)} > "
                             f"{fmt(bd.limit)} for {bd.worst_input}")
     results = run_analysis(cfg, ds)
@@ -1389,6 +1723,11 @@ def main(argv: list[str] | None = None) -> int:
     print("gains (real, raw, shift, rounding error):")
     for row in gain_rows(ds):
         print(f"  {row[0]:18s} {row[1]:>12s} {row[2]:>7s} {row[3]:>10s} {row[5]:>11s}")
+    print("drive configuration (drive_cfg.h):")
+    for row in drive_rows(cfg, ds):
+        print(f"  {row[0]:22s} {row[1]:>8s}  {row[2]}")
+    for note in drive_fields(cfg, ds)[1]:
+        print(f"note: {note}", file=sys.stderr)
     print("bounds (value, limit, margin):")
     for bd in bounds:
         print(f"  {bd.name:36s} {bd.equation:38s} {fmt(bd.value):>10s} {fmt(bd.limit):>8s} "

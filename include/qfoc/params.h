@@ -8,7 +8,13 @@
  * application checks it with qfoc_params_check() and copies it to RAM
  * (the document's ParaRam) only when it is intact and every field is in range.
  *
- * Layout (version QFOC_PARAMS_VERSION): the fields below, in this order.
+ * Layout (version QFOC_PARAMS_VERSION = 2): the fields below, in this order:
+ * identity (magic, version), the PWM frequency and the record of the bases, the
+ * parameter blocks of the control modules (svpwm, four PI controllers, flux observer,
+ * PLL), the motor data and limits (alpha_vdc .. v_max), the drive configuration
+ * `drive` (drive_cfg.h: start-up sequence, protection, command link, features; new
+ * in version 2), and the CRC last.  Version 1 had no `drive` field; a version 1
+ * table is refused as foreign (QFOC_PARAMS_ERR_ID), never read with this layout.
  * Scalings are those of specs/scaling.md: voltages Q15 of V_base, currents Q15 of
  * I_base, speeds Q15 of w_base = 2 pi f_base (electrical), inductances Q12 of
  * L_base = V_base / (I_base w_base), fluxes Q15 of psi_base = V_base / w_base.
@@ -19,7 +25,9 @@
  * field before `crc`, in declaration order, sub-structures field by field, each
  * integer little-endian in its own width (uint8_t 1 byte, int16_t / uint16_t 2
  * bytes, uint32_t 4 bytes).  The serialisation does not depend on the compiler's
- * structure padding, so the tool computes the same CRC in any language.
+ * structure padding, so the tool computes the same CRC in any language.  Version 2:
+ * 115 bytes up to v_max, then the 44 fields of `drive` in their declaration order
+ * (drive_cfg.h: 4 one-byte and 40 two-byte fields, 84 bytes): 199 bytes in all.
  *
  * Start-up (qfoc_params_load()): the table is checked in this order, and the
  * first failure is the status returned:
@@ -33,7 +41,7 @@
  * Only a table that passes all three is copied to RAM.  Every function is total:
  * any bit pattern in the table is accepted as input.
  *
- * Requirements: REQ-PAR-001 .. REQ-PAR-005 (specs/requirements/params.md).
+ * Requirements: REQ-PAR-001 .. REQ-PAR-007 (specs/requirements/params.md).
  */
 #ifndef QFOC_PARAMS_H
 #define QFOC_PARAMS_H
@@ -43,11 +51,12 @@
 #include "qfoc/svpwm.h"
 #include "qfoc/flux.h"
 #include "qfoc/pll.h"
+#include "qfoc/drive_cfg.h"
 
 /** Table identifier: the ASCII bytes "QFOC" read as a little-endian uint32_t. */
 #define QFOC_PARAMS_MAGIC ((uint32_t)0x434F4651u)
 /** Layout version of qfoc_param_table_t. */
-#define QFOC_PARAMS_VERSION ((uint16_t)1u)
+#define QFOC_PARAMS_VERSION ((uint16_t)2u)
 
 /** qfoc_params_check() / qfoc_params_load(): the table is intact and in range. */
 #define QFOC_PARAMS_OK ((int32_t)0)
@@ -86,8 +95,14 @@ typedef struct {
     qfoc_q15_t speed_max;        /**< largest speed command, Q15 of w_base, 1 .. 32767 */
     qfoc_q15_t vdc_uv;           /**< DC-bus under-voltage threshold, Q15 of V_base, >= 1 */
     qfoc_q15_t vdc_ov;           /**< DC-bus over-voltage threshold, Q15 of V_base, > vdc_uv */
-    qfoc_q15_t v_max;            /**< voltage-vector limit as a fraction of V_dc / sqrt(3),
-                                      Q15, 1 .. 32767 (field-weakening reference) */
+    qfoc_q15_t v_max;            /**< field-weakening reference of the loop design, a fraction
+                                      of V_dc / sqrt(3), Q15, 1 .. 32767 (the tuning tool's
+                                      default for drive.fw_level, which the drive uses; the
+                                      voltage vector itself is limited to V_dc / sqrt(3)) */
+    qfoc_drive_cfg_t drive;      /**< drive configuration (drive_cfg.h), version 2; with
+                                      the table: i_align, i_start, tc_amp_max <= i_max;
+                                      of_speed <= speed_max;
+                                      (rpm_max k_rpm + 2048) >> 12 <= speed_max */
     uint32_t crc;                /**< CRC-32 of every field above (see the file comment) */
 } qfoc_param_table_t;
 
@@ -118,11 +133,11 @@ uint32_t qfoc_crc32_byte(uint32_t crc, uint8_t byte);
 
 /**
  * @brief The CRC-32 of a parameter table (every field before `crc`, serialised as
- *        the file comment describes).
+ *        the file comment describes, the drive configuration included).
  * @param[in] t table (any bit pattern)
  * @return the CRC-32 (final XOR applied), to compare with t->crc.
  *
- * Requirements: REQ-PAR-002.
+ * Requirements: REQ-PAR-002, REQ-PAR-006.
  */
 /*@
   requires valid_t: \valid_read(t);
@@ -140,10 +155,15 @@ uint32_t qfoc_params_crc(const qfoc_param_table_t *t);
  *         alpha_vdc in [1, 32767]; ld, lq, psi_f in [0, 32767]; 1 <= i_max <= i_trip;
  *         speed_max >= 1; 1 <= vdc_uv < vdc_ov; v_max >= 1; the speed PI output
  *         (the q-current reference) within [-i_max, i_max]; the field-weakening PI
- *         output (a d-current reference) within [-i_max, 0].
+ *         output (a d-current reference) within [-i_max, 0];
+ *         qfoc_drive_cfg_is_valid(drive); and the drive settings within the table's
+ *         limits: drive.i_align, drive.i_start, drive.tc_amp_max <= i_max,
+ *         drive.of_speed <= speed_max, and the largest target converted to Q15,
+ *         (drive.rpm_max x drive.k_rpm + 2048) >> 12 (at most 1048543, computed in
+ *         uint32_t: 65535 x 65535 + 2048 < 2^32), <= speed_max.
  *         Magic, version and CRC are not looked at (qfoc_params_check()).
  *
- * Requirements: REQ-PAR-003.
+ * Requirements: REQ-PAR-003, REQ-PAR-006, REQ-PAR-007.
  */
 /*@
   requires valid_t: \valid_read(t);

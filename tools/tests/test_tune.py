@@ -158,7 +158,8 @@ def test_simple_motor_passes_and_table_compiles_layout(tmp_path):
     ds, path = simple_design(tmp_path)
     items = qt.build_table(ds.cfg, ds)
     # params.h serialisation: 4+2+2+4+4+4 + svpwm 8 + 4 PI x 10 + flux 9 + pll 18 + 10 x 2
-    assert len(qt.serialise(items)) == 115
+    # = 115, then the drive configuration (layout 2): 4 x 1 + 40 x 2 = 84 bytes
+    assert len(qt.serialise(items)) == 115 + 84
     assert run(tmp_path, path) == 0
     text = (tmp_path / "tables" / "simple_params.c").read_text()
     assert "const qfoc_param_table_t qfoc_params_simple = {" in text
@@ -228,3 +229,181 @@ def test_loop_margins_reference():
     assert rc.pm_deg == pytest.approx(65.53, abs=0.1)
     for _name, (_c, d) in res.items():
         assert d.stable and d.pm_deg >= 45.0
+
+
+# ---- layout version 2: the drive configuration (REQ-TUNE-006, REQ-PAR-006, REQ-PAR-007) ----
+
+# drive_cfg.h, declaration order: (field, struct format) -- written here from the header,
+# independently of the tool's field list
+DRIVE_LAYOUT = [
+    ("pole_pairs", "B"), ("k_rpm", "H"), ("k_speed_rpm", "H"), ("rpm_min", "H"),
+    ("rpm_max", "H"), ("speed_ramp", "h"), ("precharge_ms", "H"), ("offset_shift", "B"),
+    ("offset_window", "H"), ("i_align", "h"), ("align_ms", "H"), ("i_start", "h"),
+    ("of_accel", "h"), ("of_speed", "h"), ("ho_angle", "H"), ("ho_dwell_ms", "H"),
+    ("ol_timeout_ms", "H"), ("cl_hold_ms", "H"), ("t_ipm_max", "h"), ("t_pcb_max", "h"),
+    ("vdc_ms", "H"), ("temp_ms", "H"), ("stall_err", "h"), ("flux_tol", "h"),
+    ("stall_ms", "H"), ("phase_alpha", "h"), ("phase_i_min", "h"), ("phase_ratio", "h"),
+    ("phase_ms", "H"), ("link_timeout_ms", "H"), ("clear_ms", "H"), ("fw_level", "h"),
+    ("fw_alpha", "h"), ("tc_gain", "h"), ("tc_amp_max", "h"), ("tc_speed_min", "h"),
+    ("tc_speed_max", "h"), ("para_speed", "h"), ("ld_hs", "h"), ("lq_hs", "h"),
+    ("lin_id_cmd", "B"), ("lin_id_status", "B"), ("can_id_a", "H"), ("can_id_b", "H"),
+]
+
+
+def c_values(text):
+    """(name, int) of every '.name = value' line of a generated table, in file order."""
+    import re
+    out = []
+    for m in re.finditer(r"^\s*\.(\w+) = (\(int16_t\))?(-?(?:0x[0-9A-Fa-f]+|\d+))u?[,\s]",
+                         text, re.M):
+        out.append((m.group(1), int(m.group(3), 0)))
+    return out
+
+
+# REQ-TUNE-006, REQ-PAR-006: the CRC in each committed table equals zlib's CRC-32 of an
+# independent serialisation: the 115-byte layout-1 part as the tool emits it, then the
+# drive fields packed here from DRIVE_LAYOUT (little-endian, own width).
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
+def test_committed_crc_independent_with_drive(motor):
+    import struct
+    text = (REPO / "tables" / f"{motor.stem}_params.c").read_text()
+    vals = c_values(text)
+    names = [n for n, _ in vals]
+    i = names.index("pole_pairs")
+    head = vals[:i]
+    drive = vals[i:i + len(DRIVE_LAYOUT)]
+    crc_name, crc = vals[i + len(DRIVE_LAYOUT)]
+    assert crc_name == "crc" and len(vals) == i + len(DRIVE_LAYOUT) + 1
+    assert [n for n, _ in drive] == [n for n, _ in DRIVE_LAYOUT]
+    # layout-1 part: widths from params.h (magic u32, version u16, f_pwm u16, 3 x u32 ...)
+    fmts = {"magic": "I", "v_base_mv": "I", "i_base_ma": "I", "f_base_mhz": "I",
+            "kp_shift": "B", "ki_shift": "B", "gain_shift": "B", "version": "H",
+            "f_pwm_hz": "H", "period": "H", "dt_comp": "H", "k_theta": "H"}
+    data = b"".join(struct.pack("<" + fmts.get(n, "h"), v) for n, v in head)
+    assert len(data) == 115
+    assert head[1] == ("version", 2)
+    data += b"".join(struct.pack("<" + f, v) for (_n, f), (_m, v) in zip(DRIVE_LAYOUT, drive))
+    assert len(data) == 199
+    assert zlib.crc32(data) == crc
+
+
+def drive_of(tmp_path, motor, *extra):
+    """Run the tool; return {drive field: value} of the generated table (None on failure)."""
+    rc = run(tmp_path, motor, *extra)
+    if rc != 0:
+        return None
+    text = next((tmp_path / "tables").glob("*_params.c")).read_text()
+    vals = c_values(text)
+    i = [n for n, _ in vals].index("pole_pairs")
+    return dict(vals[i:i + len(DRIVE_LAYOUT)])
+
+
+# REQ-TUNE-006: the documented defaults of [drive] by hand for the reference motor
+# (n_p 3, f_base 500 Hz, I_base 40 A, f_pwm 8 kHz, rated 20 A / 6000 rpm, max 8000 rpm).
+def test_drive_defaults_by_hand(tmp_path):
+    d = drive_of(tmp_path, REFERENCE)
+    rpm = 3 / 60 / 500 * 32768                                # Q15 counts per rpm = 3.2768
+    assert d["k_rpm"] == math.floor(3.2768 * 4096) == 13421      # 13421.77, rounded down
+    assert d["k_speed_rpm"] == 10000                           # 60 x 500 / 3
+    # k_rpm rounded down so that 8000 rpm -> (8000 x 13421 + 2048) >> 12 = 26213 fits
+    # speed_max 26214 (rounded, 13422 would give 26215)
+    assert (8000 * 13422 + 2048) >> 12 == 26215
+    assert d["rpm_max"] == 8000 and (8000 * 13421 + 2048) >> 12 == 26213 <= 26214
+    assert d["rpm_min"] == 1000
+    assert d["speed_ramp"] == round(3000e-3 * rpm) == 10       # 9.83 counts per ms
+    assert d["of_accel"] == round(1000e-3 * rpm) == 3          # 3.28
+    assert d["of_speed"] == 3277                               # 1000 x 3.2768
+    assert d["i_align"] == 8192 and d["i_start"] == 16384      # 10 A, 20 A of 40 A
+    assert d["ho_angle"] == 2731                               # 15 / 360 x 65536 = 2730.7
+    assert d["stall_err"] == 5898                              # 0.3 x 0.6 x 32768 = 5898.2
+    assert d["flux_tol"] == round(0.5 * 0.065 / (500 / (2 * math.pi * 500)) * 32768)
+    assert d["phase_alpha"] == 129                             # 2 pi 5 / 8000 x 32768 = 128.7
+    assert d["phase_i_min"] == 1638 and d["phase_ratio"] == 8192
+    assert d["fw_level"] == 30147 and d["fw_alpha"] == 1287    # 0.92; 2 pi 50 / 8000
+    assert d["tc_gain"] == 1000 and d["tc_amp_max"] == 8192
+    assert d["tc_speed_min"] == 1638 and d["tc_speed_max"] == 9830
+    assert d["para_speed"] == 18350                            # 5600 rpm x 3.2768
+    assert (d["t_ipm_max"], d["t_pcb_max"], d["vdc_ms"], d["temp_ms"]) == (1100, 1000, 2, 10)
+    assert (d["precharge_ms"], d["offset_shift"], d["offset_window"], d["align_ms"]) == \
+        (200, 6, 100, 300)
+    assert (d["ho_dwell_ms"], d["ol_timeout_ms"], d["cl_hold_ms"], d["stall_ms"]) == \
+        (50, 4000, 2000, 500)
+    assert (d["phase_ms"], d["link_timeout_ms"], d["clear_ms"]) == (100, 500, 5000)
+    assert (d["lin_id_cmd"], d["lin_id_status"], d["can_id_a"], d["can_id_b"]) == \
+        (0x10, 0x11, 0x310, 0x311)
+
+
+# REQ-TUNE-001, REQ-TUNE-006: the defaults round-trip: a motor file that writes every
+# documented default of [drive] explicitly gives the same table bytes as one without the
+# section, and the stored values convert back to the defaults within half a count.
+def test_drive_defaults_round_trip(tmp_path):
+    cfg = qt.load_config(REFERENCE, [])
+    ds = qt.design_loops(cfg, qt.make_bases(cfg))
+    items = qt.build_table(cfg, ds)
+    explicit = dict(cfg["drive"])
+    explicit["rpm_max"] = ds.phys["drive.rpm_max"]
+    text = REFERENCE.read_text() + "\n[drive]\n" + "".join(
+        f"{k} = {int(v) if k in qt.DRIVE_INT_KEYS else float(v)!r}\n"
+        for k, v in explicit.items())
+    path = tmp_path / "explicit.toml"
+    path.write_text(text)
+    cfg2 = qt.load_config(path, [])
+    ds2 = qt.design_loops(cfg2, qt.make_bases(cfg2))
+    assert qt.serialise(qt.build_table(cfg2, ds2)) == qt.serialise(items)
+    flat = dict((n, f.value) for n, f in qt.flatten(items))
+    assert abs(flat["drive.i_align"] / 32768 * 40 - 10.0) <= 0.5 * 40 / 32768
+    assert abs(flat["drive.of_speed"] / 32768 * 500 * 60 / 3 - 1000.0) <= 0.5 * 500 * 60 / 3 / 32768
+    assert abs(flat["drive.ho_angle"] / 65536 * 360 - 15.0) <= 0.5 * 360 / 65536
+
+
+# REQ-TUNE-001, REQ-TUNE-006: [drive] overrides reach the table; motor.ld_hs_h / lq_hs_h set
+# the high-speed inductances.
+def test_drive_overrides(tmp_path):
+    d = drive_of(tmp_path, REFERENCE, "--set", "drive.rpm_max=7000", "--set",
+                 "drive.lin_id_cmd=0x20", "--set", "drive.tc_gain_q15=0",
+                 "--set", "motor.ld_hs_h=2.0e-3")
+    assert d["rpm_max"] == 7000 and d["lin_id_cmd"] == 0x20 and d["tc_gain"] == 0
+    assert d["ld_hs"] == round(2.0e-3 / (500 / 40 / (2 * math.pi * 500)) * 4096)   # 2059
+    assert d["lq_hs"] == 4324                                   # = lq (no lq_hs_h)
+
+
+# REQ-TUNE-004, REQ-PAR-007: the tool checks the drive ranges and the cross-field
+# conditions of params.h itself and refuses to write a table that breaks one.
+@pytest.mark.parametrize("override, message", [
+    ("drive.i_align_a=20.01", "drive.i_align"),          # > i_max = rated 20 A
+    ("drive.i_start_a=21", "drive.i_start"),
+    ("drive.tc_amp_max_a=25", "drive.tc_amp_max"),
+    ("drive.of_speed_rpm=8001", "drive.of_speed"),       # > speed_max (8000 rpm)
+    ("drive.rpm_max=8002", "drive.rpm_max"),              # (8002 x 13421 + 2048) >> 12 = 26219 > 26214
+    ("drive.rpm_min=8001", "drive.rpm_min"),              # > rpm_max 8000
+    ("drive.lin_id_status=16", "drive.lin_id_status"),    # == lin_id_cmd 0x10
+    ("drive.lin_id_cmd=60", "drive.lin_id_cmd"),          # > 0x3B
+    ("drive.can_id_b=2048", "drive.can_id_b"),
+    ("drive.offset_shift=11", "drive.offset_shift"),
+    ("drive.vdc_ms=11", "drive.vdc_ms"),
+    ("drive.t_ipm_max_degc=200.1", "drive.t_ipm_max"),
+    ("drive.align_ms=1", "drive.align_ms"),
+    ("drive.tc_speed_min_rpm=3001", "drive.tc_speed_min"),
+])
+def test_drive_range_refused(tmp_path, capsys, override, message):
+    assert run(tmp_path, REFERENCE, "--set", override) == 1
+    err = capsys.readouterr().err
+    assert f"table field {message}" in err
+    assert not (tmp_path / "tables").exists()
+
+
+# REQ-TUNE-006: a boundary value of a cross-field condition is accepted.
+def test_drive_cross_boundary_accepted(tmp_path):
+    d = drive_of(tmp_path, REFERENCE, "--set", "drive.i_align_a=20", "--set",
+                 "drive.of_speed_rpm=8000", "--set", "drive.rpm_min=8000")
+    assert d["i_align"] == 16384 and d["of_speed"] == 26214 and d["rpm_min"] == 8000
+
+
+# REQ-TUNE-007: the report lists the drive configuration with its ranges.
+def test_report_lists_drive(tmp_path):
+    assert run(tmp_path, REFERENCE) == 0
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert "## 5. Drive configuration" in report
+    assert "| drive.rpm_max | 8000u |" in report
+    assert "<= i_max = 16384" in report
+    assert "drive.accel_rpm_s" in report                  # the [drive] keys in section 1

@@ -9,7 +9,8 @@
  *  - no undefined behaviour in the range check, the check order or the copy;
  *  - identity: ERR_ID exactly for a wrong magic or version;
  *  - range check as specified: qfoc_params_is_valid() equals the conditions of
- *    params.h written out here;
+ *    params.h written out here, the drive configuration's ranges (drive_cfg.h) and the
+ *    cross-field conditions of layout version 2 included (REQ-PAR-006, REQ-PAR-007);
  *  - the status: OK only for a known, in-range table; ERR_RANGE only for a known
  *    table out of range; ERR_CRC only for a known table; nothing else;
  *  - load: returns OK only for a known, in-range table; the RAM copy equals the
@@ -35,10 +36,59 @@ static bool pi_ok(const qfoc_pi_params_t *p)
            && (p->out_min >= -32767) && (p->out_min <= p->out_max);
 }
 
+static bool ms_ok(uint16_t v)
+{
+    return (v >= 1u) && (v <= 60000u);
+}
+
+/* drive_cfg.h's ranges, written out from the header's field comments */
+static bool drive_ok(const qfoc_drive_cfg_t *c)
+{
+    return (c->pole_pairs >= 1u) && (c->pole_pairs <= 16u)
+        && (c->k_rpm >= 1u) && (c->k_speed_rpm >= 1u)
+        && (c->rpm_min >= 1u) && (c->rpm_min <= c->rpm_max) && (c->speed_ramp >= 1)
+        && ms_ok(c->precharge_ms)
+        && (c->offset_shift >= 4u) && (c->offset_shift <= 10u) && (c->offset_window <= 2047u)
+        && (c->i_align >= 1) && (c->align_ms >= 2u) && (c->align_ms <= 60000u)
+        && (c->i_start >= 1) && (c->of_accel >= 1) && (c->of_speed >= 1)
+        && (c->ho_angle >= 1u) && (c->ho_angle <= 16384u)
+        && ms_ok(c->ho_dwell_ms) && ms_ok(c->ol_timeout_ms) && (c->cl_hold_ms <= 60000u)
+        && (c->t_ipm_max >= -400) && (c->t_ipm_max <= 2000)
+        && (c->t_pcb_max >= -400) && (c->t_pcb_max <= 2000)
+        && (c->vdc_ms >= 1u) && (c->vdc_ms <= 10u) && (c->temp_ms >= 1u) && (c->temp_ms <= 10u)
+        && (c->stall_err >= 1) && (c->flux_tol >= 1) && ms_ok(c->stall_ms)
+        && (c->phase_alpha >= 1) && (c->phase_i_min >= 1) && (c->phase_ratio >= 0)
+        && ms_ok(c->phase_ms) && ms_ok(c->link_timeout_ms) && ms_ok(c->clear_ms)
+        && (c->fw_level >= 1) && (c->fw_alpha >= 1)
+        && (c->tc_gain >= 0) && (c->tc_amp_max >= 0)
+        && (c->tc_speed_min >= 0) && (c->tc_speed_min <= c->tc_speed_max)
+        && (c->para_speed >= 1) && (c->ld_hs >= 0) && (c->lq_hs >= 0)
+        && (c->lin_id_cmd <= 0x3Bu) && (c->lin_id_status <= 0x3Bu)
+        && (c->lin_id_status != c->lin_id_cmd)
+        && (c->can_id_a <= 0x7FFu) && (c->can_id_b <= 0x7FFu);
+}
+
+/* params.h's cross-field conditions of layout 2.  The rpm condition
+   (rpm_max k_rpm + 2048) >> 12 <= speed_max is written here without a shift or a
+   divider: x + 2048 < (speed_max + 1) x 4096 in 64 bits, false for a negative speed_max.
+   The product x = rpm_max k_rpm is the same 32-bit expression as the library's (a
+   second multiplier would make the SAT problem an equivalence miter of two multipliers);
+   that the 32-bit product does not wrap is the library's own overflow check. */
+static bool cross_ok(const qfoc_param_table_t *t)
+{
+    const uint32_t prod = (uint32_t)t->drive.rpm_max * (uint32_t)t->drive.k_rpm;
+    const bool rpm_ok = (t->speed_max >= 0)
+        && (((uint64_t)prod + 2048u) < (((uint64_t)(uint16_t)t->speed_max + 1u) * 4096u));
+    return (t->drive.i_align <= t->i_max) && (t->drive.i_start <= t->i_max)
+        && (t->drive.tc_amp_max <= t->i_max) && (t->drive.of_speed <= t->speed_max)
+        && rpm_ok;
+}
+
 /* params.h's ranges, written out from the header's documentation */
 static bool ref_valid(const qfoc_param_table_t *t)
 {
-    return (t->f_pwm_hz >= 1000u) && (t->f_pwm_hz <= 40000u)
+    return drive_ok(&t->drive) && cross_ok(t)
+        && (t->f_pwm_hz >= 1000u) && (t->f_pwm_hz <= 40000u)
         && (t->v_base_mv > 0u) && (t->i_base_ma > 0u) && (t->f_base_mhz > 0u)
         && (t->svpwm.period >= 100u) && (t->svpwm.period <= 32767u)
         && (t->svpwm.dt_comp <= (t->svpwm.period / 4u))

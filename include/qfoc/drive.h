@@ -1,0 +1,303 @@
+/**
+ * @file drive.h
+ * @brief The compressor drive: one motor object, two entry points.
+ *
+ * This is the header an ECU integrator reads.  The drive is the document's chapter 3
+ * application and interface layers turned into a library: it owns the motor's
+ * controllers, estimator, state machine, fault detection and command link, and is
+ * called from exactly two places:
+ *
+ *   qfoc_drive_fast_step()  once per PWM period, from the ADC-complete interrupt:
+ *                           raw ADC samples in, three compare values and the PWM
+ *                           enable out (the document's adc1isr / ftmTimerISR);
+ *   qfoc_drive_tick()       every 1 ms, from a lower-priority interrupt or task:
+ *                           temperatures and a received command frame in, a status
+ *                           frame and the 100 ms CAN frame out (the document's
+ *                           Ms_1_job, Ms_100_job, Communication_service).
+ *
+ * There are no globals: one qfoc_drive_t per motor (two compressors, or a test, run
+ * side by side).  The library never touches a register; the port (port_s32k/) moves
+ * ADC results, compare values, UART bytes and CAN frames.
+ *
+ * Units at the interface:
+ *   - current and DC-bus ADC samples: 12-bit codes 0..4095 (larger codes are
+ *     saturated to 4095); phase current = (code - offset) x I_base / 2048 with the
+ *     offset calibrated in PRECHARGE (nominal 2048); DC bus = code x V_base / 4096;
+ *   - temperatures: 0.1 degC, converted from the NTC by the port;
+ *   - compare values: 0..period timer ticks of the centre-aligned PWM (svpwm.h), high
+ *     side on for cmp ticks of each half period; PWM disabled = all six switches off;
+ *   - speed on the command link: mechanical rpm; internally Q15 of w_base electrical.
+ *
+ * Behaviour (the state machine is sm.h; thresholds and times are the parameter
+ * table's drive section, drive_cfg.h; every rule has an ID in specs/requirements/):
+ *   - PRECHARGE: PWM off; the DC bus must stay above vdc_uv for precharge_ms; then
+ *     2^offset_shift samples of each current channel are averaged (one per tick) and
+ *     each offset must lie within offset_window of 2048, else fault OFFSET.
+ *   - STOP: PWM off; a run request (power-on bit, target rpm_min..rpm_max, link alive)
+ *     starts the motor.
+ *   - RUN / ALIGN: d-current ramp to i_align at angle 0 over align_ms / 2, then held.
+ *   - RUN / OPEN_LOOP (I/f): current i_start on the q axis of an imposed frame whose
+ *     speed ramps at of_accel to of_speed; the estimator (flux observer + PLL) runs
+ *     throughout.
+ *   - handover to CLOSED_LOOP when, for ho_dwell_ms, the filtered estimated speed is
+ *     within 1/4 of the open-loop speed, the observer's flux magnitude is at least the
+ *     PLL's mag_min, and the angle delta = theta_ol - theta_est between the open-loop
+ *     frame and the estimated rotor lies in (-(90 deg + ho_angle), ho_angle): a rotor
+ *     following the frame settles at K i cos(delta) = T_load with delta in [-90, 0] deg,
+ *     a slipping one sweeps through +180 deg; and not before cl_hold_ms after the start
+ *     (the document's 2 s).  The speed PI is preset to the q current that gives, with
+ *     i_d = 0, the torque the rotor carries, for a bumpless transfer.
+ *   - CLOSED_LOOP: speed reference ramps at speed_ramp to the target; speed PI every
+ *     1 ms on the filtered estimate; torque compensation (trqcomp.h) adds its
+ *     feed-forward q current; field weakening (fw.h) drives i_d negative when the
+ *     voltage utilisation exceeds fw_level; current PIs with decoupling feed-forward,
+ *     voltage circle limit V_dc / sqrt 3, SVPWM with dead-time compensation.
+ *   - power-off in CLOSED_LOOP: STOPPING ramps the speed reference down to of_speed,
+ *     then PWM off and STOP.  Power-off in ALIGN or OPEN_LOOP: PWM off at once.
+ *   - ERROR: PWM off at once; the fault word and the first-fault record latch; left
+ *     to STOP only after clear_ms (5 s) in ERROR on a fault-clear request with no
+ *     fault present and the table intact (the document's Faultclear).
+ *
+ * Faults and reaction times (fault.h bits; specs/requirements/drive.md):
+ *   OC     |i_u|, |i_v| or |i_w| > i_trip: PWM off in the SAME fast step, ERROR at the
+ *          next tick (latched by the fast step until the fault is cleared);
+ *   OV, UV filtered DC bus above vdc_ov (any state) / below vdc_uv (RUN) for vdc_ms;
+ *   OT_IPM, OT_PCB  temperature above its limit for temp_ms;
+ *   STALL  in CLOSED_LOOP, |speed ref - estimate| > stall_err or the observer's flux
+ *          magnitude off its expected value by more than flux_tol, for stall_ms; or
+ *          no handover within ol_timeout_ms of OPEN_LOOP;
+ *   PHASE  in RUN, the smallest filtered |phase current| below phase_ratio x the
+ *          largest, the largest above phase_i_min, for phase_ms;
+ *   OFFSET offset calibration out of its window (PRECHARGE);
+ *   LINK   no valid command frame for link_timeout_ms while running: the command
+ *          becomes power-off (controlled ramp-down), then ERROR;
+ *   PARAM  the parameter table fails its identity, CRC or range check, at
+ *          initialisation or at its 100 ms re-check: ERROR, not clearable.
+ *   The tick reacts within 1 ms of a debounce completing, so every reaction time is
+ *   its debounce time + 1 ms (OV/UV/OT within 10 ms with the default tables).
+ *
+ * Concurrency: the fast step may pre-empt the tick at any point.  Every field of
+ * qfoc_drive_t is written by one context only: qfoc_drive_fast_t by the fast step,
+ * qfoc_drive_slow_t by the tick; each reads the other's fields (single 8-, 16- or
+ * 32-bit reads, atomic on the Cortex-M4).  The over-current latch is a counter the
+ * fast step increments and a clear counter the tick increments, so neither context
+ * writes the other's data.  Initialisation runs before the interrupts are enabled.
+ *
+ * Stack: no recursion, no dynamic memory; see the bench report for the worst-case
+ * stack of each entry point.
+ *
+ * Requirements: REQ-DRV-001 .. (specs/requirements/drive.md).
+ */
+#ifndef QFOC_DRIVE_H
+#define QFOC_DRIVE_H
+
+#include "qfoc/types.h"
+#include "qfoc/params.h"
+#include "qfoc/filter.h"
+#include "qfoc/pi.h"
+#include "qfoc/flux.h"
+#include "qfoc/pll.h"
+#include "qfoc/svpwm.h"
+#include "qfoc/fw.h"
+#include "qfoc/fault.h"
+#include "qfoc/trqcomp.h"
+#include "qfoc/link.h"
+#include "qfoc/sm.h"
+
+/** Largest ADC code (12 bits). */
+#define QFOC_ADC_MAX ((uint16_t)4095u)
+/** ADC code of zero current (mid-scale). */
+#define QFOC_ADC_MID ((uint16_t)2048u)
+
+/** Raw samples of one PWM period (the document's adcRawValue_n). */
+typedef struct {
+    uint16_t iu;   /**< phase u current, 0..4095 (2048 nominal zero) */
+    uint16_t iv;   /**< phase v current, 0..4095 */
+    uint16_t vdc;  /**< DC-bus voltage, 0..4095 */
+} qfoc_adc_t;
+
+/** Output of one PWM period. */
+typedef struct {
+    uint16_t cmp[3];  /**< compare values u, v, w, 0..period */
+    bool enable;      /**< true: outputs switching; false: all switches off */
+} qfoc_pwm_t;
+
+/** Inputs of one tick. */
+typedef struct {
+    int16_t t_ipm;          /**< IPM temperature, 0.1 degC */
+    int16_t t_pcb;          /**< PCB temperature, 0.1 degC */
+    const uint8_t *rx;      /**< frame received since the last tick (may be NULL when rx_len is 0) */
+    uint8_t rx_len;         /**< its length in bytes, 0 = none */
+} qfoc_tick_in_t;
+
+/** Outputs of one tick. */
+typedef struct {
+    uint8_t tx[QFOC_LIN_FRAME_MAX];  /**< status frame to send on the UART */
+    uint8_t tx_len;                  /**< its length, 0 = nothing to send */
+    qfoc_can_frame_t can;            /**< CAN status frame */
+    bool can_send;                   /**< true on the 100 ms job's tick */
+} qfoc_tick_out_t;
+
+/** Data written by the fast step only. */
+typedef struct {
+    qfoc_flux_t flux;         /**< flux observer (2-19 .. 2-24) */
+    qfoc_pll_t pll;           /**< PLL (2-27, 2-28, 2-34) */
+    qfoc_pi_t pi_id;          /**< d-current PI */
+    qfoc_pi_t pi_iq;          /**< q-current PI */
+    qfoc_fw_t fw;             /**< field weakening */
+    qfoc_lpf_t vdc_lpf;       /**< DC-bus low-pass */
+    qfoc_phase_mon_t phase;   /**< phase-loss monitor */
+    qfoc_mech_t mech;         /**< mechanical angle */
+    qfoc_ab_t u_last;         /**< voltage command of this period (applied next period) */
+    qfoc_ab_t u_applied;      /**< voltage applied during the period just sampled */
+    uint32_t theta_ol;        /**< open-loop angle, 2^32 per turn */
+    qfoc_dq_t i_dq;           /**< measured currents in the control frame */
+    qfoc_q15_t vdc;           /**< filtered DC bus */
+    uint16_t adc_iu;          /**< last raw current samples (offset calibration) */
+    uint16_t adc_iv;
+    qfoc_angle_t theta_est;   /**< estimated rotor angle (lead-corrected) */
+    qfoc_angle_t theta_m;     /**< mechanical angle (torque compensation) */
+    qfoc_q15_t speed;         /**< PLL speed, unfiltered */
+    qfoc_q15_t speed_f;       /**< PLL speed after the 2-34 low-pass */
+    qfoc_q15_t psi_mag;       /**< observer flux magnitude */
+    qfoc_q15_t utilisation;   /**< SVPWM voltage utilisation */
+    qfoc_q15_t id_fw;         /**< field-weakening d-current reference */
+    uint8_t trip_count;       /**< over-current events (mod 256) */
+    uint8_t clear_ack;        /**< last clear_seq acknowledged */
+    bool trip;                /**< over-current latch: PWM held off */
+    bool active;              /**< the control ran in the last period */
+    bool hs;                  /**< high-speed inductances in use (motorParaChange) */
+} qfoc_drive_fast_t;
+
+/** Data written by the tick only. */
+typedef struct {
+    qfoc_sm_t sm;             /**< state machine */
+    qfoc_pi_t pi_speed;       /**< speed PI (1 ms) */
+    qfoc_trqcomp_t tc;        /**< torque compensation */
+    qfoc_link_t link;         /**< command link */
+    qfoc_debounce_t db_ov;    /**< debounce of each tick-evaluated fault */
+    qfoc_debounce_t db_uv;
+    qfoc_debounce_t db_ot_ipm;
+    qfoc_debounce_t db_ot_pcb;
+    qfoc_debounce_t db_stall;
+    qfoc_debounce_t db_phase;
+    qfoc_debounce_t db_ho;    /**< handover condition dwell */
+    uint32_t off_sum_u;       /**< offset calibration sums */
+    uint32_t off_sum_v;
+    uint16_t off_n;           /**< samples summed */
+    uint16_t offset_u;        /**< calibrated offsets, ADC codes */
+    uint16_t offset_v;
+    qfoc_q15_t speed_target;  /**< commanded speed, Q15 electrical */
+    qfoc_q15_t speed_ref;     /**< ramped speed reference */
+    qfoc_q15_t ol_speed;      /**< open-loop frame speed */
+    qfoc_q15_t id_ref;        /**< ALIGN d-current reference */
+    qfoc_q15_t iq_ref;        /**< q-current reference (speed PI, or i_start in OPEN_LOOP) */
+    uint8_t trip_seen;        /**< trip_count already reported */
+    uint8_t clear_seq;        /**< incremented when a fault clear is accepted */
+    uint8_t ms100;            /**< ticks of the current 100 ms period, 0..99 */
+    bool table_ok;            /**< result of the last table check */
+    bool calib_done;          /**< offsets calibrated in range */
+    bool hs;                  /**< request: high-speed inductances (motorParaChange) */
+    uint32_t run_ms;          /**< time in RUN, ms, saturating (Motor_Run_Time) */
+    qfoc_status_t status;     /**< last status (LIN and CAN) */
+} qfoc_drive_slow_t;
+
+/** One motor. */
+typedef struct {
+    const qfoc_param_table_t *p;  /**< the parameter table (flash), checked */
+    qfoc_drive_fast_t f;          /**< written by the fast step */
+    qfoc_drive_slow_t s;          /**< written by the tick */
+} qfoc_drive_t;
+
+#ifdef __FRAMAC__
+/* ACSL predicates over the types above, read by Frama-C only (DEV-001). */
+/* cppcheck-suppress misra-c2012-20.1 ; DEV-001 */
+#include "drive.acsl"
+#endif
+
+/**
+ * @brief Check the drive invariant (the logic twin of DriveValid): the table passes
+ *        its range check, every controller, filter and estimator satisfies its own
+ *        invariant, the state machine is valid, and the offsets are ADC codes.
+ * @param[in] d drive
+ * @return true when the drive may be stepped.
+ * Requirements: REQ-DRV-001.
+ */
+/*@
+  requires valid_d: \valid_read(d) && \valid_read(d->p) && \separated(d, d->p);
+  assigns \nothing;
+  ensures result: \result <==> DriveValid(d);
+*/
+bool qfoc_drive_is_valid(const qfoc_drive_t *d);
+
+/**
+ * @brief Initialise one motor from its parameter table.
+ * @param[out] d     the motor object
+ * @param[in]  table the generated parameter table (any bit pattern)
+ * @return QFOC_PARAMS_OK, or the table's failure status (params.h); on failure the
+ *         drive is in ERROR with fault PARAM (not clearable) and its PWM stays off,
+ *         using a built-in safe configuration for its own state.
+ * Call before the interrupts are enabled.  Requirements: REQ-DRV-001, REQ-DRV-010.
+ */
+/*@
+  requires valid_d: \valid(d);
+  requires valid_table: \valid_read(table);
+  requires sep: \separated(d, table);
+  assigns *d;
+  ensures table: d->p == table;
+  ensures valid: DriveValid(d);
+  ensures status: \result == QFOC_PARAMS_OK || \result == QFOC_PARAMS_ERR_ID ||
+                  \result == QFOC_PARAMS_ERR_CRC || \result == QFOC_PARAMS_ERR_RANGE;
+  ensures refused: \result != QFOC_PARAMS_OK ==>
+      d->s.sm.state == QFOC_STATE_ERROR && !d->s.table_ok;
+  ensures accepted: \result == QFOC_PARAMS_OK ==>
+      d->s.sm.state == QFOC_STATE_PRECHARGE && d->s.table_ok;
+*/
+int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table);
+
+/**
+ * @brief One PWM period (ADC-complete interrupt).
+ * @param[in,out] d   the motor object (valid)
+ * @param[in]     adc raw samples of this period (any values)
+ * @param[out]    out compare values and enable for the next period
+ * Guarantees: cmp[k] <= period always; enable only in RUN without an over-current
+ * latch; an over-current in these samples gives enable false in this same call.
+ * Requirements: REQ-DRV-002, REQ-DRV-003, REQ-DRV-004.
+ */
+/*@
+  requires valid: \valid(d) && \valid_read(adc) && \valid(out);
+  requires sep: \separated(d, adc, out) && \separated(d->p, out);
+  requires inv: DriveValid(d);
+  assigns d->f, *out;
+  ensures inv: DriveValid(d);
+  ensures cmp: out->cmp[0] <= d->p->svpwm.period && out->cmp[1] <= d->p->svpwm.period &&
+               out->cmp[2] <= d->p->svpwm.period;
+  ensures pwm_only_in_run: out->enable ==> d->s.sm.state == QFOC_STATE_RUN && !d->f.trip;
+  ensures over_current: DriveOverCurrent(d, adc) ==> !out->enable && d->f.trip;
+*/
+void qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_pwm_t *out);
+
+/**
+ * @brief The 1 ms tick (and, every 100th call, the 100 ms job).
+ * @param[in,out] d   the motor object (valid)
+ * @param[in]     in  temperatures and the received frame (any values)
+ * @param[out]    out status frame and CAN frame to send
+ * Requirements: REQ-DRV-005 .. REQ-DRV-012.
+ */
+/*@
+  requires valid: \valid(d) && \valid_read(in) && \valid(out);
+  requires rx: in->rx_len > 0 ==> \valid_read(in->rx + (0 .. in->rx_len - 1));
+  requires sep: \separated(d, in, out) && \separated(d->p, out) &&
+                (in->rx_len > 0 ==> \separated(d, in->rx + (0 .. in->rx_len - 1)));
+  requires inv: DriveValid(d);
+  assigns d->s, *out;
+  ensures inv: DriveValid(d);
+  ensures tx: out->tx_len == 0 || out->tx_len == QFOC_LIN_STATUS_LEN;
+  ensures error_exit: \old(d->s.sm.state) == QFOC_STATE_ERROR &&
+      d->s.sm.state != QFOC_STATE_ERROR ==> d->s.sm.state == QFOC_STATE_STOP;
+  ensures run_entry: \old(d->s.sm.state) != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>
+      \old(d->s.sm.state) == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN;
+*/
+void qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in, qfoc_tick_out_t *out);
+
+#endif /* QFOC_DRIVE_H */

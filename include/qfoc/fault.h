@@ -1,0 +1,340 @@
+/**
+ * @file fault.h
+ * @brief Fault-detection primitives: the fault word, a debounce counter, the
+ *        phase-loss monitor and threshold compares.
+ *
+ * The document's Fault_Warning_Detect() checks the phase currents, the DC bus and
+ * the temperatures and stops the motor when a fault is present.  This module holds
+ * the pure building blocks; the drive (include/qfoc/drive.h) owns the reactions:
+ *
+ *  - Over-current (QFOC_FAULT_OC) is decided in the fast step, in the same PWM
+ *    period as the sample, without debounce: qfoc_fault_abs_over() on each phase
+ *    current against the trip level.
+ *  - The other faults are decided by the 1 ms tick through a qfoc_debounce_t of
+ *    n ticks each, with n <= 10 for the DC bus and the temperatures, so that every
+ *    fault is reported within 10 ms of its condition becoming true:
+ *    OV = qfoc_fault_over(vdc, ov_level), UV = qfoc_fault_under(vdc, uv_level)
+ *    while running, OT = qfoc_fault_over(temperature, t_max), PHASE =
+ *    qfoc_phase_mon_imbalanced() (its low-pass fed by qfoc_phase_mon_update() in
+ *    the fast step), STALL from the speed and flux errors with
+ *    qfoc_fault_abs_over().
+ *  - A fault sets its bit in the fault word (uint16_t, bits below); the drive
+ *    clears the word only on an explicit fault-clear command.
+ *
+ * All functions are total on every value of their input types.
+ *
+ * Requirements: REQ-FAULT-001 .. REQ-FAULT-006 (specs/requirements/fault.md).
+ */
+#ifndef QFOC_FAULT_H
+#define QFOC_FAULT_H
+
+#include "qfoc/types.h"
+#include "qfoc/filter.h"
+
+/* ---- fault word bits (REQ-FAULT-001) ------------------------------------- */
+#define QFOC_FAULT_OC     ((uint16_t)0x0001u)  /**< phase over-current (fast step) */
+#define QFOC_FAULT_OV     ((uint16_t)0x0002u)  /**< DC-bus over-voltage */
+#define QFOC_FAULT_UV     ((uint16_t)0x0004u)  /**< DC-bus under-voltage (while running) */
+#define QFOC_FAULT_OT_IPM ((uint16_t)0x0008u)  /**< IPM over-temperature */
+#define QFOC_FAULT_OT_PCB ((uint16_t)0x0010u)  /**< PCB over-temperature */
+#define QFOC_FAULT_STALL  ((uint16_t)0x0020u)  /**< stall / loss of synchronisation */
+#define QFOC_FAULT_PHASE  ((uint16_t)0x0040u)  /**< phase loss (current imbalance) */
+#define QFOC_FAULT_OFFSET ((uint16_t)0x0080u)  /**< current-sensor offset out of window */
+#define QFOC_FAULT_LINK   ((uint16_t)0x0100u)  /**< command-link timeout */
+#define QFOC_FAULT_PARAM  ((uint16_t)0x0200u)  /**< parameter table corrupted / invalid */
+#define QFOC_FAULT_ALL    ((uint16_t)0x03FFu)  /**< every fault bit above */
+
+/** Phase-monitor init status: coefficient accepted. */
+#define QFOC_FAULT_OK ((int32_t)0)
+/** Phase-monitor init status: coefficient rejected, safe coefficient used. */
+#define QFOC_FAULT_ERR_PARAM ((int32_t)-1)
+
+/** Debounce counter: consecutive calls with the condition true, capped at n. */
+typedef struct {
+    uint16_t count;  /**< consecutive trues so far, capped at the length n */
+} qfoc_debounce_t;
+
+/** Phase-loss monitor: low-passed |i_u|, |i_v|, |i_w| (index 0, 1, 2). */
+typedef struct {
+    qfoc_lpf_t abs_lpf[3];  /**< filters of the phase-current magnitudes */
+} qfoc_phase_mon_t;
+
+#ifdef __FRAMAC__
+/* ACSL predicates over the types above, read by Frama-C only (DEV-001). */
+/* cppcheck-suppress misra-c2012-20.1 ; DEV-001 */
+#include "fault.acsl"
+#endif
+
+/**
+ * @brief Clear a debounce counter (count 0).
+ * @param[out] d counter
+ *
+ * Used by the drive at start-up and on a fault clear.
+ *
+ * Scaling and overflow: stores only.
+ *
+ * Requirements: REQ-FAULT-002.
+ */
+/*@
+  requires valid_d: \valid(d);
+  assigns d->count;
+  ensures count: d->count == 0;
+*/
+void qfoc_debounce_reset(qfoc_debounce_t *d);
+
+/**
+ * @brief One debounce update: true once `cond` has held for n consecutive calls.
+ * @param[in,out] d    counter (any count value is accepted)
+ * @param[in]     cond the raw condition of this call
+ * @param[in]     n    required number of consecutive calls, 0..65535
+ *                     (0 and 1 both confirm at the first call with cond)
+ * @return cond false: count = 0, false.  cond true: count = min(count + 1, n),
+ *         returns count >= n.
+ *
+ * Semantics (contract `run_length`): if the counter equals min(k, n), where k is
+ * the number of consecutive calls with cond true before this one (true after
+ * qfoc_debounce_reset(), k = 0), then afterwards it equals min(k', n) with k' the
+ * new run length, and the result is true exactly when k' >= max(n, 1): the
+ * condition has held for the last max(n, 1) calls, this one included.
+ *
+ * Drive use: the 1 ms tick, one counter per debounced fault; with n = 10 a fault
+ * is confirmed 10 ms after its condition became true and a single false sample
+ * restarts the count.
+ *
+ * Bad input: a count above n (n lowered between calls, or an uninitialised
+ * counter) is treated as "already confirmed": with cond true the count becomes n
+ * and the result is true.
+ *
+ * Scaling and overflow: count + 1 is only formed when count < n <= 65535, so it
+ * fits 16 bits.
+ *
+ * Requirements: REQ-FAULT-002.
+ */
+/*@
+  requires valid_d: \valid(d);
+  assigns d->count;
+  ensures count: d->count == DebounceNext(\old(d->count), cond != 0, n);
+  ensures capped: d->count <= n;
+  ensures run_length: \forall integer k; k >= 0 && \old(d->count) == FaultMin(k, n) ==>
+            (d->count == ((cond != 0) ? FaultMin(k + 1, n) : 0) &&
+             (\result != 0 <==> (cond != 0 && k + 1 >= n)));
+  behavior released:
+    assumes cond == 0;
+    ensures count: d->count == 0;
+    ensures result: \result == 0;
+  behavior counting:
+    assumes cond != 0 && d->count < n;
+    ensures count: d->count == \old(d->count) + 1;
+    ensures result: \result != 0 <==> d->count == n;
+  behavior confirmed:
+    assumes cond != 0 && d->count >= n;
+    ensures count: d->count == n;
+    ensures result: \result != 0;
+  complete behaviors;
+  disjoint behaviors;
+*/
+bool qfoc_debounce_step(qfoc_debounce_t *d, bool cond, uint16_t n);
+
+/**
+ * @brief Check a phase monitor (run-time twin of PhaseMonValid).
+ * @param[in] m monitor (read only)
+ * @return true when each of the three filters has alpha > 0 and a state in
+ *         [0, 32767 x 65536] (a filtered magnitude is never negative).
+ *
+ * Scaling and overflow: compares only.
+ *
+ * Requirements: REQ-FAULT-004.
+ */
+/*@
+  requires valid_m: \valid_read(m);
+  assigns \nothing;
+  ensures result: \result <==> PhaseMonValid(m);
+*/
+bool qfoc_phase_mon_is_valid(const qfoc_phase_mon_t *m);
+
+/**
+ * @brief Initialise the phase monitor: the three filters get coefficient alpha,
+ *        their outputs are 0.
+ * @param[out] m     monitor
+ * @param[in]  alpha low-pass coefficient 2 pi f_c / f_pwm, Q15, 1..32767
+ *                   (e.g. f_c = 20 Hz at 8 kHz: 2 pi 20 / 8000 x 32768 = 514.7 -> 515)
+ * @return QFOC_FAULT_OK (0), or QFOC_FAULT_ERR_PARAM (-1) when alpha <= 0.
+ *
+ * Bad input: alpha <= 0 is rejected; the filters then use the safe coefficient of
+ * qfoc_lpf_init() (32767: no filtering) and the monitor is still valid.
+ *
+ * Scaling and overflow: stores only.
+ *
+ * Requirements: REQ-FAULT-004.
+ */
+/*@
+  requires valid_m: \valid(m);
+  assigns *m;
+  ensures valid: PhaseMonValid(m);
+  ensures zero: m->abs_lpf[0].state == 0 && m->abs_lpf[1].state == 0 &&
+                m->abs_lpf[2].state == 0;
+  behavior accepted:
+    assumes alpha > 0;
+    ensures result: \result == 0;
+    ensures alpha: m->abs_lpf[0].alpha == alpha && m->abs_lpf[1].alpha == alpha &&
+                   m->abs_lpf[2].alpha == alpha;
+  behavior rejected:
+    assumes alpha <= 0;
+    ensures result: \result == -1;
+    ensures alpha: m->abs_lpf[0].alpha == 32767 && m->abs_lpf[1].alpha == 32767 &&
+                   m->abs_lpf[2].alpha == 32767;
+  complete behaviors;
+  disjoint behaviors;
+*/
+int32_t qfoc_phase_mon_init(qfoc_phase_mon_t *m, qfoc_q15_t alpha);
+
+/**
+ * @brief Set the three filtered magnitudes to 0 (coefficients kept).
+ * @param[in,out] m valid monitor
+ *
+ * Drive use: whenever the inverter is switched on again, so that a stop does not
+ * leave a stale imbalance.
+ *
+ * Scaling and overflow: stores only.
+ *
+ * Requirements: REQ-FAULT-004.
+ */
+/*@
+  requires valid_m: \valid(m);
+  requires m_valid: PhaseMonValid(m);
+  assigns m->abs_lpf[0].state, m->abs_lpf[1].state, m->abs_lpf[2].state;
+  ensures valid: PhaseMonValid(m);
+  ensures zero: m->abs_lpf[0].state == 0 && m->abs_lpf[1].state == 0 &&
+                m->abs_lpf[2].state == 0;
+*/
+void qfoc_phase_mon_reset(qfoc_phase_mon_t *m);
+
+/**
+ * @brief One fast-step update: low-pass |i_u|, |i_v|, |i_w| (document 2-34).
+ * @param[in,out] m valid monitor
+ * @param[in]     i phase currents, Q15 of I_base, any int16_t (|-32768| is
+ *                  saturated to 32767)
+ *
+ * Each filter computes y(k+1) = y(k) + alpha (|i_x(k)| - y(k)) with the semantics
+ * of qfoc_lpf_step(): the filtered magnitude of a sinusoidal phase current of
+ * amplitude A settles at its mean 2 A / pi, with a ripple at twice the electrical
+ * frequency reduced by the filter.
+ *
+ * Drive use: every PWM period with the measured phase currents.
+ *
+ * Scaling and overflow: |i| in [0, 32767] (Q15); the filter states stay between
+ * their old value and the new input (qfoc_lpf_step contract `between`), hence in
+ * [0, 32767 x 65536] (Q31): the invariant holds after the call.
+ *
+ * Requirements: REQ-FAULT-003.
+ */
+/*@
+  requires valid_m: \valid(m);
+  requires valid_i: \valid_read(i);
+  requires sep: \separated(m, i);
+  requires m_valid: PhaseMonValid(m);
+  assigns m->abs_lpf[0].state, m->abs_lpf[1].state, m->abs_lpf[2].state;
+  ensures valid: PhaseMonValid(m);
+  ensures state_u: m->abs_lpf[0].state ==
+                   LpfNext(\old(m->abs_lpf[0].state), FaultAbs15(i->u), m->abs_lpf[0].alpha);
+  ensures state_v: m->abs_lpf[1].state ==
+                   LpfNext(\old(m->abs_lpf[1].state), FaultAbs15(i->v), m->abs_lpf[1].alpha);
+  ensures state_w: m->abs_lpf[2].state ==
+                   LpfNext(\old(m->abs_lpf[2].state), FaultAbs15(i->w), m->abs_lpf[2].alpha);
+*/
+void qfoc_phase_mon_update(qfoc_phase_mon_t *m, const qfoc_abc_t *i);
+
+/**
+ * @brief Phase-loss criterion on the filtered magnitudes.
+ * @param[in] m     valid monitor
+ * @param[in] i_min smallest largest-magnitude at which the check applies, Q15 of
+ *                  I_base (below it the motor carries too little current to
+ *                  judge; 1..32767 in use, any int16_t accepted)
+ * @param[in] ratio imbalance ratio, Q15 (0..32767 in use; e.g. 0.25 = 8192)
+ * @return with a_x = filtered |i_x| in Q15 (the filter state rounded to nearest),
+ *         max = largest, min = smallest: true when max >= i_min and
+ *         min < ratio / 32768 x max (compared exactly, no rounding).
+ *
+ * A lost phase carries no current: its filtered magnitude decays to 0 while the
+ * two others carry the full current, so min / max drops toward 0.  In a healthy
+ * machine the three magnitudes are equal (min / max near 1).  With max = 0 the
+ * result is false (0 < 0 fails), so a motor at rest never reports a phase loss.
+ *
+ * Bad input: ratio <= 0 never reports (min >= 0); i_min <= 0 applies the check at
+ * any current.
+ *
+ * Drive use: the 1 ms tick, as the condition of a debounce counter (phase_ms).
+ *
+ * Scaling and overflow: a_x in [0, 32767] (from the invariant); min x 32768 <=
+ * 32767 x 32768 < 2^31 and |ratio x max| <= 32768 x 32767 < 2^31: both products
+ * are exact in 32 bits.
+ *
+ * Requirements: REQ-FAULT-005.
+ */
+/*@
+  requires valid_m: \valid_read(m);
+  requires m_valid: PhaseMonValid(m);
+  assigns \nothing;
+  ensures result: \result != 0 <==> PhaseMonImbalanced(m, i_min, ratio);
+*/
+bool qfoc_phase_mon_imbalanced(const qfoc_phase_mon_t *m, qfoc_q15_t i_min, qfoc_q15_t ratio);
+
+/**
+ * @brief Over-threshold compare: x > limit.
+ * @param[in] x     measured value, Q15 (or any int16_t scaling shared with limit)
+ * @param[in] limit trip level in the same scaling
+ * @return true when x > limit.
+ *
+ * Drive use (1 ms tick): DC-bus over-voltage, IPM and PCB over-temperature
+ * (temperatures in 0.1 degC).
+ *
+ * Scaling and overflow: compares only.
+ *
+ * Requirements: REQ-FAULT-006.
+ */
+/*@
+  assigns \nothing;
+  ensures result: \result != 0 <==> x > limit;
+*/
+bool qfoc_fault_over(qfoc_q15_t x, qfoc_q15_t limit);
+
+/**
+ * @brief Under-threshold compare: x < limit.
+ * @param[in] x     measured value
+ * @param[in] limit trip level in the same scaling
+ * @return true when x < limit.
+ *
+ * Drive use (1 ms tick): DC-bus under-voltage while running.
+ *
+ * Scaling and overflow: compares only.
+ *
+ * Requirements: REQ-FAULT-006.
+ */
+/*@
+  assigns \nothing;
+  ensures result: \result != 0 <==> x < limit;
+*/
+bool qfoc_fault_under(qfoc_q15_t x, qfoc_q15_t limit);
+
+/**
+ * @brief Magnitude compare: |x| > limit, exact for x = -32768 (|x| = 32768).
+ * @param[in] x     signed measured value, Q15, any int16_t
+ * @param[in] limit trip level in the same scaling (a negative limit always trips)
+ * @return true when |x| > limit.
+ *
+ * Drive use: phase over-current in the fast step, in the same PWM period as the
+ * sample and without debounce (each of i_u, i_v, i_w against the trip current);
+ * stall detection (|speed error|, |flux error|) in the tick.
+ *
+ * Scaling and overflow: |x| is formed in 32 bits (0..32768), so -32768 is not
+ * saturated and a full-scale negative current trips every limit up to 32767.
+ *
+ * Requirements: REQ-FAULT-006.
+ */
+/*@
+  assigns \nothing;
+  ensures result: \result != 0 <==> \abs(x) > limit;
+*/
+bool qfoc_fault_abs_over(qfoc_q15_t x, qfoc_q15_t limit);
+
+#endif /* QFOC_FAULT_H */

@@ -1,0 +1,2 @@
+SRCS = src/qfoc_fault.c src/qfoc_filter.c
+UNWIND = 13

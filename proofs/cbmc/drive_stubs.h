@@ -1,0 +1,166 @@
+/*
+ * Stubs of the signal-processing functions for the drive harnesses (drive_sm,
+ * drive_frame): each returns ANY value its proved contract allows (ranges only), so the
+ * drive's control logic is checked whatever the control computes.  Installed with
+ * goto-instrument --replace-calls (the harnesses' config.mk).
+ */
+#ifndef QFOC_DRIVE_STUBS_H
+#define QFOC_DRIVE_STUBS_H
+
+#include "qfoc/drive.h"
+#include "harness_util.h"
+
+/* DRIVE_STUBS_PURE (drive_frame): every stub returns values fixed once per run by
+   stubs_fix(), the same for every call, so two runs from the same state compute the same
+   things (the stubs are then arbitrary but deterministic functions).  Otherwise every
+   call returns fresh values. */
+#ifdef DRIVE_STUBS_PURE
+static int16_t g_s16[4];
+static uint16_t g_u16[4];
+static uint8_t g_u8;
+static bool g_b[2];
+static void stubs_fix(void)
+{
+    unsigned k;
+    for (k = 0u; k < 4u; k++) {
+        g_s16[k] = nondet_int16();
+        g_u16[k] = nondet_uint16();
+    }
+    g_u8 = nondet_uint8();
+    g_b[0] = nondet_bool();
+    g_b[1] = nondet_bool();
+}
+#define ANY_S16(k) (g_s16[(k)])
+#define ANY_U16(k) (g_u16[(k)])
+#define ANY_U8() (g_u8)
+#define ANY_B(k) (g_b[(k)])
+#else
+#define ANY_S16(k) nondet_int16()
+#define ANY_U16(k) nondet_uint16()
+#define ANY_U8() nondet_uint8()
+#define ANY_B(k) nondet_bool()
+#endif
+
+
+void stub_flux_step(qfoc_flux_t *o, const qfoc_ab_t *u, const qfoc_ab_t *i, qfoc_ab_t *psi_r)
+{
+    (void)o; (void)u; (void)i;
+    psi_r->alpha = ANY_S16(0);
+    psi_r->beta = ANY_S16(1);
+    __CPROVER_assume(psi_r->alpha >= -32767 && psi_r->beta >= -32767);
+}
+void stub_pll_step(qfoc_pll_t *pll, const qfoc_ab_t *psi, qfoc_pll_out_t *out)
+{
+    (void)pll; (void)psi;
+    out->theta = ANY_U16(0);
+    out->theta_next = ANY_U16(1);
+    out->sc.sine = ANY_S16(2);
+    out->sc.cosine = ANY_S16(3);
+    out->speed = ANY_S16(0);
+    out->speed_f = ANY_S16(1);
+    out->error = ANY_S16(2);
+    out->mag = ANY_S16(3);
+    __CPROVER_assume(out->speed >= -32767 && out->speed_f >= -32767 && out->mag >= 0);
+}
+qfoc_angle_t stub_flux_lead(const qfoc_flux_t *o, qfoc_q15_t w) { (void)o; (void)w; return ANY_U16(2); }
+void stub_sincos(qfoc_angle_t theta, qfoc_sincos_t *out)
+{
+    (void)theta;
+    out->sine = ANY_S16(0);
+    out->cosine = ANY_S16(1);
+    __CPROVER_assume(out->sine >= -32767 && out->cosine >= -32767);
+}
+void stub_park(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
+{
+    (void)in; (void)sc;
+    out->d = ANY_S16(2);
+    out->q = ANY_S16(3);
+    __CPROVER_assume(out->d >= -32767 && out->q >= -32767);
+}
+void stub_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out)
+{
+    (void)iu; (void)iv;
+    out->alpha = ANY_S16(0);
+    out->beta = ANY_S16(1);
+    __CPROVER_assume(out->alpha >= -32767 && out->beta >= -32767);
+}
+void stub_inv_park(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *out)
+{
+    (void)in; (void)sc;
+    out->alpha = ANY_S16(2);
+    out->beta = ANY_S16(3);
+    __CPROVER_assume(out->alpha >= -32767 && out->beta >= -32767);
+}
+void stub_svpwm_step(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q15_t vdc,
+                     const qfoc_abc_t *i_abc, qfoc_svpwm_out_t *out)
+{
+    (void)v_ab; (void)vdc; (void)i_abc;
+    out->cmp[0] = ANY_U16(3);
+    out->cmp[1] = ANY_U16(0);
+    out->cmp[2] = ANY_U16(1);
+    __CPROVER_assume(out->cmp[0] <= cfg->period && out->cmp[1] <= cfg->period &&
+                     out->cmp[2] <= cfg->period);
+    out->sector = ANY_U8();
+    out->utilisation = ANY_S16(0);
+    __CPROVER_assume(out->utilisation >= 0);
+    out->limited = ANY_B(0);
+    out->vdc_low = ANY_B(1);
+}
+bool stub_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
+{
+    (void)in; (void)vmax;
+    out->d = ANY_S16(1);
+    out->q = ANY_S16(2);
+    __CPROVER_assume(out->d >= -32767 && out->q >= -32767);
+    return ANY_B(0);
+}
+qfoc_q15_t stub_pi_step(qfoc_pi_t *pi, qfoc_q15_t error)
+{
+    const qfoc_q15_t y = ANY_S16(3);
+    (void)error;
+    __CPROVER_assume(pi->params.out_min <= y && y <= pi->params.out_max);
+    return y;
+}
+void stub_pi_reset(qfoc_pi_t *pi, qfoc_q15_t preset) { (void)pi; (void)preset; }
+qfoc_q15_t stub_fw_step(qfoc_fw_t *fw, qfoc_q15_t u, bool enable)
+{
+    const qfoc_q15_t y = ANY_S16(0);
+    (void)fw; (void)u;
+    __CPROVER_assume(enable ? (y <= 0 && y >= -16384) : (y == 0));
+    return y;
+}
+void stub_fw_reset(qfoc_fw_t *fw) { (void)fw; }
+qfoc_q15_t stub_lpf_step(qfoc_lpf_t *f, qfoc_q15_t u)
+{
+    const qfoc_q15_t y = ANY_S16(1);
+    (void)f; (void)u;
+    __CPROVER_assume(y >= -32767);
+    return y;
+}
+qfoc_q15_t stub_tc_output(const qfoc_trqcomp_t *tc, qfoc_angle_t t, qfoc_q15_t w)
+{
+    const qfoc_q15_t y = ANY_S16(2);
+    (void)tc; (void)t; (void)w;
+    __CPROVER_assume(y >= -32767);
+    return y;
+}
+void stub_tc_learn(qfoc_trqcomp_t *tc, qfoc_angle_t t, qfoc_q15_t e, qfoc_q15_t w) { (void)tc; (void)t; (void)e; (void)w; }
+void stub_tc_reset(qfoc_trqcomp_t *tc) { (void)tc; }
+qfoc_angle_t stub_mech_update(qfoc_mech_t *m, qfoc_angle_t t) { (void)m; (void)t; return ANY_U16(2); }
+int32_t stub_mech_init(qfoc_mech_t *m, uint8_t pp, qfoc_angle_t t) { (void)m; (void)pp; (void)t; return 0; }
+void stub_pm_update(qfoc_phase_mon_t *m, const qfoc_abc_t *i) { (void)m; (void)i; }
+void stub_pm_reset(qfoc_phase_mon_t *m) { (void)m; }
+bool stub_pm_imbalanced(const qfoc_phase_mon_t *m, qfoc_q15_t a, qfoc_q15_t b) { (void)m; (void)a; (void)b; return ANY_B(1); }
+int32_t stub_params_check(const qfoc_param_table_t *t) { (void)t; return ANY_B(0) ? QFOC_PARAMS_OK : QFOC_PARAMS_ERR_CRC; }
+qfoc_q15_t stub_vec_mag(qfoc_q15_t x, qfoc_q15_t y)
+{
+    const qfoc_q15_t m = ANY_S16(3);
+    (void)x; (void)y;
+    __CPROVER_assume(m >= 0);
+    return m;
+}
+void stub_flux_reset(qfoc_flux_t *o, const qfoc_ab_t *p, const qfoc_ab_t *i) { (void)o; (void)p; (void)i; }
+void stub_pll_reset(qfoc_pll_t *pll, qfoc_angle_t t, qfoc_q15_t w) { (void)pll; (void)t; (void)w; }
+
+
+#endif /* QFOC_DRIVE_STUBS_H */

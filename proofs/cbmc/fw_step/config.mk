@@ -1,0 +1,2 @@
+SRCS = src/qfoc_fw.c src/qfoc_pi.c src/qfoc_filter.c
+UNWIND = 1

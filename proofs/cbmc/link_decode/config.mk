@@ -1,0 +1,2 @@
+SRCS = src/qfoc_link.c
+UNWIND = 13

@@ -1,0 +1,2 @@
+SRCS = src/qfoc_trqcomp.c
+UNWIND = 17

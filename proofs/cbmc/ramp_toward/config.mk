@@ -1,0 +1,2 @@
+SRCS = src/qfoc_ramp.c
+UNWIND = 1

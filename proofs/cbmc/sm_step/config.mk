@@ -1,0 +1,2 @@
+SRCS = src/qfoc_sm.c
+UNWIND = 41

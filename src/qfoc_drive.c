@@ -1,0 +1,994 @@
+/**
+ * @file qfoc_drive.c
+ * @brief The compressor drive (drive.h): fast step, 1 ms tick, 100 ms job.
+ *
+ * Every value read from the parameter table is used through saturating arithmetic
+ * or an explicit bound, so the two entry points are free of undefined behaviour for
+ * any table content; the table's own check (qfoc_params_check) decides whether the
+ * drive may run.
+ */
+#include "qfoc/drive.h"
+#include "qfoc/q15.h"
+#include "qfoc/trig.h"
+#include "qfoc/transforms.h"
+#include "qfoc/vector.h"
+#include "qfoc/ramp.h"
+
+/** 1 / sqrt(3) in Q15: 0.57735 x 32768 = 18918.6 -> 18919. */
+#define DRV_INV_SQRT3 ((qfoc_q15_t)18919)
+/** ADC code to Q15 current: 2048 codes = I_base, so x 16. */
+#define DRV_I_PER_CODE ((int32_t)16)
+/** ADC code to Q15 DC bus: 4096 codes = V_base, so x 8. */
+#define DRV_V_PER_CODE ((int32_t)8)
+/** Largest offset-calibration shift (2^10 samples). */
+#define DRV_OFFSET_SHIFT_MAX ((uint8_t)10u)
+/** The 100 ms job runs when ms100 reaches this (first run 100 ms after init). */
+#define DRV_MS100_LAST ((uint8_t)99u)
+/** A quarter turn, 90 electrical degrees, in angle units. */
+#define DRV_QUARTER_TURN ((int32_t)16384)
+/** motorParaChange hysteresis: switch back below para_speed x 15/16. */
+#define DRV_HS_HYST_DIV ((int32_t)16)
+
+/* ================================================================== helpers */
+
+/*@
+  assigns \nothing;
+  ensures range: 0 <= \result <= 4095;
+  ensures value: \result == ((code <= 4095) ? code : 4095);
+*/
+static uint16_t drv_adc12(uint16_t code)
+{
+    uint16_t c = code;
+    if (c > QFOC_ADC_MAX) {
+        c = QFOC_ADC_MAX;
+    } else {
+        /* a 12-bit code */
+    }
+    return c;
+}
+
+/* Phase current from an ADC code and its offset: (code - offset) x 16, saturated. */
+/*@
+  assigns \nothing;
+  ensures range: -32767 <= \result <= 32767;
+  ensures value: \result == DrvCurrent(code, offset);
+*/
+static qfoc_q15_t drv_current(uint16_t code, uint16_t offset)
+{
+    const int32_t c = (int32_t)drv_adc12(code);
+    const int32_t o = (int32_t)drv_adc12(offset);
+    return qfoc_q15_sat((c - o) * DRV_I_PER_CODE);
+}
+
+/* Modular add of a non-negative increment to a 2^32-per-turn angle. */
+/*@
+  assigns \nothing;
+  ensures wrap: \result == (acc + inc) % 4294967296;
+*/
+static uint32_t drv_angle_add(uint32_t acc, uint32_t inc)
+{
+    const uint32_t room = 0xFFFFFFFFu - acc;
+    uint32_t r;
+    if (inc <= room) {
+        r = acc + inc;
+    } else {
+        r = inc - room - 1u;
+    }
+    return r;
+}
+
+/* theta + delta modulo one turn (delta any int32 in +-65536). */
+/*@
+  requires d: -65536 <= delta <= 65536;
+  assigns \nothing;
+*/
+static qfoc_angle_t drv_angle_shift(qfoc_angle_t theta, int32_t delta)
+{
+    const int32_t t = (int32_t)theta + delta + 65536;
+    const uint32_t s = (uint32_t)t & 0xFFFFu;
+    return (qfoc_angle_t)s;
+}
+
+/* Signed difference a - b of two angles, in (-32768, 32767]. */
+/*@
+  assigns \nothing;
+  ensures range: -32768 <= \result <= 32767;
+*/
+static int32_t drv_angle_diff(qfoc_angle_t a, qfoc_angle_t b)
+{
+    int32_t d = (int32_t)a - (int32_t)b;
+    if (d > 32767) {
+        d -= 65536;
+    } else if (d < -32768) {
+        d += 65536;
+    } else {
+        /* in range */
+    }
+    return d;
+}
+
+/* Angle advance of one sample at speed w: w x k_theta / 65536 (65536 per turn). */
+/*@
+  assigns \nothing;
+  ensures range: -16384 <= \result <= 16384;
+*/
+static int32_t drv_advance(qfoc_q15_t w, uint16_t k_theta)
+{
+    const int32_t k = (k_theta > 32767u) ? (int32_t)32767 : (int32_t)k_theta;
+    const int32_t ws = (int32_t)qfoc_q15_sat((int32_t)w);
+    return (ws * k) / 65536;
+}
+
+/* L (Q12) x i (Q15) -> Q15 flux, saturated. */
+/*@
+  assigns \nothing;
+  ensures range: -32767 <= \result <= 32767;
+*/
+static qfoc_q15_t drv_li(int16_t l, qfoc_q15_t i)
+{
+    return qfoc_q15_sat(((int32_t)l * (int32_t)i) / 4096);
+}
+
+/* ================================================================== fast step */
+
+/*@
+  requires valid: \valid(out);
+  assigns *out;
+  ensures off: out->enable == \false;
+  ensures cmp: out->cmp[0] == 0 && out->cmp[1] == 0 && out->cmp[2] == 0;
+*/
+static void drv_pwm_off(qfoc_pwm_t *out)
+{
+    out->cmp[0] = 0u;
+    out->cmp[1] = 0u;
+    out->cmp[2] = 0u;
+    out->enable = false;
+}
+
+/*@
+  requires valid: \valid_read(i);
+  assigns \nothing;
+  ensures result: \result <==> (DrvAbsOver(i->u, limit) || DrvAbsOver(i->v, limit) ||
+                                DrvAbsOver(i->w, limit));
+*/
+static bool drv_overcurrent(const qfoc_abc_t *i, qfoc_q15_t limit)
+{
+    const bool ou = qfoc_fault_abs_over(i->u, limit);
+    const bool ov = qfoc_fault_abs_over(i->v, limit);
+    const bool ow = qfoc_fault_abs_over(i->w, limit);
+    return ou || ov || ow;
+}
+
+/* Reset of the fast-step controllers when the control (re)starts. */
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  requires inv: DriveFastValid(f);
+  assigns f->flux.psi_alpha, f->flux.psi_beta, f->flux.i_prev, f->pll.pi.integ,
+          f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed,
+          f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited,
+          f->fw, f->phase, f->mech, f->u_last, f->u_applied, f->theta_ol, f->id_fw;
+  ensures inv: DriveFastValid(f);
+*/
+static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+{
+    const qfoc_ab_t zero = { 0, 0 };
+    qfoc_flux_reset(&f->flux, &zero, &zero);
+    qfoc_pll_reset(&f->pll, 0u, 0);
+    qfoc_pi_reset(&f->pi_id, 0);
+    qfoc_pi_reset(&f->pi_iq, 0);
+    qfoc_fw_reset(&f->fw);
+    qfoc_phase_mon_reset(&f->phase);
+    (void)qfoc_mech_init(&f->mech, p->drive.pole_pairs, 0u);
+    f->u_last = zero;
+    f->u_applied = zero;
+    f->theta_ol = 0u;
+    f->id_fw = 0;
+}
+
+/* Estimator: flux observer and PLL on this period's currents and the voltage applied
+   during the period that ended at this sample. */
+/*@
+  requires valid: \valid(f) && \valid_read(i_ab);
+  requires sep: \separated(f, i_ab);
+  requires inv: DriveFastValid(f);
+  assigns f->flux.psi_alpha, f->flux.psi_beta, f->flux.i_prev, f->pll.pi.integ,
+          f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed,
+          f->theta_est, f->speed, f->speed_f, f->psi_mag;
+  ensures inv: DriveFastValid(f);
+*/
+static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab)
+{
+    qfoc_ab_t psi;
+    qfoc_pll_out_t po;
+    qfoc_angle_t lead;
+    qfoc_flux_step(&f->flux, &f->u_applied, i_ab, &psi);
+    qfoc_pll_step(&f->pll, &psi, &po);
+    lead = qfoc_flux_lead(&f->flux, po.speed_f);
+    f->theta_est = drv_angle_shift(po.theta, -(int32_t)lead);
+    f->speed = po.speed;
+    f->speed_f = po.speed_f;
+    f->psi_mag = po.mag;
+}
+
+/* Current references of the sub-state (REQ-DRV-006). */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p) && \valid(ref);
+  requires sep: \separated(ref, d) && \separated(ref, d->p);
+  requires tc: TcValid(&d->s.tc);
+  assigns *ref;
+  ensures id: -32767 <= ref->d <= 32767;
+  ensures iq: -32767 <= ref->q <= 32767;
+*/
+static void drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_dq_t *ref)
+{
+    const qfoc_q15_t i_max = qfoc_q15_abs(d->p->i_max);
+    if (sub == QFOC_SUB_ALIGN) {
+        ref->d = qfoc_q15_sat((int32_t)d->s.id_ref);
+        ref->q = 0;
+    } else if (sub == QFOC_SUB_OPEN_LOOP) {
+        ref->d = 0;
+        ref->q = qfoc_q15_sat((int32_t)d->s.iq_ref);
+    } else {
+        const qfoc_q15_t ff = qfoc_trqcomp_output(&d->s.tc, d->f.theta_m, d->f.speed_f);
+        const int32_t q = (int32_t)d->s.iq_ref + (int32_t)ff;
+        ref->d = qfoc_q15_sat((int32_t)d->f.id_fw);
+        if (q > (int32_t)i_max) {
+            ref->q = i_max;
+        } else if (q < -(int32_t)i_max) {
+            ref->q = (qfoc_q15_t)(-i_max);
+        } else {
+            ref->q = (qfoc_q15_t)q;
+        }
+    }
+}
+
+/* Current PIs with the decoupling feed-forward, then the voltage circle limit. */
+/*@
+  requires valid: \valid(f) && \valid_read(p) && \valid_read(ref) && \valid(v);
+  requires sep: \separated(f, p, ref, v);
+  requires inv: DriveFastValid(f);
+  assigns f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited, *v;
+  ensures inv: DriveFastValid(f);
+*/
+static void drv_current_loop(qfoc_drive_fast_t *f, const qfoc_param_table_t *p,
+                             const qfoc_dq_t *ref, qfoc_q15_t w, qfoc_dq_t *v)
+{
+    const int16_t ld = f->hs ? p->drive.ld_hs : p->ld;
+    const int16_t lq = f->hs ? p->drive.lq_hs : p->lq;
+    /* decoupling (rotor frame): u_d -= w L_q i_q, u_q += w (L_d i_d + psi_f) */
+    const qfoc_q15_t psi_d = qfoc_q15_add(drv_li(ld, f->i_dq.d), p->psi_f);
+    const qfoc_q15_t ff_d = qfoc_q15_neg(qfoc_q15_mul(w, drv_li(lq, f->i_dq.q)));
+    const qfoc_q15_t ff_q = qfoc_q15_mul(w, psi_d);
+    const qfoc_q15_t pi_d = qfoc_pi_step(&f->pi_id, qfoc_q15_sub(ref->d, f->i_dq.d));
+    const qfoc_q15_t pi_q = qfoc_pi_step(&f->pi_iq, qfoc_q15_sub(ref->q, f->i_dq.q));
+    /* the linear SVPWM range: |v| <= V_dc / sqrt 3; field weakening keeps the
+       utilisation at fw_level below it, leaving the current loop its headroom */
+    const qfoc_q15_t v_lim = qfoc_q15_mul(f->vdc, DRV_INV_SQRT3);
+    qfoc_dq_t raw;
+    raw.d = qfoc_q15_add(pi_d, ff_d);
+    raw.q = qfoc_q15_add(pi_q, ff_q);
+    (void)qfoc_circle_limit(&raw, qfoc_q15_abs(v_lim), v);
+}
+
+/* The control of one period in RUN (REQ-DRV-006). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(i_abc) && \valid(out);
+  requires sep: \separated(&d->f, d->p, i_abc, out) && \separated(&d->s, out);
+  requires inv: DriveFastValid(&d->f) && TcValid(&d->s.tc);
+  assigns d->f, *out;
+  ensures inv: DriveFastValid(&d->f);
+  ensures cmp: out->cmp[0] <= d->p->svpwm.period && out->cmp[1] <= d->p->svpwm.period &&
+               out->cmp[2] <= d->p->svpwm.period;
+*/
+static void drv_control(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, qfoc_pwm_t *out)
+{
+    qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    qfoc_ab_t i_ab;
+    qfoc_angle_t theta;
+    qfoc_q15_t w;
+    qfoc_sincos_t sc;
+    qfoc_dq_t ref;
+    qfoc_dq_t v_dq;
+    qfoc_ab_t v_ab;
+    qfoc_svpwm_out_t sv;
+    bool fw_on;
+
+    qfoc_clarke(i_abc->u, i_abc->v, &i_ab);
+    drv_estimate(f, &i_ab);
+    /* control angle and speed of the sub-state */
+    if (sub == QFOC_SUB_ALIGN) {
+        theta = 0u;
+        w = 0;
+    } else if (sub == QFOC_SUB_OPEN_LOOP) {
+        theta = (qfoc_angle_t)(f->theta_ol / 65536u);
+        w = qfoc_q15_sat((int32_t)d->s.ol_speed);
+    } else {
+        theta = f->theta_est;
+        w = f->speed_f;
+    }
+    qfoc_sincos(theta, &sc);
+    qfoc_park(&i_ab, &sc, &f->i_dq);
+    drv_references(d, sub, &ref);
+    drv_current_loop(f, p, &ref, w, &v_dq);
+    /* the command acts from the next period on, on average 1.5 periods later */
+    {
+        const int32_t adv = drv_advance(w, p->pll.k_theta);
+        qfoc_sincos(drv_angle_shift(theta, adv + (adv / 2)), &sc);
+    }
+    qfoc_inv_park(&v_dq, &sc, &v_ab);
+    qfoc_svpwm_step(&p->svpwm, &v_ab, f->vdc, i_abc, &sv);
+    out->cmp[0] = sv.cmp[0];
+    out->cmp[1] = sv.cmp[1];
+    out->cmp[2] = sv.cmp[2];
+    out->enable = true;
+    f->utilisation = sv.utilisation;
+    /* field weakening from the utilisation (document FireldWeakeningControl) */
+    fw_on = (sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING);
+    f->id_fw = qfoc_fw_step(&f->fw, sv.utilisation, fw_on);
+    /* voltage history for the observer: this command is applied during the next period */
+    f->u_applied = f->u_last;
+    f->u_last = v_ab;
+    /* open-loop angle, mechanical angle, phase monitor */
+    if (sub == QFOC_SUB_OPEN_LOOP) {
+        const int32_t wol = (d->s.ol_speed > 0) ? (int32_t)d->s.ol_speed : (int32_t)0;
+        const int32_t k = (p->pll.k_theta > 32767u) ? (int32_t)32767 : (int32_t)p->pll.k_theta;
+        const int32_t inc = wol * k;
+        f->theta_ol = drv_angle_add(f->theta_ol, (uint32_t)inc);
+    } else {
+        /* the open-loop frame stands still outside OPEN_LOOP */
+    }
+    f->theta_m = qfoc_mech_update(&f->mech, f->theta_est);
+    qfoc_phase_mon_update(&f->phase, i_abc);
+}
+
+void qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_pwm_t *out)
+{
+    qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    const uint8_t state = d->s.sm.state;
+    const uint8_t sub = d->s.sm.sub;
+    const uint8_t clear_seq = d->s.clear_seq;
+    qfoc_abc_t i_abc;
+    bool oc;
+
+    /* measurement */
+    f->adc_iu = drv_adc12(adc->iu);
+    f->adc_iv = drv_adc12(adc->iv);
+    i_abc.u = drv_current(adc->iu, d->s.offset_u);
+    i_abc.v = drv_current(adc->iv, d->s.offset_v);
+    i_abc.w = qfoc_q15_sat(-((int32_t)i_abc.u + (int32_t)i_abc.v));
+    f->vdc = qfoc_lpf_step(&f->vdc_lpf,
+                           (qfoc_q15_t)((int32_t)drv_adc12(adc->vdc) * DRV_V_PER_CODE));
+    /* over-current: PWM off in this period, latched until a fault clear (REQ-DRV-003) */
+    oc = drv_overcurrent(&i_abc, p->i_trip);
+    if (oc) {
+        f->trip = true;
+        f->trip_count = (uint8_t)(((uint32_t)f->trip_count + 1u) & 0xFFu);
+    } else if (f->trip && (f->clear_ack != clear_seq)) {
+        f->trip = false;
+        f->clear_ack = clear_seq;
+    } else {
+        f->clear_ack = clear_seq;
+    }
+    if (f->hs != d->s.hs) {
+        /* motorParaChange: the observer's inductance follows the decoupling set */
+        const int16_t l = d->s.hs ? p->drive.lq_hs : p->lq;
+        f->hs = d->s.hs;
+        f->flux.params.l = (l > 0) ? l : (int16_t)0;
+    } else {
+        /* same inductance set */
+    }
+    if ((state == QFOC_STATE_RUN) && !f->trip) {
+        if (!f->active) {
+            drv_fast_restart(f, p);
+        } else {
+            /* running on */
+        }
+        drv_control(d, sub, &i_abc, out);
+        f->active = true;
+    } else {
+        drv_pwm_off(out);
+        f->active = false;
+        f->i_dq.d = 0;
+        f->i_dq.q = 0;
+        f->utilisation = 0;
+    }
+}
+
+/* ================================================================== tick */
+
+/* Target speed: mechanical rpm to Q15 electrical, (rpm k_rpm + 2048) / 4096, at most
+   speed_max (REQ-DRV-009). */
+/*@
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+*/
+static qfoc_q15_t drv_rpm_to_speed(uint16_t rpm, uint16_t k_rpm, qfoc_q15_t speed_max)
+{
+    const uint32_t s = (((uint32_t)rpm * (uint32_t)k_rpm) + 2048u) / 4096u;
+    const int32_t smax = (speed_max > 0) ? (int32_t)speed_max : (int32_t)0;
+    int32_t r = (s > 32767u) ? (int32_t)32767 : (int32_t)s;
+    if (r > smax) {
+        r = smax;
+    } else {
+        /* within the limit */
+    }
+    return (qfoc_q15_t)r;
+}
+
+/* |speed| in mechanical rpm: |speed| k_speed_rpm / 32768, saturated to 65535. */
+/*@
+  assigns \nothing;
+*/
+static uint16_t drv_speed_to_rpm(qfoc_q15_t speed, uint16_t k_speed_rpm)
+{
+    const uint32_t a = (uint32_t)qfoc_q15_abs(speed);
+    const uint32_t r = (a * (uint32_t)k_speed_rpm) / 32768u;
+    return (r > 65535u) ? (uint16_t)65535u : (uint16_t)r;
+}
+
+/* Offset calibration in PRECHARGE / CALIB (document Int_AD_GetPhaseCurrent, REQ-DRV-007):
+   one sample of each channel per tick, 2^offset_shift samples averaged, each offset
+   within offset_window of 2048.  Returns the OFFSET fault bit or 0. */
+/*@
+  requires valid: \valid(s) && \valid_read(f) && \valid_read(c);
+  requires sep: \separated(s, f, c);
+  assigns s->off_sum_u, s->off_sum_v, s->off_n, s->offset_u, s->offset_v, s->calib_done;
+  ensures offsets: s->offset_u <= 4095 && s->offset_v <= 4095;
+  ensures result: \result == 0 || \result == QFOC_FAULT_OFFSET;
+*/
+static uint16_t drv_calibrate(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
+                              const qfoc_drive_cfg_t *c, bool calibrating)
+{
+    uint16_t fault = 0u;
+    const uint8_t shift = (c->offset_shift > DRV_OFFSET_SHIFT_MAX) ? DRV_OFFSET_SHIFT_MAX
+                                                                   : c->offset_shift;
+    const uint32_t n32 = (uint32_t)1u << shift;
+    const uint16_t n = (uint16_t)n32;
+    if (!calibrating) {
+        s->off_sum_u = 0u;
+        s->off_sum_v = 0u;
+        s->off_n = 0u;
+    } else if (s->off_n < n) {
+        /*@ assert sums: s->off_sum_u <= 4095 * 1024 && s->off_sum_v <= 4095 * 1024; */
+        s->off_sum_u += (uint32_t)drv_adc12(f->adc_iu);
+        s->off_sum_v += (uint32_t)drv_adc12(f->adc_iv);
+        s->off_n = (uint16_t)(s->off_n + 1u);
+        if (s->off_n == n) {
+            const uint32_t mu = s->off_sum_u >> shift;
+            const uint32_t mv = s->off_sum_v >> shift;
+            const uint16_t ou = (mu > 4095u) ? QFOC_ADC_MAX : (uint16_t)mu;
+            const uint16_t ov = (mv > 4095u) ? QFOC_ADC_MAX : (uint16_t)mv;
+            const int32_t du = (int32_t)ou - (int32_t)QFOC_ADC_MID;
+            const int32_t dv = (int32_t)ov - (int32_t)QFOC_ADC_MID;
+            const int32_t win = (int32_t)c->offset_window;
+            if ((du > win) || (du < -win) || (dv > win) || (dv < -win)) {
+                fault = QFOC_FAULT_OFFSET;
+            } else {
+                s->offset_u = ou;
+                s->offset_v = ov;
+                s->calib_done = true;
+            }
+        } else {
+            /* collecting */
+        }
+    } else {
+        /* done */
+    }
+    s->offset_u = drv_adc12(s->offset_u);
+    s->offset_v = drv_adc12(s->offset_v);
+    return fault;
+}
+
+/* Tick-evaluated faults (fault.h; reaction times in drive.h, REQ-DRV-008). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
+  requires sep: \separated(&d->s, d->p, in);
+  assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall,
+          d->s.db_phase, d->s.trip_seen;
+  ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET;
+*/
+static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const uint8_t st = s->sm.state;
+    const uint8_t sub = s->sm.sub;
+    const bool run = (st == QFOC_STATE_RUN);
+    const bool rotating = run && (sub != QFOC_SUB_ALIGN);
+    const bool closed = run && ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
+    const uint8_t trips = f->trip_count;
+    uint16_t w = 0u;
+    bool stall;
+    /* over-current, detected by the fast step */
+    if (trips != s->trip_seen) {
+        w = (uint16_t)(w + QFOC_FAULT_OC);
+        s->trip_seen = trips;
+    } else {
+        /* no new trip */
+    }
+    if (qfoc_debounce_step(&s->db_ov, qfoc_fault_over(f->vdc, p->vdc_ov), c->vdc_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_OV);
+    } else {
+        /* bus not high */
+    }
+    if (qfoc_debounce_step(&s->db_uv, run && qfoc_fault_under(f->vdc, p->vdc_uv), c->vdc_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_UV);
+    } else {
+        /* bus not low while running */
+    }
+    if (qfoc_debounce_step(&s->db_ot_ipm, qfoc_fault_over(in->t_ipm, c->t_ipm_max), c->temp_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_OT_IPM);
+    } else {
+        /* IPM cool */
+    }
+    if (qfoc_debounce_step(&s->db_ot_pcb, qfoc_fault_over(in->t_pcb, c->t_pcb_max), c->temp_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_OT_PCB);
+    } else {
+        /* PCB cool */
+    }
+    /* stall / loss of synchronisation: speed error or flux magnitude off its expectation
+       psi_f + (L_d - L_q) i_d (the active flux the observer estimates) */
+    {
+        const qfoc_q15_t e_speed = qfoc_q15_sub(s->speed_ref, f->speed_f);
+        const qfoc_q15_t psi_exp = qfoc_q15_add(p->psi_f,
+                                                drv_li((int16_t)qfoc_q15_sat((int32_t)p->ld - (int32_t)p->lq),
+                                                       f->i_dq.d));
+        const qfoc_q15_t e_psi = qfoc_q15_sub(f->psi_mag, psi_exp);
+        const bool bad_speed = qfoc_fault_abs_over(e_speed, c->stall_err);
+        const bool bad_flux = qfoc_fault_abs_over(e_psi, c->flux_tol);
+        stall = closed && (bad_speed || bad_flux);
+    }
+    if (qfoc_debounce_step(&s->db_stall, stall, c->stall_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_STALL);
+    } else {
+        /* synchronised */
+    }
+    if (qfoc_debounce_step(&s->db_phase,
+                           rotating && qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min,
+                                                                 c->phase_ratio),
+                           c->phase_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_PHASE);
+    } else {
+        /* balanced */
+    }
+    if (!s->table_ok) {
+        w = (uint16_t)(w + QFOC_FAULT_PARAM);
+    } else {
+        /* table intact */
+    }
+    return w;
+}
+
+/* Handover condition (REQ-DRV-006).  The I/f current lies on the q axis of the open-loop
+   frame; with the load torque T the rotor settles where K i cos(delta) = T, delta =
+   theta_ol - theta_est in [-90 deg, 0]: -90 deg without load (the rotor's d axis on the
+   current), towards 0 as the load grows; past 0 the rotor falls behind the frame and
+   slips (delta sweeps through +180 deg).  The observer has converged on a rotor that
+   follows the frame when, for ho_dwell_ms: the filtered estimated speed is within 1/4 of
+   the frame speed, the flux magnitude is at least the PLL's mag_min, and
+   -(90 deg + ho_angle) < delta < ho_angle.  delta is not required to be small: a
+   pulsating load swings it by tens of degrees; the transfer presets the speed PI with
+   the rotor's torque. */
+/*@
+  requires valid: \valid(s) && \valid_read(f) && \valid_read(p);
+  requires sep: \separated(s, f, p);
+  assigns s->db_ho;
+*/
+static bool drv_converged(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
+                          const qfoc_param_table_t *p, bool open_loop)
+{
+    const int32_t wol = (int32_t)s->ol_speed;
+    const int32_t ew = (int32_t)f->speed_f - wol;
+    const int32_t tol = ((wol > 0) ? wol : (int32_t)0) / 4;
+    const int32_t dth = drv_angle_diff((qfoc_angle_t)(f->theta_ol / 65536u), f->theta_est);
+    const int32_t ho = (int32_t)p->drive.ho_angle;
+    const bool speed_ok = (ew <= tol) && (ew >= -tol);
+    const bool mag_ok = (f->psi_mag >= p->pll.mag_min);
+    const bool angle_ok = (dth < ho) && (dth > -(DRV_QUARTER_TURN + ho));
+    return qfoc_debounce_step(&s->db_ho, open_loop && speed_ok && mag_ok && angle_ok,
+                              p->drive.ho_dwell_ms);
+}
+
+/* Bumpless transfer (REQ-DRV-006): the q current that gives, with i_d = 0, the torque
+   the rotor produces at the end of OPEN_LOOP.  The I/f current i lies on the q axis of
+   the open-loop frame, delta = theta_ol - theta_est ahead of the rotor: in the rotor frame
+   i_d = -i sin(delta), i_q = i cos(delta), and the torque 3/2 n_p i_q (psi_f + (L_d - L_q) i_d)
+   equals 3/2 n_p psi_f i_q' for i_q' = i_q (psi_f + (L_d - L_q) i_d) / psi_f. */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p);
+  assigns \nothing;
+*/
+static qfoc_q15_t drv_bumpless_iq(const qfoc_drive_t *d)
+{
+    const qfoc_param_table_t *const p = d->p;
+    const int32_t dth = drv_angle_diff((qfoc_angle_t)(d->f.theta_ol / 65536u), d->f.theta_est);
+    const int32_t i_max = (int32_t)qfoc_q15_abs(p->i_max);
+    qfoc_sincos_t sc;
+    int32_t iq;
+    const int32_t a = dth + 65536;
+    qfoc_sincos((qfoc_angle_t)((uint32_t)a & 0xFFFFu), &sc);
+    {
+        const qfoc_q15_t i = qfoc_q15_sat((int32_t)d->s.iq_ref);
+        const qfoc_q15_t id_r = qfoc_q15_neg(qfoc_q15_mul(i, sc.sine));
+        const qfoc_q15_t iq_r = qfoc_q15_mul(i, sc.cosine);
+        const qfoc_q15_t dl = qfoc_q15_sat((int32_t)p->ld - (int32_t)p->lq);
+        const qfoc_q15_t psi_act = qfoc_q15_add(p->psi_f, drv_li((int16_t)dl, id_r));
+        if (p->psi_f > 0) {
+            iq = ((int32_t)iq_r * (int32_t)psi_act) / (int32_t)p->psi_f;
+        } else {
+            iq = (int32_t)iq_r;
+        }
+    }
+    if (iq > i_max) {
+        iq = i_max;
+    } else if (iq < -i_max) {
+        iq = -i_max;
+    } else {
+        /* within the current limit */
+    }
+    return (qfoc_q15_t)iq;
+}
+
+/* Actions on a state or sub-state change (REQ-DRV-006). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  requires inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
+  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.tc, d->s.speed_ref, d->s.ol_speed,
+          d->s.id_ref, d->s.iq_ref, d->s.clear_seq, d->s.run_ms, d->s.calib_done;
+  ensures inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
+*/
+static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_sub)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_param_table_t *const p = d->p;
+    const uint8_t st = s->sm.state;
+    const uint8_t sub = s->sm.sub;
+    if ((old_state == QFOC_STATE_ERROR) && (st != QFOC_STATE_ERROR)) {
+        /* a fault clear: the fast step releases its over-current latch */
+        s->clear_seq = (uint8_t)(((uint32_t)s->clear_seq + 1u) & 0xFFu);
+    } else {
+        /* no clear */
+    }
+    if ((st != QFOC_STATE_RUN) || (old_state != QFOC_STATE_RUN)) {
+        /* entering or leaving RUN (or not running): everything from zero */
+        s->speed_ref = 0;
+        s->ol_speed = 0;
+        s->id_ref = 0;
+        s->iq_ref = 0;
+        s->run_ms = 0u;
+        qfoc_pi_reset(&s->pi_speed, 0);
+        qfoc_trqcomp_reset(&s->tc);
+    } else if ((sub == QFOC_SUB_OPEN_LOOP) && (old_sub == QFOC_SUB_ALIGN)) {
+        s->id_ref = 0;
+        s->iq_ref = qfoc_q15_abs(p->drive.i_start);
+    } else if ((sub == QFOC_SUB_CLOSED_LOOP) && (old_sub == QFOC_SUB_OPEN_LOOP)) {
+        /* speed reference from the estimate, within [0, speed_max] */
+        s->speed_ref = qfoc_ramp_toward(0, (d->f.speed_f > 0) ? d->f.speed_f : (qfoc_q15_t)0,
+                                        qfoc_q15_abs(p->speed_max));
+        s->iq_ref = drv_bumpless_iq(d);
+        qfoc_pi_reset(&s->pi_speed, s->iq_ref);
+    } else {
+        /* no action */
+    }
+    if (st == QFOC_STATE_PRECHARGE) {
+        s->calib_done = false;   /* (re)entering PRECHARGE: calibrate again */
+    } else {
+        /* offsets kept */
+    }
+}
+
+/* References of the running sub-states, speed loop and torque compensation
+   (REQ-DRV-006, REQ-DRV-009). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  requires inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
+  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.tc, d->s.speed_ref, d->s.ol_speed,
+          d->s.id_ref, d->s.iq_ref;
+  ensures inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
+*/
+static void drv_run(qfoc_drive_t *d)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const uint8_t sub = s->sm.sub;
+    if (s->sm.state != QFOC_STATE_RUN) {
+        /* nothing runs */
+    } else if (sub == QFOC_SUB_ALIGN) {
+        /* d-current ramp over the first half of align_ms, then hold */
+        const int32_t half = (int32_t)c->align_ms / 2;
+        const int32_t ia = (int32_t)qfoc_q15_abs(c->i_align);
+        const int32_t step = (half > 0) ? ((ia + half - 1) / half) : ia;
+        s->id_ref = qfoc_ramp_toward(s->id_ref, (qfoc_q15_t)ia, (qfoc_q15_t)step);
+    } else if (sub == QFOC_SUB_OPEN_LOOP) {
+        s->ol_speed = qfoc_ramp_toward(s->ol_speed, qfoc_q15_abs(c->of_speed), c->of_accel);
+    } else {
+        const qfoc_q15_t stop_speed = qfoc_q15_abs(c->of_speed);
+        qfoc_q15_t target = s->speed_ref;
+        if (sub == QFOC_SUB_STOPPING) {
+            target = stop_speed;
+        } else if (s->sm.t_state >= c->cl_hold_ms) {
+            target = s->speed_target;
+        } else {
+            /* the document's 2 s: hold the handover speed */
+        }
+        s->speed_ref = qfoc_ramp_toward(s->speed_ref, target, c->speed_ramp);
+        s->iq_ref = qfoc_pi_step(&s->pi_speed, qfoc_q15_sub(s->speed_ref, d->f.speed_f));
+        qfoc_trqcomp_learn(&s->tc, d->f.theta_m, qfoc_q15_sub(s->speed_ref, d->f.speed),
+                           d->f.speed_f);
+    }
+}
+
+/* Status for the LIN response and the CAN frame (REQ-DRV-011). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
+  requires sep: \separated(&d->s, d->p, in);
+  assigns d->s.status;
+*/
+static void drv_status(qfoc_drive_t *d, const qfoc_tick_in_t *in)
+{
+    qfoc_status_t *const st = &d->s.status;
+    const qfoc_param_table_t *const p = d->p;
+    const uint32_t v_dv_per_lsb = p->v_base_mv / 100u;   /* 0.1 V per V_base */
+    const uint32_t i_ca_per_lsb = p->i_base_ma / 10u;    /* 0.01 A per I_base */
+    const uint32_t vdc = (d->f.vdc > 0) ? (uint32_t)d->f.vdc : 0u;
+    const uint32_t imag = (uint32_t)qfoc_vec_mag(d->f.i_dq.d, d->f.i_dq.q);
+    const uint32_t vk = (v_dv_per_lsb > 65535u) ? 65535u : v_dv_per_lsb;
+    const uint32_t ik = (i_ca_per_lsb > 65535u) ? 65535u : i_ca_per_lsb;
+    const uint32_t v = (vdc * vk) / 32768u;
+    const uint32_t i = (imag * ik) / 32768u;
+    st->state = d->s.sm.state;
+    st->substate = d->s.sm.sub;
+    st->faults = d->s.sm.faults;
+    st->speed_rpm = drv_speed_to_rpm(d->f.speed_f, p->drive.k_speed_rpm);
+    st->vdc_dv = (v > 65535u) ? (uint16_t)65535u : (uint16_t)v;
+    st->current_ca = (i > 65535u) ? (uint16_t)65535u : (uint16_t)i;
+    st->temp_dc = (in->t_ipm > in->t_pcb) ? in->t_ipm : in->t_pcb;
+}
+
+/* The 100 ms job (document Ms_100_job, REQ-DRV-011, REQ-DRV-012): table re-check, CAN
+   status frame with the alternating identifier, motorParaChange. */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \valid(out);
+  requires sep: \separated(&d->s, d->p, out);
+  requires inv: LinkValid(&d->s.link);
+  assigns d->s.table_ok, d->s.hs, d->s.link.can_b, out->can, out->can_send;
+  ensures inv: LinkValid(&d->s.link);
+*/
+static void drv_job_100ms(qfoc_drive_t *d, qfoc_tick_out_t *out)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_q15_t w = qfoc_q15_abs(d->f.speed_f);
+    const qfoc_q15_t hs_on = qfoc_q15_abs(p->drive.para_speed);
+    const qfoc_q15_t hs_off = (qfoc_q15_t)((int32_t)hs_on - ((int32_t)hs_on / DRV_HS_HYST_DIV));
+    s->table_ok = s->table_ok && (qfoc_params_check(p) == QFOC_PARAMS_OK);
+    qfoc_can_status(&s->link, &s->status, &out->can);
+    out->can_send = true;
+    if (w > hs_on) {
+        s->hs = true;
+    } else if (w < hs_off) {
+        s->hs = false;
+    } else {
+        /* hysteresis band: keep */
+    }
+}
+
+void qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in, qfoc_tick_out_t *out)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const uint8_t old_state = s->sm.state;
+    const uint8_t old_sub = s->sm.sub;
+    static const uint8_t no_frame[1] = { 0u };
+    const uint8_t *const rx = (in->rx_len > 0u) ? in->rx : no_frame;
+    qfoc_cmd_t cmd;
+    qfoc_sm_cfg_t smc;
+    qfoc_sm_in_t si;
+    bool accepted;
+    uint16_t faults;
+
+    out->tx_len = 0u;
+    out->can_send = false;
+    /* command link (document Communication_service) */
+    accepted = qfoc_link_service(&s->link, rx, in->rx_len);
+    qfoc_link_command(&s->link, &cmd);
+    s->speed_target = drv_rpm_to_speed(cmd.target_rpm, c->k_rpm, p->speed_max);
+    /* faults and the offset calibration */
+    faults = drv_faults(d, in);
+    faults = (uint16_t)(faults + drv_calibrate(s, &d->f, c,
+                                              (old_state == QFOC_STATE_PRECHARGE) &&
+                                              (old_sub == QFOC_SUB_CALIB)));
+    /* the state machine */
+    smc.precharge_ms = c->precharge_ms;
+    smc.align_ms = c->align_ms;
+    smc.ol_timeout_ms = c->ol_timeout_ms;
+    smc.cl_hold_ms = c->cl_hold_ms;
+    smc.clear_ms = c->clear_ms;
+    si.faults = faults;
+    si.bus_ok = !qfoc_fault_under(d->f.vdc, p->vdc_uv);
+    si.calib_done = s->calib_done;
+    si.run_request = cmd.power_on && (cmd.target_rpm >= c->rpm_min) && !qfoc_link_lost(&s->link) &&
+                     s->calib_done;
+    si.link_lost = qfoc_link_lost(&s->link);
+    si.fault_clear = cmd.fault_clear;
+    si.table_ok = s->table_ok;
+    si.converged = drv_converged(s, &d->f, p,
+                                 (old_state == QFOC_STATE_RUN) && (old_sub == QFOC_SUB_OPEN_LOOP));
+    si.stop_reached = (old_sub == QFOC_SUB_STOPPING) && (s->speed_ref <= qfoc_q15_abs(c->of_speed));
+    qfoc_sm_step(&s->sm, &smc, &si);
+    if ((s->sm.state != old_state) || (s->sm.sub != old_sub)) {
+        drv_on_transition(d, old_state, old_sub);
+    } else {
+        /* no change */
+    }
+    drv_run(d);
+    if ((s->sm.state == QFOC_STATE_RUN) && (s->run_ms < 0xFFFFFFFFu)) {
+        s->run_ms = s->run_ms + 1u;
+    } else {
+        /* not running, or saturated */
+    }
+    drv_status(d, in);
+    if (accepted) {
+        out->tx_len = qfoc_lin_encode_status(&s->link.cfg, &s->status, out->tx);
+    } else {
+        /* answer valid command frames only */
+    }
+    if (s->ms100 >= DRV_MS100_LAST) {
+        s->ms100 = 0u;
+        drv_job_100ms(d, out);
+    } else {
+        s->ms100 = (uint8_t)(s->ms100 + 1u);
+    }
+}
+
+/* ================================================================== init */
+
+/* Fast-step data from the table (REQ-DRV-001): every module's init establishes its own
+   invariant whatever the table holds (a refused block gets the module's safe values). */
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  assigns *f;
+  ensures inv: DriveFastValid(f);
+*/
+static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+{
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    qfoc_fw_params_t fwp;
+    const qfoc_ab_t zero = { 0, 0 };
+
+    fwp.pi = p->pi_fw;
+    fwp.level = c->fw_level;
+    fwp.alpha = c->fw_alpha;
+    (void)qfoc_flux_init(&f->flux, &p->flux);
+    (void)qfoc_pll_init(&f->pll, &p->pll);
+    (void)qfoc_pi_init(&f->pi_id, &p->pi_id);
+    (void)qfoc_pi_init(&f->pi_iq, &p->pi_iq);
+    (void)qfoc_fw_init(&f->fw, &fwp);
+    (void)qfoc_lpf_init(&f->vdc_lpf, p->alpha_vdc);
+    (void)qfoc_phase_mon_init(&f->phase, c->phase_alpha);
+    (void)qfoc_mech_init(&f->mech, c->pole_pairs, 0u);
+    f->u_last = zero;
+    f->u_applied = zero;
+    f->theta_ol = 0u;
+    f->i_dq.d = 0;
+    f->i_dq.q = 0;
+    f->vdc = 0;
+    f->adc_iu = QFOC_ADC_MID;
+    f->adc_iv = QFOC_ADC_MID;
+    f->theta_est = 0u;
+    f->theta_m = 0u;
+    f->speed = 0;
+    f->speed_f = 0;
+    f->psi_mag = 0;
+    f->utilisation = 0;
+    f->id_fw = 0;
+    f->trip_count = 0u;
+    f->clear_ack = 0u;
+    f->trip = false;
+    f->active = false;
+    f->hs = false;
+}
+
+/* Tick data from the table (REQ-DRV-001). */
+/*@
+  requires valid: \valid(s) && \valid_read(p);
+  requires sep: \separated(s, p);
+  assigns *s;
+  ensures inv: DriveSlowValid(s);
+  ensures state: s->sm.state == QFOC_STATE_PRECHARGE && !s->table_ok;
+*/
+static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
+{
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    qfoc_trqcomp_params_t tcp;
+    qfoc_link_cfg_t lc;
+
+    tcp.gain = c->tc_gain;
+    tcp.amp_max = c->tc_amp_max;
+    tcp.speed_min = c->tc_speed_min;
+    tcp.speed_max = c->tc_speed_max;
+    tcp.pole_pairs = c->pole_pairs;
+    lc.id_cmd = c->lin_id_cmd;
+    lc.id_status = c->lin_id_status;
+    lc.rpm_max = c->rpm_max;
+    lc.timeout_ms = c->link_timeout_ms;
+    lc.can_id_a = c->can_id_a;
+    lc.can_id_b = c->can_id_b;
+    qfoc_sm_init(&s->sm);
+    (void)qfoc_pi_init(&s->pi_speed, &p->pi_speed);
+    (void)qfoc_trqcomp_init(&s->tc, &tcp);
+    (void)qfoc_link_init(&s->link, &lc);
+    qfoc_debounce_reset(&s->db_ov);
+    qfoc_debounce_reset(&s->db_uv);
+    qfoc_debounce_reset(&s->db_ot_ipm);
+    qfoc_debounce_reset(&s->db_ot_pcb);
+    qfoc_debounce_reset(&s->db_stall);
+    qfoc_debounce_reset(&s->db_phase);
+    qfoc_debounce_reset(&s->db_ho);
+    s->off_sum_u = 0u;
+    s->off_sum_v = 0u;
+    s->off_n = 0u;
+    s->offset_u = QFOC_ADC_MID;
+    s->offset_v = QFOC_ADC_MID;
+    s->speed_target = 0;
+    s->speed_ref = 0;
+    s->ol_speed = 0;
+    s->id_ref = 0;
+    s->iq_ref = 0;
+    s->trip_seen = 0u;
+    s->clear_seq = 0u;
+    s->ms100 = 0u;
+    s->table_ok = false;
+    s->calib_done = false;
+    s->hs = false;
+    s->run_ms = 0u;
+    s->status.state = QFOC_STATE_PRECHARGE;
+    s->status.substate = QFOC_SUB_BUS_WAIT;
+    s->status.faults = 0u;
+    s->status.speed_rpm = 0u;
+    s->status.vdc_dv = 0u;
+    s->status.current_ca = 0u;
+    s->status.temp_dc = 0;
+}
+
+int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table)
+{
+    const int32_t st = qfoc_params_check(table);
+    d->p = table;
+    drv_init_fast(&d->f, table);
+    drv_init_slow(&d->s, table);
+    if (st == QFOC_PARAMS_OK) {
+        d->s.table_ok = true;
+    } else {
+        qfoc_sm_fail(&d->s.sm, QFOC_FAULT_PARAM);
+    }
+    return st;
+}
+
+bool qfoc_drive_is_valid(const qfoc_drive_t *d)
+{
+    const bool flux = qfoc_flux_is_valid(&d->f.flux);
+    const bool pll = qfoc_pll_is_valid(&d->f.pll);
+    const bool pid = qfoc_pi_is_valid(&d->f.pi_id);
+    const bool piq = qfoc_pi_is_valid(&d->f.pi_iq);
+    const bool fw = qfoc_fw_is_valid(&d->f.fw);
+    const bool vdc = qfoc_lpf_is_valid(&d->f.vdc_lpf);
+    const bool ph = qfoc_phase_mon_is_valid(&d->f.phase);
+    const bool mech = qfoc_mech_is_valid(&d->f.mech);
+    const bool sm = qfoc_sm_is_valid(&d->s.sm);
+    const bool pis = qfoc_pi_is_valid(&d->s.pi_speed);
+    const bool tc = qfoc_trqcomp_is_valid(&d->s.tc);
+    const bool link = qfoc_link_is_valid(&d->s.link);
+    const bool offs = (d->s.offset_u <= QFOC_ADC_MAX) && (d->s.offset_v <= QFOC_ADC_MAX);
+    return flux && pll && pid && piq && fw && vdc && ph && mech && sm && pis && tc && link && offs;
+}

@@ -1,0 +1,157 @@
+/**
+ * @file qfoc_fault.c
+ * @brief Fault-detection primitives (see include/qfoc/fault.h).
+ *
+ * Requirements: REQ-FAULT-001 .. REQ-FAULT-006 (specs/requirements/fault.md).
+ */
+#include "qfoc/fault.h"
+#include "qfoc/q15.h"
+
+/** Largest low-pass state of a filtered magnitude: 32767 x 65536 (Q15 1.0 in Q31). */
+#define QFOC_FAULT_STATE_MAX ((qfoc_q31_t)2147418112)
+/** Q15 scale of the imbalance ratio: 1.0 = 2^15 = 32768. */
+#define QFOC_FAULT_Q15_ONE ((int32_t)32768)
+
+/**
+ * @brief One filter of the monitor: alpha > 0 and state in [0, 32767 x 65536].
+ */
+/*@
+  requires valid_f: \valid_read(f);
+  assigns \nothing;
+  ensures result: \result <==> PhaseMonLpfOk(f);
+*/
+static bool qfoc_phase_lpf_ok(const qfoc_lpf_t *f)
+{
+    bool ok = false;
+    if ((f->alpha > 0) && (f->state >= 0) && (f->state <= QFOC_FAULT_STATE_MAX)) {
+        ok = true;
+    } else {
+        /* invalid coefficient, or a negative / too large state */
+    }
+    return ok;
+}
+
+void qfoc_debounce_reset(qfoc_debounce_t *d)
+{
+    d->count = 0u;
+}
+
+bool qfoc_debounce_step(qfoc_debounce_t *d, bool cond, uint16_t n)
+{
+    bool confirmed = false;
+    if (!cond) {
+        /* a single false sample restarts the count */
+        d->count = 0u;
+    } else if (d->count < n) {
+        /* count < n <= 65535: count + 1 fits 16 bits */
+        d->count = (uint16_t)(d->count + 1u);
+        confirmed = (d->count >= n);
+    } else {
+        /* already confirmed (or count above n): cap at n */
+        d->count = n;
+        confirmed = true;
+    }
+    return confirmed;
+}
+
+bool qfoc_phase_mon_is_valid(const qfoc_phase_mon_t *m)
+{
+    bool ok = false;
+    if (qfoc_phase_lpf_ok(&m->abs_lpf[0]) && qfoc_phase_lpf_ok(&m->abs_lpf[1])
+        && qfoc_phase_lpf_ok(&m->abs_lpf[2])) {
+        ok = true;
+    } else {
+        /* at least one filter out of its invariant */
+    }
+    return ok;
+}
+
+int32_t qfoc_phase_mon_init(qfoc_phase_mon_t *m, qfoc_q15_t alpha)
+{
+    /* the three inits see the same alpha, so they return the same status */
+    int32_t status = QFOC_FAULT_ERR_PARAM;
+    if (qfoc_lpf_init(&m->abs_lpf[0], alpha) == QFOC_FILTER_OK) {
+        status = QFOC_FAULT_OK;
+    }
+    (void)qfoc_lpf_init(&m->abs_lpf[1], alpha);
+    (void)qfoc_lpf_init(&m->abs_lpf[2], alpha);
+    return status;
+}
+
+void qfoc_phase_mon_reset(qfoc_phase_mon_t *m)
+{
+    qfoc_lpf_reset(&m->abs_lpf[0], 0);
+    qfoc_lpf_reset(&m->abs_lpf[1], 0);
+    qfoc_lpf_reset(&m->abs_lpf[2], 0);
+}
+
+void qfoc_phase_mon_update(qfoc_phase_mon_t *m, const qfoc_abc_t *i)
+{
+    /* |i| in [0, 32767] (|-32768| saturated) */
+    const qfoc_q15_t au = qfoc_q15_abs(i->u);
+    const qfoc_q15_t av = qfoc_q15_abs(i->v);
+    const qfoc_q15_t aw = qfoc_q15_abs(i->w);
+    /*@ assert abs_u: au == FaultAbs15(i->u); */
+    /*@ assert abs_v: av == FaultAbs15(i->v); */
+    /*@ assert abs_w: aw == FaultAbs15(i->w); */
+    /* the filter outputs are not needed here (read by qfoc_phase_mon_imbalanced) */
+    (void)qfoc_lpf_step(&m->abs_lpf[0], au);
+    (void)qfoc_lpf_step(&m->abs_lpf[1], av);
+    (void)qfoc_lpf_step(&m->abs_lpf[2], aw);
+}
+
+bool qfoc_phase_mon_imbalanced(const qfoc_phase_mon_t *m, qfoc_q15_t i_min, qfoc_q15_t ratio)
+{
+    /* filtered magnitudes, Q15, each in [0, 32767] (state in [0, 32767 x 65536]) */
+    const int32_t a = (int32_t)qfoc_q15_from_q31(m->abs_lpf[0].state);
+    const int32_t b = (int32_t)qfoc_q15_from_q31(m->abs_lpf[1].state);
+    const int32_t c = (int32_t)qfoc_q15_from_q31(m->abs_lpf[2].state);
+    int32_t hi = a;
+    int32_t lo = a;
+    int32_t lhs;
+    int32_t rhs;
+    bool imbalanced = false;
+
+    if (b > hi) {
+        hi = b;
+    }
+    if (c > hi) {
+        hi = c;
+    }
+    if (b < lo) {
+        lo = b;
+    }
+    if (c < lo) {
+        lo = c;
+    }
+    /*@ assert hi_range: 0 <= hi <= 32767; */
+    /*@ assert lo_range: 0 <= lo <= 32767; */
+    /*@ assert rhs_hi: ratio * hi <= 32767 * hi; */
+    /*@ assert rhs_lo: ratio * hi >= -32768 * hi; */
+    /* min x 32768 <= 1073709056 and |ratio x max| <= 1073709056: exact in 32 bits */
+    lhs = lo * QFOC_FAULT_Q15_ONE;
+    rhs = (int32_t)ratio * hi;
+    if ((hi >= (int32_t)i_min) && (lhs < rhs)) {
+        imbalanced = true;
+    } else {
+        /* balanced, or too little current to judge */
+    }
+    return imbalanced;
+}
+
+bool qfoc_fault_over(qfoc_q15_t x, qfoc_q15_t limit)
+{
+    return (x > limit);
+}
+
+bool qfoc_fault_under(qfoc_q15_t x, qfoc_q15_t limit)
+{
+    return (x < limit);
+}
+
+bool qfoc_fault_abs_over(qfoc_q15_t x, qfoc_q15_t limit)
+{
+    /* |x| in [0, 32768], exact in 32 bits (no saturation of -32768) */
+    const int32_t mag = (x < 0) ? -(int32_t)x : (int32_t)x;
+    return (mag > (int32_t)limit);
+}

@@ -1,0 +1,555 @@
+/**
+ * @file test_drive.c
+ * @brief Tests of the drive's entry points with synthetic ADC samples and frames
+ *        (specs/requirements/drive.md): initialisation, measurement, over-current,
+ *        PWM gating, offset calibration, fault detection and reaction times, the
+ *        command link, the status and CAN frames, the table re-check and the
+ *        inductance switch.  The closed-loop behaviour on the plant is in
+ *        test_drive_plant.c.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <string.h>
+#include <cmocka.h>
+
+#define TEST_SEED 0xD21E0001u
+#include "test_util.h"
+#include "qfoc/drive.h"
+#include "reference_params.h"
+#include "drive_sim.h"
+
+/* ADC code of a DC-bus voltage (4096 codes = V_base = 500 V) */
+static uint16_t vdc_code(double v)
+{
+    return (uint16_t)floor(v / 500.0 * 4096.0 + 0.5);
+}
+
+typedef struct {
+    qfoc_drive_t d;
+    qfoc_param_table_t table;   /* RAM copy, so tests can corrupt it */
+    qfoc_adc_t adc;
+    qfoc_pwm_t pwm;
+    qfoc_tick_out_t out;
+    int16_t t_ipm;
+    int16_t t_pcb;
+    bool power_on;
+    bool fault_clear;
+    uint16_t rpm;
+    bool send;                  /* master sends a frame every 10 ms */
+    long ms;
+    long enabled_outside_run;   /* enable seen while the state was not RUN */
+} rig_t;
+
+static void rig_init(rig_t *r)
+{
+    memset(r, 0, sizeof *r);
+    r->table = qfoc_params_reference;
+    assert_int_equal(qfoc_drive_init(&r->d, &r->table), QFOC_PARAMS_OK);
+    r->adc.iu = QFOC_ADC_MID;
+    r->adc.iv = QFOC_ADC_MID;
+    r->adc.vdc = vdc_code(320.0);
+    r->t_ipm = 400;
+    r->t_pcb = 350;
+    r->send = true;
+    r->rpm = 3000u;
+}
+
+/* command frame as the master sends it (sim/drive_sim.c's independent LIN encoder) */
+static uint8_t rig_frame(const rig_t *r, uint8_t *f)
+{
+    f[0] = 0x55u;
+    f[1] = dsim_lin_pid(r->table.drive.lin_id_cmd);
+    f[2] = (uint8_t)((r->power_on ? 1u : 0u) | (r->fault_clear ? 2u : 0u));
+    f[3] = (uint8_t)(r->rpm & 0xFFu);
+    f[4] = (uint8_t)(r->rpm >> 8);
+    f[5] = 0u;
+    f[6] = dsim_lin_checksum(&f[1], 5);
+    return 7u;
+}
+
+static void rig_fast(rig_t *r)
+{
+    const uint8_t st = r->d.s.sm.state;
+    qfoc_drive_fast_step(&r->d, &r->adc, &r->pwm);
+    assert_true(r->pwm.cmp[0] <= r->table.svpwm.period);
+    assert_true(r->pwm.cmp[1] <= r->table.svpwm.period);
+    assert_true(r->pwm.cmp[2] <= r->table.svpwm.period);
+    if (r->pwm.enable && (st != QFOC_STATE_RUN)) {
+        r->enabled_outside_run++;
+    }
+}
+
+static void rig_tick(rig_t *r, const uint8_t *rx, uint8_t len)
+{
+    qfoc_tick_in_t in;
+    in.t_ipm = r->t_ipm;
+    in.t_pcb = r->t_pcb;
+    in.rx = rx;
+    in.rx_len = len;
+    qfoc_drive_tick(&r->d, &in, &r->out);
+    r->ms++;
+}
+
+/* n ms of 8 fast steps and one tick, the master's frame every 10 ms */
+static void rig_ms(rig_t *r, int n)
+{
+    int k;
+    int j;
+    for (k = 0; k < n; k++) {
+        uint8_t f[QFOC_LIN_FRAME_MAX];
+        uint8_t len = 0u;
+        for (j = 0; j < 8; j++) {
+            rig_fast(r);
+        }
+        if (r->send && ((r->ms % 10) == 0)) {
+            len = rig_frame(r, f);
+        }
+        rig_tick(r, f, len);
+    }
+}
+
+static uint8_t st(const rig_t *r)
+{
+    return r->d.s.sm.state;
+}
+
+static void rig_to_stop(rig_t *r)
+{
+    rig_ms(r, 300);
+    assert_int_equal(st(r), QFOC_STATE_STOP);
+}
+
+/* REQ-DRV-001: initialisation from the generated table; a refused table is ERROR/PARAM
+   for good, PWM never enabled. */
+static void test_drv_001_init(void **state)
+{
+    rig_t r;
+    unsigned byte;
+    (void)state;
+    rig_init(&r);
+    assert_true(qfoc_drive_is_valid(&r.d));
+    assert_int_equal(st(&r), QFOC_STATE_PRECHARGE);
+    assert_int_equal(r.d.s.sm.faults, 0);
+    /* every single-byte corruption of the table at init is refused */
+    for (byte = 0u; byte < sizeof(qfoc_param_table_t); byte += 7u) {
+        qfoc_drive_t d;
+        qfoc_param_table_t t = qfoc_params_reference;
+        ((uint8_t *)&t)[byte] ^= 0x5Au;
+        if (qfoc_params_check(&t) != QFOC_PARAMS_OK) {
+            assert_int_not_equal(qfoc_drive_init(&d, &t), QFOC_PARAMS_OK);
+            assert_int_equal(d.s.sm.state, QFOC_STATE_ERROR);
+            assert_int_equal(d.s.sm.faults, QFOC_FAULT_PARAM);
+            assert_true(qfoc_drive_is_valid(&d));
+        }
+    }
+    /* a refused table never runs and is never cleared */
+    r.table.crc ^= 1u;
+    assert_int_equal(qfoc_drive_init(&r.d, &r.table), QFOC_PARAMS_ERR_CRC);
+    r.power_on = true;
+    r.fault_clear = true;
+    rig_ms(&r, 7000);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    assert_int_equal(r.d.s.sm.faults & QFOC_FAULT_PARAM, QFOC_FAULT_PARAM);
+    assert_false(r.pwm.enable);
+    assert_int_equal(r.enabled_outside_run, 0);
+}
+
+/* REQ-DRV-007: PRECHARGE waits for the bus, then averages 2^offset_shift samples;
+   offsets outside the window are a fault. */
+static void test_drv_007_precharge_and_offsets(void **state)
+{
+    rig_t r;
+    (void)state;
+    rig_init(&r);
+    r.adc.vdc = vdc_code(100.0);            /* below vdc_uv */
+    rig_ms(&r, 1000);
+    assert_int_equal(st(&r), QFOC_STATE_PRECHARGE);
+    assert_int_equal(r.d.s.sm.sub, QFOC_SUB_BUS_WAIT);
+    r.adc.vdc = vdc_code(320.0);
+    r.adc.iu = (uint16_t)(QFOC_ADC_MID + 37u);
+    r.adc.iv = (uint16_t)(QFOC_ADC_MID - 21u);
+    rig_ms(&r, 20 + (int)r.table.drive.precharge_ms);   /* filter settles, bus time */
+    assert_int_equal(r.d.s.sm.sub, QFOC_SUB_CALIB);
+    rig_ms(&r, (1 << r.table.drive.offset_shift) + 2);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    assert_int_equal(r.d.s.offset_u, QFOC_ADC_MID + 37u);
+    assert_int_equal(r.d.s.offset_v, QFOC_ADC_MID - 21u);
+    /* out of the window */
+    rig_init(&r);
+    r.adc.iu = (uint16_t)(QFOC_ADC_MID + r.table.drive.offset_window + 1u);
+    rig_ms(&r, 400);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OFFSET);
+    /* at the window edge: accepted */
+    rig_init(&r);
+    r.adc.iv = (uint16_t)(QFOC_ADC_MID - r.table.drive.offset_window);
+    rig_ms(&r, 400);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    /* after an OFFSET fault is cleared, the drive calibrates again */
+    rig_init(&r);
+    r.adc.iu = 3000u;
+    rig_ms(&r, 400);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    r.adc.iu = QFOC_ADC_MID;
+    r.fault_clear = true;
+    rig_ms(&r, 5100);
+    assert_int_not_equal(st(&r), QFOC_STATE_ERROR);
+    rig_ms(&r, 400);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    assert_int_equal(r.d.s.offset_u, QFOC_ADC_MID);
+}
+
+/* REQ-DRV-009: run request = power-on, target >= rpm_min, link alive; rpm conversion. */
+static void test_drv_009_command(void **state)
+{
+    rig_t r;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.power_on = true;
+    r.rpm = (uint16_t)(r.table.drive.rpm_min - 1u);
+    rig_ms(&r, 100);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    r.rpm = r.table.drive.rpm_min;
+    rig_ms(&r, 20);
+    assert_int_equal(st(&r), QFOC_STATE_RUN);
+    assert_int_equal(r.d.s.sm.sub, QFOC_SUB_ALIGN);
+    {
+        const double expect = floor((double)r.rpm * r.table.drive.k_rpm / 4096.0 + 0.5);
+        assert_int_equal(r.d.s.speed_target, (int)expect);
+        /* and the k_rpm of the table is n_p 32768 / (60 f_base) in Q12 */
+        assert_true(fabs(r.table.drive.k_rpm / 4096.0 - 3.0 * 32768.0 / 30000.0) < 1e-3);
+    }
+    /* a target above rpm_max is rejected by the link: the last valid one stays */
+    r.rpm = (uint16_t)(r.table.drive.rpm_max + 1u);
+    rig_ms(&r, 30);
+    assert_int_equal(r.d.s.link.cmd.target_rpm, r.table.drive.rpm_min);
+    assert_true(r.d.s.link.n_range >= 2u);
+    /* the largest target converts to at most speed_max */
+    r.rpm = r.table.drive.rpm_max;
+    rig_ms(&r, 20);
+    assert_true(r.d.s.speed_target <= r.table.speed_max);
+    assert_true(r.d.s.speed_target > 0);
+}
+
+/* REQ-DRV-002, REQ-DRV-003: over-current: PWM off in the same call, ERROR at the next
+   tick, latched until a fault clear after clear_ms. */
+static void test_drv_003_overcurrent(void **state)
+{
+    rig_t r;
+    int trip_codes;
+    int j;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.power_on = true;
+    rig_ms(&r, 20);
+    assert_int_equal(st(&r), QFOC_STATE_RUN);
+    rig_fast(&r);
+    assert_true(r.pwm.enable);
+    /* (code - offset) x 16 > i_trip trips; == i_trip does not */
+    trip_codes = r.table.i_trip / 16;
+    r.adc.iu = (uint16_t)(QFOC_ADC_MID + trip_codes);
+    if ((trip_codes * 16) > r.table.i_trip) {
+        r.adc.iu = (uint16_t)(QFOC_ADC_MID + trip_codes - 1);
+    }
+    rig_fast(&r);
+    assert_true(r.pwm.enable);
+    assert_false(r.d.f.trip);
+    r.adc.iu = (uint16_t)(QFOC_ADC_MID + (r.table.i_trip / 16) + 1);
+    rig_fast(&r);
+    assert_false(r.pwm.enable);               /* the same PWM period */
+    assert_true(r.d.f.trip);
+    r.adc.iu = QFOC_ADC_MID;
+    for (j = 0; j < 7; j++) {
+        rig_fast(&r);
+        assert_false(r.pwm.enable);           /* latched until the tick */
+    }
+    rig_tick(&r, NULL, 0u);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OC);
+    assert_int_equal(r.d.s.sm.first_fault, QFOC_FAULT_OC);
+    /* the negative direction and the third phase trip too */
+    {
+        rig_t q;
+        rig_init(&q);
+        rig_to_stop(&q);
+        q.power_on = true;
+        rig_ms(&q, 20);
+        q.adc.iu = (uint16_t)(QFOC_ADC_MID - (q.table.i_trip / 32) - 2);
+        q.adc.iv = (uint16_t)(QFOC_ADC_MID - (q.table.i_trip / 32) - 2);   /* i_w > trip */
+        rig_fast(&q);
+        assert_false(q.pwm.enable);
+        q.adc.iu = 0u;
+        q.adc.iv = QFOC_ADC_MID;
+        rig_fast(&q);
+        assert_false(q.pwm.enable);
+    }
+    /* clear: not before clear_ms, then STOP and the latch released */
+    r.fault_clear = true;
+    rig_ms(&r, (int)r.table.drive.clear_ms - 20);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    for (j = 0; j < 40 && st(&r) == QFOC_STATE_ERROR; j++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    assert_int_equal(r.d.s.sm.faults, 0);
+    r.fault_clear = false;
+    rig_ms(&r, 20);
+    assert_int_equal(st(&r), QFOC_STATE_RUN);   /* power-on still set: restarts */
+    rig_fast(&r);
+    assert_true(r.pwm.enable);
+    assert_false(r.d.f.trip);
+    assert_int_equal(r.enabled_outside_run, 0);
+}
+
+/* REQ-DRV-008: DC-bus and temperature faults within their reaction times. */
+static void test_drv_008_fault_reaction_times(void **state)
+{
+    rig_t r;
+    int ms;
+    (void)state;
+    /* over-voltage from STOP: 320 V -> 480 V step */
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.adc.vdc = vdc_code(480.0);
+    for (ms = 1; ms <= 20 && st(&r) != QFOC_STATE_ERROR; ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OV);
+    print_message("OV 320 -> 480 V: ERROR after %d ms (debounce %u ms)\n", ms - 1,
+                  r.table.drive.vdc_ms);
+    assert_true((ms - 1) >= (int)r.table.drive.vdc_ms);
+    assert_true((ms - 1) <= 10);
+    /* under-voltage while running: 320 -> 150 V */
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.power_on = true;
+    rig_ms(&r, 20);
+    assert_int_equal(st(&r), QFOC_STATE_RUN);
+    r.adc.vdc = vdc_code(150.0);
+    for (ms = 1; ms <= 20 && st(&r) != QFOC_STATE_ERROR; ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_UV);
+    print_message("UV 320 -> 150 V in RUN: ERROR after %d ms\n", ms - 1);
+    assert_true((ms - 1) <= 10);
+    /* the same bus drop in STOP is not a fault: back to PRECHARGE */
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.adc.vdc = vdc_code(150.0);
+    rig_ms(&r, 50);
+    assert_int_equal(st(&r), QFOC_STATE_PRECHARGE);
+    /* over-temperature: exactly temp_ms ticks above the limit */
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.t_ipm = (int16_t)(r.table.drive.t_ipm_max + 1);
+    rig_ms(&r, (int)r.table.drive.temp_ms - 1);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    rig_ms(&r, 1);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OT_IPM);
+    /* at the limit: no fault; a clear is refused while still hot */
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.t_pcb = r.table.drive.t_pcb_max;
+    rig_ms(&r, 100);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    r.t_pcb = (int16_t)(r.t_pcb + 1);
+    rig_ms(&r, (int)r.table.drive.temp_ms);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OT_PCB);
+    r.fault_clear = true;
+    rig_ms(&r, 6000);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    r.t_pcb = 300;
+    rig_ms(&r, 20);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+}
+
+/* REQ-DRV-010: the table is re-checked every 100 ms; a corruption is PARAM, not cleared. */
+static void test_drv_010_table_recheck(void **state)
+{
+    rig_t r;
+    int ms;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.table.drive.clear_ms ^= 0x0100u;     /* a flipped bit in "flash" */
+    for (ms = 1; ms <= 200 && st(&r) != QFOC_STATE_ERROR; ms++) {
+        rig_ms(&r, 1);
+    }
+    print_message("table corruption detected after %d ms\n", ms - 1);
+    assert_true((ms - 1) <= 101);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_PARAM);
+    r.table.drive.clear_ms ^= 0x0100u;     /* even repaired: latched for good */
+    r.fault_clear = true;
+    rig_ms(&r, 20000);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+}
+
+/* REQ-DRV-011: a status frame answers every valid command frame; CAN every 100 ms with
+   alternating identifiers; a malformed frame changes nothing but its counter. */
+static void test_drv_011_status_and_can(void **state)
+{
+    rig_t r;
+    rig_t twin;
+    long k;
+    int can = 0;
+    uint16_t last_id = 0u;
+    (void)state;
+    rig_init(&r);
+    for (k = 0; k < 1000; k++) {
+        rig_ms(&r, 1);
+        if ((r.ms % 10) == 1) {
+            /* the frame of this tick was a valid command */
+            assert_int_equal(r.out.tx_len, QFOC_LIN_STATUS_LEN);
+            assert_int_equal(r.out.tx[0], 0x55u);
+            assert_int_equal(r.out.tx[1], dsim_lin_pid(r.table.drive.lin_id_status));
+            assert_int_equal(r.out.tx[10], dsim_lin_checksum(&r.out.tx[1], 9));
+        } else {
+            assert_int_equal(r.out.tx_len, 0u);
+        }
+        if (r.out.can_send) {
+            assert_int_equal(r.ms % 100, 0);
+            assert_int_equal(r.out.can.dlc, 8u);
+            assert_int_equal(r.out.can.id, (can % 2 == 0) ? r.table.drive.can_id_a
+                                                           : r.table.drive.can_id_b);
+            assert_int_not_equal(r.out.can.id, last_id);
+            last_id = r.out.can.id;
+            can++;
+        }
+    }
+    assert_int_equal(can, 10);
+    /* malformed frames: same state as a twin that received nothing */
+    rig_init(&r);
+    rig_to_stop(&r);
+    twin = r;
+    twin.d.p = &twin.table;
+    for (k = 0; k < 2000; k++) {
+        uint8_t f[QFOC_LIN_FRAME_MAX];
+        uint8_t len;
+        int j;
+        r.power_on = true;
+        r.fault_clear = true;
+        len = rig_frame(&r, f);
+        f[(lcg_next() >> 8) % len] ^= (uint8_t)(1u << ((lcg_next() >> 8) % 8u));
+        for (j = 0; j < 8; j++) {
+            rig_fast(&r);
+            rig_fast(&twin);
+        }
+        rig_tick(&r, f, len);
+        rig_tick(&twin, NULL, 0u);
+        assert_int_equal(r.out.tx_len, 0u);
+        assert_int_equal(r.d.s.sm.state, twin.d.s.sm.state);
+        assert_int_equal(r.d.s.sm.sub, twin.d.s.sm.sub);
+        assert_int_equal(r.d.s.sm.faults, twin.d.s.sm.faults);
+    }
+    /* with 2000 ms of silence from the master, both lost the link: not a fault in STOP */
+    assert_true(qfoc_link_lost(&r.d.s.link));
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    print_message("malformed frames rejected: len %u sync %u id %u checksum %u reserved %u range %u\n",
+                  r.d.s.link.n_len, r.d.s.link.n_sync, r.d.s.link.n_id, r.d.s.link.n_checksum,
+                  r.d.s.link.n_reserved, r.d.s.link.n_range);
+}
+
+/* REQ-DRV-012: motorParaChange: high-speed inductances above para_speed, back below
+   15/16 of it; the observer's inductance follows. */
+static void test_drv_012_para_change(void **state)
+{
+    rig_t r;
+    (void)state;
+    rig_init(&r);
+    r.table.drive.lq_hs = (int16_t)(r.table.lq + 100);
+    r.table.crc = qfoc_params_crc(&r.table);
+    assert_int_equal(qfoc_drive_init(&r.d, &r.table), QFOC_PARAMS_OK);
+    rig_to_stop(&r);
+    r.d.f.speed_f = (int16_t)(r.table.drive.para_speed + 1);
+    rig_tick(&r, NULL, 0u);
+    r.ms = 0;
+    while (r.d.s.ms100 != 0u) {
+        r.d.f.speed_f = (int16_t)(r.table.drive.para_speed + 1);
+        rig_tick(&r, NULL, 0u);
+    }
+    assert_true(r.d.s.hs);
+    rig_fast(&r);
+    assert_true(r.d.f.hs);
+    assert_int_equal(r.d.f.flux.params.l, r.table.lq + 100);
+    /* inside the hysteresis band: kept */
+    {
+        int k;
+        for (k = 0; k < 100; k++) {
+            r.d.f.speed_f = (int16_t)(r.table.drive.para_speed - (r.table.drive.para_speed / 32));
+            rig_tick(&r, NULL, 0u);
+        }
+        assert_true(r.d.s.hs);
+        for (k = 0; k < 100; k++) {
+            r.d.f.speed_f = (int16_t)(r.table.drive.para_speed - (r.table.drive.para_speed / 8));
+            rig_tick(&r, NULL, 0u);
+        }
+        assert_false(r.d.s.hs);
+    }
+    rig_fast(&r);
+    assert_int_equal(r.d.f.flux.params.l, r.table.lq);
+}
+
+/* REQ-DRV-002: random ADC samples, temperatures and frames: the PWM is enabled only in
+   RUN, the compare values never exceed the period, the invariant holds. */
+static void test_drv_002_random_inputs(void **state)
+{
+    rig_t r;
+    long k;
+    long run_ms = 0;
+    (void)state;
+    rig_init(&r);
+    for (k = 0; k < 60000; k++) {
+        uint8_t f[QFOC_LIN_FRAME_MAX];
+        uint8_t len = 0u;
+        int j;
+        if ((k % 3000) == 0) {
+            r.power_on = (lcg_next() & 0x100u) != 0u;
+            r.fault_clear = (lcg_next() & 0x100u) != 0u;
+            r.rpm = (uint16_t)(lcg_next() >> 19);
+        }
+        for (j = 0; j < 8; j++) {
+            const uint32_t x = lcg_next();
+            r.adc.iu = (uint16_t)((x & 0x3FFFu) == 0u ? (x >> 16) : QFOC_ADC_MID + ((x >> 20) & 0x3Fu));
+            r.adc.iv = (uint16_t)(QFOC_ADC_MID - ((x >> 26) & 0x1Fu));
+            r.adc.vdc = (uint16_t)(((x >> 8) & 0x3FFFu) == 0u ? (x >> 20) : vdc_code(320.0));
+            rig_fast(&r);
+        }
+        r.t_ipm = (int16_t)(((lcg_next() >> 8) & 0x3FFFu) == 0u ? 1500 : 400);
+        if ((k % 10) == 0) {
+            len = rig_frame(&r, f);
+            if ((lcg_next() & 0x3u) == 0u) {
+                f[(lcg_next() >> 8) % len] ^= 0x10u;
+            }
+        }
+        rig_tick(&r, f, len);
+        if (st(&r) == QFOC_STATE_RUN) {
+            run_ms++;
+        }
+        assert_true(qfoc_drive_is_valid(&r.d));
+    }
+    print_message("random inputs: %ld ms in RUN of 60000\n", run_ms);
+    assert_true(run_ms > 0);
+    assert_int_equal(r.enabled_outside_run, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_drv_001_init),
+        cmocka_unit_test(test_drv_002_random_inputs),
+        cmocka_unit_test(test_drv_003_overcurrent),
+        cmocka_unit_test(test_drv_007_precharge_and_offsets),
+        cmocka_unit_test(test_drv_008_fault_reaction_times),
+        cmocka_unit_test(test_drv_009_command),
+        cmocka_unit_test(test_drv_010_table_recheck),
+        cmocka_unit_test(test_drv_011_status_and_can),
+        cmocka_unit_test(test_drv_012_para_change),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

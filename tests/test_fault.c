@@ -1,0 +1,332 @@
+/*
+ * test_fault.c -- unit tests of the fault-detection primitives (include/qfoc/fault.h).
+ *
+ * References (double precision / independent models):
+ *  - debounce: the run length k of consecutive trues counted by the test; the
+ *    result must be k >= max(n, 1) and the count min(k, n) (exact, 0 error);
+ *  - phase monitor: the low-pass of document 2-34, y += alpha / 32768 (|i| - y),
+ *    in double on each |i_x|; the filtered magnitude (state rounded to Q15) must be
+ *    within 0.75 LSB of it (filter.h: 1/4 LSB state error + 1/2 LSB rounding); the
+ *    criterion max >= i_min && min < ratio / 32768 max evaluated in double on the
+ *    filtered magnitudes;
+ *  - thresholds: x > limit, x < limit, |x| > limit in double (exact).
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+
+#include "qfoc/fault.h"
+#define TEST_SEED 777u
+#include "test_util.h"
+
+/* REQ-FAULT-001: the fault bits are the interface values, distinct, one bit each */
+static void test_fault_bits(void **state)
+{
+    static const uint16_t bits[] = { QFOC_FAULT_OC, QFOC_FAULT_OV, QFOC_FAULT_UV,
+                                     QFOC_FAULT_OT_IPM, QFOC_FAULT_OT_PCB, QFOC_FAULT_STALL,
+                                     QFOC_FAULT_PHASE, QFOC_FAULT_OFFSET, QFOC_FAULT_LINK,
+                                     QFOC_FAULT_PARAM };
+    uint16_t all = 0u;
+    size_t k;
+    (void)state;
+    for (k = 0u; k < (sizeof(bits) / sizeof(bits[0])); k++) {
+        assert_int_equal(bits[k], (uint16_t)(1u << k));
+        assert_int_equal(all & bits[k], 0u);
+        all = (uint16_t)(all | bits[k]);
+    }
+    assert_int_equal(all, QFOC_FAULT_ALL);
+    assert_int_equal(QFOC_FAULT_ALL, 0x03FFu);
+    assert_int_equal(QFOC_FAULT_OC, 0x0001u);
+    assert_int_equal(QFOC_FAULT_PHASE, 0x0040u);
+    assert_int_equal(QFOC_FAULT_PARAM, 0x0200u);
+}
+
+/* REQ-FAULT-002: random condition sequences against the run-length model */
+static void test_debounce_run_length(void **state)
+{
+    uint32_t trial;
+    uint32_t n_confirm = 0u;
+    (void)state;
+    for (trial = 0u; trial < 2000u; trial++) {
+        qfoc_debounce_t d;
+        const uint16_t n = (trial < 1900u) ? (uint16_t)rand_range(0, 12)
+                                           : (uint16_t)rand_range(0, 65535);
+        /* probability of a true sample between 50 % and 97 % */
+        const uint32_t p_true = (uint32_t)rand_range(50, 97);
+        uint32_t k = 0u;
+        uint32_t step;
+        qfoc_debounce_reset(&d);
+        assert_int_equal(d.count, 0u);
+        for (step = 0u; step < 60u; step++) {
+            const bool c = ((uint32_t)rand_range(0, 99) < p_true);
+            const uint32_t need = (n == 0u) ? 1u : (uint32_t)n;
+            bool r;
+            k = c ? (k + 1u) : 0u;
+            r = qfoc_debounce_step(&d, c, n);
+            assert_int_equal(r, (k >= need));
+            assert_int_equal(d.count, (k < (uint32_t)n) ? k : (uint32_t)n);
+            n_confirm += r ? 1u : 0u;
+        }
+    }
+    print_message("debounce: %u confirmations in 120000 random steps, all matching the model\n",
+                  (unsigned)n_confirm);
+    assert_true(n_confirm > 1000u);
+}
+
+/* REQ-FAULT-002: corners: n = 0, 1, 10 (the drive's 10 ms), 65535, count above n */
+static void test_debounce_corners(void **state)
+{
+    qfoc_debounce_t d;
+    uint32_t k;
+    (void)state;
+    /* n = 0 and n = 1: confirmed at the first true call */
+    qfoc_debounce_reset(&d);
+    assert_true(qfoc_debounce_step(&d, true, 0u));
+    assert_int_equal(d.count, 0u);
+    assert_false(qfoc_debounce_step(&d, false, 0u));
+    qfoc_debounce_reset(&d);
+    assert_true(qfoc_debounce_step(&d, true, 1u));
+    assert_int_equal(d.count, 1u);
+    assert_true(qfoc_debounce_step(&d, true, 1u));
+    assert_int_equal(d.count, 1u);
+    /* n = 10: the 10th consecutive true call confirms, one false restarts */
+    qfoc_debounce_reset(&d);
+    for (k = 1u; k <= 9u; k++) {
+        assert_false(qfoc_debounce_step(&d, true, 10u));
+    }
+    assert_false(qfoc_debounce_step(&d, false, 10u));
+    for (k = 1u; k <= 9u; k++) {
+        assert_false(qfoc_debounce_step(&d, true, 10u));
+    }
+    assert_true(qfoc_debounce_step(&d, true, 10u));
+    assert_true(qfoc_debounce_step(&d, true, 10u));
+    assert_int_equal(d.count, 10u);
+    /* count above n (n lowered, or uninitialised): confirmed and capped */
+    d.count = 65535u;
+    assert_true(qfoc_debounce_step(&d, true, 3u));
+    assert_int_equal(d.count, 3u);
+    d.count = 65535u;
+    assert_false(qfoc_debounce_step(&d, false, 3u));
+    assert_int_equal(d.count, 0u);
+    /* n = 65535: the count reaches 65535 without wrapping */
+    d.count = 65533u;
+    assert_false(qfoc_debounce_step(&d, true, 65535u));
+    assert_int_equal(d.count, 65534u);
+    assert_true(qfoc_debounce_step(&d, true, 65535u));
+    assert_int_equal(d.count, 65535u);
+    assert_true(qfoc_debounce_step(&d, true, 65535u));
+    assert_int_equal(d.count, 65535u);
+}
+
+/* ---- phase monitor ------------------------------------------------------- */
+
+static double absq(int16_t x)
+{
+    return (x == (int16_t)-32768) ? 32767.0 : fabs((double)x);
+}
+
+static double out_of(const qfoc_lpf_t *f)
+{
+    /* state >= 0: nearest, ties up */
+    return floor(((double)f->state / 65536.0) + 0.5);
+}
+
+static bool ref_criterion(const double a[3], int16_t i_min, int16_t ratio)
+{
+    const double hi = fmax(a[0], fmax(a[1], a[2]));
+    const double lo = fmin(a[0], fmin(a[1], a[2]));
+    return (hi >= (double)i_min) && (lo < (((double)ratio / 32768.0) * hi));
+}
+
+/* REQ-FAULT-003, REQ-FAULT-005: random currents against the double low-pass, and
+   the criterion on random thresholds */
+static void test_phase_mon_random_vs_reference(void **state)
+{
+    qfoc_phase_mon_t m;
+    double y[3] = { 0.0, 0.0, 0.0 };
+    double max_err = 0.0;
+    uint32_t n_true = 0u;
+    uint32_t seq;
+    uint32_t k;
+    (void)state;
+    for (seq = 0u; seq < 40u; seq++) {
+        const int16_t alpha = (seq < 4u) ? ((seq < 2u) ? (int16_t)1 : (int16_t)32767)
+                                         : (int16_t)rand_range(1, 32767);
+        assert_int_equal(qfoc_phase_mon_init(&m, alpha), QFOC_FAULT_OK);
+        y[0] = 0.0;
+        y[1] = 0.0;
+        y[2] = 0.0;
+        for (k = 0u; k < 2000u; k++) {
+            qfoc_abc_t i;
+            double a[3];
+            size_t x;
+            const int16_t i_min = (int16_t)rand_range(-100, 20000);
+            const int16_t ratio = ((k % 97u) == 0u) ? rand_i16() : (int16_t)rand_range(0, 32767);
+            i.u = rand_i16();
+            /* phase v often small, to exercise the imbalance */
+            i.v = ((k & 1u) != 0u) ? rand_i16() : (int16_t)rand_range(-500, 500);
+            i.w = ((k % 5u) == 0u) ? (int16_t)-32768 : rand_i16();
+            qfoc_phase_mon_update(&m, &i);
+            y[0] += ((double)alpha / 32768.0) * (absq(i.u) - y[0]);
+            y[1] += ((double)alpha / 32768.0) * (absq(i.v) - y[1]);
+            y[2] += ((double)alpha / 32768.0) * (absq(i.w) - y[2]);
+            assert_true(qfoc_phase_mon_is_valid(&m));
+            for (x = 0u; x < 3u; x++) {
+                a[x] = out_of(&m.abs_lpf[x]);
+                max_err = fmax(max_err, fabs(a[x] - y[x]));
+            }
+            {
+                const bool r = qfoc_phase_mon_imbalanced(&m, i_min, ratio);
+                assert_int_equal(r, ref_criterion(a, i_min, ratio));
+                n_true += r ? 1u : 0u;
+            }
+        }
+    }
+    print_message("phase monitor: max |filtered |i| - double low-pass| = %.3f LSB "
+                  "(bound 0.75), %u of 80000 samples imbalanced\n", max_err, (unsigned)n_true);
+    assert_true(max_err <= 0.75);
+    assert_true(n_true > 1000u);
+}
+
+/* REQ-FAULT-003, REQ-FAULT-005: balanced sinusoidal currents are never reported,
+   a lost phase is reported once the filter has settled */
+static void test_phase_mon_phase_loss(void **state)
+{
+    const double two_pi = 6.28318530717958647692;
+    const double amp = 0.5 * 32768.0;     /* 20 A of I_base 40 A */
+    const double w = two_pi * 300.0 / 8000.0; /* 300 Hz electrical at 8 kHz */
+    /* f_c = 20 Hz: 2 pi 20 / 8000 x 32768 = 514.7 -> 515 */
+    const int16_t alpha = 515;
+    const int16_t i_min = 3277;   /* 4 A */
+    const int16_t ratio = 8192;   /* 0.25 */
+    qfoc_phase_mon_t m;
+    uint32_t k;
+    uint32_t first = 0u;
+    (void)state;
+    assert_int_equal(qfoc_phase_mon_init(&m, alpha), QFOC_FAULT_OK);
+    assert_false(qfoc_phase_mon_imbalanced(&m, i_min, ratio)); /* at rest: never */
+    assert_false(qfoc_phase_mon_imbalanced(&m, 0, ratio));
+    for (k = 0u; k < 8000u; k++) {
+        const double th = w * (double)k;
+        qfoc_abc_t i;
+        i.u = q15_of(amp * sin(th) / 32768.0);
+        i.v = q15_of(amp * sin(th - (two_pi / 3.0)) / 32768.0);
+        i.w = q15_of(amp * sin(th + (two_pi / 3.0)) / 32768.0);
+        qfoc_phase_mon_update(&m, &i);
+        assert_false(qfoc_phase_mon_imbalanced(&m, i_min, ratio));
+    }
+    /* mean |i| of a sine is 2 A / pi */
+    assert_true(fabs(out_of(&m.abs_lpf[0]) - (2.0 * amp / 3.14159265358979)) < 300.0);
+    /* phase w lost: i_w = 0, i_u = -i_v */
+    for (k = 0u; k < 8000u; k++) {
+        const double th = w * (double)k;
+        qfoc_abc_t i;
+        i.u = q15_of(0.866 * amp * sin(th) / 32768.0);
+        i.v = (int16_t)(-i.u);
+        i.w = 0;
+        qfoc_phase_mon_update(&m, &i);
+        if ((first == 0u) && qfoc_phase_mon_imbalanced(&m, i_min, ratio)) {
+            first = k + 1u;
+        }
+    }
+    print_message("phase monitor: phase loss reported %u samples (%.1f ms) after it occurred\n",
+                  (unsigned)first, (double)first / 8.0);
+    assert_true(first > 0u);
+    assert_true(first < 800u);   /* within 100 ms with f_c = 20 Hz */
+    assert_true(qfoc_phase_mon_imbalanced(&m, i_min, ratio));
+    assert_false(qfoc_phase_mon_imbalanced(&m, 32767, ratio)); /* below i_min */
+    assert_false(qfoc_phase_mon_imbalanced(&m, i_min, 0));     /* ratio 0 */
+    assert_false(qfoc_phase_mon_imbalanced(&m, i_min, -32768)); /* negative ratio */
+    qfoc_phase_mon_reset(&m);
+    assert_true(qfoc_phase_mon_is_valid(&m));
+    assert_int_equal(m.abs_lpf[0].state, 0);
+    assert_int_equal(m.abs_lpf[1].state, 0);
+    assert_int_equal(m.abs_lpf[2].state, 0);
+    assert_int_equal(m.abs_lpf[0].alpha, alpha);
+    assert_false(qfoc_phase_mon_imbalanced(&m, i_min, ratio));
+}
+
+/* REQ-FAULT-004: init, invalid coefficient, validity check */
+static void test_phase_mon_init_valid(void **state)
+{
+    qfoc_phase_mon_t m;
+    size_t x;
+    (void)state;
+    assert_int_equal(qfoc_phase_mon_init(&m, 0), QFOC_FAULT_ERR_PARAM);
+    assert_true(qfoc_phase_mon_is_valid(&m));
+    assert_int_equal(qfoc_phase_mon_init(&m, -32768), QFOC_FAULT_ERR_PARAM);
+    for (x = 0u; x < 3u; x++) {
+        assert_int_equal(m.abs_lpf[x].alpha, 32767);
+        assert_int_equal(m.abs_lpf[x].state, 0);
+    }
+    assert_true(qfoc_phase_mon_is_valid(&m));
+    assert_int_equal(qfoc_phase_mon_init(&m, 1), QFOC_FAULT_OK);
+    assert_true(qfoc_phase_mon_is_valid(&m));
+    for (x = 0u; x < 3u; x++) {
+        qfoc_phase_mon_t b = m;
+        b.abs_lpf[x].state = -1;
+        assert_false(qfoc_phase_mon_is_valid(&b));
+        b.abs_lpf[x].state = 2147418113;
+        assert_false(qfoc_phase_mon_is_valid(&b));
+        b.abs_lpf[x].state = 2147418112;
+        assert_true(qfoc_phase_mon_is_valid(&b));
+        b.abs_lpf[x].alpha = 0;
+        assert_false(qfoc_phase_mon_is_valid(&b));
+    }
+    /* full-scale currents, -32768 included: the states reach exactly 32767 x 65536 */
+    assert_int_equal(qfoc_phase_mon_init(&m, 32767), QFOC_FAULT_OK);
+    for (x = 0u; x < 40u; x++) {
+        const qfoc_abc_t i = { -32768, 32767, -32767 };
+        qfoc_phase_mon_update(&m, &i);
+    }
+    assert_true(qfoc_phase_mon_is_valid(&m));
+    assert_int_equal(m.abs_lpf[0].state, 2147418112);
+    assert_false(qfoc_phase_mon_imbalanced(&m, 1, 32767));
+}
+
+/* REQ-FAULT-006: thresholds against the definitions, corners and random values */
+static void test_fault_thresholds(void **state)
+{
+    static const int16_t c[] = { -32768, -32767, -1, 0, 1, 32766, 32767 };
+    size_t i;
+    size_t j;
+    uint32_t k;
+    (void)state;
+    for (i = 0u; i < 7u; i++) {
+        for (j = 0u; j < 7u; j++) {
+            assert_int_equal(qfoc_fault_over(c[i], c[j]), ((double)c[i] > (double)c[j]));
+            assert_int_equal(qfoc_fault_under(c[i], c[j]), ((double)c[i] < (double)c[j]));
+            assert_int_equal(qfoc_fault_abs_over(c[i], c[j]), (fabs((double)c[i]) > (double)c[j]));
+        }
+    }
+    for (k = 0u; k < 200000u; k++) {
+        const int16_t x = rand_i16();
+        const int16_t l = rand_i16();
+        assert_int_equal(qfoc_fault_over(x, l), ((double)x > (double)l));
+        assert_int_equal(qfoc_fault_under(x, l), ((double)x < (double)l));
+        assert_int_equal(qfoc_fault_abs_over(x, l), (fabs((double)x) > (double)l));
+    }
+    /* -32768 (|x| = 32768) trips even the full-scale limit */
+    assert_true(qfoc_fault_abs_over(-32768, 32767));
+    assert_false(qfoc_fault_abs_over(-32767, 32767));
+    assert_false(qfoc_fault_over(32767, 32767));
+    assert_false(qfoc_fault_under(-32768, -32768));
+    assert_true(qfoc_fault_abs_over(0, -1));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fault_bits),
+        cmocka_unit_test(test_debounce_run_length),
+        cmocka_unit_test(test_debounce_corners),
+        cmocka_unit_test(test_phase_mon_random_vs_reference),
+        cmocka_unit_test(test_phase_mon_phase_loss),
+        cmocka_unit_test(test_phase_mon_init_valid),
+        cmocka_unit_test(test_fault_thresholds),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

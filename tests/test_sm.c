@@ -1,0 +1,515 @@
+/**
+ * @file test_sm.c
+ * @brief Tests of the drive state machine (sm.h): every transition and its condition
+ *        (specs/requirements/sm.md), against a transition table written here from
+ *        the requirements, over random input sequences.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#define TEST_SEED 0x5E5E5E5Eu
+#include "test_util.h"
+#include "qfoc/sm.h"
+
+static const qfoc_sm_cfg_t cfg = { 200u, 300u, 2000u, 2000u, 5000u };
+
+static qfoc_sm_in_t quiet(void)
+{
+    qfoc_sm_in_t in;
+    in.faults = 0u;
+    in.bus_ok = true;
+    in.calib_done = false;
+    in.run_request = false;
+    in.link_lost = false;
+    in.fault_clear = false;
+    in.table_ok = true;
+    in.converged = false;
+    in.stop_reached = false;
+    return in;
+}
+
+static void steps(qfoc_sm_t *sm, const qfoc_sm_in_t *in, int n)
+{
+    int k;
+    for (k = 0; k < n; k++) {
+        qfoc_sm_step(sm, &cfg, in);
+    }
+}
+
+/* REQ-SM-001: power-on state and the invariant check. */
+static void test_sm_001_init_and_validity(void **state)
+{
+    qfoc_sm_t sm;
+    (void)state;
+    qfoc_sm_init(&sm);
+    assert_int_equal(sm.state, QFOC_STATE_PRECHARGE);
+    assert_int_equal(sm.sub, QFOC_SUB_BUS_WAIT);
+    assert_int_equal(sm.faults, 0);
+    assert_true(qfoc_sm_is_valid(&sm));
+    sm.sub = QFOC_SUB_ALIGN;                /* RUN sub-state in PRECHARGE */
+    assert_false(qfoc_sm_is_valid(&sm));
+    sm.sub = QFOC_SUB_BUS_WAIT;
+    sm.faults = QFOC_SM_FAULT_STALL;        /* fault word outside ERROR */
+    assert_false(qfoc_sm_is_valid(&sm));
+    sm.faults = 0u;
+    sm.state = 7u;                          /* undefined state */
+    assert_false(qfoc_sm_is_valid(&sm));
+    sm.state = QFOC_STATE_ERROR;
+    sm.sub = QFOC_SUB_NONE;
+    assert_false(qfoc_sm_is_valid(&sm));    /* ERROR without a cause */
+    sm.faults = 0x0400u;
+    sm.first_fault = 0x0400u;
+    assert_false(qfoc_sm_is_valid(&sm));    /* undefined bit */
+    sm.faults = 0x0001u;
+    sm.first_fault = 0x0001u;
+    assert_true(qfoc_sm_is_valid(&sm));
+    sm.first_fault = 0u;
+    assert_false(qfoc_sm_is_valid(&sm));
+    sm.first_fault = 0x0800u;
+    assert_false(qfoc_sm_is_valid(&sm));
+    sm.state = QFOC_STATE_STOP;
+    sm.faults = 0u;
+    sm.first_fault = 1u;
+    assert_false(qfoc_sm_is_valid(&sm));
+    sm.state = QFOC_STATE_RUN;
+    sm.first_fault = 0u;
+    sm.sub = QFOC_SUB_NONE;
+    assert_false(qfoc_sm_is_valid(&sm));
+    sm.sub = QFOC_SUB_STOPPING;
+    assert_true(qfoc_sm_is_valid(&sm));
+    sm.sub = 7u;
+    assert_false(qfoc_sm_is_valid(&sm));
+    sm.state = QFOC_STATE_STOP;
+    sm.sub = QFOC_SUB_CALIB;
+    assert_false(qfoc_sm_is_valid(&sm));
+}
+
+/* REQ-SM-004: PRECHARGE waits precharge_ms with the bus up, calibrates, then STOP. */
+static void test_sm_004_precharge(void **state)
+{
+    qfoc_sm_t sm;
+    qfoc_sm_in_t in = quiet();
+    (void)state;
+    qfoc_sm_init(&sm);
+    in.bus_ok = false;
+    steps(&sm, &in, 1000);
+    assert_int_equal(sm.sub, QFOC_SUB_BUS_WAIT);
+    in.bus_ok = true;
+    steps(&sm, &in, 199);                    /* t_sub reaches 199 */
+    assert_int_equal(sm.sub, QFOC_SUB_BUS_WAIT);
+    in.bus_ok = false;                       /* a dip restarts the settling time */
+    steps(&sm, &in, 1);
+    in.bus_ok = true;
+    steps(&sm, &in, 199);
+    assert_int_equal(sm.sub, QFOC_SUB_BUS_WAIT);
+    steps(&sm, &in, 1);                      /* the 200th tick with the bus up */
+    assert_int_equal(sm.sub, QFOC_SUB_CALIB);
+    steps(&sm, &in, 50);
+    assert_int_equal(sm.state, QFOC_STATE_PRECHARGE);
+    in.calib_done = true;
+    in.bus_ok = false;                       /* bus lost during calibration */
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_BUS_WAIT);
+    in.bus_ok = true;
+    steps(&sm, &in, 200);
+    assert_int_equal(sm.sub, QFOC_SUB_CALIB);
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);
+    assert_int_equal(sm.sub, QFOC_SUB_NONE);
+    assert_int_equal(sm.t_state, 0);
+}
+
+static void to_stop(qfoc_sm_t *sm)
+{
+    qfoc_sm_in_t in = quiet();
+    qfoc_sm_init(sm);
+    in.calib_done = true;
+    steps(sm, &in, 202);
+    assert_int_equal(sm->state, QFOC_STATE_STOP);
+}
+
+/* REQ-SM-005: STOP starts on a run request into ALIGN; bus or offsets lost: PRECHARGE. */
+static void test_sm_005_stop(void **state)
+{
+    qfoc_sm_t sm;
+    qfoc_sm_in_t in = quiet();
+    (void)state;
+    to_stop(&sm);
+    in.calib_done = true;
+    steps(&sm, &in, 100);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);
+    in.run_request = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_RUN);
+    assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
+    to_stop(&sm);
+    in = quiet();
+    in.calib_done = true;
+    in.bus_ok = false;
+    in.run_request = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_PRECHARGE);
+    assert_int_equal(sm.sub, QFOC_SUB_BUS_WAIT);
+    to_stop(&sm);
+    in = quiet();                            /* offsets not calibrated */
+    in.run_request = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_PRECHARGE);
+}
+
+/* REQ-SM-006: ALIGN -> OPEN_LOOP -> CLOSED_LOOP, handover not before cl_hold_ms. */
+static void test_sm_006_run_sequence(void **state)
+{
+    qfoc_sm_t sm;
+    qfoc_sm_in_t in = quiet();
+    (void)state;
+    to_stop(&sm);
+    in.calib_done = true;
+    in.run_request = true;
+    in.converged = true;                     /* converged early: must still wait */
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
+    steps(&sm, &in, 299);
+    assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
+    steps(&sm, &in, 1);                      /* the 300th tick of ALIGN */
+    assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
+    /* t_state 300 now; the handover waits for 2000 */
+    steps(&sm, &in, 1699);
+    assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+    assert_int_equal(sm.state, QFOC_STATE_RUN);
+    /* CLOSED_LOOP stays while requested, even without convergence */
+    in.converged = false;
+    steps(&sm, &in, 10000);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+    assert_int_equal(sm.t_state, 12000);
+}
+
+/* REQ-SM-007: stop requests: at once from ALIGN and OPEN_LOOP, ramped from CLOSED_LOOP. */
+static void test_sm_007_stop_requests(void **state)
+{
+    qfoc_sm_t sm;
+    qfoc_sm_in_t in = quiet();
+    (void)state;
+    in.calib_done = true;
+    to_stop(&sm);
+    in.run_request = true;
+    steps(&sm, &in, 5);
+    in.run_request = false;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);          /* from ALIGN */
+    in.run_request = true;
+    steps(&sm, &in, 400);
+    assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
+    in.run_request = false;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);          /* from OPEN_LOOP */
+    in.run_request = true;
+    in.converged = true;
+    steps(&sm, &in, 2100);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+    in.run_request = false;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_STOPPING);
+    steps(&sm, &in, 500);
+    assert_int_equal(sm.sub, QFOC_SUB_STOPPING);
+    in.run_request = true;                                 /* restart while ramping down */
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+    in.run_request = false;
+    steps(&sm, &in, 1);
+    in.stop_reached = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);
+}
+
+/* REQ-SM-002: any fault in any state enters ERROR in the same tick, PWM-off state. */
+static void test_sm_002_fault_to_error(void **state)
+{
+    const uint8_t subs[] = { QFOC_SUB_BUS_WAIT, QFOC_SUB_CALIB, QFOC_SUB_NONE, QFOC_SUB_ALIGN,
+                             QFOC_SUB_OPEN_LOOP, QFOC_SUB_CLOSED_LOOP, QFOC_SUB_STOPPING };
+    const uint8_t sts[] = { QFOC_STATE_PRECHARGE, QFOC_STATE_PRECHARGE, QFOC_STATE_STOP,
+                            QFOC_STATE_RUN, QFOC_STATE_RUN, QFOC_STATE_RUN, QFOC_STATE_RUN };
+    unsigned k;
+    unsigned bit;
+    (void)state;
+    for (k = 0; k < 7u; k++) {
+        for (bit = 0; bit < 16u; bit++) {
+            qfoc_sm_t sm;
+            qfoc_sm_in_t in = quiet();
+            const uint16_t f = (uint16_t)(1u << bit);
+            sm.state = sts[k];
+            sm.sub = subs[k];
+            sm.faults = 0u;
+            sm.first_fault = 0u;
+            sm.t_state = 17u;
+            sm.t_sub = 5u;
+            in.faults = f;
+            qfoc_sm_step(&sm, &cfg, &in);
+            if (bit < 10u) {
+                assert_int_equal(sm.state, QFOC_STATE_ERROR);
+                assert_int_equal(sm.faults, f);
+                assert_int_equal(sm.first_fault, f);
+                assert_int_equal(sm.t_state, 0);
+            } else {
+                /* undefined bits are ignored */
+                assert_int_not_equal(sm.state, QFOC_STATE_ERROR);
+            }
+            assert_true(qfoc_sm_is_valid(&sm));
+        }
+    }
+}
+
+/* REQ-SM-008: STALL after ol_timeout_ms of OPEN_LOOP; LINK on a lost link while running. */
+static void test_sm_008_own_faults(void **state)
+{
+    qfoc_sm_t sm;
+    qfoc_sm_in_t in = quiet();
+    (void)state;
+    in.calib_done = true;
+    to_stop(&sm);
+    in.run_request = true;
+    steps(&sm, &in, 302);
+    assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);   /* t_sub 1 */
+    steps(&sm, &in, 1998);
+    assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_STALL);
+    /* link lost in ALIGN */
+    to_stop(&sm);
+    in = quiet();
+    in.calib_done = true;
+    in.run_request = true;
+    steps(&sm, &in, 3);
+    in.link_lost = true;
+    in.run_request = false;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_LINK);
+    /* link lost in CLOSED_LOOP: ramp down first, LINK when the stop completes */
+    to_stop(&sm);
+    in = quiet();
+    in.calib_done = true;
+    in.run_request = true;
+    in.converged = true;
+    steps(&sm, &in, 2100);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+    in.link_lost = true;
+    in.run_request = false;
+    steps(&sm, &in, 100);
+    assert_int_equal(sm.sub, QFOC_SUB_STOPPING);
+    in.stop_reached = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_LINK);
+    /* a lost link in STOP is not a fault */
+    to_stop(&sm);
+    in = quiet();
+    in.calib_done = true;
+    in.link_lost = true;
+    steps(&sm, &in, 100);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);
+    /* both at once: the bits add up */
+    sm.state = QFOC_STATE_RUN;
+    sm.sub = QFOC_SUB_OPEN_LOOP;
+    sm.t_sub = 5000u;
+    in.faults = QFOC_SM_FAULT_STALL | QFOC_SM_FAULT_LINK;
+    qfoc_sm_step(&sm, &cfg, &in);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_STALL | QFOC_SM_FAULT_LINK);
+}
+
+/* REQ-SM-003: ERROR is left only after clear_ms, on a clear request, with no fault and
+   the table intact; to STOP, word cleared. */
+static void test_sm_003_fault_clear(void **state)
+{
+    qfoc_sm_t sm;
+    qfoc_sm_in_t in = quiet();
+    (void)state;
+    qfoc_sm_init(&sm);
+    qfoc_sm_fail(&sm, 0x0001u);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    in.fault_clear = true;
+    steps(&sm, &in, 4999);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    in.faults = 0x0008u;                     /* still hot: refused */
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    assert_int_equal(sm.faults, 0x0001u);    /* word keeps the cause */
+    in.faults = 0u;
+    in.table_ok = false;                     /* table bad: refused */
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    in.table_ok = true;
+    in.fault_clear = false;
+    steps(&sm, &in, 1000);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    in.fault_clear = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);
+    assert_int_equal(sm.faults, 0);
+    assert_int_equal(sm.first_fault, 0);
+    /* exactly at clear_ms: the 5000th tick in ERROR clears */
+    qfoc_sm_fail(&sm, 0u);
+    assert_int_equal(sm.faults, 0x0200u);    /* no cause given: PARAM */
+    in.fault_clear = true;
+    steps(&sm, &in, 4999);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);
+    /* fail while in ERROR: the word keeps its cause, the time restarts */
+    qfoc_sm_fail(&sm, 0x0002u);
+    steps(&sm, &in, 3000);
+    qfoc_sm_fail(&sm, 0x0004u);
+    assert_int_equal(sm.faults, 0x0002u);
+    assert_int_equal(sm.first_fault, 0x0002u);
+    assert_int_equal(sm.t_state, 0);
+    /* times saturate */
+    sm.t_state = 65535u;
+    sm.t_sub = 65535u;
+    in.fault_clear = false;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.t_state, 65535u);
+    assert_int_equal(sm.t_sub, 65535u);
+}
+
+/* REQ-SM-009: random sequences against an independent model of the rules. */
+typedef struct {
+    int st, sub, faults, t_state, t_sub;
+} model_t;
+
+static void model_step(model_t *m, const qfoc_sm_in_t *in)
+{
+    const int f_in = in->faults & 0x3FF;
+    int f = f_in;
+    m->t_state = (m->t_state < 65535) ? m->t_state + 1 : 65535;
+    m->t_sub = (m->t_sub < 65535) ? m->t_sub + 1 : 65535;
+#define GO(s, u) do { m->st = (s); m->sub = (u); m->t_state = 0; m->t_sub = 0; } while (0)
+#define GOSUB(u) do { m->sub = (u); m->t_sub = 0; } while (0)
+    if (m->st == 3) {
+        if (f_in == 0 && m->t_state >= (int)cfg.clear_ms && in->fault_clear && in->table_ok) {
+            GO(1, 0);
+            m->faults = 0;
+        }
+        return;
+    }
+    if (m->st == 2 && m->sub == 4 && m->t_sub >= (int)cfg.ol_timeout_ms) {
+        f |= 0x20;
+    }
+    if (m->st == 2 && in->link_lost &&
+        (m->sub == 3 || m->sub == 4 || (m->sub == 6 && in->stop_reached))) {
+        f |= 0x100;
+    }
+    if (f != 0) {
+        GO(3, 0);
+        m->faults = f;
+        return;
+    }
+    switch (m->st) {
+    case 0:
+        if (!in->bus_ok) {
+            GOSUB(1);
+        } else if (m->sub == 1) {
+            if (m->t_sub >= (int)cfg.precharge_ms) {
+                GOSUB(2);
+            }
+        } else if (in->calib_done) {
+            GO(1, 0);
+        }
+        break;
+    case 1:
+        if (!in->bus_ok || !in->calib_done) {
+            GO(0, 1);
+        } else if (in->run_request) {
+            GO(2, 3);
+        }
+        break;
+    default:
+        if (m->sub == 3) {
+            if (!in->run_request) {
+                GO(1, 0);
+            } else if (m->t_sub >= (int)cfg.align_ms) {
+                GOSUB(4);
+            }
+        } else if (m->sub == 4) {
+            if (!in->run_request) {
+                GO(1, 0);
+            } else if (in->converged && m->t_state >= (int)cfg.cl_hold_ms) {
+                GOSUB(5);
+            }
+        } else if (m->sub == 5) {
+            if (!in->run_request) {
+                GOSUB(6);
+            }
+        } else {
+            if (in->stop_reached) {
+                GO(1, 0);
+            } else if (in->run_request) {
+                GOSUB(5);
+            }
+        }
+        break;
+    }
+#undef GO
+#undef GOSUB
+}
+
+static void test_sm_009_random_against_model(void **state)
+{
+    qfoc_sm_t sm;
+    qfoc_sm_in_t in;
+    model_t m = { 0, 1, 0, 0, 0 };
+    long k;
+    long visits[7] = { 0 };
+    (void)state;
+    qfoc_sm_init(&sm);
+    in = quiet();
+    for (k = 0; k < 2000000L; k++) {
+        const uint32_t r = lcg_next() >> 8;
+        const uint32_t flip = (lcg_next() >> 12) % 4096u;
+        /* persistent conditions that change now and then, rare faults */
+        in.faults = ((r % 6000u) == 0u) ? (uint16_t)(lcg_next() >> 16) : 0u;
+        in.bus_ok = (flip == 0u) ? !in.bus_ok : (in.bus_ok || ((r % 50u) == 0u));
+        in.calib_done = (flip == 1u) ? !in.calib_done : (in.calib_done || ((r % 300u) == 0u));
+        in.run_request = (flip < 8u) ? !in.run_request : in.run_request;
+        in.link_lost = (flip == 9u) ? !in.link_lost : (in.link_lost && ((r % 100u) != 0u));
+        in.fault_clear = ((r >> 3) & 0x1u) != 0u;
+        in.table_ok = ((r >> 4) & 0x3Fu) != 0u;
+        in.converged = ((r >> 10) & 0x3u) != 0u;
+        in.stop_reached = ((r >> 12) & 0x3FFu) == 0u;
+        qfoc_sm_step(&sm, &cfg, &in);
+        model_step(&m, &in);
+        assert_int_equal(sm.state, m.st);
+        assert_int_equal(sm.sub, m.sub);
+        assert_int_equal(sm.faults, m.faults);
+        assert_int_equal(sm.t_state, m.t_state);
+        assert_int_equal(sm.t_sub, m.t_sub);
+        assert_true(qfoc_sm_is_valid(&sm));
+        visits[sm.sub]++;
+    }
+    print_message("sub-state visits: none %ld wait %ld calib %ld align %ld ol %ld cl %ld stopping %ld\n",
+                  visits[0], visits[1], visits[2], visits[3], visits[4], visits[5], visits[6]);
+    for (k = 0; k < 7; k++) {
+        assert_true(visits[k] > 1000);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sm_001_init_and_validity),
+        cmocka_unit_test(test_sm_002_fault_to_error),
+        cmocka_unit_test(test_sm_003_fault_clear),
+        cmocka_unit_test(test_sm_004_precharge),
+        cmocka_unit_test(test_sm_005_stop),
+        cmocka_unit_test(test_sm_006_run_sequence),
+        cmocka_unit_test(test_sm_007_stop_requests),
+        cmocka_unit_test(test_sm_008_own_faults),
+        cmocka_unit_test(test_sm_009_random_against_model),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
