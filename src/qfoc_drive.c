@@ -211,18 +211,20 @@ static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab)
     f->psi_mag = po.mag;
 }
 
-/* Current references of the sub-state (REQ-DRV-006). */
+/* Current references of the sub-state (REQ-DRV-006, REQ-DRV-013); returns true when the
+   closed-loop q reference (speed PI + torque-compensation feed-forward ff) was clamped to
+   +-i_max. */
 /*@
   requires valid: \valid_read(d) && \valid_read(d->p) && \valid(ref);
   requires sep: \separated(ref, d) && \separated(ref, d->p);
-  requires tc: TcValid(&d->s.tc);
   assigns *ref;
   ensures id: -32767 <= ref->d <= 32767;
   ensures iq: -32767 <= ref->q <= 32767;
 */
-static void drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_dq_t *ref)
+static bool drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff, qfoc_dq_t *ref)
 {
     const qfoc_q15_t i_max = qfoc_q15_abs(d->p->i_max);
+    bool clamped = false;
     if (sub == QFOC_SUB_ALIGN) {
         ref->d = qfoc_q15_sat((int32_t)d->s.id_ref);
         ref->q = 0;
@@ -230,17 +232,19 @@ static void drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_dq_t *ref)
         ref->d = 0;
         ref->q = qfoc_q15_sat((int32_t)d->s.iq_ref);
     } else {
-        const qfoc_q15_t ff = qfoc_trqcomp_output(&d->s.tc, d->f.theta_m, d->f.speed_f);
         const int32_t q = (int32_t)d->s.iq_ref + (int32_t)ff;
         ref->d = qfoc_q15_sat((int32_t)d->f.id_fw);
         if (q > (int32_t)i_max) {
             ref->q = i_max;
+            clamped = true;
         } else if (q < -(int32_t)i_max) {
             ref->q = (qfoc_q15_t)(-i_max);
+            clamped = true;
         } else {
             ref->q = (qfoc_q15_t)q;
         }
     }
+    return clamped;
 }
 
 /* Current PIs with the decoupling feed-forward, then the voltage circle limit. */
@@ -275,13 +279,16 @@ static void drv_current_loop(qfoc_drive_fast_t *f, const qfoc_param_table_t *p,
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \valid_read(i_abc) && \valid(out);
   requires sep: \separated(&d->f, d->p, i_abc, out) && \separated(&d->s, out);
-  requires inv: DriveFastValid(&d->f) && TcValid(&d->s.tc);
+  requires inv: DriveFastValid(&d->f);
   assigns d->f, *out;
   ensures inv: DriveFastValid(&d->f);
   ensures cmp: out->cmp[0] <= d->p->svpwm.period && out->cmp[1] <= d->p->svpwm.period &&
                out->cmp[2] <= d->p->svpwm.period;
+  ensures on: out->enable == \true;
+  ensures latch: d->f.trip == \old(d->f.trip);
 */
-static void drv_control(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, qfoc_pwm_t *out)
+static void drv_control(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, qfoc_q15_t ff,
+                        qfoc_pwm_t *out)
 {
     qfoc_drive_fast_t *const f = &d->f;
     const qfoc_param_table_t *const p = d->p;
@@ -310,7 +317,11 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, q
     }
     qfoc_sincos(theta, &sc);
     qfoc_park(&i_ab, &sc, &f->i_dq);
-    drv_references(d, sub, &ref);
+    if (drv_references(d, sub, ff, &ref)) {
+        f->clamp_count = (uint8_t)(((uint32_t)f->clamp_count + 1u) % 256u);
+    } else {
+        /* within the current limit */
+    }
     drv_current_loop(f, p, &ref, w, &v_dq);
     /* the command acts from the next period on, on average 1.5 periods later */
     {
@@ -343,57 +354,116 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, q
     qfoc_phase_mon_update(&f->phase, i_abc);
 }
 
-void qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_pwm_t *out)
+/* Measurement and the over-current latch (REQ-DRV-003, REQ-DRV-004). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(adc) && \valid(i_abc);
+  requires sep: \separated(d, d->p) && \separated(d, adc) && \separated(i_abc, d) &&
+                \separated(i_abc, d->p) && \separated(i_abc, adc);
+  requires inv: DriveFastValid(&d->f);
+  assigns d->f.adc_iu, d->f.adc_iv, d->f.vdc, d->f.vdc_lpf.state, d->f.trip,
+          d->f.trip_count, d->f.clear_ack, *i_abc;
+  ensures inv: DriveFastValid(&d->f);
+  ensures oc: DriveOverCurrent(d, adc) ==> d->f.trip;
+*/
+static void drv_measure(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_abc_t *i_abc)
 {
     qfoc_drive_fast_t *const f = &d->f;
-    const qfoc_param_table_t *const p = d->p;
-    const uint8_t state = d->s.sm.state;
-    const uint8_t sub = d->s.sm.sub;
     const uint8_t clear_seq = d->s.clear_seq;
-    qfoc_abc_t i_abc;
     bool oc;
-
-    /* measurement */
     f->adc_iu = drv_adc12(adc->iu);
     f->adc_iv = drv_adc12(adc->iv);
-    i_abc.u = drv_current(adc->iu, d->s.offset_u);
-    i_abc.v = drv_current(adc->iv, d->s.offset_v);
-    i_abc.w = qfoc_q15_sat(-((int32_t)i_abc.u + (int32_t)i_abc.v));
+    i_abc->u = drv_current(adc->iu, d->s.offset_u);
+    i_abc->v = drv_current(adc->iv, d->s.offset_v);
+    i_abc->w = qfoc_q15_sat(-((int32_t)i_abc->u + (int32_t)i_abc->v));
     f->vdc = qfoc_lpf_step(&f->vdc_lpf,
                            (qfoc_q15_t)((int32_t)drv_adc12(adc->vdc) * DRV_V_PER_CODE));
-    /* over-current: PWM off in this period, latched until a fault clear (REQ-DRV-003) */
-    oc = drv_overcurrent(&i_abc, p->i_trip);
+    /* over-current: PWM off in this period, latched until a fault clear */
+    oc = drv_overcurrent(i_abc, d->p->i_trip);
     if (oc) {
         f->trip = true;
-        f->trip_count = (uint8_t)(((uint32_t)f->trip_count + 1u) & 0xFFu);
+        f->trip_count = (uint8_t)(((uint32_t)f->trip_count + 1u) % 256u);
     } else if (f->trip && (f->clear_ack != clear_seq)) {
         f->trip = false;
         f->clear_ack = clear_seq;
     } else {
         f->clear_ack = clear_seq;
     }
-    if (f->hs != d->s.hs) {
-        /* motorParaChange: the observer's inductance follows the decoupling set */
-        const int16_t l = d->s.hs ? p->drive.lq_hs : p->lq;
-        f->hs = d->s.hs;
+}
+
+/* motorParaChange in the fast step (REQ-DRV-012): the observer's inductance follows the
+   set the tick selected. */
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  requires inv: DriveFastValid(f);
+  assigns f->hs, f->flux.params.l;
+  ensures inv: DriveFastValid(f);
+*/
+static void drv_inductance(qfoc_drive_fast_t *f, const qfoc_param_table_t *p, bool hs)
+{
+    if (f->hs != hs) {
+        const int16_t l = hs ? p->drive.lq_hs : p->lq;
+        f->hs = hs;
         f->flux.params.l = (l > 0) ? l : (int16_t)0;
     } else {
         /* same inductance set */
     }
-    if ((state == QFOC_STATE_RUN) && !f->trip) {
-        if (!f->active) {
-            drv_fast_restart(f, p);
-        } else {
-            /* running on */
-        }
-        drv_control(d, sub, &i_abc, out);
-        f->active = true;
+}
+
+/* PWM off (REQ-DRV-002). */
+/*@
+  requires valid: \valid(f) && \valid(out);
+  requires sep: \separated(f, out);
+  assigns f->active, f->i_dq, f->utilisation, *out;
+  ensures off: out->enable == \false;
+  ensures cmp: out->cmp[0] == 0 && out->cmp[1] == 0 && out->cmp[2] == 0;
+*/
+static void drv_off(qfoc_drive_fast_t *f, qfoc_pwm_t *out)
+{
+    drv_pwm_off(out);
+    f->active = false;
+    f->i_dq.d = 0;
+    f->i_dq.q = 0;
+    f->utilisation = 0;
+}
+
+/* One controlled period in RUN (REQ-DRV-006). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(i_abc) && \valid(out);
+  requires sep: \separated(d, d->p, i_abc, out);
+  requires inv: DriveFastValid(&d->f);
+  assigns d->f, *out;
+  ensures inv: DriveFastValid(&d->f);
+  ensures on: out->enable == \true;
+  ensures cmp: out->cmp[0] <= d->p->svpwm.period && out->cmp[1] <= d->p->svpwm.period &&
+               out->cmp[2] <= d->p->svpwm.period;
+  ensures latch: d->f.trip == \old(d->f.trip);
+*/
+static void drv_run_period(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, qfoc_q15_t ff,
+                           qfoc_pwm_t *out)
+{
+    if (!d->f.active) {
+        drv_fast_restart(&d->f, d->p);
     } else {
-        drv_pwm_off(out);
-        f->active = false;
-        f->i_dq.d = 0;
-        f->i_dq.q = 0;
-        f->utilisation = 0;
+        /* running on */
+    }
+    drv_control(d, sub, i_abc, ff, out);
+    d->f.active = true;
+}
+
+void qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_pwm_t *out)
+{
+    const uint8_t state = d->s.sm.state;
+    const uint8_t sub = d->s.sm.sub;
+    /* torque-compensation feed-forward at the mechanical angle of the last period */
+    const qfoc_q15_t ff = qfoc_trqcomp_output(&d->s.tc, d->f.theta_m, d->f.speed_f);
+    qfoc_abc_t i_abc;
+    drv_measure(d, adc, &i_abc);
+    drv_inductance(&d->f, d->p, d->s.hs);
+    if ((state == QFOC_STATE_RUN) && !d->f.trip) {
+        drv_run_period(d, sub, &i_abc, ff, out);
+    } else {
+        drv_off(&d->f, out);
     }
 }
 
@@ -690,7 +760,7 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
   requires sep: \separated(&d->s, d->p);
   requires inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
   assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref;
+          d->s.id_ref, d->s.iq_ref, d->s.clamp_seen;
   ensures inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
 */
 static void drv_run(qfoc_drive_t *d)
@@ -720,9 +790,17 @@ static void drv_run(qfoc_drive_t *d)
             /* the document's 2 s: hold the handover speed */
         }
         s->speed_ref = qfoc_ramp_toward(s->speed_ref, target, c->speed_ramp);
+        const uint8_t clamps = d->f.clamp_count;
         s->iq_ref = qfoc_pi_step(&s->pi_speed, qfoc_q15_sub(s->speed_ref, d->f.speed_f));
-        qfoc_trqcomp_learn(&s->tc, d->f.theta_m, qfoc_q15_sub(s->speed_ref, d->f.speed),
-                           d->f.speed_f);
+        if (clamps == s->clamp_seen) {
+            /* no period of the last millisecond hit the current limit: learn (a clamped
+               feed-forward would wind the coefficients up, trqcomp.h) */
+            qfoc_trqcomp_learn(&s->tc, d->f.theta_m, qfoc_q15_sub(s->speed_ref, d->f.speed),
+                               d->f.speed_f);
+        } else {
+            /* limited: hold the coefficients */
+        }
+        s->clamp_seen = clamps;
     }
 }
 
@@ -893,6 +971,7 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
     f->utilisation = 0;
     f->id_fw = 0;
     f->trip_count = 0u;
+    f->clamp_count = 0u;
     f->clear_ack = 0u;
     f->trip = false;
     f->active = false;
@@ -904,30 +983,23 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
   requires valid: \valid(s) && \valid_read(p);
   requires sep: \separated(s, p);
   assigns *s;
-  ensures inv: DriveSlowValid(s);
+  ensures inv: SmValid(&s->sm) && PiValid(&s->pi_speed) && TcValid(&s->tc) &&
+               s->offset_u <= 4095 && s->offset_v <= 4095;
   ensures state: s->sm.state == QFOC_STATE_PRECHARGE && !s->table_ok;
 */
 static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
 {
     const qfoc_drive_cfg_t *const c = &p->drive;
     qfoc_trqcomp_params_t tcp;
-    qfoc_link_cfg_t lc;
 
     tcp.gain = c->tc_gain;
     tcp.amp_max = c->tc_amp_max;
     tcp.speed_min = c->tc_speed_min;
     tcp.speed_max = c->tc_speed_max;
     tcp.pole_pairs = c->pole_pairs;
-    lc.id_cmd = c->lin_id_cmd;
-    lc.id_status = c->lin_id_status;
-    lc.rpm_max = c->rpm_max;
-    lc.timeout_ms = c->link_timeout_ms;
-    lc.can_id_a = c->can_id_a;
-    lc.can_id_b = c->can_id_b;
     qfoc_sm_init(&s->sm);
     (void)qfoc_pi_init(&s->pi_speed, &p->pi_speed);
     (void)qfoc_trqcomp_init(&s->tc, &tcp);
-    (void)qfoc_link_init(&s->link, &lc);
     qfoc_debounce_reset(&s->db_ov);
     qfoc_debounce_reset(&s->db_uv);
     qfoc_debounce_reset(&s->db_ot_ipm);
@@ -946,6 +1018,7 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
     s->id_ref = 0;
     s->iq_ref = 0;
     s->trip_seen = 0u;
+    s->clamp_seen = 0u;
     s->clear_seq = 0u;
     s->ms100 = 0u;
     s->table_ok = false;
@@ -961,12 +1034,48 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
     s->status.temp_dc = 0;
 }
 
+/* The command link's configuration from the table (REQ-DRV-001). */
+/*@
+  requires valid: \valid_read(c) && \valid(lc);
+  requires sep: \separated(c, lc);
+  assigns *lc;
+*/
+static void drv_link_cfg(const qfoc_drive_cfg_t *c, qfoc_link_cfg_t *lc)
+{
+    lc->id_cmd = c->lin_id_cmd;
+    lc->id_status = c->lin_id_status;
+    lc->rpm_max = c->rpm_max;
+    lc->timeout_ms = c->link_timeout_ms;
+    lc->can_id_a = c->can_id_a;
+    lc->can_id_b = c->can_id_b;
+}
+
 int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table)
 {
     const int32_t st = qfoc_params_check(table);
+    qfoc_link_cfg_t lc;
     d->p = table;
-    drv_init_fast(&d->f, table);
     drv_init_slow(&d->s, table);
+    /*@ assert tc0: TcValid(&d->s.tc); */
+    drv_init_fast(&d->f, table);
+    /*@ assert tc1: TcValid(&d->s.tc); */
+    /*@ assert sm1: SmValid(&d->s.sm) && PiValid(&d->s.pi_speed); */
+    /*@ assert flux1: FluxValid(&d->f.flux); */
+    /*@ assert pll1: PllValid(&d->f.pll); */
+    /*@ assert pi1: PiValid(&d->f.pi_id) && PiValid(&d->f.pi_iq); */
+    /*@ assert fw1: FwValid(&d->f.fw); */
+    /*@ assert misc1: LpfValid(&d->f.vdc_lpf) && PhaseMonValid(&d->f.phase) && MechValid(&d->f.mech); */
+    drv_link_cfg(&table->drive, &lc);
+    (void)qfoc_link_init(&d->s.link, &lc);
+    /*@ assert tc: TcValid(&d->s.tc); */
+    /*@ assert sm: SmValid(&d->s.sm) && PiValid(&d->s.pi_speed); */
+    /*@ assert flux: FluxValid(&d->f.flux); */
+    /*@ assert pll: PllValid(&d->f.pll); */
+    /*@ assert pi: PiValid(&d->f.pi_id) && PiValid(&d->f.pi_iq); */
+    /*@ assert fw: FwValid(&d->f.fw); */
+    /*@ assert misc: LpfValid(&d->f.vdc_lpf) && PhaseMonValid(&d->f.phase) && MechValid(&d->f.mech); */
+    /*@ assert fast: DriveFastValid(&d->f); */
+    /*@ assert slow: DriveSlowValid(&d->s); */
     if (st == QFOC_PARAMS_OK) {
         d->s.table_ok = true;
     } else {

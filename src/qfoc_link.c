@@ -152,41 +152,39 @@ bool qfoc_link_is_valid(const qfoc_link_t *l)
 
 int32_t qfoc_link_init(qfoc_link_t *l, const qfoc_link_cfg_t *c)
 {
+    /* the new state is built in a local copy and stored with one assignment */
+    qfoc_link_t n;
     int32_t status;
     if (qfoc_link_cfg_is_valid(c)) {
-        l->cfg.id_cmd = c->id_cmd;
-        l->cfg.id_status = c->id_status;
-        l->cfg.rpm_max = c->rpm_max;
-        l->cfg.timeout_ms = c->timeout_ms;
-        l->cfg.can_id_a = c->can_id_a;
-        l->cfg.can_id_b = c->can_id_b;
-        l->cfg_ok = true;
-        l->lost = false;
+        n.cfg = *c;
+        n.cfg_ok = true;
+        n.lost = false;
         status = QFOC_LINK_OK;
     } else {
-        l->cfg.id_cmd = QFOC_LINK_SAFE_ID_CMD;
-        l->cfg.id_status = QFOC_LINK_SAFE_ID_STATUS;
-        l->cfg.rpm_max = QFOC_LINK_SAFE_RPM_MAX;
-        l->cfg.timeout_ms = QFOC_LINK_SAFE_TIMEOUT;
-        l->cfg.can_id_a = QFOC_CAN_ID_MAX;
-        l->cfg.can_id_b = QFOC_CAN_ID_MAX;
-        l->cfg_ok = false;
-        l->lost = true;
+        n.cfg.id_cmd = QFOC_LINK_SAFE_ID_CMD;
+        n.cfg.id_status = QFOC_LINK_SAFE_ID_STATUS;
+        n.cfg.rpm_max = QFOC_LINK_SAFE_RPM_MAX;
+        n.cfg.timeout_ms = QFOC_LINK_SAFE_TIMEOUT;
+        n.cfg.can_id_a = QFOC_CAN_ID_MAX;
+        n.cfg.can_id_b = QFOC_CAN_ID_MAX;
+        n.cfg_ok = false;
+        n.lost = true;
         status = QFOC_LINK_ERR_CFG;
     }
-    l->cmd.power_on = false;
-    l->cmd.fault_clear = false;
-    l->cmd.target_rpm = 0u;
-    l->silent_ms = 0u;
-    l->seen = false;
-    l->can_b = false;
-    l->n_ok = 0u;
-    l->n_len = 0u;
-    l->n_sync = 0u;
-    l->n_id = 0u;
-    l->n_checksum = 0u;
-    l->n_reserved = 0u;
-    l->n_range = 0u;
+    n.cmd.power_on = false;
+    n.cmd.fault_clear = false;
+    n.cmd.target_rpm = 0u;
+    n.silent_ms = 0u;
+    n.seen = false;
+    n.can_b = false;
+    n.n_ok = 0u;
+    n.n_len = 0u;
+    n.n_sync = 0u;
+    n.n_id = 0u;
+    n.n_checksum = 0u;
+    n.n_reserved = 0u;
+    n.n_range = 0u;
+    *l = n;
     return status;
 }
 

@@ -25,6 +25,60 @@
 #define QFOC_TC_Q46_HALF ((int64_t)1073741824)
 
 /**
+ * @brief floor(n / pp) as (n x recip) / 2^28 with recip = ceil(2^28 / pp), for
+ *        n < 2^20: exact (lemmas MechExact1..16 of specs/trqcomp.acsl, one per
+ *        pole-pair count; the reciprocals of 1..16 are distinct).
+ */
+/*@
+  requires n_range: n < 1048576;
+  requires r_valid: r == MechRecip(1) || r == MechRecip(2) || r == MechRecip(3) || r == MechRecip(4) ||
+                        r == MechRecip(5) || r == MechRecip(6) || r == MechRecip(7) || r == MechRecip(8) ||
+                        r == MechRecip(9) || r == MechRecip(10) || r == MechRecip(11) || r == MechRecip(12) ||
+                        r == MechRecip(13) || r == MechRecip(14) || r == MechRecip(15) || r == MechRecip(16);
+  assigns \nothing;
+  ensures exact1: r == MechRecip(1) ==> \result == n / 1;
+  ensures exact2: r == MechRecip(2) ==> \result == n / 2;
+  ensures exact3: r == MechRecip(3) ==> \result == n / 3;
+  ensures exact4: r == MechRecip(4) ==> \result == n / 4;
+  ensures exact5: r == MechRecip(5) ==> \result == n / 5;
+  ensures exact6: r == MechRecip(6) ==> \result == n / 6;
+  ensures exact7: r == MechRecip(7) ==> \result == n / 7;
+  ensures exact8: r == MechRecip(8) ==> \result == n / 8;
+  ensures exact9: r == MechRecip(9) ==> \result == n / 9;
+  ensures exact10: r == MechRecip(10) ==> \result == n / 10;
+  ensures exact11: r == MechRecip(11) ==> \result == n / 11;
+  ensures exact12: r == MechRecip(12) ==> \result == n / 12;
+  ensures exact13: r == MechRecip(13) ==> \result == n / 13;
+  ensures exact14: r == MechRecip(14) ==> \result == n / 14;
+  ensures exact15: r == MechRecip(15) ==> \result == n / 15;
+  ensures exact16: r == MechRecip(16) ==> \result == n / 16;
+  ensures range: \result <= n;
+*/
+static uint32_t qfoc_mech_div(uint32_t n, uint32_t r)
+{
+    /* n < 2^20, r <= 2^28: product < 2^48 in uint64; the division by the power
+       of two 2^28 is a shift (no divider); the quotient is <= n < 2^20 */
+    const uint64_t q = ((uint64_t)n * (uint64_t)r) / (uint64_t)QFOC_TC_RECIP_ONE;
+    /*@ assert c1: r == MechRecip(1) ==> q == n / 1; */
+    /*@ assert c2: r == MechRecip(2) ==> q == n / 2; */
+    /*@ assert c3: r == MechRecip(3) ==> q == n / 3; */
+    /*@ assert c4: r == MechRecip(4) ==> q == n / 4; */
+    /*@ assert c5: r == MechRecip(5) ==> q == n / 5; */
+    /*@ assert c6: r == MechRecip(6) ==> q == n / 6; */
+    /*@ assert c7: r == MechRecip(7) ==> q == n / 7; */
+    /*@ assert c8: r == MechRecip(8) ==> q == n / 8; */
+    /*@ assert c9: r == MechRecip(9) ==> q == n / 9; */
+    /*@ assert c10: r == MechRecip(10) ==> q == n / 10; */
+    /*@ assert c11: r == MechRecip(11) ==> q == n / 11; */
+    /*@ assert c12: r == MechRecip(12) ==> q == n / 12; */
+    /*@ assert c13: r == MechRecip(13) ==> q == n / 13; */
+    /*@ assert c14: r == MechRecip(14) ==> q == n / 14; */
+    /*@ assert c15: r == MechRecip(15) ==> q == n / 15; */
+    /*@ assert c16: r == MechRecip(16) ==> q == n / 16; */
+    return (uint32_t)q;
+}
+
+/**
  * @brief The tracker's mechanical angle floor((turn x 65536 + theta_e) / pp).
  */
 /*@
@@ -37,34 +91,15 @@ static qfoc_angle_t qfoc_mech_scale(const qfoc_mech_t *m)
 {
     /* electrical counts since the mechanical zero: < 16 x 65536 = 2^20 */
     const uint32_t n = ((uint32_t)m->turn * QFOC_TC_TURN) + (uint32_t)m->theta_e;
-    /* floor(n / pp) as (n x recip) / 2^28, recip = ceil(2^28 / pp): n < 2^20,
-       recip <= 2^28, the product < 2^48 in uint64; the division by the power of
-       two is a shift (no divider).  Exact for n < pp x 65536 (lemmas
-       MechExact1..16 of specs/trqcomp.acsl, one per pole-pair count). */
-    const uint64_t q = ((uint64_t)n * (uint64_t)m->recip) / (uint64_t)QFOC_TC_RECIP_ONE;
-    /*@ assert c1: m->pole_pairs == 1 ==> q == n / 1; */
-    /*@ assert c2: m->pole_pairs == 2 ==> q == n / 2; */
-    /*@ assert c3: m->pole_pairs == 3 ==> q == n / 3; */
-    /*@ assert c4: m->pole_pairs == 4 ==> q == n / 4; */
-    /*@ assert c5: m->pole_pairs == 5 ==> q == n / 5; */
-    /*@ assert c6: m->pole_pairs == 6 ==> q == n / 6; */
-    /*@ assert c7: m->pole_pairs == 7 ==> q == n / 7; */
-    /*@ assert c8: m->pole_pairs == 8 ==> q == n / 8; */
-    /*@ assert c9: m->pole_pairs == 9 ==> q == n / 9; */
-    /*@ assert c10: m->pole_pairs == 10 ==> q == n / 10; */
-    /*@ assert c11: m->pole_pairs == 11 ==> q == n / 11; */
-    /*@ assert c12: m->pole_pairs == 12 ==> q == n / 12; */
-    /*@ assert c13: m->pole_pairs == 13 ==> q == n / 13; */
-    /*@ assert c14: m->pole_pairs == 14 ==> q == n / 14; */
-    /*@ assert c15: m->pole_pairs == 15 ==> q == n / 15; */
-    /*@ assert c16: m->pole_pairs == 16 ==> q == n / 16; */
+    const uint32_t q = qfoc_mech_div(n, m->recip);
     /*@ assert cases: m->pole_pairs == 1 || m->pole_pairs == 2 || m->pole_pairs == 3 ||
           m->pole_pairs == 4 || m->pole_pairs == 5 || m->pole_pairs == 6 ||
           m->pole_pairs == 7 || m->pole_pairs == 8 || m->pole_pairs == 9 ||
           m->pole_pairs == 10 || m->pole_pairs == 11 || m->pole_pairs == 12 ||
           m->pole_pairs == 13 || m->pole_pairs == 14 || m->pole_pairs == 15 ||
           m->pole_pairs == 16; */
-    /* q = floor(n / pp) < 65536 */
+    /*@ assert exact: q == n / m->pole_pairs; */
+    /* q = floor(n / pp) < 65536 because n < pp x 65536 */
     return (qfoc_angle_t)q;
 }
 
@@ -351,28 +386,22 @@ void qfoc_trqcomp_learn(qfoc_trqcomp_t *tc, qfoc_angle_t theta_m, qfoc_q15_t spe
 }
 
 /**
- * @brief One harmonic a_h cos + b_h sin in Q46: coefficient (Q31, |.| <= amp_max
- *        x 65536) x cos / sin (Q15, |.| <= 32767), each product < 2^46, exact in int64.
+ * @brief One harmonic a cos + b sin in Q46: coefficient (Q31) x cos / sin (Q15,
+ *        |.| <= 32767), each product |.| <= 2^31 x 32767 < 2^46, exact in int64.
  */
 /*@
-  requires valid_tc: \valid_read(tc);
-  requires tc_valid: TcValid(tc);
-  requires h_range: h <= 1;
-  requires valid_sc: \valid_read(sc);
-  requires sc_range: QfocQ15Sym(sc->sine) && QfocQ15Sym(sc->cosine);
+  requires c_range: QfocQ15Sym(c);
+  requires s_range: QfocQ15Sym(s);
   assigns \nothing;
-  ensures value: \result == tc->a[h] * sc->cosine + tc->b[h] * sc->sine;
-  ensures range: -2 * (tc->params.amp_max * 65536 * 32767) <= \result <=
-                 2 * (tc->params.amp_max * 65536 * 32767);
+  ensures value: \result == a * c + b * s;
+  ensures range: -((\abs(a) + \abs(b)) * 32767) <= \result <= (\abs(a) + \abs(b)) * 32767;
 */
-static int64_t qfoc_trqcomp_harmonic(const qfoc_trqcomp_t *tc, uint32_t h, const qfoc_sincos_t *sc)
+static int64_t qfoc_trqcomp_harmonic(qfoc_q31_t a, qfoc_q31_t b, qfoc_q15_t c, qfoc_q15_t s)
 {
-    const int64_t ta = (int64_t)tc->a[h] * (int64_t)sc->cosine;
-    const int64_t tb = (int64_t)tc->b[h] * (int64_t)sc->sine;
-    /*@ assert a_in: -(tc->params.amp_max * 65536) <= tc->a[h] <= tc->params.amp_max * 65536; */
-    /*@ assert b_in: -(tc->params.amp_max * 65536) <= tc->b[h] <= tc->params.amp_max * 65536; */
-    /*@ assert ta_range: -(tc->params.amp_max * 65536 * 32767) <= ta <= tc->params.amp_max * 65536 * 32767; */
-    /*@ assert tb_range: -(tc->params.amp_max * 65536 * 32767) <= tb <= tc->params.amp_max * 65536 * 32767; */
+    const int64_t ta = (int64_t)a * (int64_t)c;
+    const int64_t tb = (int64_t)b * (int64_t)s;
+    /*@ assert ta_range: -(\abs(a) * 32767) <= ta <= \abs(a) * 32767; */
+    /*@ assert tb_range: -(\abs(b) * 32767) <= tb <= \abs(b) * 32767; */
     return ta + tb;
 }
 
@@ -407,7 +436,10 @@ qfoc_q15_t qfoc_trqcomp_output(const qfoc_trqcomp_t *tc, qfoc_angle_t theta_m, q
         qfoc_sincos(theta_m, &h1);
         qfoc_sincos(qfoc_trqcomp_double(theta_m), &h2);
         /* two harmonics, each |.| <= 2 amp x 65536 x 32767 < 2^47: sum < 2^48 */
-        sum = qfoc_trqcomp_harmonic(tc, 0u, &h1) + qfoc_trqcomp_harmonic(tc, 1u, &h2);
+        sum = qfoc_trqcomp_harmonic(tc->a[0], tc->b[0], h1.cosine, h1.sine)
+              + qfoc_trqcomp_harmonic(tc->a[1], tc->b[1], h2.cosine, h2.sine);
+        /*@ assert sum_hi: sum <= 4 * (tc->params.amp_max * 65536 * 32767); */
+        /*@ assert sum_lo: sum >= -4 * (tc->params.amp_max * 65536 * 32767); */
         out = qfoc_trqcomp_q46_to_q15(sum);
     } else {
         /* outside the speed window: no feed-forward */

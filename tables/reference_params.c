@@ -118,10 +118,10 @@ const qfoc_param_table_t qfoc_params_reference = {
         .clear_ms = 5000u, /* 5000 ms (drive.clear_ms, default) */
         .fw_level = 30147, /* 0.92 = FWK_LVL, design.fw_v_max (default); stored 0.920013, error +0.00 % */
         .fw_alpha = 1287, /* 0.0392699 = 2 pi f_c / f_pwm = 2 pi x 50 / 8000 (2-34); stored 0.0392761, error +0.02 % */
-        .tc_gain = 1000, /* 0.0305176 = drive.tc_gain_q15 / 32768 (provisional) */
-        .tc_amp_max = 8192, /* 0.25 = 10 A / I_base = 10 / 40 (provisional); stored 0.25, error +0.00 % */
-        .tc_speed_min = 1638, /* 0.05 = 500 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.0499878, error -0.02 % */
-        .tc_speed_max = 9830, /* 0.3 = 3000 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.299988, error -0.00 % */
+        .tc_gain = 492, /* 0.0150146 = drive.tc_gain_q15 / 32768 (trqcomp.md) */
+        .tc_amp_max = 8192, /* 0.25 = 10 A / I_base = 10 / 40; stored 0.25, error +0.00 % */
+        .tc_speed_min = 1966, /* 0.06 = 600 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.0599976, error -0.00 % */
+        .tc_speed_max = 19661, /* 0.6 = 6000 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.600006, error +0.00 % */
         .para_speed = 18350, /* 0.56 = 5600 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.559998, error -0.00 % */
         .ld_hs = 2677, /* 0.653451 = motor.ld_h (no ld_hs_h) / L_base = 0.0026 / 0.00397887 (Q12) */
         .lq_hs = 4324, /* 1.05558 = motor.lq_h (no lq_hs_h) / L_base = 0.0042 / 0.00397887 (Q12) */
@@ -130,5 +130,5 @@ const qfoc_param_table_t qfoc_params_reference = {
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
         .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
     },
-    .crc = 0x586414EFu /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0xEFD5B641u /* CRC-32/ISO-HDLC of every field above */
 };

@@ -118,10 +118,10 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .clear_ms = 5000u, /* 5000 ms (drive.clear_ms, default) */
         .fw_level = 30147, /* 0.92 = FWK_LVL, design.fw_v_max (default); stored 0.920013, error +0.00 % */
         .fw_alpha = 643, /* 0.019635 = 2 pi f_c / f_pwm = 2 pi x 50 / 16000 (2-34); stored 0.0196228, error -0.06 % */
-        .tc_gain = 1000, /* 0.0305176 = drive.tc_gain_q15 / 32768 (provisional) */
-        .tc_amp_max = 9011, /* 0.275 = 165 A / I_base = 165 / 600 (provisional); stored 0.274994, error -0.00 % */
-        .tc_speed_min = 2185, /* 0.0666667 = 500 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.0666809, error +0.02 % */
-        .tc_speed_max = 13107, /* 0.4 = 3000 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.399994, error -0.00 % */
+        .tc_gain = 492, /* 0.0150146 = drive.tc_gain_q15 / 32768 (trqcomp.md) */
+        .tc_amp_max = 9011, /* 0.275 = 165 A / I_base = 165 / 600; stored 0.274994, error -0.00 % */
+        .tc_speed_min = 2621, /* 0.08 = 600 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.0799866, error -0.02 % */
+        .tc_speed_max = 26214, /* 0.8 = 6000 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.799988, error -0.00 % */
         .para_speed = 18350, /* 0.56 = 4200 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.559998, error -0.00 % */
         .ld_hs = 2316, /* 0.565487 = motor.ld_h (no ld_hs_h) / L_base = 0.0009 / 0.00159155 (Q12) */
         .lq_hs = 6177, /* 1.50796 = motor.lq_h (no lq_hs_h) / L_base = 0.0024 / 0.00159155 (Q12) */
@@ -130,5 +130,5 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
         .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
     },
-    .crc = 0x41184B66u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x1D1ED25Du /* CRC-32/ISO-HDLC of every field above */
 };

@@ -234,7 +234,7 @@ static void test_drv_009_command(void **state)
     assert_true(r.d.s.speed_target > 0);
 }
 
-/* REQ-DRV-002, REQ-DRV-003: over-current: PWM off in the same call, ERROR at the next
+/* REQ-DRV-002, REQ-DRV-003, REQ-DRV-004 (current scaling): over-current: PWM off in the same call, ERROR at the next
    tick, latched until a fault clear after clear_ms. */
 static void test_drv_003_overcurrent(void **state)
 {
@@ -495,7 +495,7 @@ static void test_drv_012_para_change(void **state)
     assert_int_equal(r.d.f.flux.params.l, r.table.lq);
 }
 
-/* REQ-DRV-002: random ADC samples, temperatures and frames: the PWM is enabled only in
+/* REQ-DRV-002, REQ-DRV-005: random ADC samples, temperatures and frames: the PWM is enabled only in
    RUN, the compare values never exceed the period, the invariant holds. */
 static void test_drv_002_random_inputs(void **state)
 {

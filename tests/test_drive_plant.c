@@ -51,7 +51,7 @@ static void run_ms(dsim_t *ds, int ms)
     }
 }
 
-/* REQ-DRV-014: cold start from standstill to 3000 rpm at the nominal load (4.5 N m). */
+/* REQ-DRV-014, REQ-DRV-006: cold start from standstill to 3000 rpm at the nominal load (4.5 N m). */
 static void test_drv_014_start_3000rpm_nominal_load(void **state)
 {
     dsim_t *ds = malloc(sizeof *ds);

@@ -183,12 +183,14 @@ DRIVE_KEYS = {
     "fw_level": (None, "pos", "field-weakening utilisation target FWK_LVL; default "
                               "design.fw_v_max"),
     "fw_fc_hz": (50.0, "pos", "field-weakening utilisation low-pass corner, Hz"),
-    "tc_gain_q15": (1000, "nonneg", "torque-compensation learning gain, Q15 counts "
-                                    "(provisional)"),
-    "tc_amp_max_a": (None, "nonneg", "torque-compensation amplitude limit per harmonic, A; "
-                                     "default 0.5 x rated_current_a (provisional)"),
-    "tc_speed_min_rpm": (500.0, "nonneg", "torque compensation from this speed, rpm"),
-    "tc_speed_max_rpm": (3000.0, "nonneg", "torque compensation up to this speed, rpm"),
+    "tc_gain_q15": (492, "nonneg", "torque-compensation learning gain mu in Q15 counts; "
+                                   "492 = 0.015, learning time constant 0.6 s at 1x, 1500 rpm "
+                                   "(specs/requirements/trqcomp.md)"),
+    "tc_amp_max_a": (None, "nonneg", "torque-compensation amplitude limit per coefficient, A; "
+                                     "default 0.5 x rated_current_a"),
+    "tc_speed_min_rpm": (600.0, "nonneg", "torque compensation from this speed, rpm (the "
+                                          "learning law's phase error stays below 44 deg above it)"),
+    "tc_speed_max_rpm": (6000.0, "nonneg", "torque compensation up to this speed, rpm"),
     "para_speed_rpm": (None, "pos", "high-speed inductances above this speed, rpm; default "
                                     "0.7 x max_speed_rpm"),
     "lin_id_cmd": (0x10, "nonneg", "LIN identifier of the command frame"),
@@ -1081,9 +1083,9 @@ def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
         q15_field("fw_alpha", 2.0 * math.pi * dr["fw_fc_hz"] / b.f_pwm,
                   f"2 pi f_c / f_pwm = 2 pi x {fmt(dr['fw_fc_hz'])} / {fmt(b.f_pwm)} (2-34)"),
         Field("tc_gain", "i16", int(dr["tc_gain_q15"]),
-              f"{fmt(dr['tc_gain_q15'] / 32768.0)} = drive.tc_gain_q15 / 32768 (provisional)"),
+              f"{fmt(dr['tc_gain_q15'] / 32768.0)} = drive.tc_gain_q15 / 32768 (trqcomp.md)"),
         q15_field("tc_amp_max", dr["tc_amp_max_a"] / b.i_base,
-                  amps(dr["tc_amp_max_a"]) + " (provisional)"),
+                  amps(dr["tc_amp_max_a"])),
         q15_field("tc_speed_min", dr["tc_speed_min_rpm"] * n_p / 60.0 / b.f_base,
                   f"{fmt(dr['tc_speed_min_rpm'])} rpm x {rpm_q15}"),
         q15_field("tc_speed_max", dr["tc_speed_max_rpm"] * n_p / 60.0 / b.f_base,

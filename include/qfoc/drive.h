@@ -86,7 +86,12 @@
  * Stack: no recursion, no dynamic memory; see the bench report for the worst-case
  * stack of each entry point.
  *
- * Requirements: REQ-DRV-001 .. (specs/requirements/drive.md).
+ * Requirements (specs/requirements/drive.md): REQ-DRV-001 motor object and table,
+ * REQ-DRV-002 PWM only in RUN, REQ-DRV-003 over-current, REQ-DRV-004 measurement,
+ * REQ-DRV-005 one writer per field, REQ-DRV-006 start-up and control, REQ-DRV-007
+ * offsets, REQ-DRV-008 faults, REQ-DRV-009 commands, REQ-DRV-010 table re-check,
+ * REQ-DRV-011 status and CAN, REQ-DRV-012 motorParaChange, REQ-DRV-013 field weakening
+ * and torque compensation, REQ-DRV-014 start on the plant, REQ-DRV-015 malformed frames.
  */
 #ifndef QFOC_DRIVE_H
 #define QFOC_DRIVE_H
@@ -163,6 +168,7 @@ typedef struct {
     qfoc_q15_t utilisation;   /**< SVPWM voltage utilisation */
     qfoc_q15_t id_fw;         /**< field-weakening d-current reference */
     uint8_t trip_count;       /**< over-current events (mod 256) */
+    uint8_t clamp_count;      /**< periods with the q reference clamped to +-i_max (mod 256) */
     uint8_t clear_ack;        /**< last clear_seq acknowledged */
     bool trip;                /**< over-current latch: PWM held off */
     bool active;              /**< the control ran in the last period */
@@ -193,6 +199,7 @@ typedef struct {
     qfoc_q15_t id_ref;        /**< ALIGN d-current reference */
     qfoc_q15_t iq_ref;        /**< q-current reference (speed PI, or i_start in OPEN_LOOP) */
     uint8_t trip_seen;        /**< trip_count already reported */
+    uint8_t clamp_seen;       /**< clamp_count at the last tick */
     uint8_t clear_seq;        /**< incremented when a fault clear is accepted */
     uint8_t ms100;            /**< ticks of the current 100 ms period, 0..99 */
     bool table_ok;            /**< result of the last table check */

@@ -320,8 +320,8 @@ def test_drive_defaults_by_hand(tmp_path):
     assert d["phase_alpha"] == 129                             # 2 pi 5 / 8000 x 32768 = 128.7
     assert d["phase_i_min"] == 1638 and d["phase_ratio"] == 8192
     assert d["fw_level"] == 30147 and d["fw_alpha"] == 1287    # 0.92; 2 pi 50 / 8000
-    assert d["tc_gain"] == 1000 and d["tc_amp_max"] == 8192
-    assert d["tc_speed_min"] == 1638 and d["tc_speed_max"] == 9830
+    assert d["tc_gain"] == 492 and d["tc_amp_max"] == 8192
+    assert d["tc_speed_min"] == 1966 and d["tc_speed_max"] == 19661  # 600, 6000 rpm
     assert d["para_speed"] == 18350                            # 5600 rpm x 3.2768
     assert (d["t_ipm_max"], d["t_pcb_max"], d["vdc_ms"], d["temp_ms"]) == (1100, 1000, 2, 10)
     assert (d["precharge_ms"], d["offset_shift"], d["offset_window"], d["align_ms"]) == \
@@ -383,7 +383,7 @@ def test_drive_overrides(tmp_path):
     ("drive.vdc_ms=11", "drive.vdc_ms"),
     ("drive.t_ipm_max_degc=200.1", "drive.t_ipm_max"),
     ("drive.align_ms=1", "drive.align_ms"),
-    ("drive.tc_speed_min_rpm=3001", "drive.tc_speed_min"),
+    ("drive.tc_speed_min_rpm=6001", "drive.tc_speed_min"),     # > tc_speed_max 6000
 ])
 def test_drive_range_refused(tmp_path, capsys, override, message):
     assert run(tmp_path, REFERENCE, "--set", override) == 1

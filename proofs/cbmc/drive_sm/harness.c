@@ -3,7 +3,8 @@
  * nondeterministic ADC samples, temperatures and commands (a valid command frame with any
  * power-on bit, fault-clear bit and target, or no frame, at every tick), from any valid
  * state of the state machine, the command link and the fault debouncers
- * (REQ-DRV-002, REQ-DRV-003, REQ-DRV-008, REQ-SM-002, REQ-SM-003, REQ-SM-006).
+ * (REQ-DRV-002, REQ-DRV-003, REQ-DRV-005, REQ-DRV-006, REQ-DRV-008, REQ-SM-002, REQ-SM-003,
+ * REQ-SM-006).
  * Malformed frames are the subject of proofs/cbmc/drive_frame (REQ-DRV-015).
  *
  * The signal-processing functions (observer, PLL, transforms, SVPWM, PI, filters, torque

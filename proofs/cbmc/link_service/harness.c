@@ -1,5 +1,5 @@
 /*
- * CBMC harness: six consecutive 1 ms link services with nondet frames and
+ * CBMC harness: five consecutive 1 ms link services with nondet frames and
  * lengths, plus the CAN status frame every step (REQ-LINK-006, REQ-LINK-007,
  * REQ-LINK-008, REQ-LINK-009, REQ-LINK-010, REQ-LINK-005).
  *
@@ -27,7 +27,7 @@
 #include "qfoc/link.h"
 #include "../harness_util.h"
 
-#define STEPS 6u
+#define STEPS 5u
 
 static uint8_t h_pid(uint8_t id)
 {
