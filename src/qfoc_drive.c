@@ -363,7 +363,7 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, q
   assigns d->f.adc_iu, d->f.adc_iv, d->f.vdc, d->f.vdc_lpf.state, d->f.trip,
           d->f.trip_count, d->f.clear_ack, *i_abc;
   ensures inv: DriveFastValid(&d->f);
-  ensures oc: DriveOverCurrent(d, adc) ==> d->f.trip;
+  ensures oc: DriveOverCurrent{Pre}(d, adc) ==> d->f.trip;
 */
 static void drv_measure(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_abc_t *i_abc)
 {

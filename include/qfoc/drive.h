@@ -276,11 +276,13 @@ int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table);
   requires sep: \separated(d, adc, out) && \separated(d->p, out);
   requires inv: DriveValid(d);
   assigns d->f, *out;
-  ensures inv: DriveValid(d);
-  ensures cmp: out->cmp[0] <= d->p->svpwm.period && out->cmp[1] <= d->p->svpwm.period &&
-               out->cmp[2] <= d->p->svpwm.period;
+  ensures fast: DriveFastValid(&d->f);
+  ensures slow: DriveSlowValid(&d->s);
+  ensures table: d->p == \old(d->p);
+  ensures cmp: out->cmp[0] <= \old(d->p->svpwm.period) && out->cmp[1] <= \old(d->p->svpwm.period) &&
+               out->cmp[2] <= \old(d->p->svpwm.period);
   ensures pwm_only_in_run: out->enable ==> d->s.sm.state == QFOC_STATE_RUN && !d->f.trip;
-  ensures over_current: DriveOverCurrent(d, adc) ==> !out->enable && d->f.trip;
+  ensures over_current: DriveOverCurrent{Pre}(d, adc) ==> !out->enable && d->f.trip;
 */
 void qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_pwm_t *out);
 
