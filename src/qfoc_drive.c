@@ -414,7 +414,9 @@ static void drv_inductance(qfoc_drive_fast_t *f, const qfoc_param_table_t *p, bo
 /*@
   requires valid: \valid(f) && \valid(out);
   requires sep: \separated(f, out);
+  requires inv: DriveFastValid(f);
   assigns f->active, f->i_dq, f->utilisation, *out;
+  ensures inv: DriveFastValid(f);
   ensures off: out->enable == \false;
   ensures cmp: out->cmp[0] == 0 && out->cmp[1] == 0 && out->cmp[2] == 0;
 */
