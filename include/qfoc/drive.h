@@ -277,7 +277,6 @@ int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table);
   requires inv: DriveValid(d);
   assigns d->f, *out;
   ensures fast: DriveFastValid(&d->f);
-  ensures slow: DriveSlowValid(&d->s);
   ensures table: d->p == \old(d->p);
   ensures cmp: out->cmp[0] <= \old(d->p->svpwm.period) && out->cmp[1] <= \old(d->p->svpwm.period) &&
                out->cmp[2] <= \old(d->p->svpwm.period);
