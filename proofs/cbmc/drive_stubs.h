@@ -163,4 +163,25 @@ void stub_flux_reset(qfoc_flux_t *o, const qfoc_ab_t *p, const qfoc_ab_t *i) { (
 void stub_pll_reset(qfoc_pll_t *pll, qfoc_angle_t t, qfoc_q15_t w) { (void)pll; (void)t; (void)w; }
 
 
+uint8_t stub_lin_encode_status(const qfoc_link_cfg_t *c, const qfoc_status_t *st, uint8_t *buf)
+{
+    unsigned k;
+    (void)c; (void)st;
+    for (k = 0u; k < QFOC_LIN_FRAME_MAX; k++) {
+        buf[k] = ANY_U8();
+    }
+    return QFOC_LIN_STATUS_LEN;
+}
+void stub_can_status(qfoc_link_t *l, const qfoc_status_t *st, qfoc_can_frame_t *f)
+{
+    unsigned k;
+    (void)st;
+    f->id = l->can_b ? l->cfg.can_id_b : l->cfg.can_id_a;
+    l->can_b = !l->can_b;
+    f->dlc = 8u;
+    for (k = 0u; k < 8u; k++) {
+        f->data[k] = ANY_U8();
+    }
+}
+
 #endif /* QFOC_DRIVE_STUBS_H */
