@@ -67,7 +67,7 @@ static void dsim_tick(dsim_t *ds)
         }
         in.rx_len = 7u;
     }
-    qfoc_drive_tick(&ds->drv, &in, &ds->out);
+    ds->out = qfoc_drive_tick(&ds->drv, &in);
     if (ds->out.tx_len > 0u) {
         ds->status_frames++;
     }
@@ -89,7 +89,7 @@ void dsim_period(dsim_t *ds)
     adc.iu = (uint16_t)(iu < 0 ? 0 : (iu > 4095 ? 4095 : iu));
     adc.iv = a.iv;
     adc.vdc = a.vdc;
-    qfoc_drive_fast_step(&ds->drv, &adc, &ds->pwm);
+    ds->pwm = qfoc_drive_fast_step(&ds->drv, &adc);
     sim_set_compare(&ds->plant, ds->pwm.cmp);
     sim_set_enable(&ds->plant, ds->pwm.enable);
     sim_step_period(&ds->plant);

@@ -97,6 +97,7 @@ static qfoc_angle_t drv_angle_shift(qfoc_angle_t theta, int32_t delta)
 static int32_t drv_angle_diff(qfoc_angle_t a, qfoc_angle_t b)
 {
     int32_t d = (int32_t)a - (int32_t)b;
+    /*@ assert span: -65535 <= d <= 65535; */
     if (d > 32767) {
         d -= 65536;
     } else if (d < -32768) {
@@ -159,27 +160,65 @@ static bool drv_overcurrent(const qfoc_abc_t *i, qfoc_q15_t limit)
     return ou || ov || ow;
 }
 
-/* Reset of the fast-step controllers when the control (re)starts. */
+/* Reset of the fast-step controllers when the control (re)starts, in three steps of at
+   most two module calls each, so that each module's precondition is read from the drive
+   invariant at the entry of its step. */
 /*@
-  requires valid: \valid(f) && \valid_read(p);
-  requires sep: \separated(f, p);
-  requires inv: DriveFastValid(f);
+  requires valid: \valid(f);
+  requires inv: DRV_FAST(f);
   assigns f->flux.psi_alpha, f->flux.psi_beta, f->flux.i_prev, f->pll.pi.integ,
-          f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed,
-          f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited,
-          f->fw, f->phase, f->mech, f->u_last, f->u_applied, f->theta_ol, f->id_fw;
-  ensures inv: DriveFastValid(f);
+          f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed;
+  ensures inv: DRV_FAST(f);
 */
-static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+static void drv_restart_estimator(qfoc_drive_fast_t *f)
 {
     const qfoc_ab_t zero = { 0, 0 };
     qfoc_flux_reset(&f->flux, &zero, &zero);
     qfoc_pll_reset(&f->pll, 0u, 0);
+}
+
+/*@
+  requires valid: \valid(f);
+  requires inv: DRV_FAST(f);
+  assigns f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited;
+  ensures inv: DRV_FAST(f);
+*/
+static void drv_restart_current(qfoc_drive_fast_t *f)
+{
     qfoc_pi_reset(&f->pi_id, 0);
     qfoc_pi_reset(&f->pi_iq, 0);
+}
+
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  requires inv: DRV_FAST(f);
+  assigns f->fw, f->phase, f->mech;
+  ensures inv: DRV_FAST(f);
+*/
+static void drv_restart_monitors(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+{
     qfoc_fw_reset(&f->fw);
     qfoc_phase_mon_reset(&f->phase);
     (void)qfoc_mech_init(&f->mech, p->drive.pole_pairs, 0u);
+}
+
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  requires inv: DRV_FAST(f);
+  assigns f->flux.psi_alpha, f->flux.psi_beta, f->flux.i_prev, f->pll.pi.integ,
+          f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed,
+          f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited,
+          f->fw, f->phase, f->mech, f->u_last, f->u_applied, f->theta_ol, f->id_fw;
+  ensures inv: DRV_FAST(f);
+*/
+static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+{
+    const qfoc_ab_t zero = { 0, 0 };
+    drv_restart_estimator(f);
+    drv_restart_current(f);
+    drv_restart_monitors(f, p);
     f->u_last = zero;
     f->u_applied = zero;
     f->theta_ol = 0u;
@@ -191,11 +230,11 @@ static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 /*@
   requires valid: \valid(f) && \valid_read(i_ab);
   requires sep: \separated(f, i_ab);
-  requires inv: DriveFastValid(f);
+  requires inv: DRV_FAST(f);
   assigns f->flux.psi_alpha, f->flux.psi_beta, f->flux.i_prev, f->pll.pi.integ,
           f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed,
           f->theta_est, f->speed, f->speed_f, f->psi_mag;
-  ensures inv: DriveFastValid(f);
+  ensures inv: DRV_FAST(f);
 */
 static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab)
 {
@@ -251,9 +290,9 @@ static bool drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff, qf
 /*@
   requires valid: \valid(f) && \valid_read(p) && \valid_read(ref) && \valid(v);
   requires sep: \separated(f, p, ref, v);
-  requires inv: DriveFastValid(f);
+  requires inv: DRV_FAST(f);
   assigns f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited, *v;
-  ensures inv: DriveFastValid(f);
+  ensures inv: DRV_FAST(f);
 */
 static void drv_current_loop(qfoc_drive_fast_t *f, const qfoc_param_table_t *p,
                              const qfoc_dq_t *ref, qfoc_q15_t w, qfoc_dq_t *v)
@@ -277,20 +316,20 @@ static void drv_current_loop(qfoc_drive_fast_t *f, const qfoc_param_table_t *p,
 
 /* The control of one period in RUN (REQ-DRV-006). */
 /*@
-  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(i_abc) && \valid(out);
-  requires sep: \separated(&d->f, d->p, i_abc, out) && \separated(&d->s, out);
-  requires inv: DriveFastValid(&d->f);
-  assigns d->f, *out;
-  ensures inv: DriveFastValid(&d->f);
-  ensures cmp: out->cmp[0] <= d->p->svpwm.period && out->cmp[1] <= d->p->svpwm.period &&
-               out->cmp[2] <= d->p->svpwm.period;
-  ensures on: out->enable == \true;
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->f, d->p);
+  requires inv: DRV_FAST(&d->f);
+  assigns d->f;
+  ensures inv: DRV_FAST(&d->f);
+  ensures cmp: d->f.out.cmp[0] <= d->p->svpwm.period && d->f.out.cmp[1] <= d->p->svpwm.period &&
+               d->f.out.cmp[2] <= d->p->svpwm.period;
+  ensures on: d->f.out.enable == \true;
   ensures latch: d->f.trip == \old(d->f.trip);
 */
-static void drv_control(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, qfoc_q15_t ff,
-                        qfoc_pwm_t *out)
+static void drv_control(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
 {
     qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_abc_t *const i_abc = &f->i_abc;
     const qfoc_param_table_t *const p = d->p;
     qfoc_ab_t i_ab;
     qfoc_angle_t theta;
@@ -300,7 +339,6 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, q
     qfoc_dq_t v_dq;
     qfoc_ab_t v_ab;
     qfoc_svpwm_out_t sv;
-    bool fw_on;
 
     qfoc_clarke(i_abc->u, i_abc->v, &i_ab);
     drv_estimate(f, &i_ab);
@@ -330,44 +368,69 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, q
     }
     qfoc_inv_park(&v_dq, &sc, &v_ab);
     qfoc_svpwm_step(&p->svpwm, &v_ab, f->vdc, i_abc, &sv);
-    out->cmp[0] = sv.cmp[0];
-    out->cmp[1] = sv.cmp[1];
-    out->cmp[2] = sv.cmp[2];
-    out->enable = true;
+    f->out.cmp[0] = sv.cmp[0];
+    f->out.cmp[1] = sv.cmp[1];
+    f->out.cmp[2] = sv.cmp[2];
+    f->out.enable = true;
     f->utilisation = sv.utilisation;
-    /* field weakening from the utilisation (document FireldWeakeningControl) */
-    fw_on = (sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING);
-    f->id_fw = qfoc_fw_step(&f->fw, sv.utilisation, fw_on);
     /* voltage history for the observer: this command is applied during the next period */
     f->u_applied = f->u_last;
     f->u_last = v_ab;
-    /* open-loop angle, mechanical angle, phase monitor */
+}
+
+/* Open-loop angle increment per period: w_ol x k_theta, 2^32 per turn. */
+/*@
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767 * 32767;
+*/
+static uint32_t drv_ol_increment(qfoc_q15_t w_ol, uint16_t k_theta)
+{
+    const uint32_t w = (w_ol > 0) ? (uint32_t)w_ol : 0u;
+    const uint32_t k = (k_theta > 32767u) ? 32767u : (uint32_t)k_theta;
+    /*@ assert w: w <= 32767; */
+    /*@ assert k: k <= 32767; */
+    return w * k;
+}
+
+/* The rest of a controlled period: field weakening from the utilisation (document
+   FireldWeakeningControl), the open-loop angle, the mechanical angle and the phase
+   monitor. */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->f, d->p);
+  requires inv: DRV_FAST(&d->f);
+  assigns d->f.fw, d->f.id_fw, d->f.theta_ol, d->f.mech, d->f.theta_m, d->f.phase;
+  ensures inv: DRV_FAST(&d->f);
+*/
+static void drv_control_after(qfoc_drive_t *d, uint8_t sub)
+{
+    qfoc_drive_fast_t *const f = &d->f;
+    const bool fw_on = (sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING);
+    f->id_fw = qfoc_fw_step(&f->fw, f->utilisation, fw_on);
     if (sub == QFOC_SUB_OPEN_LOOP) {
-        const int32_t wol = (d->s.ol_speed > 0) ? (int32_t)d->s.ol_speed : (int32_t)0;
-        const int32_t k = (p->pll.k_theta > 32767u) ? (int32_t)32767 : (int32_t)p->pll.k_theta;
-        const int32_t inc = wol * k;
-        f->theta_ol = drv_angle_add(f->theta_ol, (uint32_t)inc);
+        f->theta_ol = drv_angle_add(f->theta_ol, drv_ol_increment(d->s.ol_speed,
+                                                                  d->p->pll.k_theta));
     } else {
         /* the open-loop frame stands still outside OPEN_LOOP */
     }
     f->theta_m = qfoc_mech_update(&f->mech, f->theta_est);
-    qfoc_phase_mon_update(&f->phase, i_abc);
+    qfoc_phase_mon_update(&f->phase, &f->i_abc);
 }
 
 /* Measurement and the over-current latch (REQ-DRV-003, REQ-DRV-004). */
 /*@
-  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(adc) && \valid(i_abc);
-  requires sep: \separated(d, d->p) && \separated(d, adc) && \separated(i_abc, d) &&
-                \separated(i_abc, d->p) && \separated(i_abc, adc);
-  requires inv: DriveFastValid(&d->f);
+  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(adc);
+  requires sep: \separated(d, d->p) && \separated(d, adc);
+  requires inv: DRV_FAST(&d->f);
   assigns d->f.adc_iu, d->f.adc_iv, d->f.vdc, d->f.vdc_lpf.state, d->f.trip,
-          d->f.trip_count, d->f.clear_ack, *i_abc;
-  ensures inv: DriveFastValid(&d->f);
+          d->f.trip_count, d->f.clear_ack, d->f.i_abc;
+  ensures inv: DRV_FAST(&d->f);
   ensures oc: DriveOverCurrent{Pre}(d, adc) ==> d->f.trip;
 */
-static void drv_measure(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_abc_t *i_abc)
+static void drv_measure(qfoc_drive_t *d, const qfoc_adc_t *adc)
 {
     qfoc_drive_fast_t *const f = &d->f;
+    qfoc_abc_t *const i_abc = &f->i_abc;
     const uint8_t clear_seq = d->s.clear_seq;
     bool oc;
     f->adc_iu = drv_adc12(adc->iu);
@@ -395,9 +458,9 @@ static void drv_measure(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_abc_t *i_ab
 /*@
   requires valid: \valid(f) && \valid_read(p);
   requires sep: \separated(f, p);
-  requires inv: DriveFastValid(f);
+  requires inv: DRV_FAST(f);
   assigns f->hs, f->flux.params.l;
-  ensures inv: DriveFastValid(f);
+  ensures inv: DRV_FAST(f);
 */
 static void drv_inductance(qfoc_drive_fast_t *f, const qfoc_param_table_t *p, bool hs)
 {
@@ -412,17 +475,16 @@ static void drv_inductance(qfoc_drive_fast_t *f, const qfoc_param_table_t *p, bo
 
 /* PWM off (REQ-DRV-002). */
 /*@
-  requires valid: \valid(f) && \valid(out);
-  requires sep: \separated(f, out);
-  requires inv: DriveFastValid(f);
-  assigns f->active, f->i_dq, f->utilisation, *out;
-  ensures inv: DriveFastValid(f);
-  ensures off: out->enable == \false;
-  ensures cmp: out->cmp[0] == 0 && out->cmp[1] == 0 && out->cmp[2] == 0;
+  requires valid: \valid(f);
+  requires inv: DRV_FAST(f);
+  assigns f->active, f->i_dq, f->utilisation, f->out;
+  ensures inv: DRV_FAST(f);
+  ensures off: f->out.enable == \false;
+  ensures cmp: f->out.cmp[0] == 0 && f->out.cmp[1] == 0 && f->out.cmp[2] == 0;
 */
-static void drv_off(qfoc_drive_fast_t *f, qfoc_pwm_t *out)
+static void drv_off(qfoc_drive_fast_t *f)
 {
-    drv_pwm_off(out);
+    drv_pwm_off(&f->out);
     f->active = false;
     f->i_dq.d = 0;
     f->i_dq.q = 0;
@@ -431,42 +493,61 @@ static void drv_off(qfoc_drive_fast_t *f, qfoc_pwm_t *out)
 
 /* One controlled period in RUN (REQ-DRV-006). */
 /*@
-  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(i_abc) && \valid(out);
-  requires sep: \separated(d, d->p, i_abc, out);
-  requires inv: DriveFastValid(&d->f);
-  assigns d->f, *out;
-  ensures inv: DriveFastValid(&d->f);
-  ensures on: out->enable == \true;
-  ensures cmp: out->cmp[0] <= d->p->svpwm.period && out->cmp[1] <= d->p->svpwm.period &&
-               out->cmp[2] <= d->p->svpwm.period;
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(d, d->p);
+  requires inv: DRV_FAST(&d->f);
+  assigns d->f;
+  ensures inv: DRV_FAST(&d->f);
+  ensures on: d->f.out.enable == \true;
+  ensures cmp: d->f.out.cmp[0] <= d->p->svpwm.period && d->f.out.cmp[1] <= d->p->svpwm.period &&
+               d->f.out.cmp[2] <= d->p->svpwm.period;
   ensures latch: d->f.trip == \old(d->f.trip);
 */
-static void drv_run_period(qfoc_drive_t *d, uint8_t sub, const qfoc_abc_t *i_abc, qfoc_q15_t ff,
-                           qfoc_pwm_t *out)
+static void drv_run_period(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
 {
     if (!d->f.active) {
         drv_fast_restart(&d->f, d->p);
     } else {
         /* running on */
     }
-    drv_control(d, sub, i_abc, ff, out);
+    drv_control(d, sub, ff);
+    drv_control_after(d, sub);
     d->f.active = true;
 }
 
-void qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_pwm_t *out)
+/* The output of the period: the control in RUN without a trip, PWM off otherwise. */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(d, d->p);
+  requires inv: DRV_FAST(&d->f);
+  assigns d->f;
+  ensures inv: DRV_FAST(&d->f);
+  ensures latch: d->f.trip == \old(d->f.trip);
+  ensures cmp: d->f.out.cmp[0] <= d->p->svpwm.period && d->f.out.cmp[1] <= d->p->svpwm.period &&
+               d->f.out.cmp[2] <= d->p->svpwm.period;
+  ensures on: d->f.out.enable == \true <==> run == \true;
+*/
+static void drv_period(qfoc_drive_t *d, bool run, uint8_t sub, qfoc_q15_t ff)
+{
+    if (run) {
+        drv_run_period(d, sub, ff);
+    } else {
+        drv_off(&d->f);
+    }
+}
+
+qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc)
 {
     const uint8_t state = d->s.sm.state;
     const uint8_t sub = d->s.sm.sub;
     /* torque-compensation feed-forward at the mechanical angle of the last period */
     const qfoc_q15_t ff = qfoc_trqcomp_output(&d->s.tc, d->f.theta_m, d->f.speed_f);
-    qfoc_abc_t i_abc;
-    drv_measure(d, adc, &i_abc);
+    bool run;
+    drv_measure(d, adc);
     drv_inductance(&d->f, d->p, d->s.hs);
-    if ((state == QFOC_STATE_RUN) && !d->f.trip) {
-        drv_run_period(d, sub, &i_abc, ff, out);
-    } else {
-        drv_off(&d->f, out);
-    }
+    run = (state == QFOC_STATE_RUN) && !d->f.trip;
+    drv_period(d, run, sub, ff);
+    return d->f.out;
 }
 
 /* ================================================================== tick */
@@ -498,7 +579,8 @@ static uint16_t drv_speed_to_rpm(qfoc_q15_t speed, uint16_t k_speed_rpm)
 {
     const uint32_t a = (uint32_t)qfoc_q15_abs(speed);
     const uint32_t r = (a * (uint32_t)k_speed_rpm) / 32768u;
-    return (r > 65535u) ? (uint16_t)65535u : (uint16_t)r;
+    /*@ assert fits: r <= 65533; */   /* 32767 x 65535 / 32768 */
+    return (uint16_t)r;
 }
 
 /* Offset calibration in PRECHARGE / CALIB (document Int_AD_GetPhaseCurrent, REQ-DRV-007):
@@ -507,7 +589,9 @@ static uint16_t drv_speed_to_rpm(qfoc_q15_t speed, uint16_t k_speed_rpm)
 /*@
   requires valid: \valid(s) && \valid_read(f) && \valid_read(c);
   requires sep: \separated(s, f, c);
+  requires sums: DRV_OFF_SUMS(s);
   assigns s->off_sum_u, s->off_sum_v, s->off_n, s->offset_u, s->offset_v, s->calib_done;
+  ensures sums: DRV_OFF_SUMS(s);
   ensures offsets: s->offset_u <= 4095 && s->offset_v <= 4095;
   ensures result: \result == 0 || \result == QFOC_FAULT_OFFSET;
 */
@@ -524,15 +608,17 @@ static uint16_t drv_calibrate(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
         s->off_sum_v = 0u;
         s->off_n = 0u;
     } else if (s->off_n < n) {
-        /*@ assert sums: s->off_sum_u <= 4095 * 1024 && s->off_sum_v <= 4095 * 1024; */
         s->off_sum_u += (uint32_t)drv_adc12(f->adc_iu);
         s->off_sum_v += (uint32_t)drv_adc12(f->adc_iv);
         s->off_n = (uint16_t)(s->off_n + 1u);
         if (s->off_n == n) {
-            const uint32_t mu = s->off_sum_u >> shift;
-            const uint32_t mv = s->off_sum_v >> shift;
-            const uint16_t ou = (mu > 4095u) ? QFOC_ADC_MAX : (uint16_t)mu;
-            const uint16_t ov = (mv > 4095u) ? QFOC_ADC_MAX : (uint16_t)mv;
+            /* n samples of at most 4095 each: the means are ADC codes */
+            /*@ assert total: s->off_sum_u <= 4095 * n32 && s->off_sum_v <= 4095 * n32; */
+            const uint32_t mu = s->off_sum_u / n32;
+            const uint32_t mv = s->off_sum_v / n32;
+            /*@ assert means: mu <= 4095 && mv <= 4095; */
+            const uint16_t ou = (uint16_t)mu;
+            const uint16_t ov = (uint16_t)mv;
             const int32_t du = (int32_t)ou - (int32_t)QFOC_ADC_MID;
             const int32_t dv = (int32_t)ov - (int32_t)QFOC_ADC_MID;
             const int32_t win = (int32_t)c->offset_window;
@@ -547,7 +633,11 @@ static uint16_t drv_calibrate(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
             /* collecting */
         }
     } else {
-        /* done */
+        /* more samples than the table's current 2^offset_shift (the table changed
+           during the calibration): start the average again */
+        s->off_sum_u = 0u;
+        s->off_sum_v = 0u;
+        s->off_n = 0u;
     }
     s->offset_u = drv_adc12(s->offset_u);
     s->offset_v = drv_adc12(s->offset_v);
@@ -557,7 +647,7 @@ static uint16_t drv_calibrate(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
 /* Tick-evaluated faults (fault.h; reaction times in drive.h, REQ-DRV-008). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
-  requires sep: \separated(&d->s, d->p, in);
+  requires sep: \separated(&d->s, d->p) && \separated(&d->s, in);
   assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall,
           d->s.db_phase, d->s.trip_seen;
   ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET;
@@ -710,10 +800,10 @@ static qfoc_q15_t drv_bumpless_iq(const qfoc_drive_t *d)
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
-  requires inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
+  requires inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
   assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.tc, d->s.speed_ref, d->s.ol_speed,
           d->s.id_ref, d->s.iq_ref, d->s.clear_seq, d->s.run_ms, d->s.calib_done;
-  ensures inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
+  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
 */
 static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_sub)
 {
@@ -721,8 +811,9 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
     const qfoc_param_table_t *const p = d->p;
     const uint8_t st = s->sm.state;
     const uint8_t sub = s->sm.sub;
-    if ((old_state == QFOC_STATE_ERROR) && (st != QFOC_STATE_ERROR)) {
-        /* a fault clear: the fast step releases its over-current latch */
+    if (old_state == QFOC_STATE_ERROR) {
+        /* a change out of ERROR is a fault clear (ERROR has no sub-states): the fast
+           step releases its over-current latch */
         s->clear_seq = (uint8_t)(((uint32_t)s->clear_seq + 1u) & 0xFFu);
     } else {
         /* no clear */
@@ -736,7 +827,8 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         s->run_ms = 0u;
         qfoc_pi_reset(&s->pi_speed, 0);
         qfoc_trqcomp_reset(&s->tc);
-    } else if ((sub == QFOC_SUB_OPEN_LOOP) && (old_sub == QFOC_SUB_ALIGN)) {
+    } else if (sub == QFOC_SUB_OPEN_LOOP) {
+        /* OPEN_LOOP is entered from ALIGN only (sm.h, to_open_loop) */
         s->id_ref = 0;
         s->iq_ref = qfoc_q15_abs(p->drive.i_start);
     } else if ((sub == QFOC_SUB_CLOSED_LOOP) && (old_sub == QFOC_SUB_OPEN_LOOP)) {
@@ -760,10 +852,10 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
-  requires inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
+  requires inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
   assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.tc, d->s.speed_ref, d->s.ol_speed,
           d->s.id_ref, d->s.iq_ref, d->s.clamp_seen;
-  ensures inv: PiValid(&d->s.pi_speed) && TcValid(&d->s.tc);
+  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
 */
 static void drv_run(qfoc_drive_t *d)
 {
@@ -809,7 +901,7 @@ static void drv_run(qfoc_drive_t *d)
 /* Status for the LIN response and the CAN frame (REQ-DRV-011). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
-  requires sep: \separated(&d->s, d->p, in);
+  requires sep: \separated(&d->s, d->p) && \separated(&d->s, in);
   assigns d->s.status;
 */
 static void drv_status(qfoc_drive_t *d, const qfoc_tick_in_t *in)
@@ -828,21 +920,22 @@ static void drv_status(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     st->substate = d->s.sm.sub;
     st->faults = d->s.sm.faults;
     st->speed_rpm = drv_speed_to_rpm(d->f.speed_f, p->drive.k_speed_rpm);
-    st->vdc_dv = (v > 65535u) ? (uint16_t)65535u : (uint16_t)v;
-    st->current_ca = (i > 65535u) ? (uint16_t)65535u : (uint16_t)i;
+    /*@ assert fits: v <= 65533 && i <= 65533; */   /* 32767 x 65535 / 32768 */
+    st->vdc_dv = (uint16_t)v;
+    st->current_ca = (uint16_t)i;
     st->temp_dc = (in->t_ipm > in->t_pcb) ? in->t_ipm : in->t_pcb;
 }
 
 /* The 100 ms job (document Ms_100_job, REQ-DRV-011, REQ-DRV-012): table re-check, CAN
    status frame with the alternating identifier, motorParaChange. */
 /*@
-  requires valid: \valid(d) && \valid_read(d->p) && \valid(out);
-  requires sep: \separated(&d->s, d->p, out);
-  requires inv: LinkValid(&d->s.link);
-  assigns d->s.table_ok, d->s.hs, d->s.link.can_b, out->can, out->can_send;
-  ensures inv: LinkValid(&d->s.link);
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  requires inv: DRV_LINK(&d->s.link);
+  assigns d->s.table_ok, d->s.hs, d->s.link.can_b, d->s.out.can, d->s.out.can_send;
+  ensures inv: DRV_LINK(&d->s.link);
 */
-static void drv_job_100ms(qfoc_drive_t *d, qfoc_tick_out_t *out)
+static void drv_job_100ms(qfoc_drive_t *d)
 {
     qfoc_drive_slow_t *const s = &d->s;
     const qfoc_param_table_t *const p = d->p;
@@ -850,8 +943,8 @@ static void drv_job_100ms(qfoc_drive_t *d, qfoc_tick_out_t *out)
     const qfoc_q15_t hs_on = qfoc_q15_abs(p->drive.para_speed);
     const qfoc_q15_t hs_off = (qfoc_q15_t)((int32_t)hs_on - ((int32_t)hs_on / DRV_HS_HYST_DIV));
     s->table_ok = s->table_ok && (qfoc_params_check(p) == QFOC_PARAMS_OK);
-    qfoc_can_status(&s->link, &s->status, &out->can);
-    out->can_send = true;
+    qfoc_can_status(&s->link, &s->status, &s->out.can);
+    s->out.can_send = true;
     if (w > hs_on) {
         s->hs = true;
     } else if (w < hs_off) {
@@ -861,7 +954,90 @@ static void drv_job_100ms(qfoc_drive_t *d, qfoc_tick_out_t *out)
     }
 }
 
-void qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in, qfoc_tick_out_t *out)
+/* The state machine on this tick's inputs (sm.h); the drive's copy of its invariant is
+   the expanded form, the module's own contract gives the transition rules. */
+/*@
+  requires valid: \valid(s);
+  requires inv: DRV_SM(&s->sm);
+  assigns s->sm;
+  ensures inv: DRV_SM(&s->sm);
+  ensures error_exit: \old(s->sm.state) == QFOC_STATE_ERROR && s->sm.state != QFOC_STATE_ERROR ==>
+      s->sm.state == QFOC_STATE_STOP;
+  ensures run_entry: \old(s->sm.state) != QFOC_STATE_RUN && s->sm.state == QFOC_STATE_RUN ==>
+      \old(s->sm.state) == QFOC_STATE_STOP && s->sm.sub == QFOC_SUB_ALIGN;
+*/
+static void drv_sm_step(qfoc_drive_slow_t *s)
+{
+    qfoc_sm_step(&s->sm, &s->sm_cfg, &s->sm_in);
+}
+
+/* The actions of a state or sub-state change, when there is one. */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  requires inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
+  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.tc, d->s.speed_ref, d->s.ol_speed,
+          d->s.id_ref, d->s.iq_ref, d->s.clear_seq, d->s.run_ms, d->s.calib_done;
+  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
+*/
+static void drv_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_sub)
+{
+    if ((d->s.sm.state != old_state) || (d->s.sm.sub != old_sub)) {
+        drv_on_transition(d, old_state, old_sub);
+    } else {
+        /* no change */
+    }
+}
+
+/* Run-time counter (Motor_Run_Time), ms in RUN, saturating. */
+/*@
+  requires valid: \valid(s);
+  assigns s->run_ms;
+*/
+static void drv_count_run(qfoc_drive_slow_t *s)
+{
+    if ((s->sm.state == QFOC_STATE_RUN) && (s->run_ms < 0xFFFFFFFFu)) {
+        s->run_ms = s->run_ms + 1u;
+    } else {
+        /* not running, or saturated */
+    }
+}
+
+/* The status answer to an accepted command frame (REQ-LINK). */
+/*@
+  requires valid: \valid(s);
+  requires none: s->out.tx_len == 0;
+  assigns s->out;
+  ensures tx: s->out.tx_len == 0 || s->out.tx_len == QFOC_LIN_STATUS_LEN;
+*/
+static void drv_answer(qfoc_drive_slow_t *s, bool accepted)
+{
+    if (accepted) {
+        s->out.tx_len = qfoc_lin_encode_status(&s->link.cfg, &s->status, s->out.tx);
+    } else {
+        /* answer valid command frames only */
+    }
+}
+
+/* The 100 ms period: its job on the last millisecond of each period. */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  requires inv: DRV_LINK(&d->s.link);
+  assigns d->s.ms100, d->s.table_ok, d->s.hs, d->s.link.can_b, d->s.out.can, d->s.out.can_send;
+  ensures inv: DRV_LINK(&d->s.link);
+*/
+static void drv_ms100(qfoc_drive_t *d)
+{
+    if (d->s.ms100 >= DRV_MS100_LAST) {
+        d->s.ms100 = 0u;
+        drv_job_100ms(d);
+    } else {
+        d->s.ms100 = (uint8_t)(d->s.ms100 + 1u);
+    }
+}
+
+qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
 {
     qfoc_drive_slow_t *const s = &d->s;
     const qfoc_param_table_t *const p = d->p;
@@ -870,64 +1046,46 @@ void qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in, qfoc_tick_out_t 
     const uint8_t old_sub = s->sm.sub;
     static const uint8_t no_frame[1] = { 0u };
     const uint8_t *const rx = (in->rx_len > 0u) ? in->rx : no_frame;
-    qfoc_cmd_t cmd;
-    qfoc_sm_cfg_t smc;
-    qfoc_sm_in_t si;
     bool accepted;
+    bool lost;
     uint16_t faults;
+    qfoc_q15_t of_speed;
 
-    out->tx_len = 0u;
-    out->can_send = false;
+    s->out.tx_len = 0u;
+    s->out.can_send = false;
     /* command link (document Communication_service) */
     accepted = qfoc_link_service(&s->link, rx, in->rx_len);
-    qfoc_link_command(&s->link, &cmd);
-    s->speed_target = drv_rpm_to_speed(cmd.target_rpm, c->k_rpm, p->speed_max);
+    qfoc_link_command(&s->link, &s->cmd);
+    s->speed_target = drv_rpm_to_speed(s->cmd.target_rpm, c->k_rpm, p->speed_max);
     /* faults and the offset calibration */
     faults = drv_faults(d, in);
     faults = (uint16_t)(faults + drv_calibrate(s, &d->f, c,
                                               (old_state == QFOC_STATE_PRECHARGE) &&
                                               (old_sub == QFOC_SUB_CALIB)));
     /* the state machine */
-    smc.precharge_ms = c->precharge_ms;
-    smc.align_ms = c->align_ms;
-    smc.ol_timeout_ms = c->ol_timeout_ms;
-    smc.cl_hold_ms = c->cl_hold_ms;
-    smc.clear_ms = c->clear_ms;
-    si.faults = faults;
-    si.bus_ok = !qfoc_fault_under(d->f.vdc, p->vdc_uv);
-    si.calib_done = s->calib_done;
-    si.run_request = cmd.power_on && (cmd.target_rpm >= c->rpm_min) && !qfoc_link_lost(&s->link) &&
-                     s->calib_done;
-    si.link_lost = qfoc_link_lost(&s->link);
-    si.fault_clear = cmd.fault_clear;
-    si.table_ok = s->table_ok;
-    si.converged = drv_converged(s, &d->f, p,
-                                 (old_state == QFOC_STATE_RUN) && (old_sub == QFOC_SUB_OPEN_LOOP));
-    si.stop_reached = (old_sub == QFOC_SUB_STOPPING) && (s->speed_ref <= qfoc_q15_abs(c->of_speed));
-    qfoc_sm_step(&s->sm, &smc, &si);
-    if ((s->sm.state != old_state) || (s->sm.sub != old_sub)) {
-        drv_on_transition(d, old_state, old_sub);
-    } else {
-        /* no change */
-    }
+    s->sm_in.faults = faults;
+    s->sm_in.bus_ok = !qfoc_fault_under(d->f.vdc, p->vdc_uv);
+    s->sm_in.calib_done = s->calib_done;
+    lost = qfoc_link_lost(&s->link);
+    /* the link passes power_on only while it is not lost (link.h) */
+    s->sm_in.run_request = s->cmd.power_on && (s->cmd.target_rpm >= c->rpm_min) &&
+                           s->calib_done;
+    s->sm_in.link_lost = lost;
+    s->sm_in.fault_clear = s->cmd.fault_clear;
+    s->sm_in.table_ok = s->table_ok;
+    s->sm_in.converged = drv_converged(s, &d->f, p,
+                                       (old_state == QFOC_STATE_RUN) &&
+                                       (old_sub == QFOC_SUB_OPEN_LOOP));
+    of_speed = qfoc_q15_abs(c->of_speed);
+    s->sm_in.stop_reached = (old_sub == QFOC_SUB_STOPPING) && (s->speed_ref <= of_speed);
+    drv_sm_step(s);
+    drv_transition(d, old_state, old_sub);
     drv_run(d);
-    if ((s->sm.state == QFOC_STATE_RUN) && (s->run_ms < 0xFFFFFFFFu)) {
-        s->run_ms = s->run_ms + 1u;
-    } else {
-        /* not running, or saturated */
-    }
+    drv_count_run(s);
     drv_status(d, in);
-    if (accepted) {
-        out->tx_len = qfoc_lin_encode_status(&s->link.cfg, &s->status, out->tx);
-    } else {
-        /* answer valid command frames only */
-    }
-    if (s->ms100 >= DRV_MS100_LAST) {
-        s->ms100 = 0u;
-        drv_job_100ms(d, out);
-    } else {
-        s->ms100 = (uint8_t)(s->ms100 + 1u);
-    }
+    drv_answer(s, accepted);
+    drv_ms100(d);
+    return s->out;
 }
 
 /* ================================================================== init */
@@ -938,7 +1096,7 @@ void qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in, qfoc_tick_out_t 
   requires valid: \valid(f) && \valid_read(p);
   requires sep: \separated(f, p);
   assigns *f;
-  ensures inv: DriveFastValid(f);
+  ensures inv: DRV_FAST(f);
 */
 static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 {
@@ -984,15 +1142,22 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 /*@
   requires valid: \valid(s) && \valid_read(p);
   requires sep: \separated(s, p);
-  assigns *s;
-  ensures inv: SmValid(&s->sm) && PiValid(&s->pi_speed) && TcValid(&s->tc) &&
-               s->offset_u <= 4095 && s->offset_v <= 4095;
-  ensures state: s->sm.state == QFOC_STATE_PRECHARGE && !s->table_ok;
+  assigns s->sm, s->pi_speed, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
+          s->db_stall, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
+          s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
+          s->iq_ref, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
+          s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
+  ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
+               s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);
+  ensures accepted: st == QFOC_PARAMS_OK ==>
+      s->sm.state == QFOC_STATE_PRECHARGE && s->table_ok;
+  ensures refused: st != QFOC_PARAMS_OK ==> s->sm.state == QFOC_STATE_ERROR && !s->table_ok;
 */
-static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
+static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int32_t st)
 {
     const qfoc_drive_cfg_t *const c = &p->drive;
     qfoc_trqcomp_params_t tcp;
+    uint32_t k;
 
     tcp.gain = c->tc_gain;
     tcp.amp_max = c->tc_amp_max;
@@ -1000,6 +1165,11 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
     tcp.speed_max = c->tc_speed_max;
     tcp.pole_pairs = c->pole_pairs;
     qfoc_sm_init(&s->sm);
+    if (st != QFOC_PARAMS_OK) {
+        qfoc_sm_fail(&s->sm, QFOC_FAULT_PARAM);
+    } else {
+        /* the table passed its check: PRECHARGE */
+    }
     (void)qfoc_pi_init(&s->pi_speed, &p->pi_speed);
     (void)qfoc_trqcomp_init(&s->tc, &tcp);
     qfoc_debounce_reset(&s->db_ov);
@@ -1023,7 +1193,7 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
     s->clamp_seen = 0u;
     s->clear_seq = 0u;
     s->ms100 = 0u;
-    s->table_ok = false;
+    s->table_ok = (st == QFOC_PARAMS_OK);
     s->calib_done = false;
     s->hs = false;
     s->run_ms = 0u;
@@ -1034,55 +1204,68 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
     s->status.vdc_dv = 0u;
     s->status.current_ca = 0u;
     s->status.temp_dc = 0;
+    s->cmd.power_on = false;
+    s->cmd.fault_clear = false;
+    s->cmd.target_rpm = 0u;
+    s->sm_cfg.precharge_ms = c->precharge_ms;
+    s->sm_cfg.align_ms = c->align_ms;
+    s->sm_cfg.ol_timeout_ms = c->ol_timeout_ms;
+    s->sm_cfg.cl_hold_ms = c->cl_hold_ms;
+    s->sm_cfg.clear_ms = c->clear_ms;
+    s->sm_in.faults = 0u;
+    s->sm_in.bus_ok = false;
+    s->sm_in.calib_done = false;
+    s->sm_in.run_request = false;
+    s->sm_in.link_lost = false;
+    s->sm_in.fault_clear = false;
+    s->sm_in.table_ok = false;
+    s->sm_in.converged = false;
+    s->sm_in.stop_reached = false;
+    /*@ loop invariant k: 0 <= k <= QFOC_LIN_FRAME_MAX;
+        loop assigns k, s->out.tx[0 .. QFOC_LIN_FRAME_MAX - 1];
+        loop variant QFOC_LIN_FRAME_MAX - k; */
+    for (k = 0u; k < QFOC_LIN_FRAME_MAX; k++) {
+        s->out.tx[k] = 0u;
+    }
+    s->out.tx_len = 0u;
+    s->out.can.id = c->can_id_a;
+    s->out.can.dlc = 0u;
+    /*@ loop invariant k: 0 <= k <= 8;
+        loop assigns k, s->out.can.data[0 .. 7];
+        loop variant 8 - k; */
+    for (k = 0u; k < 8u; k++) {
+        s->out.can.data[k] = 0u;
+    }
+    s->out.can_send = false;
 }
 
-/* The command link's configuration from the table (REQ-DRV-001). */
+/* The command link from the table's identifiers, speed limit and timeout (REQ-DRV-001). */
 /*@
-  requires valid: \valid_read(c) && \valid(lc);
-  requires sep: \separated(c, lc);
-  assigns *lc;
+  requires valid: \valid(d) && \valid_read(p);
+  requires sep: \separated(d, p);
+  assigns d->s.link;
+  ensures inv: DRV_LINK(&d->s.link);
 */
-static void drv_link_cfg(const qfoc_drive_cfg_t *c, qfoc_link_cfg_t *lc)
+static void drv_init_link(qfoc_drive_t *d, const qfoc_param_table_t *p)
 {
-    lc->id_cmd = c->lin_id_cmd;
-    lc->id_status = c->lin_id_status;
-    lc->rpm_max = c->rpm_max;
-    lc->timeout_ms = c->link_timeout_ms;
-    lc->can_id_a = c->can_id_a;
-    lc->can_id_b = c->can_id_b;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    qfoc_link_cfg_t lc;
+    lc.id_cmd = c->lin_id_cmd;
+    lc.id_status = c->lin_id_status;
+    lc.rpm_max = c->rpm_max;
+    lc.timeout_ms = c->link_timeout_ms;
+    lc.can_id_a = c->can_id_a;
+    lc.can_id_b = c->can_id_b;
+    (void)qfoc_link_init(&d->s.link, &lc);
 }
 
 int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table)
 {
     const int32_t st = qfoc_params_check(table);
-    qfoc_link_cfg_t lc;
     d->p = table;
-    drv_init_slow(&d->s, table);
-    /*@ assert tc0: TcValid(&d->s.tc); */
+    drv_init_link(d, table);
+    drv_init_slow(&d->s, table, st);
     drv_init_fast(&d->f, table);
-    /*@ assert tc1: TcValid(&d->s.tc); */
-    /*@ assert sm1: SmValid(&d->s.sm) && PiValid(&d->s.pi_speed); */
-    /*@ assert flux1: FluxValid(&d->f.flux); */
-    /*@ assert pll1: PllValid(&d->f.pll); */
-    /*@ assert pi1: PiValid(&d->f.pi_id) && PiValid(&d->f.pi_iq); */
-    /*@ assert fw1: FwValid(&d->f.fw); */
-    /*@ assert misc1: LpfValid(&d->f.vdc_lpf) && PhaseMonValid(&d->f.phase) && MechValid(&d->f.mech); */
-    drv_link_cfg(&table->drive, &lc);
-    (void)qfoc_link_init(&d->s.link, &lc);
-    /*@ assert tc: TcValid(&d->s.tc); */
-    /*@ assert sm: SmValid(&d->s.sm) && PiValid(&d->s.pi_speed); */
-    /*@ assert flux: FluxValid(&d->f.flux); */
-    /*@ assert pll: PllValid(&d->f.pll); */
-    /*@ assert pi: PiValid(&d->f.pi_id) && PiValid(&d->f.pi_iq); */
-    /*@ assert fw: FwValid(&d->f.fw); */
-    /*@ assert misc: LpfValid(&d->f.vdc_lpf) && PhaseMonValid(&d->f.phase) && MechValid(&d->f.mech); */
-    /*@ assert fast: DriveFastValid(&d->f); */
-    /*@ assert slow: DriveSlowValid(&d->s); */
-    if (st == QFOC_PARAMS_OK) {
-        d->s.table_ok = true;
-    } else {
-        qfoc_sm_fail(&d->s.sm, QFOC_FAULT_PARAM);
-    }
     return st;
 }
 
@@ -1101,5 +1284,10 @@ bool qfoc_drive_is_valid(const qfoc_drive_t *d)
     const bool tc = qfoc_trqcomp_is_valid(&d->s.tc);
     const bool link = qfoc_link_is_valid(&d->s.link);
     const bool offs = (d->s.offset_u <= QFOC_ADC_MAX) && (d->s.offset_v <= QFOC_ADC_MAX);
-    return flux && pll && pid && piq && fw && vdc && ph && mech && sm && pis && tc && link && offs;
+    /* off_n <= 1024 < 65536: 4095 x off_n fits in 32 bits */
+    const bool sums = (d->s.off_n <= 1024u) &&
+                      (d->s.off_sum_u <= (4095u * (uint32_t)d->s.off_n)) &&
+                      (d->s.off_sum_v <= (4095u * (uint32_t)d->s.off_n));
+    return flux && pll && pid && piq && fw && vdc && ph && mech && sm && pis && tc && link && offs &&
+           sums;
 }

@@ -72,7 +72,7 @@ static uint8_t rig_frame(const rig_t *r, uint8_t *f)
 static void rig_fast(rig_t *r)
 {
     const uint8_t st = r->d.s.sm.state;
-    qfoc_drive_fast_step(&r->d, &r->adc, &r->pwm);
+    r->pwm = qfoc_drive_fast_step(&r->d, &r->adc);
     assert_true(r->pwm.cmp[0] <= r->table.svpwm.period);
     assert_true(r->pwm.cmp[1] <= r->table.svpwm.period);
     assert_true(r->pwm.cmp[2] <= r->table.svpwm.period);
@@ -88,7 +88,7 @@ static void rig_tick(rig_t *r, const uint8_t *rx, uint8_t len)
     in.t_pcb = r->t_pcb;
     in.rx = rx;
     in.rx_len = len;
-    qfoc_drive_tick(&r->d, &in, &r->out);
+    r->out = qfoc_drive_tick(&r->d, &in);
     r->ms++;
 }
 

@@ -173,6 +173,8 @@ typedef struct {
     bool trip;                /**< over-current latch: PWM held off */
     bool active;              /**< the control ran in the last period */
     bool hs;                  /**< high-speed inductances in use (motorParaChange) */
+    qfoc_abc_t i_abc;         /**< this period's phase currents, offset-corrected, Q15 */
+    qfoc_pwm_t out;           /**< this period's output (returned by the fast step) */
 } qfoc_drive_fast_t;
 
 /** Data written by the tick only. */
@@ -207,6 +209,10 @@ typedef struct {
     bool hs;                  /**< request: high-speed inductances (motorParaChange) */
     uint32_t run_ms;          /**< time in RUN, ms, saturating (Motor_Run_Time) */
     qfoc_status_t status;     /**< last status (LIN and CAN) */
+    qfoc_cmd_t cmd;           /**< effective command of this tick (after the link rules) */
+    qfoc_sm_cfg_t sm_cfg;     /**< state-machine times, from the table at initialisation */
+    qfoc_sm_in_t sm_in;       /**< state-machine inputs of this tick */
+    qfoc_tick_out_t out;      /**< this tick's output (returned by the tick) */
 } qfoc_drive_slow_t;
 
 /** One motor. */
@@ -252,7 +258,7 @@ bool qfoc_drive_is_valid(const qfoc_drive_t *d);
   requires sep: \separated(d, table);
   assigns *d;
   ensures table: d->p == table;
-  ensures valid: DriveValid(d);
+  ensures valid: DRV_VALID(d);
   ensures status: \result == QFOC_PARAMS_OK || \result == QFOC_PARAMS_ERR_ID ||
                   \result == QFOC_PARAMS_ERR_CRC || \result == QFOC_PARAMS_ERR_RANGE;
   ensures refused: \result != QFOC_PARAMS_OK ==>
@@ -266,46 +272,51 @@ int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table);
  * @brief One PWM period (ADC-complete interrupt).
  * @param[in,out] d   the motor object (valid)
  * @param[in]     adc raw samples of this period (any values)
- * @param[out]    out compare values and enable for the next period
+ * @return compare values and enable for the next period: a copy of d->f.out, which
+ *         the guarantees below describe
  * Guarantees: cmp[k] <= period always; enable only in RUN without an over-current
  * latch; an over-current in these samples gives enable false in this same call.
+ * Writes only d->f (the tick's half d->s and the table are read only).
  * Requirements: REQ-DRV-002, REQ-DRV-003, REQ-DRV-004.
  */
 /*@
-  requires valid: \valid(d) && \valid_read(adc) && \valid(out);
-  requires sep: \separated(d, adc, out) && \separated(d->p, out);
-  requires inv: DriveValid(d);
-  assigns d->f, *out;
-  ensures fast: DriveFastValid(&d->f);
+  requires valid: \valid(d) && \valid_read(adc);
+  requires sep: \separated(d, adc);
+  requires inv: DRV_VALID(d);
+  assigns d->f;
+  ensures inv: DRV_VALID(d);
   ensures table: d->p == \old(d->p);
-  ensures cmp: out->cmp[0] <= \old(d->p->svpwm.period) && out->cmp[1] <= \old(d->p->svpwm.period) &&
-               out->cmp[2] <= \old(d->p->svpwm.period);
-  ensures pwm_only_in_run: out->enable ==> d->s.sm.state == QFOC_STATE_RUN && !d->f.trip;
-  ensures over_current: DriveOverCurrent{Pre}(d, adc) ==> !out->enable && d->f.trip;
+  ensures kept: \result == d->f.out;
+  ensures cmp: d->f.out.cmp[0] <= d->p->svpwm.period && d->f.out.cmp[1] <= d->p->svpwm.period &&
+               d->f.out.cmp[2] <= d->p->svpwm.period;
+  ensures pwm_only_in_run: d->f.out.enable ==> d->s.sm.state == QFOC_STATE_RUN && !d->f.trip;
+  ensures over_current: DriveOverCurrent{Pre}(d, adc) ==> !d->f.out.enable && d->f.trip;
 */
-void qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc, qfoc_pwm_t *out);
+qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
 
 /**
  * @brief The 1 ms tick (and, every 100th call, the 100 ms job).
  * @param[in,out] d   the motor object (valid)
  * @param[in]     in  temperatures and the received frame (any values)
- * @param[out]    out status frame and CAN frame to send
+ * @return the status frame and the CAN frame to send: a copy of d->s.out
+ * Writes only d->s (the fast step's half d->f and the table are read only).
  * Requirements: REQ-DRV-005 .. REQ-DRV-012.
  */
 /*@
-  requires valid: \valid(d) && \valid_read(in) && \valid(out);
+  requires valid: \valid(d) && \valid_read(in);
   requires rx: in->rx_len > 0 ==> \valid_read(in->rx + (0 .. in->rx_len - 1));
-  requires sep: \separated(d, in, out) && \separated(d->p, out) &&
+  requires sep: \separated(d, in) &&
                 (in->rx_len > 0 ==> \separated(d, in->rx + (0 .. in->rx_len - 1)));
-  requires inv: DriveValid(d);
-  assigns d->s, *out;
-  ensures inv: DriveValid(d);
-  ensures tx: out->tx_len == 0 || out->tx_len == QFOC_LIN_STATUS_LEN;
+  requires inv: DRV_VALID(d);
+  assigns d->s;
+  ensures inv: DRV_VALID(d);
+  ensures kept: \result == d->s.out;
+  ensures tx: d->s.out.tx_len == 0 || d->s.out.tx_len == QFOC_LIN_STATUS_LEN;
   ensures error_exit: \old(d->s.sm.state) == QFOC_STATE_ERROR &&
       d->s.sm.state != QFOC_STATE_ERROR ==> d->s.sm.state == QFOC_STATE_STOP;
   ensures run_entry: \old(d->s.sm.state) != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>
       \old(d->s.sm.state) == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN;
 */
-void qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in, qfoc_tick_out_t *out);
+qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
 
 #endif /* QFOC_DRIVE_H */

@@ -45,6 +45,7 @@
 #define QFOC_SM_H
 
 #include "qfoc/types.h"
+#include "qfoc/fault.h"
 
 /** States (the document's four). */
 #define QFOC_STATE_PRECHARGE ((uint8_t)0u)
@@ -61,11 +62,11 @@
 #define QFOC_SUB_CLOSED_LOOP ((uint8_t)5u)  /**< RUN: sensorless speed control */
 #define QFOC_SUB_STOPPING    ((uint8_t)6u)  /**< RUN: ramp down before STOP */
 
-/** Fault bits raised by the state machine itself (same values as fault.h). */
-#define QFOC_SM_FAULT_STALL ((uint16_t)0x0020u)
-#define QFOC_SM_FAULT_LINK  ((uint16_t)0x0100u)
-/** Every defined fault bit (fault.h QFOC_FAULT_ALL). */
-#define QFOC_SM_FAULT_ALL   ((uint16_t)0x03FFu)
+/** Fault bits raised by the state machine itself (the fault word of fault.h). */
+#define QFOC_SM_FAULT_STALL QFOC_FAULT_STALL
+#define QFOC_SM_FAULT_LINK  QFOC_FAULT_LINK
+/** Every defined fault bit. */
+#define QFOC_SM_FAULT_ALL   QFOC_FAULT_ALL
 
 /** Times of the state machine, ms (from the parameter table, drive_cfg.h). */
 typedef struct {

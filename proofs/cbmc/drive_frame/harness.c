@@ -52,8 +52,8 @@ int main(void)
     twin = d;
     none = in;
     none.rx_len = 0u;
-    qfoc_drive_tick(&d, &in, &out);
-    qfoc_drive_tick(&twin, &none, &out2);
+    out = qfoc_drive_tick(&d, &in);
+    out2 = qfoc_drive_tick(&twin, &none);
 
     __CPROVER_assert(d.s.sm.state == twin.s.sm.state && d.s.sm.sub == twin.s.sm.sub &&
                      d.s.sm.faults == twin.s.sm.faults && d.s.sm.first_fault == twin.s.sm.first_fault &&

@@ -1,0 +1,1101 @@
+/**
+ * @file test_drive_branches.c
+ * @brief Tests of the drive's decisions that the synthetic-sample tests (test_drive.c)
+ *        and the plant tests (test_drive_plant.c) do not reach: the limits and clamps
+ *        of the references, the handover conditions and the bumpless transfer, the
+ *        STOPPING ramp, stall and phase-loss detection, the offset window on each side,
+ *        the target-speed limit, the run-time counter and each part of the drive
+ *        invariant (specs/requirements/drive.md, sm.md).
+ *
+ * Every test drives the library through its entry points (qfoc_drive_init,
+ * qfoc_drive_fast_step, qfoc_drive_tick, qfoc_drive_is_valid).  Where a test needs a
+ * given estimator output, it writes the fast step's fields that the tick reads
+ * (speed_f, speed, psi_mag, theta_est, i_dq) and runs ticks only, so that it plays
+ * the part of the fast step; where it needs a given table, it uses a RAM copy of
+ * qfoc_params_reference, with the CRC recomputed when the table must stay valid, or
+ * changed after initialisation when the test is about the drive's own bound on a
+ * value the table check refuses (the 100 ms re-check then reports PARAM, which the
+ * test verifies as well).  Expectations are recomputed here from the documented
+ * formulas in double precision, or counted by hand from the documented timing.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#define TEST_SEED 0xD21E0B05u
+#include "test_util.h"
+#include "qfoc/drive.h"
+#include "reference_params.h"
+#include "drive_sim.h"
+
+#define PI_D 3.14159265358979323846
+
+/* ADC code of a DC-bus voltage (4096 codes = V_base = 500 V) */
+static uint16_t vdc_code(double v)
+{
+    return (uint16_t)floor(v / 500.0 * 4096.0 + 0.5);
+}
+
+/* electrical degrees to angle counts (65536 per turn), rounded */
+static int32_t deg_counts(double deg)
+{
+    return (int32_t)floor(deg / 360.0 * 65536.0 + 0.5);
+}
+
+typedef struct {
+    qfoc_drive_t d;
+    qfoc_param_table_t table;   /* RAM copy, so tests can change it */
+    qfoc_adc_t adc;
+    qfoc_pwm_t pwm;
+    qfoc_tick_out_t out;
+    int16_t t_ipm;
+    int16_t t_pcb;
+    bool power_on;
+    bool fault_clear;
+    uint16_t rpm;
+    long ms;
+} rig_t;
+
+static void rig_init_table(rig_t *r, const qfoc_param_table_t *t)
+{
+    memset(r, 0, sizeof *r);
+    r->table = *t;
+    assert_int_equal(qfoc_drive_init(&r->d, &r->table), QFOC_PARAMS_OK);
+    r->adc.iu = QFOC_ADC_MID;
+    r->adc.iv = QFOC_ADC_MID;
+    r->adc.vdc = vdc_code(320.0);
+    r->t_ipm = 400;
+    r->t_pcb = 350;
+    r->rpm = 1000u;
+}
+
+static void rig_init(rig_t *r)
+{
+    rig_init_table(r, &qfoc_params_reference);
+}
+
+/* an independent copy of a rig: the drive points to the copy's own table */
+static void rig_clone(rig_t *dst, const rig_t *src)
+{
+    *dst = *src;
+    dst->d.p = &dst->table;
+}
+
+/* a changed table that must stay valid: new CRC, and the check must accept it */
+static void table_seal(qfoc_param_table_t *t)
+{
+    t->crc = qfoc_params_crc(t);
+    assert_int_equal(qfoc_params_check(t), QFOC_PARAMS_OK);
+}
+
+/* command frame as the master sends it (sim/drive_sim.c's independent LIN encoder) */
+static uint8_t rig_frame(const rig_t *r, uint8_t *f)
+{
+    f[0] = 0x55u;
+    f[1] = dsim_lin_pid(r->table.drive.lin_id_cmd);
+    f[2] = (uint8_t)((r->power_on ? 1u : 0u) | (r->fault_clear ? 2u : 0u));
+    f[3] = (uint8_t)(r->rpm & 0xFFu);
+    f[4] = (uint8_t)(r->rpm >> 8);
+    f[5] = 0u;
+    f[6] = dsim_lin_checksum(&f[1], 5);
+    return 7u;
+}
+
+static void rig_fast(rig_t *r)
+{
+    r->pwm = qfoc_drive_fast_step(&r->d, &r->adc);
+    assert_true(r->pwm.cmp[0] <= r->table.svpwm.period);
+    assert_true(r->pwm.cmp[1] <= r->table.svpwm.period);
+    assert_true(r->pwm.cmp[2] <= r->table.svpwm.period);
+    assert_true(!r->pwm.enable || (r->d.s.sm.state == QFOC_STATE_RUN));
+}
+
+/* one tick, with the master's command frame when `frame` */
+static void rig_tick(rig_t *r, bool frame)
+{
+    uint8_t f[QFOC_LIN_FRAME_MAX];
+    qfoc_tick_in_t in;
+    in.t_ipm = r->t_ipm;
+    in.t_pcb = r->t_pcb;
+    in.rx = f;
+    in.rx_len = frame ? rig_frame(r, f) : 0u;
+    r->out = qfoc_drive_tick(&r->d, &in);
+    r->ms++;
+    assert_true(qfoc_drive_is_valid(&r->d));
+}
+
+/* n ms of 8 fast steps and one tick, the master's frame every 10 ms */
+static void rig_ms(rig_t *r, int n)
+{
+    int k;
+    int j;
+    for (k = 0; k < n; k++) {
+        for (j = 0; j < 8; j++) {
+            rig_fast(r);
+        }
+        rig_tick(r, (r->ms % 10) == 0);
+    }
+}
+
+static uint8_t st(const rig_t *r)
+{
+    return r->d.s.sm.state;
+}
+
+static uint8_t sub(const rig_t *r)
+{
+    return r->d.s.sm.sub;
+}
+
+static void rig_to_stop(rig_t *r)
+{
+    rig_ms(r, 300);
+    assert_int_equal(st(r), QFOC_STATE_STOP);
+}
+
+/* --------------------------------------------------------- the test as the fast step */
+
+/* Estimator outputs as the fast step would leave them: filtered and raw speed, flux
+   magnitude, and the estimated angle dth counts behind the open-loop frame
+   (theta_ol - theta_est = dth). */
+static void emu_est(rig_t *r, int32_t speed, int32_t psi_mag, int32_t dth)
+{
+    qfoc_drive_fast_t *const f = &r->d.f;
+    const int32_t th = (int32_t)(f->theta_ol / 65536u) - dth + 65536;
+    f->speed_f = (int16_t)speed;
+    f->speed = (int16_t)speed;
+    f->psi_mag = (int16_t)psi_mag;
+    f->theta_est = (uint16_t)((uint32_t)th & 0xFFFFu);
+}
+
+/* The flux magnitude the drive expects, psi_f + (L_d - L_q) i_d (drive.h, STALL), with
+   L in Q12: the tests choose i_d so that the product is a whole Q15 count. */
+static int32_t psi_expected(const rig_t *r)
+{
+    const double dl = (double)r->table.ld - (double)r->table.lq;
+    const double x = dl * (double)r->d.f.i_dq.d / 4096.0;
+    assert_true(x == floor(x));
+    return (int32_t)((double)r->table.psi_f + x);
+}
+
+/* One tick in CLOSED_LOOP / STOPPING with the estimate speed_err below the speed
+   reference and the flux magnitude psi_err above its expected value. */
+static void emu_closed_tick(rig_t *r, int32_t speed_err, int32_t psi_err)
+{
+    emu_est(r, (int32_t)r->d.s.speed_ref - speed_err, psi_expected(r) + psi_err, 0);
+    rig_tick(r, true);
+}
+
+/* A flux magnitude the PLL trusts for the table */
+static int16_t psi_ok(const qfoc_param_table_t *t)
+{
+    return (t->psi_f > t->pll.mag_min) ? t->psi_f : t->pll.mag_min;
+}
+
+/* From STOP: power on and, in ticks only, an observer locked on a rotor dth counts
+   behind the open-loop frame at the frame's speed.  Returns the ticks from the tick
+   that entered RUN to the tick that entered CLOSED_LOOP. */
+static long run_to_handover(rig_t *r, int32_t dth)
+{
+    long k;
+    long t_run = -1;
+    r->power_on = true;
+    for (k = 0; k < 8000; k++) {
+        emu_est(r, (int32_t)r->d.s.ol_speed, psi_ok(&r->table), dth);
+        rig_tick(r, true);
+        if (t_run >= 0) {
+            t_run++;
+        } else if (st(r) == QFOC_STATE_RUN) {
+            t_run = 0;
+        } else {
+            /* not started yet */
+        }
+        assert_int_equal(r->d.s.sm.faults, 0u);
+        if ((st(r) == QFOC_STATE_RUN) && (sub(r) == QFOC_SUB_CLOSED_LOOP)) {
+            break;
+        }
+    }
+    assert_int_equal(sub(r), QFOC_SUB_CLOSED_LOOP);
+    return t_run;
+}
+
+/* A drive in CLOSED_LOOP at 1000 rpm, reached through the handover at angle dth. */
+static void rig_closed_loop(rig_t *r, const qfoc_param_table_t *t, int32_t dth)
+{
+    rig_init_table(r, t);
+    rig_to_stop(r);
+    r->rpm = 1000u;
+    assert_int_equal(run_to_handover(r, dth), (long)t->drive.cl_hold_ms);
+}
+
+/* The target speed of a command, (rpm k_rpm) / 4096 rounded to nearest (REQ-DRV-009) */
+static int32_t target_q15(uint16_t rpm, uint16_t k_rpm)
+{
+    return (int32_t)floor((double)rpm * (double)k_rpm / 4096.0 + 0.5);
+}
+
+/* ---------------------------------------------------------------------------- tests */
+
+/* REQ-DRV-001: the drive invariant is the conjunction of every part's own invariant
+   and of the offsets being ADC codes: breaking any single part makes the drive
+   invalid, and the intact drive is valid. */
+static void test_req_drv_001_is_valid_rejects_each_part(void **state)
+{
+    rig_t r;
+    rig_t c;
+    int part;
+    (void)state;
+    rig_init(&r);
+    rig_ms(&r, 50);
+    assert_true(qfoc_drive_is_valid(&r.d));
+    for (part = 0; part < 17; part++) {
+        rig_clone(&c, &r);
+        switch (part) {
+        case 0: c.d.f.flux.params.r = -1; break;                       /* R >= 0 */
+        case 1: c.d.f.pll.k_theta = 0u; break;                         /* 1 <= k_theta */
+        case 2: c.d.f.pi_id.integ = (int32_t)c.d.f.pi_id.params.out_max * 65536 + 1; break;
+        case 3: c.d.f.pi_iq.integ = (int32_t)c.d.f.pi_iq.params.out_min * 65536 - 1; break;
+        case 4: c.d.f.fw.id_ref = 1; break;                            /* i_d ref <= 0 */
+        case 5: c.d.f.vdc_lpf.alpha = 0; break;                        /* alpha > 0 */
+        case 6: c.d.f.phase.abs_lpf[1].state = -1; break;              /* |i| >= 0 */
+        case 7: c.d.f.mech.pole_pairs = 0u; break;                     /* 1 .. 16 */
+        case 8: c.d.s.sm.state = 4u; break;                            /* four states */
+        case 9: c.d.s.pi_speed.integ = (int32_t)c.d.s.pi_speed.params.out_max * 65536 + 1; break;
+        case 10: c.d.s.tc.params.pole_pairs = 17u; break;              /* 1 .. 16 */
+        case 11: c.d.s.link.cfg.id_status = c.d.s.link.cfg.id_cmd; break; /* ids differ */
+        case 12: c.d.s.offset_u = 4096u; break;                        /* 12-bit codes */
+        case 13: c.d.s.offset_v = 4096u; break;
+        case 14: c.d.s.off_n = 1025u; break;                           /* at most 2^10 samples */
+        case 15: c.d.s.off_n = 3u; c.d.s.off_sum_u = 3u * 4095u + 1u; break; /* 12-bit samples */
+        default: c.d.s.off_n = 3u; c.d.s.off_sum_v = 3u * 4095u + 1u; break;
+        }
+        assert_false(qfoc_drive_is_valid(&c.d));
+    }
+    /* the largest ADC code is a valid offset */
+    rig_clone(&c, &r);
+    c.d.s.offset_u = QFOC_ADC_MAX;
+    c.d.s.offset_v = QFOC_ADC_MAX;
+    assert_true(qfoc_drive_is_valid(&c.d));
+    /* calibration sums at their bound: 1024 samples of 4095 */
+    c.d.s.off_n = 1024u;
+    c.d.s.off_sum_u = 1024u * 4095u;
+    c.d.s.off_sum_v = 1024u * 4095u;
+    assert_true(qfoc_drive_is_valid(&c.d));
+}
+
+/* REQ-DRV-003, REQ-DRV-004: an over-current on phase v alone (u at zero current)
+   switches the PWM off in the same fast step; |i_v| = i_trip exactly does not. */
+static void test_req_drv_003_overcurrent_phase_v_alone(void **state)
+{
+    rig_t r;
+    rig_t c;
+    const int32_t codes = (int32_t)qfoc_params_reference.i_trip / 16;   /* 16 x codes <= i_trip */
+    uint8_t trips;
+    (void)state;
+    assert_true((codes * 16) <= qfoc_params_reference.i_trip);
+    assert_true(((codes + 1) * 16) > qfoc_params_reference.i_trip);
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.power_on = true;
+    rig_ms(&r, 20);
+    assert_int_equal(st(&r), QFOC_STATE_RUN);
+    /* at the trip level: running */
+    rig_clone(&c, &r);
+    c.adc.iv = (uint16_t)((int32_t)QFOC_ADC_MID + codes);
+    rig_fast(&c);
+    assert_true(c.pwm.enable);
+    assert_false(c.d.f.trip);
+    c.adc.iv = (uint16_t)((int32_t)QFOC_ADC_MID - codes);
+    rig_fast(&c);
+    assert_true(c.pwm.enable);
+    /* one code above, each direction: off in this call, OC at the next tick */
+    for (int sign = -1; sign <= 1; sign += 2) {
+        rig_clone(&c, &r);
+        trips = c.d.f.trip_count;
+        c.adc.iu = QFOC_ADC_MID;
+        c.adc.iv = (uint16_t)((int32_t)QFOC_ADC_MID + (sign * (codes + 1)));
+        rig_fast(&c);
+        assert_false(c.pwm.enable);
+        assert_true(c.d.f.trip);
+        assert_int_equal(c.d.f.trip_count, (uint8_t)(trips + 1u));
+        rig_tick(&c, false);
+        assert_int_equal(st(&c), QFOC_STATE_ERROR);
+        assert_int_equal(c.d.s.sm.faults, QFOC_FAULT_OC);
+    }
+}
+
+/* REQ-DRV-006, REQ-DRV-010: the open-loop frame advances ol_speed x k_theta per PWM
+   period (2^32 per turn) and the output angle leads by 1.5 periods at that rate; the
+   drive bounds k_theta to the PLL's range 1 .. 32767 itself, so a table whose k_theta
+   went above it (after the start-up check) runs exactly as with 32767, and the 100 ms
+   re-check then stops the drive with PARAM. */
+static void test_req_drv_006_k_theta_above_q15_bounded(void **state)
+{
+    rig_t r;
+    rig_t a;   /* k_theta 65535 */
+    rig_t b;   /* k_theta 32767 */
+    rig_t c;   /* k_theta of the table */
+    uint32_t th0;
+    int32_t w;
+    int n;
+    int ms;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.power_on = true;
+    for (ms = 0; (ms < 2000) && (sub(&r) != QFOC_SUB_OPEN_LOOP); ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);
+    rig_ms(&r, 50);
+    assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);
+    w = r.d.s.ol_speed;
+    assert_true(w > 0);
+    rig_clone(&a, &r);
+    rig_clone(&b, &r);
+    rig_clone(&c, &r);
+    a.table.pll.k_theta = 65535u;
+    b.table.pll.k_theta = 32767u;
+    th0 = r.d.f.theta_ol;
+    for (n = 1; n <= 8; n++) {
+        uint64_t ea;
+        uint64_t ec;
+        a.adc.iu = (uint16_t)(QFOC_ADC_MID + 40u * (uint32_t)n);
+        b.adc.iu = a.adc.iu;
+        c.adc.iu = a.adc.iu;
+        rig_fast(&a);
+        rig_fast(&b);
+        rig_fast(&c);
+        ea = ((uint64_t)th0 + (uint64_t)n * (uint64_t)w * 32767u) % 4294967296u;
+        ec = ((uint64_t)th0 + (uint64_t)n * (uint64_t)w * (uint64_t)qfoc_params_reference.pll.k_theta) %
+             4294967296u;
+        assert_int_equal(a.d.f.theta_ol, (uint32_t)ea);
+        assert_int_equal(b.d.f.theta_ol, (uint32_t)ea);
+        assert_int_equal(c.d.f.theta_ol, (uint32_t)ec);
+        assert_true(a.pwm.enable && b.pwm.enable);
+        assert_memory_equal(a.pwm.cmp, b.pwm.cmp, sizeof a.pwm.cmp);
+    }
+    /* the changed table is refused at the next re-check: ERROR / PARAM */
+    for (ms = 0; (ms < 101) && (st(&a) != QFOC_STATE_ERROR); ms++) {
+        rig_ms(&a, 1);
+    }
+    assert_int_equal(st(&a), QFOC_STATE_ERROR);
+    assert_int_equal(a.d.s.sm.faults & QFOC_FAULT_PARAM, QFOC_FAULT_PARAM);
+}
+
+/* REQ-DRV-006, REQ-DRV-010: ALIGN ramps the d-current reference by ceil(i_align /
+   (align_ms / 2)) per tick to i_align, reached within align_ms / 2, then holds it; an
+   ALIGN time below 2 ms (refused by the table check, here changed after the start) has
+   no ramp: the reference steps to i_align at once, and the re-check reports PARAM. */
+static void test_req_drv_006_align_ramp(void **state)
+{
+    rig_t r;
+    const int32_t ia = qfoc_params_reference.drive.i_align;
+    const int32_t half = (int32_t)qfoc_params_reference.drive.align_ms / 2;
+    const int32_t step = (int32_t)ceil((double)ia / (double)half);
+    int32_t k;
+    int ms;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.power_on = true;
+    for (ms = 0; (ms < 20) && (st(&r) != QFOC_STATE_RUN); ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(sub(&r), QFOC_SUB_ALIGN);
+    for (k = 1; sub(&r) == QFOC_SUB_ALIGN; k++) {
+        const int32_t expect = (k * step < ia) ? (k * step) : ia;
+        assert_int_equal(r.d.s.id_ref, expect);
+        if (k == half) {
+            assert_int_equal(r.d.s.id_ref, ia);   /* reached by align_ms / 2 */
+        }
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(k, (int32_t)qfoc_params_reference.drive.align_ms + 1);
+    /* align_ms = 1 in the table after the start (the state machine keeps its copy) */
+    rig_init(&r);
+    rig_to_stop(&r);
+    while (r.d.s.ms100 != 0u) {
+        rig_ms(&r, 1);
+    }
+    r.table.drive.align_ms = 1u;
+    r.power_on = true;
+    for (ms = 0; (ms < 20) && (st(&r) != QFOC_STATE_RUN); ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(sub(&r), QFOC_SUB_ALIGN);
+    assert_int_equal(r.d.s.id_ref, ia);
+    for (ms = 0; (ms < 101) && (st(&r) != QFOC_STATE_ERROR); ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(r.d.s.sm.faults & QFOC_FAULT_PARAM, QFOC_FAULT_PARAM);
+}
+
+/* REQ-DRV-006, REQ-SM-006: the handover needs, for ho_dwell_ms ticks, |speed_f -
+   w_ol| <= w_ol / 4, |psi| >= mag_min and -(90 deg + ho_angle) < theta_ol - theta_est
+   < ho_angle, and not before cl_hold_ms after the RUN entry.  Each condition one
+   count outside its bound holds the drive in OPEN_LOOP; all of them at their bound
+   hand over after exactly ho_dwell_ms ticks. */
+static void test_req_drv_006_handover_conditions(void **state)
+{
+    rig_t r;
+    rig_t c;
+    const qfoc_param_table_t *const t = &qfoc_params_reference;
+    const int32_t ho = (int32_t)t->drive.ho_angle;
+    const int32_t mag = t->pll.mag_min;
+    long k;
+    long t_run = 0;
+    int cond;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.power_on = true;
+    /* flux magnitude one count below mag_min: no handover after cl_hold_ms */
+    for (k = 0; k < (long)t->drive.cl_hold_ms + 400; k++) {
+        emu_est(&r, r.d.s.ol_speed, mag - 1, 0);
+        rig_tick(&r, true);
+        if (st(&r) == QFOC_STATE_RUN) {
+            t_run++;
+        }
+        assert_int_equal(r.d.s.sm.faults, 0u);
+    }
+    assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);
+    assert_true(t_run > (long)t->drive.cl_hold_ms + 100);
+    assert_int_equal(r.d.s.ol_speed, t->drive.of_speed);
+    /* each other condition one count outside its bound */
+    for (cond = 0; cond < 4; cond++) {
+        const int32_t wol = r.d.s.ol_speed;
+        const int32_t tol = wol / 4;
+        for (k = 0; k < 100; k++) {
+            switch (cond) {
+            case 0: emu_est(&r, wol, mag, ho); break;
+            case 1: emu_est(&r, wol, mag, -(16384 + ho)); break;
+            case 2: emu_est(&r, wol + tol + 1, mag, 0); break;
+            default: emu_est(&r, wol - tol - 1, mag, 0); break;
+            }
+            rig_tick(&r, true);
+        }
+        assert_int_equal(st(&r), QFOC_STATE_RUN);
+        assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);
+    }
+    /* every condition at its bound: CLOSED_LOOP on the ho_dwell_ms-th tick */
+    for (cond = 0; cond < 2; cond++) {
+        const int32_t wol = r.d.s.ol_speed;
+        const int32_t tol = wol / 4;
+        rig_clone(&c, &r);
+        for (k = 1; k <= (long)t->drive.ho_dwell_ms; k++) {
+            if (cond == 0) {
+                emu_est(&c, wol + tol, mag, ho - 1);
+            } else {
+                emu_est(&c, wol - tol, mag, -(16384 + ho) + 1);
+            }
+            rig_tick(&c, true);
+            if (k < (long)t->drive.ho_dwell_ms) {
+                assert_int_equal(sub(&c), QFOC_SUB_OPEN_LOOP);
+            }
+        }
+        assert_int_equal(sub(&c), QFOC_SUB_CLOSED_LOOP);
+    }
+}
+
+/* Bumpless reference (drive.h): the q current that gives, with i_d = 0, the torque of
+   the I/f current i on the q axis of a frame delta ahead of the rotor:
+   i_q' = i cos(delta) (psi_f + (L_d - L_q)(-i sin(delta))) / psi_f; with psi_f = 0 the
+   torque equation has no magnet term and i_q' = i cos(delta). */
+static double bumpless_ref(const qfoc_param_table_t *t, double i, int32_t dth)
+{
+    const double delta = (double)dth * 2.0 * PI_D / 65536.0;
+    const double id = -i * sin(delta);
+    const double iq = i * cos(delta);
+    const double psi = sat15d((double)t->psi_f + ((double)t->ld - (double)t->lq) * id / 4096.0);
+    return (t->psi_f > 0) ? (iq * psi / (double)t->psi_f) : iq;
+}
+
+/* REQ-DRV-006: at the handover the speed PI is preset to the bumpless q current,
+   limited to +-i_max; with a zero speed error in that tick the q reference is that
+   preset.  Four cases: nominal (-30 deg), psi_f = 0, above +i_max, below -i_max. */
+static void test_req_drv_006_bumpless_transfer(void **state)
+{
+    int cas;
+    (void)state;
+    for (cas = 0; cas < 4; cas++) {
+        rig_t r;
+        qfoc_param_table_t t = qfoc_params_reference;
+        int32_t dth = deg_counts(-30.0);
+        double expect;
+        const double i_max = (double)t.i_max;
+        int32_t got;
+        if (cas == 1) {
+            t.psi_f = 0;
+            table_seal(&t);
+        } else if (cas == 2) {
+            dth = deg_counts(10.0);        /* delta > 0: the frame ahead, i_d < 0 */
+        } else if (cas == 3) {
+            t.ld = (int16_t)(t.lq + 4000); /* L_d > L_q, small magnet flux */
+            t.psi_f = 2000;
+            table_seal(&t);
+            dth = deg_counts(-100.0);      /* beyond -90 deg: i_q < 0 */
+        } else {
+            /* nominal */
+        }
+        rig_init_table(&r, &t);
+        rig_to_stop(&r);
+        r.rpm = 1000u;
+        assert_int_equal(target_q15(r.rpm, t.drive.k_rpm), t.drive.of_speed);
+        assert_int_equal(run_to_handover(&r, dth), (long)t.drive.cl_hold_ms);
+        /* the speed reference starts at the estimate: zero error in this tick */
+        assert_int_equal(r.d.s.speed_ref, r.d.f.speed_f);
+        expect = bumpless_ref(&t, (double)t.drive.i_start, dth);
+        got = r.d.s.iq_ref;
+        print_message("bumpless case %d: delta %.1f deg, i_q' %.1f (unlimited), reference %d\n",
+                      cas, (double)dth * 360.0 / 65536.0, expect, got);
+        if (cas == 2) {
+            assert_true(expect > i_max + 8.0);
+            assert_int_equal(got, t.i_max);
+        } else if (cas == 3) {
+            assert_true(expect < -i_max - 8.0);
+            assert_int_equal(got, -t.i_max);
+        } else {
+            assert_true(fabs(expect) < i_max - 8.0);
+            assert_true(fabs((double)got - expect) <= 4.0);
+        }
+        assert_int_equal(r.d.s.pi_speed.integ, (int32_t)got * 65536);
+    }
+    /* random angles inside the handover window, nominal table */
+    for (cas = 0; cas < 8; cas++) {
+        rig_t r;
+        const qfoc_param_table_t *const t = &qfoc_params_reference;
+        const int32_t ho = (int32_t)t->drive.ho_angle;
+        const int32_t dth = rand_range(-(16384 + ho) + 1, ho - 1);
+        const double i_max = (double)t->i_max;
+        double expect = bumpless_ref(t, (double)t->drive.i_start, dth);
+        int32_t got;
+        expect = (expect > i_max) ? i_max : ((expect < -i_max) ? -i_max : expect);
+        rig_init(&r);
+        rig_to_stop(&r);
+        r.rpm = 1000u;
+        assert_int_equal(run_to_handover(&r, dth), (long)t->drive.cl_hold_ms);
+        got = r.d.s.iq_ref;
+        print_message("bumpless random: delta %.1f deg, expected %.1f, reference %d\n",
+                      (double)dth * 360.0 / 65536.0, expect, got);
+        assert_true(fabs((double)got - expect) <= 4.0);
+        assert_true(abs(got) <= t->i_max);
+    }
+}
+
+/* REQ-DRV-013: in CLOSED_LOOP the q reference (speed PI + feed-forward) is limited to
+   +-i_max: a reference above it runs exactly as one at it, and the period is counted
+   as clamped; at the limit it is not. */
+static void test_req_drv_013_iq_reference_clamp(void **state)
+{
+    rig_t r;
+    int sign;
+    (void)state;
+    rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
+    for (sign = -1; sign <= 1; sign += 2) {
+        const int32_t lim = sign * (int32_t)qfoc_params_reference.i_max;
+        const int32_t over[2] = { lim + sign, (sign < 0) ? -32768 : 32767 };
+        rig_t at;
+        rig_t in;
+        int o;
+        rig_clone(&at, &r);
+        rig_clone(&in, &r);
+        at.d.s.iq_ref = (int16_t)lim;
+        in.d.s.iq_ref = (int16_t)(lim - (sign * 500));
+        at.d.f.speed_f = 0;   /* below the torque compensation's window: no feed-forward */
+        in.d.f.speed_f = 0;
+        rig_fast(&at);
+        rig_fast(&in);
+        assert_int_equal(at.d.f.clamp_count, r.d.f.clamp_count);
+        assert_int_equal(in.d.f.clamp_count, r.d.f.clamp_count);
+        assert_true(at.pwm.enable);
+        /* the reference matters: 500 counts less gives another integrator */
+        assert_int_not_equal(at.d.f.pi_iq.integ, in.d.f.pi_iq.integ);
+        for (o = 0; o < 2; o++) {
+            rig_t x;
+            rig_clone(&x, &r);
+            x.d.s.iq_ref = (int16_t)over[o];
+            x.d.f.speed_f = 0;
+            rig_fast(&x);
+            assert_int_equal(x.d.f.clamp_count, (uint8_t)(r.d.f.clamp_count + 1u));
+            assert_int_equal(x.d.f.pi_iq.integ, at.d.f.pi_iq.integ);
+            assert_memory_equal(x.pwm.cmp, at.pwm.cmp, sizeof x.pwm.cmp);
+            assert_true(x.pwm.enable);
+        }
+    }
+}
+
+/* REQ-DRV-013 (trqcomp.h integration rule): a tick after a fast step that clamped the
+   q reference holds the torque-compensation coefficients; the next tick, without a
+   clamp, learns a_h += 2 gain e sin(h theta_m), b_h -= 2 gain e cos(h theta_m)
+   (Q31 of I_base, speed >= 0). */
+static void test_req_drv_013_tc_learning_held_when_clamped(void **state)
+{
+    rig_t r;
+    const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
+    const int32_t w = (c->tc_speed_min + c->tc_speed_max) / 2;   /* inside the window */
+    const int32_t err = 1000;
+    const uint16_t theta_m = 8192u;                              /* 45 deg mechanical */
+    qfoc_trqcomp_t before;
+    double e;
+    double tol;
+    int h;
+    (void)state;
+    rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
+    r.d.s.iq_ref = (int16_t)(qfoc_params_reference.i_max + 1);
+    r.d.f.speed_f = 0;
+    rig_fast(&r);
+    assert_int_not_equal(r.d.f.clamp_count, r.d.s.clamp_seen);
+    before = r.d.s.tc;
+    emu_est(&r, w, psi_expected(&r), 0);
+    r.d.f.speed = (int16_t)(r.d.s.speed_ref - err);   /* unfiltered speed: the ripple */
+    r.d.f.theta_m = theta_m;
+    rig_tick(&r, true);
+    assert_memory_equal(r.d.s.tc.a, before.a, sizeof before.a);
+    assert_memory_equal(r.d.s.tc.b, before.b, sizeof before.b);
+    assert_int_equal(r.d.s.clamp_seen, r.d.f.clamp_count);
+    /* no clamp since: learns */
+    before = r.d.s.tc;
+    emu_est(&r, w, psi_expected(&r), 0);
+    r.d.f.speed = (int16_t)(r.d.s.speed_ref - err);
+    r.d.f.theta_m = theta_m;
+    rig_tick(&r, true);
+    e = (double)r.d.s.speed_ref - (double)r.d.f.speed;
+    tol = 2.0 * (double)c->tc_gain;
+    for (h = 1; h <= 2; h++) {
+        const double ang = (double)h * (double)theta_m * 2.0 * PI_D / 65536.0;
+        const double da = 2.0 * (double)c->tc_gain * e * sin(ang);
+        const double db = -2.0 * (double)c->tc_gain * e * cos(ang);
+        const double ga = (double)r.d.s.tc.a[h - 1] - (double)before.a[h - 1];
+        const double gb = (double)r.d.s.tc.b[h - 1] - (double)before.b[h - 1];
+        print_message("trqcomp harmonic %d: da %.0f (expect %.0f), db %.0f (expect %.0f)\n",
+                      h, ga, da, gb, db);
+        assert_true(fabs(ga - da) <= tol);
+        assert_true(fabs(gb - db) <= tol);
+    }
+    assert_true(r.d.s.tc.a[0] != before.a[0]);
+}
+
+/* REQ-DRV-006, REQ-SM-006, REQ-SM-007, REQ-SM-008: closed loop ramps the speed
+   reference at speed_ramp per tick to the target; power-off gives STOPPING, which ramps
+   it down to of_speed and enters STOP on the tick the reference is there (PWM off
+   then); a new run request in STOPPING returns to CLOSED_LOOP and the ramp goes on
+   from where it was; a lost link in closed loop stops the same way and ends in ERROR
+   with LINK. */
+static void test_req_drv_006_stopping_ramp_down(void **state)
+{
+    rig_t r;
+    rig_t c;
+    const qfoc_drive_cfg_t *const cfg = &qfoc_params_reference.drive;
+    const int32_t ramp = cfg->speed_ramp;
+    const int32_t of = cfg->of_speed;
+    int32_t s0;
+    int32_t target;
+    int32_t n_down;
+    long k;
+    (void)state;
+    rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
+    s0 = r.d.s.speed_ref;
+    r.rpm = 2000u;
+    target = target_q15(r.rpm, cfg->k_rpm);
+    for (k = 1; r.d.s.speed_ref != target; k++) {
+        const int32_t expect = (s0 + (int32_t)k * ramp < target) ? (s0 + (int32_t)k * ramp) : target;
+        emu_closed_tick(&r, 0, 0);
+        assert_int_equal(r.d.s.speed_ref, expect);
+        assert_int_equal(sub(&r), QFOC_SUB_CLOSED_LOOP);
+        assert_true(k < 10000);
+    }
+    assert_int_equal(r.d.s.speed_target, target);
+    /* power off */
+    s0 = r.d.s.speed_ref;
+    n_down = (s0 - of + ramp - 1) / ramp;   /* ticks at which the reference is above of_speed */
+    r.power_on = false;
+    emu_closed_tick(&r, 0, 0);
+    assert_int_equal(st(&r), QFOC_STATE_RUN);
+    assert_int_equal(sub(&r), QFOC_SUB_STOPPING);
+    assert_int_equal(r.d.s.speed_ref, s0 - ramp);
+    rig_clone(&c, &r);
+    rig_fast(&c);
+    assert_true(c.pwm.enable);   /* still controlled while ramping down */
+    for (k = 1; k < n_down; k++) {
+        const int32_t expect = (s0 - (int32_t)(k + 1) * ramp > of) ? (s0 - (int32_t)(k + 1) * ramp) : of;
+        if (k == 100) {
+            /* a new run request: back to CLOSED_LOOP, the ramp turns from here */
+            rig_t back;
+            const int32_t now = r.d.s.speed_ref;
+            rig_clone(&back, &r);
+            back.power_on = true;
+            emu_closed_tick(&back, 0, 0);
+            assert_int_equal(sub(&back), QFOC_SUB_CLOSED_LOOP);
+            assert_int_equal(back.d.s.speed_ref, now + ramp);
+        }
+        emu_closed_tick(&r, 0, 0);
+        assert_int_equal(sub(&r), QFOC_SUB_STOPPING);
+        assert_int_equal(r.d.s.speed_ref, expect);
+    }
+    assert_int_equal(r.d.s.speed_ref, of);
+    emu_closed_tick(&r, 0, 0);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    assert_int_equal(r.d.s.sm.faults, 0u);
+    rig_fast(&r);
+    assert_false(r.pwm.enable);
+    print_message("STOPPING: %d -> %d in %d ticks of %d\n", s0, of, n_down, ramp);
+
+    /* lost link in CLOSED_LOOP: power-off after link_timeout_ms, ramp down, LINK */
+    rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
+    r.rpm = 2000u;
+    for (k = 0; (k < 10000) && (r.d.s.speed_ref != target); k++) {
+        emu_closed_tick(&r, 0, 0);
+    }
+    s0 = r.d.s.speed_ref;
+    n_down = (s0 - of + ramp - 1) / ramp;
+    for (k = 1; st(&r) == QFOC_STATE_RUN; k++) {
+        emu_est(&r, r.d.s.speed_ref, psi_expected(&r), 0);
+        rig_tick(&r, false);
+        if (k <= (long)cfg->link_timeout_ms) {
+            assert_int_equal(sub(&r), QFOC_SUB_CLOSED_LOOP);
+        }
+        assert_true(k < 10000);
+    }
+    assert_int_equal(k - 1, (long)cfg->link_timeout_ms + 1 + n_down);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_LINK);
+}
+
+/* REQ-DRV-013: the field-weakening loop runs in STOPPING as in CLOSED_LOOP (the same
+   fast step, bit for bit) and is released (i_d reference, filter and integrator 0)
+   in OPEN_LOOP. */
+static void test_req_drv_013_field_weakening_in_stopping(void **state)
+{
+    rig_t r;
+    rig_t cl;
+    rig_t ol;
+    int n;
+    (void)state;
+    rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
+    r.power_on = false;
+    emu_closed_tick(&r, 0, 0);
+    assert_int_equal(sub(&r), QFOC_SUB_STOPPING);
+    rig_clone(&cl, &r);
+    rig_clone(&ol, &r);
+    cl.d.s.sm.sub = QFOC_SUB_CLOSED_LOOP;
+    ol.d.s.sm.sub = QFOC_SUB_OPEN_LOOP;
+    for (n = 0; n < 16; n++) {
+        rig_fast(&r);
+        rig_fast(&cl);
+        rig_fast(&ol);
+        assert_true(r.pwm.enable);
+        assert_memory_equal(r.pwm.cmp, cl.pwm.cmp, sizeof r.pwm.cmp);
+        assert_int_equal(r.d.f.id_fw, cl.d.f.id_fw);
+        assert_int_equal(r.d.f.fw.util_lpf.state, cl.d.f.fw.util_lpf.state);
+        assert_int_equal(r.d.f.fw.pi.integ, cl.d.f.fw.pi.integ);
+        assert_int_equal(ol.d.f.id_fw, 0);
+        assert_int_equal(ol.d.f.fw.util_lpf.state, 0);
+        assert_int_equal(ol.d.f.fw.pi.integ, 0);
+    }
+    assert_true(r.d.f.utilisation > 0);
+    assert_true(r.d.f.fw.util_lpf.state > 0);   /* active: filtering the utilisation */
+    assert_true(ol.d.f.utilisation > 0);        /* released although there is voltage */
+}
+
+/* REQ-DRV-006 (drive_cfg.h cl_hold_ms): the speed reference is not ramped to the
+   target before cl_hold_ms after the RUN entry; the drive reads the time from the
+   table, so a valid table whose cl_hold_ms grew after the handover holds the
+   reference, and the ramp resumes once the time has passed again. */
+static void test_req_drv_006_speed_hold_before_cl_hold(void **state)
+{
+    rig_t r;
+    const int32_t ramp = qfoc_params_reference.drive.speed_ramp;
+    int32_t s0;
+    int k;
+    (void)state;
+    rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
+    r.table.drive.cl_hold_ms = 60000u;
+    table_seal(&r.table);
+    r.rpm = 2000u;
+    s0 = r.d.s.speed_ref;
+    for (k = 0; k < 150; k++) {
+        emu_closed_tick(&r, 0, 0);
+        assert_int_equal(r.d.s.speed_ref, s0);
+        assert_true(r.d.s.sm.t_state < r.table.drive.cl_hold_ms);
+    }
+    assert_true(r.d.s.table_ok);   /* a valid table: re-checked without fault */
+    assert_int_equal(sub(&r), QFOC_SUB_CLOSED_LOOP);
+    r.table.drive.cl_hold_ms = qfoc_params_reference.drive.cl_hold_ms;
+    table_seal(&r.table);
+    for (k = 1; k <= 10; k++) {
+        emu_closed_tick(&r, 0, 0);
+        assert_int_equal(r.d.s.speed_ref, s0 + k * ramp);
+    }
+}
+
+/* REQ-DRV-008: STALL in CLOSED_LOOP when |speed ref - estimate| > stall_err, or the
+   flux magnitude differs from psi_f + (L_d - L_q) i_d by more than flux_tol, for
+   stall_ms ticks; at the tolerance itself no fault. */
+static void test_req_drv_008_stall_speed_and_flux(void **state)
+{
+    rig_t r;
+    const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
+    int cas;
+    (void)state;
+    rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
+    for (cas = 0; cas < 4; cas++) {
+        rig_t x;
+        long k;
+        int32_t es = 0;
+        int32_t ep = 0;
+        rig_clone(&x, &r);
+        x.d.f.i_dq.d = -4096;   /* i_d = -1/8 I_base: expected flux psi_f - (L_d - L_q) */
+        assert_int_equal(psi_expected(&x),
+                         (int32_t)qfoc_params_reference.psi_f -
+                         ((int32_t)qfoc_params_reference.ld - (int32_t)qfoc_params_reference.lq));
+        switch (cas) {
+        case 0: es = c->stall_err; ep = c->flux_tol; break;          /* at the bounds */
+        case 1: es = -(c->stall_err + 1); break;                    /* speed error */
+        case 2: ep = -(c->flux_tol + 1); break;                     /* flux too small */
+        default: es = -c->stall_err; ep = -c->flux_tol; break;      /* at the bounds */
+        }
+        for (k = 1; k <= 2L * (long)c->stall_ms; k++) {
+            emu_closed_tick(&x, es, ep);
+            if (st(&x) == QFOC_STATE_ERROR) {
+                break;
+            }
+        }
+        if ((cas == 0) || (cas == 3)) {
+            assert_int_equal(st(&x), QFOC_STATE_RUN);
+            assert_int_equal(sub(&x), QFOC_SUB_CLOSED_LOOP);
+        } else {
+            assert_int_equal(k, (long)c->stall_ms);
+            assert_int_equal(x.d.s.sm.faults, QFOC_FAULT_STALL);
+        }
+    }
+}
+
+/* REQ-DRV-008: PHASE when one phase carries no current while the others do, in the
+   rotating sub-states only: not in ALIGN however long, in OPEN_LOOP after exactly
+   phase_ms ticks; three carrying phases (smallest / largest = 1/2 >= phase_ratio) no
+   fault. */
+static void test_req_drv_008_phase_loss(void **state)
+{
+    rig_t r;
+    const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
+    const uint16_t a = 400u;   /* 400 codes = 6400 Q15: above phase_i_min, below i_trip */
+    int bal;
+    (void)state;
+    assert_true((int32_t)a * 16 > c->phase_i_min);
+    assert_true((int32_t)a * 16 < qfoc_params_reference.i_trip);
+    assert_true(c->phase_ratio < 16384);
+    assert_true(c->align_ms > c->phase_ms);
+    for (bal = 0; bal < 2; bal++) {
+        int ms;
+        rig_init(&r);
+        rig_to_stop(&r);
+        r.adc.iu = (uint16_t)(QFOC_ADC_MID + a);
+        /* lost phase w: i_w = -(i_u + i_v) = 0; balanced: i_v = i_w = -i_u / 2 */
+        r.adc.iv = (uint16_t)(QFOC_ADC_MID - ((bal != 0) ? (a / 2u) : a));
+        r.power_on = true;
+        for (ms = 0; (ms < 2000) && (st(&r) == QFOC_STATE_STOP || sub(&r) == QFOC_SUB_ALIGN); ms++) {
+            rig_ms(&r, 1);
+        }
+        assert_int_equal(st(&r), QFOC_STATE_RUN);
+        assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);   /* ALIGN survived */
+        for (ms = 1; ms <= 3 * (int)c->phase_ms; ms++) {
+            rig_ms(&r, 1);
+            if (st(&r) == QFOC_STATE_ERROR) {
+                break;
+            }
+        }
+        if (bal != 0) {
+            assert_int_equal(st(&r), QFOC_STATE_RUN);
+        } else {
+            assert_int_equal(ms, (int)c->phase_ms);
+            assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_PHASE);
+        }
+    }
+}
+
+/* REQ-DRV-007: an offset more than offset_window codes from 2048 on either side of
+   either channel is an OFFSET fault; offsets at the window's edges are taken as
+   calibrated, exactly. */
+static void test_req_drv_007_offset_window_each_side(void **state)
+{
+    const int32_t win = qfoc_params_reference.drive.offset_window;
+    const int32_t mid = QFOC_ADC_MID;
+    const int32_t cases[5][2] = {
+        { mid - win - 1, mid }, { mid, mid + win + 1 }, { mid, mid - win - 1 },
+        { mid - win, mid + win }, { mid + win, mid - win }
+    };
+    int k;
+    (void)state;
+    for (k = 0; k < 5; k++) {
+        rig_t r;
+        const bool bad = (abs(cases[k][0] - mid) > win) || (abs(cases[k][1] - mid) > win);
+        rig_init(&r);
+        r.adc.iu = (uint16_t)cases[k][0];
+        r.adc.iv = (uint16_t)cases[k][1];
+        rig_ms(&r, 400);
+        if (bad) {
+            assert_int_equal(st(&r), QFOC_STATE_ERROR);
+            assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OFFSET);
+        } else {
+            assert_int_equal(st(&r), QFOC_STATE_STOP);
+            assert_int_equal(r.d.s.offset_u, cases[k][0]);
+            assert_int_equal(r.d.s.offset_v, cases[k][1]);
+        }
+    }
+}
+
+/* REQ-DRV-007, REQ-DRV-010: when a (valid) table's offset_shift drops during the
+   calibration below the samples already summed, no offset is ever derived from a sum
+   of more samples than 2^offset_shift (here 20 samples of 2048 read as 16 would give
+   2560, out of the window): no OFFSET fault, the offsets stay those of the samples. */
+static void test_req_drv_007_offset_shift_changed_during_calibration(void **state)
+{
+    rig_t r;
+    int ms;
+    (void)state;
+    rig_init(&r);
+    for (ms = 0; (ms < 1000) && (r.d.s.off_n < 20u); ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(r.d.s.off_n, 20u);
+    assert_int_equal(r.d.s.off_sum_u, 20u * QFOC_ADC_MID);
+    assert_int_equal(sub(&r), QFOC_SUB_CALIB);
+    r.table.drive.offset_shift = 4u;   /* 16 samples */
+    table_seal(&r.table);
+    /* 20 samples > 16: the average starts again on the next tick and completes with
+       16 fresh samples, 17 ticks after the change */
+    rig_ms(&r, 1);
+    assert_int_equal(r.d.s.off_n, 0u);
+    assert_int_equal(r.d.s.off_sum_u, 0u);
+    assert_int_equal(sub(&r), QFOC_SUB_CALIB);
+    for (ms = 0; ms < 15; ms++) {
+        rig_ms(&r, 1);
+        assert_int_equal(r.d.s.off_n, (uint32_t)(ms + 1));
+        assert_false(r.d.s.calib_done);
+    }
+    rig_ms(&r, 1);
+    assert_true(r.d.s.calib_done);
+    assert_int_equal(r.d.s.sm.faults, 0u);
+    assert_int_equal(r.d.s.offset_u, QFOC_ADC_MID);
+    assert_int_equal(r.d.s.offset_v, QFOC_ADC_MID);
+    rig_ms(&r, 1);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    assert_true(r.d.s.table_ok);
+}
+
+/* REQ-DRV-009, REQ-DRV-010: the target speed is (rpm k_rpm) / 4096 rounded, at most
+   32767 and at most speed_max (0 for speed_max <= 0); with the table's values the
+   limit is never reached (params.h), so the cases change the table after the start,
+   which the re-check then refuses. */
+static void test_req_drv_009_rpm_to_speed_limit(void **state)
+{
+    rig_t r;
+    static const struct {
+        int16_t speed_max;
+        uint16_t k_rpm;
+        uint16_t rpm;
+    } cases[] = {
+        { 3000, 13421u, 1000u }, { 3000, 13421u, 900u }, { 0, 13421u, 1000u },
+        { -32768, 13421u, 8000u }, { 32767, 65535u, 8000u }, { 20000, 65535u, 8000u },
+        { 32767, 65535u, 2048u }, { 26214, 13421u, 0u }, { 26214, 13421u, 8000u },
+    };
+    size_t k;
+    int ms;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double s = floor((double)cases[k].rpm * (double)cases[k].k_rpm / 4096.0 + 0.5);
+        const double smax = (cases[k].speed_max > 0) ? (double)cases[k].speed_max : 0.0;
+        s = (s > 32767.0) ? 32767.0 : s;
+        s = (s > smax) ? smax : s;
+        r.table.speed_max = cases[k].speed_max;
+        r.table.drive.k_rpm = cases[k].k_rpm;
+        r.rpm = cases[k].rpm;
+        rig_tick(&r, true);
+        assert_int_equal(r.d.s.link.cmd.target_rpm, cases[k].rpm);
+        assert_int_equal(r.d.s.speed_target, (int32_t)s);
+    }
+    /* random tables and targets (fixed seed) */
+    for (k = 0; k < 300u; k++) {
+        const int16_t smax = rand_i16();
+        const uint16_t kr = (uint16_t)rand_range(1, 65535);
+        const uint16_t rpm = (uint16_t)rand_range(0, (int32_t)qfoc_params_reference.drive.rpm_max);
+        double s = floor((double)rpm * (double)kr / 4096.0 + 0.5);
+        s = (s > 32767.0) ? 32767.0 : s;
+        s = (s > (double)smax) ? ((smax > 0) ? (double)smax : 0.0) : s;
+        r.table.speed_max = smax;
+        r.table.drive.k_rpm = kr;
+        r.rpm = rpm;
+        rig_tick(&r, true);
+        assert_int_equal(r.d.s.link.cmd.target_rpm, rpm);
+        assert_int_equal(r.d.s.speed_target, (int32_t)s);
+    }
+    /* a table left with speed_max below the largest target is refused by the re-check */
+    r.table.speed_max = 3000;
+    for (ms = 0; (ms < 101) && (st(&r) != QFOC_STATE_ERROR); ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(r.d.s.sm.faults & QFOC_FAULT_PARAM, QFOC_FAULT_PARAM);
+}
+
+/* REQ-DRV-005 (tick data, drive.h run_ms: Motor_Run_Time): the time in RUN counts one
+   per tick from the RUN entry and saturates at 2^32 - 1 ms; outside RUN it does not
+   count. */
+static void test_req_drv_005_run_time_saturates(void **state)
+{
+    rig_t r;
+    uint32_t k;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    assert_int_equal(r.d.s.run_ms, 0u);
+    r.power_on = true;
+    rig_tick(&r, true);
+    assert_int_equal(st(&r), QFOC_STATE_RUN);
+    for (k = 1u; k <= 20u; k++) {
+        assert_int_equal(r.d.s.run_ms, k);
+        rig_tick(&r, true);
+    }
+    r.d.s.run_ms = 0xFFFFFFFEu;   /* 49.7 days in RUN */
+    rig_tick(&r, true);
+    assert_int_equal(r.d.s.run_ms, 0xFFFFFFFFu);
+    rig_tick(&r, true);
+    assert_int_equal(r.d.s.run_ms, 0xFFFFFFFFu);
+    assert_int_equal(st(&r), QFOC_STATE_RUN);
+    r.power_on = false;
+    rig_tick(&r, true);
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    k = r.d.s.run_ms;
+    rig_ms(&r, 10);
+    assert_int_equal(r.d.s.run_ms, k);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_req_drv_001_is_valid_rejects_each_part),
+        cmocka_unit_test(test_req_drv_003_overcurrent_phase_v_alone),
+        cmocka_unit_test(test_req_drv_005_run_time_saturates),
+        cmocka_unit_test(test_req_drv_006_k_theta_above_q15_bounded),
+        cmocka_unit_test(test_req_drv_006_align_ramp),
+        cmocka_unit_test(test_req_drv_006_handover_conditions),
+        cmocka_unit_test(test_req_drv_006_bumpless_transfer),
+        cmocka_unit_test(test_req_drv_006_stopping_ramp_down),
+        cmocka_unit_test(test_req_drv_006_speed_hold_before_cl_hold),
+        cmocka_unit_test(test_req_drv_007_offset_window_each_side),
+        cmocka_unit_test(test_req_drv_007_offset_shift_changed_during_calibration),
+        cmocka_unit_test(test_req_drv_008_stall_speed_and_flux),
+        cmocka_unit_test(test_req_drv_008_phase_loss),
+        cmocka_unit_test(test_req_drv_009_rpm_to_speed_limit),
+        cmocka_unit_test(test_req_drv_013_iq_reference_clamp),
+        cmocka_unit_test(test_req_drv_013_tc_learning_held_when_clamped),
+        cmocka_unit_test(test_req_drv_013_field_weakening_in_stopping),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
