@@ -571,16 +571,28 @@ static qfoc_q15_t drv_rpm_to_speed(uint16_t rpm, uint16_t k_rpm, qfoc_q15_t spee
     return (qfoc_q15_t)r;
 }
 
+/* x k / 32768 for a Q15 magnitude x and a 16-bit scale k: at most 65533. */
+/*@
+  requires x: x <= 32767;
+  requires k: k <= 65535;
+  assigns \nothing;
+  ensures value: \result == (x * k) / 32768;
+  ensures range: \result <= 65533;
+*/
+static uint16_t drv_scale(uint32_t x, uint32_t k)
+{
+    const uint32_t r = (x * k) / 32768u;
+    /*@ assert fits: r <= 65533; */   /* 32767 x 65535 / 32768 */
+    return (uint16_t)r;
+}
+
 /* |speed| in mechanical rpm: |speed| k_speed_rpm / 32768, saturated to 65535. */
 /*@
   assigns \nothing;
 */
 static uint16_t drv_speed_to_rpm(qfoc_q15_t speed, uint16_t k_speed_rpm)
 {
-    const uint32_t a = (uint32_t)qfoc_q15_abs(speed);
-    const uint32_t r = (a * (uint32_t)k_speed_rpm) / 32768u;
-    /*@ assert fits: r <= 65533; */   /* 32767 x 65535 / 32768 */
-    return (uint16_t)r;
+    return drv_scale((uint32_t)qfoc_q15_abs(speed), (uint32_t)k_speed_rpm);
 }
 
 /* Offset calibration in PRECHARGE / CALIB (document Int_AD_GetPhaseCurrent, REQ-DRV-007):
@@ -599,18 +611,23 @@ static uint16_t drv_calibrate(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
                               const qfoc_drive_cfg_t *c, bool calibrating)
 {
     uint16_t fault = 0u;
+    /* 2^offset_shift samples, 1 .. 1024 */
+    static const uint16_t pow2[11] = { 1u, 2u, 4u, 8u, 16u, 32u, 64u, 128u, 256u, 512u, 1024u };
     const uint8_t shift = (c->offset_shift > DRV_OFFSET_SHIFT_MAX) ? DRV_OFFSET_SHIFT_MAX
                                                                    : c->offset_shift;
-    const uint32_t n32 = (uint32_t)1u << shift;
-    const uint16_t n = (uint16_t)n32;
+    const uint16_t n = pow2[shift];
+    const uint32_t n32 = (uint32_t)n;
     if (!calibrating) {
         s->off_sum_u = 0u;
         s->off_sum_v = 0u;
         s->off_n = 0u;
     } else if (s->off_n < n) {
+        /*@ assert count: n <= 1024 && s->off_n < 1024; */
+        /*@ assert room: s->off_sum_u <= 4095 * 1023 && s->off_sum_v <= 4095 * 1023; */
         s->off_sum_u += (uint32_t)drv_adc12(f->adc_iu);
         s->off_sum_v += (uint32_t)drv_adc12(f->adc_iv);
         s->off_n = (uint16_t)(s->off_n + 1u);
+        /*@ assert sums: DRV_OFF_SUMS(s); */
         if (s->off_n == n) {
             /* n samples of at most 4095 each: the means are ADC codes */
             /*@ assert total: s->off_sum_u <= 4095 * n32 && s->off_sum_v <= 4095 * n32; */
@@ -648,6 +665,7 @@ static uint16_t drv_calibrate(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
   requires sep: \separated(&d->s, d->p) && \separated(&d->s, in);
+  requires inv: DRV_PHASE(&d->f.phase);
   assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall,
           d->s.db_phase, d->s.trip_seen;
   ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET;
@@ -664,6 +682,7 @@ static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     const bool rotating = run && (sub != QFOC_SUB_ALIGN);
     const bool closed = run && ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
     const uint8_t trips = f->trip_count;
+    const bool imbalanced = qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, c->phase_ratio);
     uint16_t w = 0u;
     bool stall;
     /* over-current, detected by the fast step */
@@ -710,10 +729,7 @@ static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     } else {
         /* synchronised */
     }
-    if (qfoc_debounce_step(&s->db_phase,
-                           rotating && qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min,
-                                                                 c->phase_ratio),
-                           c->phase_ms)) {
+    if (qfoc_debounce_step(&s->db_phase, rotating && imbalanced, c->phase_ms)) {
         w = (uint16_t)(w + QFOC_FAULT_PHASE);
     } else {
         /* balanced */
@@ -914,15 +930,12 @@ static void drv_status(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     const uint32_t imag = (uint32_t)qfoc_vec_mag(d->f.i_dq.d, d->f.i_dq.q);
     const uint32_t vk = (v_dv_per_lsb > 65535u) ? 65535u : v_dv_per_lsb;
     const uint32_t ik = (i_ca_per_lsb > 65535u) ? 65535u : i_ca_per_lsb;
-    const uint32_t v = (vdc * vk) / 32768u;
-    const uint32_t i = (imag * ik) / 32768u;
     st->state = d->s.sm.state;
     st->substate = d->s.sm.sub;
     st->faults = d->s.sm.faults;
     st->speed_rpm = drv_speed_to_rpm(d->f.speed_f, p->drive.k_speed_rpm);
-    /*@ assert fits: v <= 65533 && i <= 65533; */   /* 32767 x 65535 / 32768 */
-    st->vdc_dv = (uint16_t)v;
-    st->current_ca = (uint16_t)i;
+    st->vdc_dv = drv_scale(vdc, vk);
+    st->current_ca = drv_scale(imag, ik);
     st->temp_dc = (in->t_ipm > in->t_pcb) ? in->t_ipm : in->t_pcb;
 }
 
@@ -1090,8 +1103,62 @@ qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
 
 /* ================================================================== init */
 
-/* Fast-step data from the table (REQ-DRV-001): every module's init establishes its own
-   invariant whatever the table holds (a refused block gets the module's safe values). */
+/* The fast step's modules from the table, two at a time (REQ-DRV-001): every module's
+   init establishes its own invariant whatever the table holds (a refused block gets the
+   module's safe values). */
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  assigns f->flux, f->pll;
+  ensures inv: DRV_FLUX(&f->flux) && DRV_PLL(&f->pll);
+*/
+static void drv_init_estimator(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+{
+    (void)qfoc_flux_init(&f->flux, &p->flux);
+    (void)qfoc_pll_init(&f->pll, &p->pll);
+}
+
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  assigns f->pi_id, f->pi_iq;
+  ensures inv: DRV_PI(&f->pi_id) && DRV_PI(&f->pi_iq);
+*/
+static void drv_init_current(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+{
+    (void)qfoc_pi_init(&f->pi_id, &p->pi_id);
+    (void)qfoc_pi_init(&f->pi_iq, &p->pi_iq);
+}
+
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  assigns f->fw, f->vdc_lpf;
+  ensures inv: DRV_FW(&f->fw) && DRV_LPF(&f->vdc_lpf);
+*/
+static void drv_init_fw(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+{
+    qfoc_fw_params_t fwp;
+    fwp.pi = p->pi_fw;
+    fwp.level = p->drive.fw_level;
+    fwp.alpha = p->drive.fw_alpha;
+    (void)qfoc_fw_init(&f->fw, &fwp);
+    (void)qfoc_lpf_init(&f->vdc_lpf, p->alpha_vdc);
+}
+
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  assigns f->phase, f->mech;
+  ensures inv: DRV_PHASE(&f->phase) && DRV_MECH(&f->mech);
+*/
+static void drv_init_monitors(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+{
+    (void)qfoc_phase_mon_init(&f->phase, p->drive.phase_alpha);
+    (void)qfoc_mech_init(&f->mech, p->drive.pole_pairs, 0u);
+}
+
+/* Fast-step data from the table (REQ-DRV-001). */
 /*@
   requires valid: \valid(f) && \valid_read(p);
   requires sep: \separated(f, p);
@@ -1100,21 +1167,11 @@ qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
 */
 static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 {
-    const qfoc_drive_cfg_t *const c = &p->drive;
-    qfoc_fw_params_t fwp;
     const qfoc_ab_t zero = { 0, 0 };
-
-    fwp.pi = p->pi_fw;
-    fwp.level = c->fw_level;
-    fwp.alpha = c->fw_alpha;
-    (void)qfoc_flux_init(&f->flux, &p->flux);
-    (void)qfoc_pll_init(&f->pll, &p->pll);
-    (void)qfoc_pi_init(&f->pi_id, &p->pi_id);
-    (void)qfoc_pi_init(&f->pi_iq, &p->pi_iq);
-    (void)qfoc_fw_init(&f->fw, &fwp);
-    (void)qfoc_lpf_init(&f->vdc_lpf, p->alpha_vdc);
-    (void)qfoc_phase_mon_init(&f->phase, c->phase_alpha);
-    (void)qfoc_mech_init(&f->mech, c->pole_pairs, 0u);
+    drv_init_estimator(f, p);
+    drv_init_current(f, p);
+    drv_init_fw(f, p);
+    drv_init_monitors(f, p);
     f->u_last = zero;
     f->u_applied = zero;
     f->theta_ol = 0u;
@@ -1136,6 +1193,10 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
     f->trip = false;
     f->active = false;
     f->hs = false;
+    f->i_abc.u = 0;
+    f->i_abc.v = 0;
+    f->i_abc.w = 0;
+    drv_pwm_off(&f->out);
 }
 
 /* Tick data from the table (REQ-DRV-001). */
