@@ -37,8 +37,10 @@ int main(void)
                      d.s.link.cfg.rpm_max == c->rpm_max && d.s.link.cfg.timeout_ms == c->link_timeout_ms &&
                      d.s.link.cfg.can_id_a == c->can_id_a && d.s.link.cfg.can_id_b == c->can_id_b);
     __CPROVER_assume(d.s.offset_u <= 4095u && d.s.offset_v <= 4095u);
-    __CPROVER_assume(d.s.off_sum_u <= 4095u * 1024u && d.s.off_sum_v <= 4095u * 1024u);
+    /* the calibration sums of the drive invariant: off_n samples of 12-bit codes */
     __CPROVER_assume(d.s.off_n <= 1024u);
+    __CPROVER_assume(d.s.off_sum_u <= 4095u * (uint32_t)d.s.off_n &&
+                     d.s.off_sum_v <= 4095u * (uint32_t)d.s.off_n);
 
     in.t_ipm = nondet_int16();
     in.t_pcb = nondet_int16();
