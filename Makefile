@@ -145,27 +145,18 @@ estimator-report: deps $(BUILD)/host/estimator_report
 	@$(PYTHON) tools/plot_estimators.py $(BUILD)/reports
 
 # ---------------------------------------------------------------- tuning tool
-# MOTOR=specs/motors/<name>.toml for one motor (all motor files by default);
-# TUNE_ARGS passes options, e.g. TUNE_ARGS="--set sensing.i_full_scale_a=15".
-## tune: motor file -> parameter table tables/<name>_params.c, report build/tune/<name>/
+# tables/manifest.txt lists the committed tables (name, motor file, overrides).
+# MOTOR=specs/motors/<name>.toml tunes one motor file alone (TUNE_ARGS passes options,
+# e.g. TUNE_ARGS="--set sensing.i_full_scale_a=15").
+## tune: every table of tables/manifest.txt from its motor file, reports in build/tune/<name>/
 tune: deps
-	@for m in $(or $(MOTOR),$(MOTORS)); do \
-	    $(PYTHON) tools/qfoc_tune.py "$$m" $(TUNE_ARGS) || exit 1; \
-	done
+	@if [ -n "$(MOTOR)" ]; then $(PYTHON) tools/qfoc_tune.py "$(MOTOR)" $(TUNE_ARGS); \
+	 else PYTHON=$(PYTHON) sh tools/tables.sh write; fi
 
 ## tune-check: the tool's pytest suite; every committed table regenerates byte for byte
 tune-check: deps
 	@$(PYTHON) -m pytest -q tools/tests
-	@rm -rf $(BUILD)/tune-check && mkdir -p $(BUILD)/tune-check $(BUILD)/tune
-	@for m in $(MOTORS); do \
-	    n=$$(basename "$$m" .toml); \
-	    $(PYTHON) tools/qfoc_tune.py "$$m" --out-dir $(BUILD)/tune/$$n \
-	        --table-dir $(BUILD)/tune-check > $(BUILD)/tune/$$n.log || { cat $(BUILD)/tune/$$n.log; exit 1; }; \
-	    cmp $(BUILD)/tune-check/$${n}_params.c tables/$${n}_params.c && \
-	    cmp $(BUILD)/tune-check/$${n}_params.h tables/$${n}_params.h || \
-	        { echo "tune-check: tables/$${n}_params.* differ from the tool's output for $$m"; exit 1; }; \
-	done
-	@echo "tune-check: $(words $(MOTORS)) motors tuned, every bound and loop margin met, tables reproduce byte for byte"
+	@PYTHON=$(PYTHON) sh tools/tables.sh check
 
 # ---------------------------------------------------------------- demo
 $(BUILD)/host/accuracy: tools/accuracy.c $(BUILD)/host/libqfoc.a

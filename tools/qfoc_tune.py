@@ -1685,6 +1685,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--set", dest="overrides", action="append", default=[],
                     metavar="SECTION.KEY=VALUE", help="override a motor-file value (repeatable)")
     ap.add_argument("--no-plots", action="store_true", help="skip the PNG figures")
+    ap.add_argument("--name", help="table name: tables/<name>_params.c, symbol qfoc_params_<name> "
+                                   "(default: from the motor file's name)")
     args = ap.parse_args(argv)
 
     try:
@@ -1692,7 +1694,7 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
-    name = c_name(args.motor.stem)
+    name = c_name(args.name if args.name else args.motor.stem)
     toml_rel = rel_to_repo(args.motor)
     out_dir = args.out_dir if args.out_dir else Path("build") / "tune" / name
 
