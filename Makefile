@@ -38,7 +38,7 @@ ARM_OBJS  := $(patsubst src/%.c,$(BUILD)/target/obj/%.o,$(SRCS))
 COV_OBJS  := $(patsubst src/%.c,$(BUILD)/cov/obj/%.o,$(SRCS))
 
 .PHONY: help deps lib test coverage prove cbmc misra target trace check demo clean estimator-report \
-        tune tune-check
+        tune tune-check robustness robustness-replay accuracy
 
 help:
 	@echo "qfoc: make demo | make check   (README.md describes every target)"
@@ -159,11 +159,48 @@ tune-check: deps
 	@PYTHON=$(PYTHON) sh tools/tables.sh check
 
 # ---------------------------------------------------------------- demo
+# The scenarios (sim/scenario.c) with the library in the loop, on every table of
+# tables/manifest.txt (the registry is generated from it), then the report.
+SIM_APP_CFLAGS := $(TEST_CFLAGS) -O2 -Isim -Isim/apps -Itables -I$(BUILD)/host/gen
+
+$(BUILD)/host/gen/tables_registry.c: tables/manifest.txt tools/gen_registry.sh
+	@mkdir -p $(@D)
+	@sh tools/gen_registry.sh $< > $@
+
+$(BUILD)/host/qfoc_demo $(BUILD)/host/qfoc_robust: $(BUILD)/host/qfoc_%: sim/apps/%.c \
+        sim/apps/tables_registry.h $(BUILD)/host/gen/tables_registry.c $(SIM_SRCS) $(SIM_HDRS) \
+        $(TABLE_SRCS) $(TABLE_HDRS) $(BUILD)/host/libqfoc.a
+	$(CC) $(SIM_APP_CFLAGS) $< $(BUILD)/host/gen/tables_registry.c $(SIM_SRCS) $(TABLE_SRCS) \
+	    $(BUILD)/host/libqfoc.a -lm -o $@
+
+## demo: the compressor drive simulated with the library in the loop: build/demo/index.html
+demo: deps $(BUILD)/host/qfoc_demo
+	@rm -rf $(BUILD)/demo
+	@$(BUILD)/host/qfoc_demo --out $(BUILD)/demo
+	@$(PYTHON) tools/demo_report.py $(BUILD)/demo
+
+# ROBUST_COUNT cold starts with random parameter errors, load, bus, noise and angle
+# (make check runs a smaller campaign); SEED=<n> replays one run with its plots.
+ROBUST_COUNT ?= 200
+ROBUST_SEED0 ?= 1
+## robustness: the cold-start campaign: build/robustness/index.html, success rate, worst seeds
+robustness: deps $(BUILD)/host/qfoc_robust
+	@rm -rf $(BUILD)/robustness
+	@$(BUILD)/host/qfoc_robust --count $(ROBUST_COUNT) --seed0 $(ROBUST_SEED0) --jobs 2 \
+	    --out $(BUILD)/robustness
+	@$(PYTHON) tools/demo_report.py --robustness $(BUILD)/robustness
+
+## robustness-replay: one campaign run again, exactly (SEED=<n>), with its plots
+robustness-replay: deps $(BUILD)/host/qfoc_robust
+	@test -n "$(SEED)" || { echo "usage: make robustness-replay SEED=<n>"; exit 2; }
+	@$(BUILD)/host/qfoc_robust --replay $(SEED) --out $(BUILD)/robustness
+	@echo "replay: $(BUILD)/robustness/replay_$(SEED)/ (make robustness writes the page)"
+
 $(BUILD)/host/accuracy: tools/accuracy.c $(BUILD)/host/libqfoc.a
 	$(CC) $(TEST_CFLAGS) $< $(BUILD)/host/libqfoc.a -lm -o $@
 
-## demo: the core's measured accuracy against double precision
-demo: deps $(BUILD)/host/accuracy
+## accuracy: the core's measured accuracy against double precision
+accuracy: deps $(BUILD)/host/accuracy
 	@$(BUILD)/host/accuracy
 
 # ---------------------------------------------------------------- all gates
@@ -172,4 +209,4 @@ check: deps
 	@sh tools/check.sh
 
 clean:
-	rm -rf $(BUILD)/host $(BUILD)/reports $(BUILD)/target $(BUILD)/cov $(BUILD)/wp $(BUILD)/cbmc $(BUILD)/misra $(BUILD)/coverage
+	rm -rf $(BUILD)/host $(BUILD)/demo $(BUILD)/robustness $(BUILD)/reports $(BUILD)/target $(BUILD)/cov $(BUILD)/wp $(BUILD)/cbmc $(BUILD)/misra $(BUILD)/coverage

@@ -177,3 +177,27 @@ void sim_bases(const sim_motor_t *m, sim_bases_t *b)
     b->t_s = 1.0 / m->f_pwm_hz;
     b->period = (uint16_t)lround(m->f_timer_hz / (2.0 * m->f_pwm_hz));
 }
+
+int sim_motor_set(sim_motor_t *m, const char *assignment)
+{
+    char key[160];
+    const char *eq = strchr(assignment, '=');
+    int rc = -1;
+    size_t k;
+    if (eq != NULL && (size_t)(eq - assignment) < sizeof key) {
+        char *endp;
+        const double v = strtod(eq + 1, &endp);
+        memcpy(key, assignment, (size_t)(eq - assignment));
+        key[eq - assignment] = '\0';
+        for (k = 0; k < SIM_NKEYS; k++) {
+            if (strcmp(sim_trim(key), sim_keys[k].key) == 0 && endp != eq + 1 && *endp == '\0') {
+                *(double *)((char *)m + sim_keys[k].offset) = v;
+                rc = 0;
+            }
+        }
+    }
+    if (rc != 0) {
+        fprintf(stderr, "override '%s': expected SECTION.KEY=NUMBER with a known key\n", assignment);
+    }
+    return rc;
+}

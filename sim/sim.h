@@ -64,6 +64,12 @@ typedef struct {
  */
 int sim_motor_load(const char *path, sim_motor_t *m);
 
+/**
+ * @brief Apply one override "section.key=number" (the tuning tool's --set syntax).
+ * @return 0, or -1 for an unknown key or a malformed value (message on stderr).
+ */
+int sim_motor_set(sim_motor_t *m, const char *assignment);
+
 /** Per-unit bases of a motor file (specs/scaling.md section 2). */
 typedef struct {
     double v_base;    /**< V: DC-bus sensing full scale */

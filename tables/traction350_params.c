@@ -98,7 +98,7 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .align_ms = 300u, /* 300 ms (drive.align_ms, default) */
         .i_start = 18022, /* 0.55 = 330 A / I_base = 330 / 600; stored 0.549988, error -0.00 % */
         .of_accel = 4, /* 0.000133333 = 1000 rpm/s x 1 ms x n_p / 60 / f_base = 8 / 60 / 1000 (per ms); stored 0.00012207, error -8.45 % */
-        .of_speed = 4369, /* 0.133333 = 1000 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.133331, error -0.00 % */
+        .of_speed = 1311, /* 0.04 = 300 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.0400085, error +0.02 % */
         .ho_angle = 2731u, /* 2730.67 = 15 deg / 360 x 65536 */
         .ho_dwell_ms = 50u, /* 50 ms (drive.ho_dwell_ms, default) */
         .ol_timeout_ms = 4000u, /* 4000 ms (drive.ol_timeout_ms, default) */
@@ -130,5 +130,5 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
         .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
     },
-    .crc = 0x1D1ED25Du /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x7279C551u /* CRC-32/ISO-HDLC of every field above */
 };
