@@ -185,14 +185,16 @@ static void scn_metric(scn_ctx_t *c, const char *key, const char *label, const c
     snprintf(m->key, sizeof m->key, "%s", key);
     snprintf(m->label, sizeof m->label, "%s", label);
     snprintf(m->unit, sizeof m->unit, "%s", unit);
-    m->value = value;
+    /* times are differences of ms counts: rounded to 1 ns of their unit, so that 5.000 s
+       does not read as 4.9999999 */
+    m->value = (fabs(value) < 1e6) ? nearbyint(value * 1e6) / 1e6 : value;
     m->min = scn_target(c, "min_", key);
     m->max = scn_target(c, "max_", key);
     if (isnan(m->min) && isnan(m->max)) {
         m->pass = -1;
     } else {
-        m->pass = (!isnan(value) && (isnan(m->min) || value >= m->min) &&
-                   (isnan(m->max) || value <= m->max)) ? 1 : 0;
+        m->pass = (!isnan(m->value) && (isnan(m->min) || m->value >= m->min) &&
+                   (isnan(m->max) || m->value <= m->max)) ? 1 : 0;
     }
     if (m->pass == 0) {
         r->pass = false;
@@ -818,6 +820,8 @@ static int scn_bus_sag(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t *
     double id_before = 0.0;
     double id_min = 0.0;
     double ang_max = 0.0;
+    double ss_sum = 0.0;
+    long ss_n = 0;
     long n_before = 0;
     int rc = scn_rig(c, tab, tab->table, m, 320.0, m->nominal_torque_nm, 0.0, 7u, 0.05);
     if (rc != 0) {
@@ -863,12 +867,18 @@ static int scn_bus_sag(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t *
         if (scn_time(c) > t0) {
             dev = fmax(dev, fabs(dsim_rpm(ds) - 6000.0));
             id_min = fmin(id_min, ds->plant.id);
+            if (scn_time(c) > c->r->t_end_s - 1.0) {
+                ss_sum += fabs(dsim_rpm(ds) - 6000.0);
+                ss_n++;
+            }
             if (ds->pwm.enable && scn_in_cl(ds)) {
                 ang_max = fmax(ang_max, fabs(dsim_angle_err_deg(ds)));
             }
         }
     }
     scn_metric(c, "speed_dev_pct", "max |speed - 6000 rpm| from the sag on", "%", dev / 60.0);
+    scn_metric(c, "ss_err_pct", "mean |speed error| over the last second, after the sag", "%",
+               (ss_n > 0) ? ss_sum / (double)ss_n / 60.0 : NAN);
     scn_metric(c, "id_before_a", "mean i_d in the second before the sag", "A",
                (n_before > 0) ? id_before / (double)n_before : NAN);
     scn_metric(c, "id_min_a", "most negative i_d during and after the sag", "A", id_min);

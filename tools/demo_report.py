@@ -324,25 +324,34 @@ def line(ax, tr, col, label, **kw):
     """Plot one trace column against time, decimated."""
     t, y = decimate(tr["t_s"], tr[col])
     kw.setdefault("lw", 1.0)
-    ax.plot(t, y, label=textwrap.fill(label, 30), **kw)
+    ax.plot(t, y, label=label, **kw)
 
 
 def legend(ax, **kw):
-    """Legend in the right margin."""
-    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, **kw)
+    """Legend in the right margin, long labels wrapped."""
+    handles, labels = ax.get_legend_handles_labels()
+    ax.legend(handles, [textwrap.fill(x, 30) for x in labels], loc="upper left",
+              bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, **kw)
 
 
-def mark_events(axes, events, x0, x1):
-    """Dashed vertical markers for the events in [x0, x1], labels on the first panel."""
-    for ev in events:
+def mark_events(axes, events, x0, x1, label_ax=None):
+    """Dashed vertical markers for the events in [x0, x1] with their labels (on label_ax,
+    default the first panel); labels of close events alternate sides and step down."""
+    label_ax = label_ax or axes[0]
+    placed = []
+    for ev in sorted(events, key=lambda e: e["t_s"]):
         t = ev["t_s"]
         if not x0 <= t <= x1:
             continue
         for ax in axes:
             ax.axvline(t, color="0.3", ls="--", lw=0.8, zorder=1)
-        axes[0].text(t, 0.97, " " + str(ev.get("label", "")), rotation=90, va="top",
-                     ha="right", fontsize=7, color="0.2", transform=axes[0].get_xaxis_transform(),
-                     bbox=dict(fc="white", ec="none", alpha=0.7, pad=1))
+        near = sum(1 for p in placed if t - p < 0.025 * (x1 - x0))
+        placed.append(t)
+        right = near % 2 == 1 or t - x0 < 0.03 * (x1 - x0)
+        label_ax.text(t, 0.97 - 0.45 * (near // 2 % 2), " " + str(ev.get("label", "")) + " ",
+                      rotation=90, va="top", ha="left" if right else "right", fontsize=7,
+                      color="0.2", transform=label_ax.get_xaxis_transform(),
+                      bbox=dict(fc="white", ec="none", alpha=0.7, pad=1))
 
 
 def save(fig, path):
@@ -373,14 +382,14 @@ class ScenarioPlots:
             z = meta.get("zoom") or {"t0_s": self.zoom["t_s"][0], "t1_s": self.zoom["t_s"][-1]}
             self.zr = (z["t0_s"], z["t1_s"])
         t = self.tr["t_s"]
-        self.xr = (t[0], max(t[-1], float(meta.get("t_end_s") or t[-1])))
+        self.xr = (min(t[0], 0.0), max(t[-1], float(meta.get("t_end_s") or t[-1])))
         self.events = meta.get("events") or []
         self.plots = []
 
-    def finish(self, fig, axes, name, caption, xr):
+    def finish(self, fig, axes, name, caption, xr, label_ax=None):
         """Common axis limits, event markers and time label; save; note the caption."""
         axes[0].set_xlim(*xr)
-        mark_events(axes, self.events, *xr)
+        mark_events(axes, self.events, *xr, label_ax)
         axes[-1].set_xlabel("time (s)")
         save(fig, os.path.join(self.dir, name))
         self.plots.append((name, caption))
@@ -403,13 +412,13 @@ class ScenarioPlots:
         ax, tr = axes[0], self.tr
         line(ax, tr, "target_rpm", "target (LIN)", color="k", ls=":", lw=1.3, zorder=5)
         line(ax, tr, "speed_ref_rpm", "ramped reference", color="C0", ls="--", zorder=4)
-        line(ax, tr, "speed_est_rpm", "estimated", color="C1")
-        line(ax, tr, "speed_true_rpm", "true", color="C2")
+        line(ax, tr, "speed_est_rpm", "estimated", color="C1", zorder=2)
+        line(ax, tr, "speed_true_rpm", "true", color="C2", zorder=3)
         cap = "Speed: LIN target, ramped reference, drive's estimate and true speed (rpm)"
         if self.cmp:
             lab = self.meta["compare"].get("label", "comparison run")
-            line(ax, self.cmp, "speed_true_rpm", f"true, {lab}", color="C3", alpha=0.8)
-            cap += f"; red: true speed {lab}"
+            line(ax, self.cmp, "speed_true_rpm", f"true, {lab}", color="0.65", zorder=1.5)
+            cap += f"; grey: true speed {lab}"
         ax.set_ylabel("speed (rpm)")
         ax.set_title(self.meta["title"], fontsize=10, loc="left")
         legend(ax)
@@ -432,17 +441,21 @@ class ScenarioPlots:
         """Electrical angle error where defined, with the angle metrics and limit."""
         fig, axes = new_fig([1], 3.0)
         ax = axes[0]
-        am = [m for m in self.meta["metrics"] if "angle" in m["key"]]
-        summary = ", ".join(f"{m['label']} {with_unit(fnum(m['value']), m.get('unit'))}"
-                            for m in am)
+        short = {"angle_err_rms_deg": "RMS", "angle_err_max_deg": "max"}
+        am = [m for m in self.meta["metrics"] if m["key"].startswith("angle_err")
+              and ("rms" in m["key"] or "max" in m["key"])]
+        summary = ", ".join(
+            f"{short.get(m['key'], m['label'])} {with_unit(fnum(m['value']), m.get('unit'))}"
+            + (f" ({target_text(m)})" if m["status"] != "info" else "") for m in am)
         line(ax, self.tr, "angle_err_deg", "estimate - true", color="C4")
-        for m in am:
-            if "max" in m["key"] and m.get("max") is not None:
-                ax.axhline(m["max"], color="C3", ls=":", lw=1, label=f"limit +/-{m['max']} deg")
-                ax.axhline(-m["max"], color="C3", ls=":", lw=1)
+        for k, m in enumerate(x for x in am if "max" in x["key"] and x.get("max") is not None):
+            lab = f"limit +/-{m['max']} deg ({short.get(m['key'], m['label'])})"
+            ax.axhline(m["max"], color=f"C{3 + k}", ls=":", lw=1, label=lab)
+            ax.axhline(-m["max"], color=f"C{3 + k}", ls=":", lw=1)
         if not any(v == v for v in self.tr["angle_err_deg"]):
             ax.text(0.5, 0.5, "not defined: the drive never ran in CLOSED_LOOP/STOPPING",
-                    ha="center", transform=ax.transAxes, color="0.4")
+                    ha="center", transform=ax.transAxes, color="0.4",
+                    bbox=dict(fc="white", ec="none"))
         ax.set_ylabel("angle error (deg el.)")
         ax.set_title("electrical angle error" + (f": {summary}" if summary else ""),
                      fontsize=9, loc="left")
@@ -548,7 +561,7 @@ class ScenarioPlots:
                            "t_ipm_c": "IPM temperature"}[c] for c in extra)
         self.finish(fig, axes, "state.png", "Drive state and sub-state; inverter switching "
                     "(PWM on) and every fault bit that is ever set, as bars where set"
-                    + (f"; {names}." if names else "."), self.xr)
+                    + (f"; {names}." if names else "."), self.xr, axes[1])
 
 
 def plot_worker(meta):

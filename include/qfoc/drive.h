@@ -92,6 +92,13 @@
  * offsets, REQ-DRV-008 faults, REQ-DRV-009 commands, REQ-DRV-010 table re-check,
  * REQ-DRV-011 status and CAN, REQ-DRV-012 motorParaChange, REQ-DRV-013 field weakening
  * and torque compensation, REQ-DRV-014 start on the plant, REQ-DRV-015 malformed frames.
+ *
+ * Behaviour on the plant, end to end (specs/requirements/scenarios.md, targets in
+ * specs/scenarios.toml, shown by make demo): REQ-SCN-001 cold start, REQ-SCN-002 speed
+ * steps and field weakening, REQ-SCN-003 pulsating load, REQ-SCN-004 load step,
+ * REQ-SCN-005 DC-bus sag, REQ-SCN-006 over-current, REQ-SCN-007 over-voltage,
+ * REQ-SCN-008 over-temperature, REQ-SCN-009 locked rotor, REQ-SCN-010 link loss (each
+ * with its recovery), REQ-SCN-011 robust start, REQ-SCN-012 other tables.
  */
 #ifndef QFOC_DRIVE_H
 #define QFOC_DRIVE_H

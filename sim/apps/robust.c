@@ -118,20 +118,23 @@ static int one(uint32_t seed, double nominal, const char *targets, const char *d
     return rc;
 }
 
-/* worst first: failures, then the longest time to the target, then the angle error */
+/* worst first: failures, then the largest angle error (the nearest to losing the rotor),
+   then the longest time to the target */
 static int worse(const void *a, const void *b)
 {
     const rec_t *x = a;
     const rec_t *y = b;
+    const double ax = isnan(x->ang_max) ? 1e9 : x->ang_max;
+    const double ay = isnan(y->ang_max) ? 1e9 : y->ang_max;
     const double tx = isnan(x->t_reach) ? 1e9 : x->t_reach;
     const double ty = isnan(y->t_reach) ? 1e9 : y->t_reach;
     int c;
     if (x->success != y->success) {
         c = x->success - y->success;
-    } else if (tx != ty) {
-        c = (tx > ty) ? -1 : 1;
+    } else if (ax != ay) {
+        c = (ax > ay) ? -1 : 1;
     } else {
-        c = (x->ang_max > y->ang_max) ? -1 : ((x->ang_max < y->ang_max) ? 1 : 0);
+        c = (tx > ty) ? -1 : ((tx < ty) ? 1 : (int)x->st.seed - (int)y->st.seed);
     }
     return c;
 }
