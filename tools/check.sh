@@ -36,6 +36,8 @@ gate trace    make --no-print-directory trace
 gate target   make --no-print-directory target
 gate report   make --no-print-directory estimator-report
 gate tune     make --no-print-directory tune-check
+gate demo     make --no-print-directory demo
+gate robust   make --no-print-directory robustness ROBUST_COUNT=24
 
 echo
 echo "==================== summary ($(( $(date +%s) - start_all )) s)"

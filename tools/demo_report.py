@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Report of the closed-loop demonstration (make demo) and of the robustness campaign.
 
-usage: demo_report.py [DEMO_DIR]                 (default: build/demo)
+usage: demo_report.py [DEMO_DIR]          (default: build/demo of this repository)
        demo_report.py --robustness ROBUST_DIR
 
 Reads what build/host/qfoc_demo writes (summary.json; per scenario metrics.json,
@@ -13,17 +13,22 @@ with PNG plots:
   DEMO_DIR/<scenario>/*.png       plots, next to the CSV files
 
 It prints the metrics table (value, target, PASS/FAIL/info), one verdict line per
-scenario and the absolute path of index.html.  Exit status: 0 when every scenario
-passes, 1 when one fails (the report is still written), 2 on missing or malformed
-input.
+scenario and the absolute path of index.html.  A metric fails when its pass flag is
+false or when its value lies outside [min, max] (a missing value fails a target); a
+disagreement between flag and numbers is reported on stderr.  Exit status: 0 when
+every scenario passes, 1 when one fails (the report is still written), 2 on missing
+or malformed input.
 
 With --robustness it reads ROBUST_DIR/campaign.json and runs.csv and writes
 ROBUST_DIR/index.html: success rate, parameter ranges, criteria, worst cases with
 their replay command, scatter plots against each randomised parameter, and the
 plots of every replayed case (ROBUST_DIR/replay_<seed>/, laid out like a scenario).
-Exit status: 0 when the success rate is 100 %, 1 otherwise, 2 on bad input.
-Relative parameter errors (rs, ld, lq, psi_f; rs_err .. psi_err) are fractions
-and are shown in %.  Pages use no script and no external resource.
+runs.csv needs seed, the eight parameter columns and success; the result columns
+(t_reach_s, angle_err_max_deg, ...) are shown where present.  Relative parameter
+errors (rs_err .. psi_err and their ranges) are fractions, shown in %.  Exit status:
+0 when the success rate is 100 %, 1 otherwise, 2 on missing or malformed input.
+
+The pages use no script and no external resource.
 """
 import argparse
 import csv
@@ -60,15 +65,16 @@ RUN_PARAMS = [("rs_err", "R_s error", "%", 100.0), ("ld_err", "L_d error", "%", 
               ("load_nm", "load torque", "N m", 1.0), ("vdc_v", "V_dc", "V", 1.0),
               ("noise_a", "current noise", "A rms", 1.0),
               ("theta0_deg", "initial angle", "deg", 1.0)]
-RUN_COLS = ["seed"] + [p[0] for p in RUN_PARAMS] + [
-    "success", "t_closed_loop_s", "t_reach_s", "overshoot_pct", "ss_err_rpm",
-    "angle_err_max_deg", "i_peak_a", "fault", "reason"]
+RUN_COLS = ["seed"] + [p[0] for p in RUN_PARAMS] + ["success"]
 RUN_RESULTS = [("t_closed_loop_s", "t closed loop", "s"), ("t_reach_s", "t reach", "s"),
                ("overshoot_pct", "overshoot", "%"), ("ss_err_rpm", "ss error", "rpm"),
+               ("ss_err_pct", "ss error", "%"), ("ss_err_max_pct", "max ss error", "%"),
+               ("angle_err_rms_deg", "angle err. RMS", "deg"),
                ("angle_err_max_deg", "max angle err.", "deg"), ("i_peak_a", "i peak", "A")]
 RANGES = {"rs": ("R_s error", "rel"), "ld": ("L_d error", "rel"), "lq": ("L_q error", "rel"),
           "psi_f": ("psi_f (magnet flux) error", "rel"),
           "load_frac": ("load torque, fraction of nominal", "frac"),
+          "load_nm": ("load torque", "N m"),
           "vdc_v": ("DC-bus voltage", "V"), "noise_a_rms": ("current-sensor noise", "A rms"),
           "theta0_deg": ("initial rotor angle", "deg")}
 CSS = """
@@ -139,8 +145,10 @@ def load_json(path):
         raise InputError(f"{path}: malformed JSON ({e})")
 
 
-def load_csv(path, required, numeric=True):
-    """Read a CSV with a header into {column: list}; numeric columns become floats."""
+def load_csv(path, required, text=()):
+    """Read a CSV with a header into {column: list of floats}.  Required columns must
+    hold numbers ("nan" or empty where undefined); columns named in `text`, and other
+    columns that do not parse, are kept as strings."""
     try:
         with open(path, newline="", encoding="utf-8") as f:
             rows = list(csv.reader(f))
@@ -159,15 +167,16 @@ def load_csv(path, required, numeric=True):
     cols = {}
     for j, name in enumerate(head):
         raw = [r[j].strip() for r in rows]
-        if numeric is True or name in numeric:
-            try:
-                cols[name] = [float(x) if x else math.nan for x in raw]
-            except ValueError:
+        cols[name] = raw
+        if name in text:
+            continue
+        try:
+            cols[name] = [float(x) if x else math.nan for x in raw]
+        except ValueError:
+            if name in required:
                 bad = next(i for i, x in enumerate(raw) if not _isfloat(x))
                 raise InputError(f"{path}:{bad + 2}: column {name}: not a number: "
                                  f"{raw[bad]!r}")
-        else:
-            cols[name] = raw
     return cols
 
 
@@ -496,9 +505,9 @@ class ScenarioPlots:
         """Duty cycles in the zoom window, shaded where the inverter switches."""
         fig, axes = new_fig([1], 3.2)
         ax, z = axes[0], self.zoom
-        ax.fill_between(z["t_s"], 0, 1, where=[p > 0.5 for p in z["pwm_on"]], step="post",
-                        color="C2", alpha=0.12, label="PWM on",
-                        transform=ax.get_xaxis_transform())
+        ax.broken_barh(intervals(z["t_s"], [p > 0.5 for p in z["pwm_on"]]), (0, 1),
+                       color="C2", alpha=0.12, label="PWM on",
+                       transform=ax.get_xaxis_transform())
         for c, col in zip("uvw", ("C0", "C1", "C2")):
             ax.plot(z["t_s"], z[f"duty_{c}"], color=col, lw=1.0, label=f"duty {c}",
                     drawstyle="steps-post")
@@ -686,7 +695,8 @@ def robustness_summary(demo_dir, rel):
     return (f'<h2>Robustness</h2><div class="box"><p>{badge(verdict)} '
             f"<b>{ok} of {n}</b> randomised starts successful: <b>{rate:.1f} %</b> &mdash; "
             f"{more}</p><p class=\"small\">{esc(camp.get('criteria', ''))}</p></div>",
-            f"robustness: {ok}/{n} successful starts ({rate:.1f} %), {path}")
+            f"robustness: {ok}/{n} successful starts ({rate:.1f} %), "
+            + os.path.abspath(page_ if os.path.exists(page_) else path))
 
 
 def write_index(demo_dir, summary, metas, robust_html):
@@ -737,8 +747,10 @@ def print_table(metas):
     rows = [("scenario", "metric", "value", "target", "result")]
     for m in metas:
         for x in m["metrics"]:
-            rows.append((m["scenario"], x["label"], with_unit(fnum(x["value"]), x.get("unit")),
+            label = textwrap.wrap(x["label"], 46) or [""]
+            rows.append((m["scenario"], label[0], with_unit(fnum(x["value"]), x.get("unit")),
                          target_text(x), x["status"]))
+            rows += [("", more, "", "", "") for more in label[1:]]
     w = [max(len(r[i]) for r in rows) for i in range(5)]
     for k, r in enumerate(rows):
         print("  ".join(c.ljust(w[i]) if i != 2 else c.rjust(w[i]) for i, c in enumerate(r))
@@ -841,11 +853,13 @@ def load_campaign(rdir):
     if not isinstance(camp.get("rate_pct", 0.0), (int, float)):
         raise InputError(f"{rdir}/campaign.json: rate_pct is not a number")
     camp.setdefault("rate_pct", 100.0 * ok / n if n else 0.0)
-    runs = load_csv(os.path.join(rdir, "runs.csv"), RUN_COLS, numeric=RUN_COLS[:-1])
+    runs = load_csv(os.path.join(rdir, "runs.csv"), RUN_COLS, text=("reason",))
     n_csv, ok_csv = len(runs["seed"]), sum(s > 0.5 for s in runs["success"])
     if (n_csv, ok_csv) != (n, ok):
         warn(f"{rdir}: campaign.json says {ok}/{n} successes, runs.csv has {ok_csv}/{n_csv}")
-    by_seed = {int(s): {c: runs[c][i] for c in RUN_COLS} for i, s in enumerate(runs["seed"])}
+    if not all(math.isfinite(s) for s in runs["seed"]):
+        raise InputError(f"{rdir}/runs.csv: every run needs a seed")
+    by_seed = {int(s): {c: v[i] for c, v in runs.items()} for i, s in enumerate(runs["seed"])}
     worst = []
     for w in camp.get("worst") or []:
         if not isinstance(w, dict) or not isinstance(w.get("seed"), (int, float)):
@@ -858,11 +872,17 @@ def load_campaign(rdir):
     return camp, runs, worst, ok == n and ok_csv == n_csv and n > 0
 
 
+def replay_cmd(rec, template):
+    """The command that replays one run: its own, or the campaign's with the seed."""
+    return str(rec.get("replay") or template.replace("<seed>", str(rec["seed"])) or "-")
+
+
 def worst_table(rdir, worst, replay):
     """HTML table of the worst cases with their parameters, results and replay command."""
+    results = [r for r in RUN_RESULTS if any(r[0] in w for w in worst)]
     cols = ([("seed", ""), ("result", "")] + [(p[1], p[2]) for p in RUN_PARAMS]
-            + [(r[1], r[2]) for r in RUN_RESULTS] + [("fault", ""), ("reason", ""),
-                                                     ("replay", "")])
+            + [(r[1], r[2]) for r in results] + [("fault", ""), ("reason", ""),
+                                                 ("replay", "")])
     out = ['<div class="wide"><table class="small"><tr>' + "".join(
         f"<th>{esc(c)}" + (f" ({esc(u)})" if u else "") + "</th>" for c, u in cols) + "</tr>"]
     for w in worst:
@@ -870,8 +890,8 @@ def worst_table(rdir, worst, replay):
         cells = [f"<td>{seed}</td>", f'<td class="{"pass" if good else "fail"}">'
                  f'{"OK" if good else "FAIL"}</td>']
         cells += [f'<td class="num">{fnum(_f(w.get(c)) * s)}</td>' for c, _, _, s in RUN_PARAMS]
-        cells += [f'<td class="num">{fnum(_f(w.get(c)))}</td>' for c, _, _ in RUN_RESULTS]
-        cmd = f"<code>{esc(replay.replace('<seed>', str(seed)) if replay else '-')}</code>"
+        cells += [f'<td class="num">{fnum(_f(w.get(c)))}</td>' for c, _, _ in results]
+        cmd = f"<code>{esc(replay_cmd(w, replay))}</code>"
         if os.path.exists(os.path.join(rdir, f"replay_{seed}", "index.html")):
             cmd = f'<a href="replay_{seed}/index.html">plots</a><br>{cmd}'
         cells += [f"<td>{esc(fault_names(w.get('fault')))}</td>",
@@ -900,6 +920,7 @@ def robust_main(rdir):
              "against each randomised parameter; failed runs in red."),
             ("scatter_ipeak.png", "i_peak_a", "peak phase current (A)", "peak phase current",
              "Peak phase current against each randomised parameter; failed runs in red.")]
+    figs = [f for f in figs if isinstance(runs.get(f[1], [""])[0], float)]
     for name, col, ylab, title, _ in figs:
         plot_scatter(runs, col, ylab, f"{title} against the randomised parameters",
                      os.path.join(rdir, name))
@@ -910,6 +931,7 @@ def robust_main(rdir):
            f"<b>{rate:.1f} %</b></p><table>",
            f"<tr><th>runs</th><td>{len(seeds)} (seeds {seeds[0]} .. {seeds[-1]})</td></tr>",
            f"<tr><th>wall time</th><td>{esc(with_unit(fnum(camp.get('wall_s')), 's'))}</td></tr>",
+           f"<tr><th>parameter table</th><td>{esc(camp.get('table', '-'))}</td></tr>",
            f"<tr><th>success criteria</th><td>{esc(camp.get('criteria', '-'))}</td></tr>",
            "</table><h2>Randomised parameters</h2><p>Each run draws every parameter "
            "uniformly from its range; errors are of the drive's parameter against the "
@@ -945,7 +967,7 @@ def robust_main(rdir):
         print(f"  {res} seed {w['seed']}: t_reach {with_unit(fnum(_f(w.get('t_reach_s'))), 's')}"
               f", angle max {with_unit(fnum(_f(w.get('angle_err_max_deg'))), 'deg')}, "
               f"fault {fault_names(w.get('fault'))}, {w.get('reason') or '-'}"
-              + (f"   replay: {replay.replace('<seed>', str(w['seed']))}" if replay else ""))
+              + (f"   replay: {replay_cmd(w, replay)}" if replay or w.get("replay") else ""))
     print(f"{'PASS' if passed else 'FAIL'}  robustness")
     print(f"report: {os.path.abspath(path)}")
     return 0 if passed else 1
