@@ -18,16 +18,19 @@ PY=/usr/bin/python3
 PKGS="make gcc frama-c-base why3 z3 cvc4 cppcheck lcov gcovr libcmocka-dev \
 gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi \
 python3 python3-matplotlib python3-numpy python3-scipy python3-pytest \
+qemu-system-arm python3-unicorn python3-pyelftools \
 debian-archive-keyring dpkg-dev"
 
 # command that must exist for each tool (same order is not required)
 need_cmds() {
-    for c in gcc make frama-c why3 z3 cvc4 cppcheck lcov gcovr arm-none-eabi-gcc python3 dpkg-deb; do
+    for c in gcc make frama-c why3 z3 cvc4 cppcheck lcov gcovr arm-none-eabi-gcc python3 dpkg-deb \
+             qemu-system-arm; do
         command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
     done
     [ -f /usr/include/cmocka.h ] || { echo "missing: libcmocka-dev"; return 1; }
     "$PY" -c "import matplotlib, numpy" >/dev/null 2>&1 || { echo "missing: python3-matplotlib"; return 1; }
     "$PY" -c "import scipy.signal, pytest" >/dev/null 2>&1 || { echo "missing: python3-scipy or python3-pytest"; return 1; }
+    "$PY" -c "import unicorn, elftools" >/dev/null 2>&1 || { echo "missing: python3-unicorn or python3-pyelftools"; return 1; }
     [ -f /usr/share/keyrings/debian-archive-keyring.gpg ] || { echo "missing: debian-archive-keyring"; return 1; }
     [ -x "$CBMC_PREFIX/bin/cbmc" ] || { echo "missing: cbmc ($CBMC_PREFIX)"; return 1; }
     [ -f "$HOME/.why3.conf" ] || { echo "missing: why3 prover configuration"; return 1; }
