@@ -63,7 +63,7 @@ lib: $(BUILD)/host/libqfoc.a
 # ---------------------------------------------------------------- unit tests
 # Tests link the plant model of sim/ (double precision, host only) and the generated
 # parameter tables of tables/ as well.
-$(BUILD)/host/tests/%: tests/%.c tests/test_util.h $(BUILD)/host/libqfoc.a $(SIM_SRCS) $(SIM_HDRS) \
+$(BUILD)/host/tests/%: tests/%.c $(wildcard tests/*.h) $(BUILD)/host/libqfoc.a $(SIM_SRCS) $(SIM_HDRS) \
                        $(TABLE_SRCS) $(TABLE_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(TEST_CFLAGS) -Isim -Itables $< $(SIM_SRCS) $(TABLE_SRCS) $(BUILD)/host/libqfoc.a \
@@ -202,6 +202,10 @@ $(BUILD)/host/accuracy: tools/accuracy.c $(BUILD)/host/libqfoc.a
 ## accuracy: the core's measured accuracy against double precision
 accuracy: deps $(BUILD)/host/accuracy
 	@$(BUILD)/host/accuracy
+
+# ---------------------------------------------------------------- fragments
+# The S32K144 port, the target-equivalence tests and the bench (mk/*.mk).
+-include $(sort $(wildcard mk/*.mk))
 
 # ---------------------------------------------------------------- all gates
 ## check: unit tests, coverage, WP proofs, CBMC, MISRA, traceability, Cortex-M4F build

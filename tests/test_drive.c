@@ -20,94 +20,11 @@
 #include "reference_params.h"
 #include "drive_sim.h"
 
-/* ADC code of a DC-bus voltage (4096 codes = V_base = 500 V) */
-static uint16_t vdc_code(double v)
-{
-    return (uint16_t)floor(v / 500.0 * 4096.0 + 0.5);
-}
-
-typedef struct {
-    qfoc_drive_t d;
-    qfoc_param_table_t table;   /* RAM copy, so tests can corrupt it */
-    qfoc_adc_t adc;
-    qfoc_pwm_t pwm;
-    qfoc_tick_out_t out;
-    int16_t t_ipm;
-    int16_t t_pcb;
-    bool power_on;
-    bool fault_clear;
-    uint16_t rpm;
-    bool send;                  /* master sends a frame every 10 ms */
-    long ms;
-    long enabled_outside_run;   /* enable seen while the state was not RUN */
-} rig_t;
+#include "drive_rig.h"
 
 static void rig_init(rig_t *r)
 {
-    memset(r, 0, sizeof *r);
-    r->table = qfoc_params_reference;
-    assert_int_equal(qfoc_drive_init(&r->d, &r->table), QFOC_PARAMS_OK);
-    r->adc.iu = QFOC_ADC_MID;
-    r->adc.iv = QFOC_ADC_MID;
-    r->adc.vdc = vdc_code(320.0);
-    r->t_ipm = 400;
-    r->t_pcb = 350;
-    r->send = true;
-    r->rpm = 3000u;
-}
-
-/* command frame as the master sends it (sim/drive_sim.c's independent LIN encoder) */
-static uint8_t rig_frame(const rig_t *r, uint8_t *f)
-{
-    f[0] = 0x55u;
-    f[1] = dsim_lin_pid(r->table.drive.lin_id_cmd);
-    f[2] = (uint8_t)((r->power_on ? 1u : 0u) | (r->fault_clear ? 2u : 0u));
-    f[3] = (uint8_t)(r->rpm & 0xFFu);
-    f[4] = (uint8_t)(r->rpm >> 8);
-    f[5] = 0u;
-    f[6] = dsim_lin_checksum(&f[1], 5);
-    return 7u;
-}
-
-static void rig_fast(rig_t *r)
-{
-    const uint8_t st = r->d.s.sm.state;
-    r->pwm = qfoc_drive_fast_step(&r->d, &r->adc);
-    assert_true(r->pwm.cmp[0] <= r->table.svpwm.period);
-    assert_true(r->pwm.cmp[1] <= r->table.svpwm.period);
-    assert_true(r->pwm.cmp[2] <= r->table.svpwm.period);
-    if (r->pwm.enable && (st != QFOC_STATE_RUN)) {
-        r->enabled_outside_run++;
-    }
-}
-
-static void rig_tick(rig_t *r, const uint8_t *rx, uint8_t len)
-{
-    qfoc_tick_in_t in;
-    in.t_ipm = r->t_ipm;
-    in.t_pcb = r->t_pcb;
-    in.rx = rx;
-    in.rx_len = len;
-    r->out = qfoc_drive_tick(&r->d, &in);
-    r->ms++;
-}
-
-/* n ms of 8 fast steps and one tick, the master's frame every 10 ms */
-static void rig_ms(rig_t *r, int n)
-{
-    int k;
-    int j;
-    for (k = 0; k < n; k++) {
-        uint8_t f[QFOC_LIN_FRAME_MAX];
-        uint8_t len = 0u;
-        for (j = 0; j < 8; j++) {
-            rig_fast(r);
-        }
-        if (r->send && ((r->ms % 10) == 0)) {
-            len = rig_frame(r, f);
-        }
-        rig_tick(r, f, len);
-    }
+    rig_init_table(r, &qfoc_params_reference, 3000u);
 }
 
 static uint8_t st(const rig_t *r)
@@ -267,7 +184,7 @@ static void test_drv_003_overcurrent(void **state)
         rig_fast(&r);
         assert_false(r.pwm.enable);           /* latched until the tick */
     }
-    rig_tick(&r, NULL, 0u);
+    rig_tick_rx(&r, NULL, 0u);
     assert_int_equal(st(&r), QFOC_STATE_ERROR);
     assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OC);
     assert_int_equal(r.d.s.sm.first_fault, QFOC_FAULT_OC);
@@ -440,8 +357,8 @@ static void test_drv_011_status_and_can(void **state)
             rig_fast(&r);
             rig_fast(&twin);
         }
-        rig_tick(&r, f, len);
-        rig_tick(&twin, NULL, 0u);
+        rig_tick_rx(&r, f, len);
+        rig_tick_rx(&twin, NULL, 0u);
         assert_int_equal(r.out.tx_len, 0u);
         assert_int_equal(r.d.s.sm.state, twin.d.s.sm.state);
         assert_int_equal(r.d.s.sm.sub, twin.d.s.sm.sub);
@@ -467,11 +384,11 @@ static void test_drv_012_para_change(void **state)
     assert_int_equal(qfoc_drive_init(&r.d, &r.table), QFOC_PARAMS_OK);
     rig_to_stop(&r);
     r.d.f.speed_f = (int16_t)(r.table.drive.para_speed + 1);
-    rig_tick(&r, NULL, 0u);
+    rig_tick_rx(&r, NULL, 0u);
     r.ms = 0;
     while (r.d.s.ms100 != 0u) {
         r.d.f.speed_f = (int16_t)(r.table.drive.para_speed + 1);
-        rig_tick(&r, NULL, 0u);
+        rig_tick_rx(&r, NULL, 0u);
     }
     assert_true(r.d.s.hs);
     rig_fast(&r);
@@ -482,12 +399,12 @@ static void test_drv_012_para_change(void **state)
         int k;
         for (k = 0; k < 100; k++) {
             r.d.f.speed_f = (int16_t)(r.table.drive.para_speed - (r.table.drive.para_speed / 32));
-            rig_tick(&r, NULL, 0u);
+            rig_tick_rx(&r, NULL, 0u);
         }
         assert_true(r.d.s.hs);
         for (k = 0; k < 100; k++) {
             r.d.f.speed_f = (int16_t)(r.table.drive.para_speed - (r.table.drive.para_speed / 8));
-            rig_tick(&r, NULL, 0u);
+            rig_tick_rx(&r, NULL, 0u);
         }
         assert_false(r.d.s.hs);
     }
@@ -527,7 +444,7 @@ static void test_drv_002_random_inputs(void **state)
                 f[(lcg_next() >> 8) % len] ^= 0x10u;
             }
         }
-        rig_tick(&r, f, len);
+        rig_tick_rx(&r, f, len);
         if (st(&r) == QFOC_STATE_RUN) {
             run_ms++;
         }

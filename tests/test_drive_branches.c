@@ -34,48 +34,17 @@
 
 #define PI_D 3.14159265358979323846
 
-/* ADC code of a DC-bus voltage (4096 codes = V_base = 500 V) */
-static uint16_t vdc_code(double v)
-{
-    return (uint16_t)floor(v / 500.0 * 4096.0 + 0.5);
-}
-
 /* electrical degrees to angle counts (65536 per turn), rounded */
 static int32_t deg_counts(double deg)
 {
     return (int32_t)floor(deg / 360.0 * 65536.0 + 0.5);
 }
 
-typedef struct {
-    qfoc_drive_t d;
-    qfoc_param_table_t table;   /* RAM copy, so tests can change it */
-    qfoc_adc_t adc;
-    qfoc_pwm_t pwm;
-    qfoc_tick_out_t out;
-    int16_t t_ipm;
-    int16_t t_pcb;
-    bool power_on;
-    bool fault_clear;
-    uint16_t rpm;
-    long ms;
-} rig_t;
-
-static void rig_init_table(rig_t *r, const qfoc_param_table_t *t)
-{
-    memset(r, 0, sizeof *r);
-    r->table = *t;
-    assert_int_equal(qfoc_drive_init(&r->d, &r->table), QFOC_PARAMS_OK);
-    r->adc.iu = QFOC_ADC_MID;
-    r->adc.iv = QFOC_ADC_MID;
-    r->adc.vdc = vdc_code(320.0);
-    r->t_ipm = 400;
-    r->t_pcb = 350;
-    r->rpm = 1000u;
-}
+#include "drive_rig.h"
 
 static void rig_init(rig_t *r)
 {
-    rig_init_table(r, &qfoc_params_reference);
+    rig_init_table(r, &qfoc_params_reference, 1000u);
 }
 
 /* an independent copy of a rig: the drive points to the copy's own table */
@@ -90,55 +59,6 @@ static void table_seal(qfoc_param_table_t *t)
 {
     t->crc = qfoc_params_crc(t);
     assert_int_equal(qfoc_params_check(t), QFOC_PARAMS_OK);
-}
-
-/* command frame as the master sends it (sim/drive_sim.c's independent LIN encoder) */
-static uint8_t rig_frame(const rig_t *r, uint8_t *f)
-{
-    f[0] = 0x55u;
-    f[1] = dsim_lin_pid(r->table.drive.lin_id_cmd);
-    f[2] = (uint8_t)((r->power_on ? 1u : 0u) | (r->fault_clear ? 2u : 0u));
-    f[3] = (uint8_t)(r->rpm & 0xFFu);
-    f[4] = (uint8_t)(r->rpm >> 8);
-    f[5] = 0u;
-    f[6] = dsim_lin_checksum(&f[1], 5);
-    return 7u;
-}
-
-static void rig_fast(rig_t *r)
-{
-    r->pwm = qfoc_drive_fast_step(&r->d, &r->adc);
-    assert_true(r->pwm.cmp[0] <= r->table.svpwm.period);
-    assert_true(r->pwm.cmp[1] <= r->table.svpwm.period);
-    assert_true(r->pwm.cmp[2] <= r->table.svpwm.period);
-    assert_true(!r->pwm.enable || (r->d.s.sm.state == QFOC_STATE_RUN));
-}
-
-/* one tick, with the master's command frame when `frame` */
-static void rig_tick(rig_t *r, bool frame)
-{
-    uint8_t f[QFOC_LIN_FRAME_MAX];
-    qfoc_tick_in_t in;
-    in.t_ipm = r->t_ipm;
-    in.t_pcb = r->t_pcb;
-    in.rx = f;
-    in.rx_len = frame ? rig_frame(r, f) : 0u;
-    r->out = qfoc_drive_tick(&r->d, &in);
-    r->ms++;
-    assert_true(qfoc_drive_is_valid(&r->d));
-}
-
-/* n ms of 8 fast steps and one tick, the master's frame every 10 ms */
-static void rig_ms(rig_t *r, int n)
-{
-    int k;
-    int j;
-    for (k = 0; k < n; k++) {
-        for (j = 0; j < 8; j++) {
-            rig_fast(r);
-        }
-        rig_tick(r, (r->ms % 10) == 0);
-    }
 }
 
 static uint8_t st(const rig_t *r)
@@ -226,7 +146,7 @@ static long run_to_handover(rig_t *r, int32_t dth)
 /* A drive in CLOSED_LOOP at 1000 rpm, reached through the handover at angle dth. */
 static void rig_closed_loop(rig_t *r, const qfoc_param_table_t *t, int32_t dth)
 {
-    rig_init_table(r, t);
+    rig_init_table(r, t, 1000u);
     rig_to_stop(r);
     r->rpm = 1000u;
     assert_int_equal(run_to_handover(r, dth), (long)t->drive.cl_hold_ms);
@@ -542,7 +462,7 @@ static void test_req_drv_006_bumpless_transfer(void **state)
         } else {
             /* nominal */
         }
-        rig_init_table(&r, &t);
+        rig_init_table(&r, &t, 1000u);
         rig_to_stop(&r);
         r.rpm = 1000u;
         assert_int_equal(target_q15(r.rpm, t.drive.k_rpm), t.drive.of_speed);

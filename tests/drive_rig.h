@@ -1,0 +1,113 @@
+/**
+ * @file drive_rig.h
+ * @brief The test rig shared by tests/test_drive.c and tests/test_drive_branches.c:
+ *        one drive on a RAM copy of a table, synthetic ADC samples, and a master that
+ *        sends the command frame every 10 ms through the sim's independent LIN encoder.
+ *        Every fast step is checked for compare values within the period and the PWM
+ *        enabled only in RUN; every tick for the drive invariant.
+ *        Include after cmocka.h, test_util.h, qfoc/drive.h and drive_sim.h.
+ */
+#ifndef QFOC_TESTS_DRIVE_RIG_H
+#define QFOC_TESTS_DRIVE_RIG_H
+
+#include <math.h>
+#include <string.h>
+
+/* ADC code of a DC-bus voltage (4096 codes = V_base = 500 V) */
+static inline uint16_t vdc_code(double v)
+{
+    return (uint16_t)floor(v / 500.0 * 4096.0 + 0.5);
+}
+
+typedef struct {
+    qfoc_drive_t d;
+    qfoc_param_table_t table;   /* RAM copy, so tests can change or corrupt it */
+    qfoc_adc_t adc;
+    qfoc_pwm_t pwm;
+    qfoc_tick_out_t out;
+    int16_t t_ipm;
+    int16_t t_pcb;
+    bool power_on;
+    bool fault_clear;
+    uint16_t rpm;
+    bool send;                  /* the master sends a frame every 10 ms (rig_ms) */
+    long ms;
+    long enabled_outside_run;   /* enable seen while the state was not RUN */
+} rig_t;
+
+/* A drive on a copy of t: 320 V, zero currents, 40 / 35 degC, the master sending rpm. */
+static inline void rig_init_table(rig_t *r, const qfoc_param_table_t *t, uint16_t rpm)
+{
+    memset(r, 0, sizeof *r);
+    r->table = *t;
+    assert_int_equal(qfoc_drive_init(&r->d, &r->table), QFOC_PARAMS_OK);
+    r->adc.iu = QFOC_ADC_MID;
+    r->adc.iv = QFOC_ADC_MID;
+    r->adc.vdc = vdc_code(320.0);
+    r->t_ipm = 400;
+    r->t_pcb = 350;
+    r->send = true;
+    r->rpm = rpm;
+}
+
+/* command frame as the master sends it (sim/drive_sim.c's independent LIN encoder) */
+static inline uint8_t rig_frame(const rig_t *r, uint8_t *f)
+{
+    f[0] = 0x55u;
+    f[1] = dsim_lin_pid(r->table.drive.lin_id_cmd);
+    f[2] = (uint8_t)((r->power_on ? 1u : 0u) | (r->fault_clear ? 2u : 0u));
+    f[3] = (uint8_t)(r->rpm & 0xFFu);
+    f[4] = (uint8_t)(r->rpm >> 8);
+    f[5] = 0u;
+    f[6] = dsim_lin_checksum(&f[1], 5);
+    return 7u;
+}
+
+static inline void rig_fast(rig_t *r)
+{
+    const uint8_t st = r->d.s.sm.state;
+    r->pwm = qfoc_drive_fast_step(&r->d, &r->adc);
+    assert_true(r->pwm.cmp[0] <= r->table.svpwm.period);
+    assert_true(r->pwm.cmp[1] <= r->table.svpwm.period);
+    assert_true(r->pwm.cmp[2] <= r->table.svpwm.period);
+    if (r->pwm.enable && (st != QFOC_STATE_RUN)) {
+        r->enabled_outside_run++;
+    }
+    assert_true(!r->pwm.enable || (r->d.s.sm.state == QFOC_STATE_RUN));
+}
+
+/* one tick with the bytes rx[0 .. len-1] received */
+static inline void rig_tick_rx(rig_t *r, const uint8_t *rx, uint8_t len)
+{
+    qfoc_tick_in_t in;
+    in.t_ipm = r->t_ipm;
+    in.t_pcb = r->t_pcb;
+    in.rx = rx;
+    in.rx_len = len;
+    r->out = qfoc_drive_tick(&r->d, &in);
+    r->ms++;
+    assert_true(qfoc_drive_is_valid(&r->d));
+}
+
+/* one tick, with the master's command frame when `frame` */
+static inline void rig_tick(rig_t *r, bool frame)
+{
+    uint8_t f[QFOC_LIN_FRAME_MAX];
+    const uint8_t len = frame ? rig_frame(r, f) : 0u;
+    rig_tick_rx(r, f, len);
+}
+
+/* n ms of 8 fast steps and one tick, the master's frame every 10 ms while r->send */
+static inline void rig_ms(rig_t *r, int n)
+{
+    int k;
+    int j;
+    for (k = 0; k < n; k++) {
+        for (j = 0; j < 8; j++) {
+            rig_fast(r);
+        }
+        rig_tick(r, r->send && ((r->ms % 10) == 0));
+    }
+}
+
+#endif /* QFOC_TESTS_DRIVE_RIG_H */
