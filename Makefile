@@ -42,7 +42,7 @@ COV_OBJS  := $(patsubst src/%.c,$(BUILD)/cov/obj/%.o,$(SRCS))
 
 help:
 	@echo "qfoc: make demo | make check   (README.md describes every target)"
-	@sed -n 's/^## /  /p' $(firstword $(MAKEFILE_LIST))
+	@sed -n 's/^## /  /p' $(MAKEFILE_LIST)
 
 ## deps: install the Debian packages and CBMC (idempotent)
 deps:
@@ -213,4 +213,4 @@ check: deps
 	@sh tools/check.sh
 
 clean:
-	rm -rf $(BUILD)/host $(BUILD)/demo $(BUILD)/robustness $(BUILD)/reports $(BUILD)/target $(BUILD)/cov $(BUILD)/wp $(BUILD)/cbmc $(BUILD)/misra $(BUILD)/coverage
+	rm -rf $(BUILD)/host $(BUILD)/demo $(BUILD)/robustness $(BUILD)/target_test $(BUILD)/bench $(BUILD)/s32k144 $(BUILD)/reports $(BUILD)/target $(BUILD)/cov $(BUILD)/wp $(BUILD)/cbmc $(BUILD)/misra $(BUILD)/coverage

@@ -3,11 +3,15 @@
 
 Requirements are the '### REQ-<MOD>-NNN title' headings of specs/requirements/*.md.
 For each one, this finds where its ID is named:
-  contract  - include/qfoc/*.h (doxygen of the function whose contract states it), and
-              tools/qfoc_tune.py (the tuning tool's interface, for REQ-TUNE)
+  contract  - include/qfoc/*.h (doxygen of the function whose contract states it),
+              tools/qfoc_tune.py (the tuning tool's interface, for REQ-TUNE), the
+              target-equivalence vector format tools/target_test/tt.h (REQ-TGT) and the
+              bench's interface tools/bench/*.h (REQ-BENCH)
   wp        - specs/*.acsl and include/qfoc/*.h contracts (proved by make prove)
   cbmc      - proofs/cbmc/*/harness.c
-  test      - tests/*.c (CMocka) and tools/tests/*.py (pytest, the tuning tool)
+  test      - tests/*.c (CMocka), tools/tests/*.py (pytest, the tuning tool), the
+              target-equivalence runner tools/target_test/*.c, *.sh (under QEMU) and
+              the bench tools/bench/*.py
 The gate fails when a requirement is named by no test and no proof artefact, or when
 a source names an ID that no requirement defines.  Writes build/trace/trace.md and
 prints 'trace: N requirements, N with tests, N with CBMC harnesses'.
@@ -39,9 +43,14 @@ def main() -> int:
                 if m:
                     reqs[m.group(1)] = (m.group(2), p)
     kinds = {
-        "contract": ids_in(sorted(glob.glob("include/qfoc/*.h")) + ["tools/qfoc_tune.py"]),
+        "contract": ids_in(sorted(glob.glob("include/qfoc/*.h")) + ["tools/qfoc_tune.py"]
+                           + sorted(glob.glob("tools/target_test/tt.h"))
+                           + sorted(glob.glob("tools/bench/*.h"))),
         "cbmc": ids_in(sorted(glob.glob("proofs/cbmc/*/harness.c"))),
-        "test": ids_in(sorted(glob.glob("tests/*.c")) + sorted(glob.glob("tools/tests/*.py"))),
+        "test": ids_in(sorted(glob.glob("tests/*.c")) + sorted(glob.glob("tools/tests/*.py"))
+                       + sorted(glob.glob("tools/target_test/*.c"))
+                       + sorted(glob.glob("tools/target_test/*.sh"))
+                       + sorted(glob.glob("tools/bench/*.py"))),
     }
     ok = True
     rows = []
