@@ -35,6 +35,7 @@ gate misra    make --no-print-directory misra
 gate trace    make --no-print-directory trace
 gate target   make --no-print-directory target
 gate tgt-test make --no-print-directory target-test
+gate bench    make --no-print-directory bench
 gate report   make --no-print-directory estimator-report
 gate tune     make --no-print-directory tune-check
 gate demo     make --no-print-directory demo

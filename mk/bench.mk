@@ -1,0 +1,71 @@
+# ---------------------------------------------------------------- bench (Cortex-M4F)
+# Instructions executed by every library function and by the drive's two entry points,
+# counted in Unicorn on the -O2 Cortex-M4F build; flash, RAM, worst-case stack
+# (tools/bench/, specs/requirements/bench.md).  Report: build/bench/bench.md and bench.json.
+# The limits are reported, not enforced: the target exits 0 whenever the bench ran.
+#
+# The library objects are compiled again here with $(ARM_CFLAGS) plus -fcallgraph-info=su,
+# which only adds the call graph with frame sizes (.ci beside each .o and .su).
+
+BENCH_DIR   := $(BUILD)/bench
+BENCH_OBJ   := $(BENCH_DIR)/obj
+BENCH_LIB_OBJS := $(patsubst src/%.c,$(BENCH_OBJ)/%.o,$(SRCS))
+BENCH_ARM_LDFLAGS := $(filter -mcpu=% -mthumb -mfloat-abi=% -mfpu=%,$(ARM_CFLAGS)) \
+                     -nostartfiles -nostdlib
+BENCH_HDRS  := tools/bench/harness.h tools/bench/replay.h
+
+# The recordings: the host build of the drive in closed loop with the plant model
+# (reference motor and table).  fwtc: field weakening and torque compensation active at
+# once (the compensation works from 600 to 6000 rpm, so a low bus forces field weakening
+# below 6000 rpm); fw8000: deep field weakening at the top speed.
+BENCH_FWTC_ARGS   := --vdc 260 --rpm 5800 --load 3.0 --pulse 0.3 --need-tc
+BENCH_FWTC_TITLE  := CLOSED_LOOP at 5800 rpm and 260 V, field weakening and torque compensation active
+BENCH_FW8000_ARGS := --vdc 320 --rpm 8000 --load 4.5
+BENCH_FW8000_TITLE := CLOSED_LOOP at 8000 rpm and 320 V, deep field weakening
+
+.PHONY: bench
+
+$(BENCH_OBJ)/%.o: src/%.c $(HDRS)
+	@mkdir -p $(@D)
+	$(ARM_CC) $(ARM_CFLAGS) -fcallgraph-info=su -c $< -o $@
+
+$(BENCH_OBJ)/reference_params.o: tables/reference_params.c $(TABLE_HDRS) $(HDRS)
+	@mkdir -p $(@D)
+	$(ARM_CC) $(ARM_CFLAGS) -Itables -c $< -o $@
+
+$(BENCH_OBJ)/harness.o: tools/bench/harness.c $(BENCH_HDRS) $(TABLE_HDRS) $(HDRS)
+	@mkdir -p $(@D)
+	$(ARM_CC) $(ARM_CFLAGS) -Itables -Itools/bench -c $< -o $@
+
+# The bench image: every function kept (bench.ld), no start-up code; newlib only for the
+# memcpy of qfoc_params_load.
+$(BENCH_DIR)/bench.elf: $(BENCH_LIB_OBJS) $(BENCH_OBJ)/reference_params.o $(BENCH_OBJ)/harness.o \
+                        tools/bench/bench.ld
+	$(ARM_CC) $(BENCH_ARM_LDFLAGS) -T tools/bench/bench.ld -Wl,-Map=$(BENCH_DIR)/bench.map \
+	    $(BENCH_LIB_OBJS) $(BENCH_OBJ)/reference_params.o $(BENCH_OBJ)/harness.o -lc -o $@
+
+# What a drive firmware links of the library: its three entry points, --gc-sections.
+$(BENCH_DIR)/drive_only.elf: $(BENCH_LIB_OBJS)
+	$(ARM_CC) $(BENCH_ARM_LDFLAGS) -Wl,--gc-sections -Wl,-e,qfoc_drive_init \
+	    -Wl,-u,qfoc_drive_fast_step -Wl,-u,qfoc_drive_tick $(BENCH_LIB_OBJS) -lc -o $@
+
+$(BENCH_DIR)/gen_replay: tools/bench/gen_replay.c tools/bench/replay.h $(SIM_SRCS) $(SIM_HDRS) \
+                         $(TABLE_SRCS) $(TABLE_HDRS) $(BUILD)/host/libqfoc.a
+	@mkdir -p $(@D)
+	$(CC) $(TEST_CFLAGS) -O2 -Isim -Itables -Itools/bench $< $(SIM_SRCS) $(TABLE_SRCS) \
+	    $(BUILD)/host/libqfoc.a -lm -o $@
+
+$(BENCH_DIR)/fwtc.bin: $(BENCH_DIR)/gen_replay specs/motors/reference.toml
+	$(BENCH_DIR)/gen_replay --out $@ --motor specs/motors/reference.toml $(BENCH_FWTC_ARGS)
+
+$(BENCH_DIR)/fw8000.bin: $(BENCH_DIR)/gen_replay specs/motors/reference.toml
+	$(BENCH_DIR)/gen_replay --out $@ --motor specs/motors/reference.toml $(BENCH_FW8000_ARGS)
+
+## bench: instructions per function and per drive step on the Cortex-M4F (Unicorn), flash, RAM, stack: build/bench/bench.md
+bench: deps $(BENCH_DIR)/bench.elf $(BENCH_DIR)/drive_only.elf $(BENCH_DIR)/fwtc.bin \
+       $(BENCH_DIR)/fw8000.bin
+	@$(PYTHON) tools/bench/count.py --elf $(BENCH_DIR)/bench.elf \
+	    --drive-elf $(BENCH_DIR)/drive_only.elf --obj-dir $(BENCH_OBJ) \
+	    --replay "fwtc=$(BENCH_DIR)/fwtc.bin=$(BENCH_FWTC_TITLE)" \
+	    --replay "fw8000=$(BENCH_DIR)/fw8000.bin=$(BENCH_FW8000_TITLE)" \
+	    --out-dir $(BENCH_DIR) --cc $(ARM_CC) --cflags "$(ARM_CFLAGS) -fcallgraph-info=su"
