@@ -115,13 +115,13 @@ $(BUILD)/target/libqfoc.a: $(ARM_OBJS)
 
 # The library must contain no floating-point instruction and call no soft-float or
 # division helper: checked on the disassembly of the Cortex-M4F build.
-## target: the library for Cortex-M4F (arm-none-eabi-gcc -O2 -Werror)
+## target: the library for Cortex-M4F (arm-none-eabi-gcc -O2 -Werror) and the S32K144 firmware image
 TABLE_ARM_OBJS := $(patsubst tables/%.c,$(BUILD)/target/tables/%.o,$(TABLE_SRCS))
 $(BUILD)/target/tables/%.o: tables/%.c $(TABLE_HDRS) $(HDRS)
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_CFLAGS) -Itables -c $< -o $@
 
-target: deps $(BUILD)/target/libqfoc.a $(TABLE_ARM_OBJS)
+target: deps $(BUILD)/target/libqfoc.a $(TABLE_ARM_OBJS) firmware
 	@arm-none-eabi-objdump -d $(BUILD)/target/libqfoc.a > $(BUILD)/target/libqfoc.dis
 	@if grep -E '\bv[a-z]+\.(f32|f64)\b|__aeabi_[a-z0-9]*(f|d)[a-z0-9]*|__aeabi_.div|__aeabi_l' \
 	    $(BUILD)/target/libqfoc.dis; then echo "target: floating point or a runtime helper in libqfoc.a"; exit 1; fi

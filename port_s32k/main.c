@@ -1,0 +1,80 @@
+/**
+ * @file main.c
+ * @brief The compressor drive on the S32K144: set-up in the order of the document's
+ *        chapter 3 (clock, power, pins, trigger chain, PDB, ADC, UART, CAN, PWM), the
+ *        drive initialised from the reference parameter table, interrupts on, idle loop.
+ *
+ * Table: tables/reference_params.c (8 kHz); build with -DQFOC_S32K_PWM_16K for the
+ * 16 kHz table tables/reference16k_params.c.  The port checks that the table's PWM
+ * period matches the 80 MHz timer (REQ-PORT-005).
+ *
+ * A failed set-up step (an oscillator that does not start, a peripheral that does not
+ * acknowledge, a table that does not fit the timer) latches the fault output: the six
+ * PWM outputs stay masked and the gate driver stays disabled; the drive still runs its
+ * tick (state and fault word on LIN and CAN).  A parameter table refused by the drive
+ * leaves the drive in ERROR with its PWM off (drive.h).
+ *
+ * Requirements: REQ-PORT-002 .. REQ-PORT-015 (set-up order), REQ-PORT-016, -017.
+ */
+#include "qfoc/drive.h"
+#include "qfoc/hal.h"
+#include "s32k144_port.h"
+#if defined(QFOC_S32K_PWM_16K)
+#include "reference16k_params.h"
+#else
+#include "reference_params.h"
+#endif
+
+static const qfoc_param_table_t *s32k_table(void)
+{
+#if defined(QFOC_S32K_PWM_16K)
+    return &qfoc_params_reference16k;
+#else
+    return &qfoc_params_reference;
+#endif
+}
+
+/* Keep the first failure. */
+static int32_t s32k_first(int32_t status, int32_t next)
+{
+    return (status != QFOC_S32K_OK) ? status : next;
+}
+
+int main(void)
+{
+    static qfoc_drive_t motor;   /* the one drive of this ECU */
+    int32_t status = QFOC_S32K_OK;
+    qfoc_s32k_pwm_cfg_t pwm;
+    const qfoc_param_table_t *const table = s32k_table();
+
+    qfoc_s32k_irq_global_disable();
+    qfoc_s32k_pins_init();                                   /* gate driver off first */
+    status = s32k_first(status, qfoc_s32k_clock_init());     /* McuclockConfig */
+    status = s32k_first(status, qfoc_s32k_power_init());     /* McuPowerConfig */
+    status = s32k_first(status, qfoc_s32k_pwm_cfg(table, QFOC_S32K_FTM_INT_RELOAD, &pwm));
+    qfoc_s32k_trgmux_init();                                 /* McuTrigmuxConfig */
+    qfoc_s32k_pdb_init(pwm.period);                          /* McuPdbConfig */
+    status = s32k_first(status, qfoc_s32k_adc_init());       /* McuAdcConfig */
+    qfoc_s32k_uart_init();                                   /* McuUartConfig */
+    status = s32k_first(status, qfoc_s32k_can_init());       /* McuCANConfig */
+    qfoc_s32k_tick_init();
+    qfoc_s32k_ftm_init(&pwm);                                /* McuFtmConfig */
+    qfoc_s32k_hal_init(pwm.period);
+
+    (void)qfoc_drive_init(&motor, table);                  /* ERROR on a refused table */
+    qfoc_s32k_isr_bind(&motor);
+    if (status == QFOC_S32K_OK) {
+        qfoc_s32k_gate_enable(true);
+    } else {
+        qfoc_hal_fault_output();
+    }
+    (void)qfoc_s32k_wdog_init();
+    qfoc_s32k_irq_init();                                    /* intenable */
+    qfoc_s32k_irq_global_enable();
+
+    for (;;) {
+        /* Everything runs in the interrupts; the background only sleeps. */
+        (void)qfoc_hal_ms_flag_take();
+        __asm__ volatile ("wfi");
+    }
+}
