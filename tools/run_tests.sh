@@ -1,7 +1,12 @@
 #!/bin/sh
 # tools/run_tests.sh TEST_BIN... -- run CMocka test executables, print each one's
 # report, and close with the totals line 'N passed, N failed'.  Exit 1 on any failure.
+# Each executable's output is kept in build/junit/raw/ and converted to JUnit XML in
+# build/junit/ (tools/junit.py).
 set -u
+JDIR=build/junit
+mkdir -p "$JDIR/raw"
+jargs=
 passed=0
 failed=0
 crashed=0
@@ -9,6 +14,9 @@ for t in "$@"; do
     out=$("$t" 2>&1)
     rc=$?
     printf '%s\n' "$out"
+    n=$(basename "$t")
+    printf '%s\n' "$out" > "$JDIR/raw/$n.txt"
+    jargs="$jargs $n=$JDIR/raw/$n.txt"
     p=$(printf '%s\n' "$out" | sed -n 's/^\[  PASSED  \] \([0-9]*\) test(s)\./\1/p' | tail -n 1)
     f=$(printf '%s\n' "$out" | sed -n 's/^\[  FAILED  \] \([0-9]*\) test(s), listed below:/\1/p' | tail -n 1)
     passed=$((passed + ${p:-0}))
@@ -18,6 +26,7 @@ for t in "$@"; do
         crashed=$((crashed + 1))
     fi
 done
+python3 tools/junit.py "$JDIR" $jargs || echo "test: JUnit XML not written"
 echo "tests: $# executables"
 echo "$passed passed, $((failed + crashed)) failed"
 [ "$failed" = 0 ] && [ "$crashed" = 0 ] && [ "$passed" -gt 0 ]
