@@ -28,10 +28,10 @@
 #include "s32k144_regs.h"
 
 /* Linker symbols (s32k144.ld). */
-extern uint32_t __StackTop;
-extern uint32_t __data_load;
-extern uint32_t __data_start;
-extern uint32_t __data_end;
+extern uint32_t qfoc_stack_top;
+extern uint32_t qfoc_data_load;
+extern uint32_t qfoc_data_start;
+extern uint32_t qfoc_data_end;
 
 int main(void);
 void qfoc_s32k_c_start(void);
@@ -60,7 +60,7 @@ extern const qfoc_s32k_vectors_t qfoc_s32k_vectors;
 
 __attribute__((section(".isr_vector"), used))
 const qfoc_s32k_vectors_t qfoc_s32k_vectors = {
-    &__StackTop,
+    &qfoc_stack_top,
     {
         Reset_Handler,               /*   1 */
         s32k_trap,                   /*   2 */
@@ -221,8 +221,8 @@ __attribute__((naked)) void Reset_Handler(void)
         "ldr r1, =0x00002120\n\t"
         "str r1, [r0, #0]\n\t"
         /* SRAM_L and SRAM_U: 32-bit zero writes. */
-        "ldr r0, =__sram_start\n\t"
-        "ldr r1, =__sram_end\n\t"
+        "ldr r0, =qfoc_sram_start\n\t"
+        "ldr r1, =qfoc_sram_end\n\t"
         "movs r2, #0\n"
         "1:\n\t"
         "cmp r0, r1\n\t"
@@ -239,14 +239,14 @@ __attribute__((naked)) void Reset_Handler(void)
 
 void qfoc_s32k_c_start(void)
 {
-    const uint32_t *src = &__data_load;
-    uint32_t *dst = &__data_start;
+    const uint32_t *src = &qfoc_data_load;
+    uint32_t *dst = &qfoc_data_start;
 
     s32k_modify(S32K_SCB_CPACR, 0u, S32K_SCB_CPACR_FPU);
     __asm__ volatile ("dsb\n\tisb" ::: "memory");
 
     /* The linker's section bounds are compared as addresses (.data is word aligned). */
-    while (dst < &__data_end) {
+    while (dst < &qfoc_data_end) {
         *dst = *src;
         dst++;
         src++;

@@ -32,6 +32,7 @@ gate coverage make --no-print-directory coverage
 gate prove    make --no-print-directory prove
 gate cbmc     make --no-print-directory cbmc
 gate misra    make --no-print-directory misra
+gate static   make --no-print-directory static
 gate trace    make --no-print-directory trace
 gate target   make --no-print-directory target
 gate tgt-test make --no-print-directory target-test
