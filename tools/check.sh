@@ -29,6 +29,7 @@ gate() {  # gate NAME COMMAND...
 
 gate test     make --no-print-directory test
 gate coverage make --no-print-directory coverage
+gate mcdc     make --no-print-directory mcdc
 gate prove    make --no-print-directory prove
 gate cbmc     make --no-print-directory cbmc
 gate misra    make --no-print-directory misra
