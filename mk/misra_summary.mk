@@ -1,0 +1,18 @@
+# mk/misra_summary.mk -- the MISRA Compliance:2020 guideline compliance summary
+# (tools/misra_summary.py): every guideline of MISRA C:2012 with Amendments 1 and 2, its
+# category, its verification methods (misra/enforcement-plan.csv) and its status
+# (compliant, deviations with their records and sites, disapplied, violations) from the
+# cppcheck result of `make misra`, misra/deviations.md and the review records of
+# misra/reviews.md; the re-categorisation plan and the tool versions.  Fails on a
+# violation or on a guideline missing from the plan.
+
+.PHONY: misra-summary
+
+$(BUILD)/misra/cppcheck.xml: $(SRCS) $(HDRS) $(TABLE_SRCS) $(TABLE_HDRS) \
+                             $(wildcard port_s32k/*.c port_s32k/*.h) \
+                             misra/guidelines.txt misra/deviations.md tools/misra.sh tools/misra_report.py
+	-@sh tools/misra.sh
+
+## misra-summary: MISRA Compliance:2020 summary of every guideline (build/misra/compliance-summary.md, .json); fails on a violation
+misra-summary: deps $(BUILD)/misra/cppcheck.xml
+	@$(PYTHON) tools/misra_summary.py
