@@ -97,7 +97,7 @@ cbmc: deps
 # ---------------------------------------------------------------- traceability
 ## trace: every requirement exercised by a test or harness and named in a header
 trace:
-	@python3 tools/trace.py
+	@$(PYTHON) tools/trace.py
 
 # ---------------------------------------------------------------- MISRA C:2012
 ## misra: cppcheck MISRA C:2012 addon, deviations recorded

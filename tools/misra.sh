@@ -9,11 +9,14 @@
 # (DEV-nnn) of misra/deviations.md; tools/misra_report.py checks that and writes
 # build/misra/report.md.  Exit 1 on any unrecorded finding.
 set -eu
+# Debian's interpreter (a python3 earlier on PATH may lack the packages)
+PY=/usr/bin/python3
+[ -x "$PY" ] || PY=python3
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP"
 OUT=build/misra
 mkdir -p "$OUT"
-python3 tools/misra_rule_texts.py misra/guidelines.txt "$OUT/rule-texts.txt"
+"$PY" tools/misra_rule_texts.py misra/guidelines.txt "$OUT/rule-texts.txt"
 printf '{\n "script": "misra.py",\n "args": ["--rule-texts=%s/%s/rule-texts.txt"]\n}\n' "$TOP" "$OUT" > "$OUT/misra.json"
 set +e
 cppcheck --addon="$OUT/misra.json" --addon-python=/usr/bin/python3 \
@@ -22,6 +25,6 @@ cppcheck --addon="$OUT/misra.json" --addon-python=/usr/bin/python3 \
     --xml --output-file="$OUT/cppcheck.xml" src/*.c tables/*.c port_s32k/*.c
 rc=$?
 set -e
-python3 tools/misra_report.py "$OUT/cppcheck.xml" misra/deviations.md "$OUT/report.md" src include tables port_s32k
+"$PY" tools/misra_report.py "$OUT/cppcheck.xml" misra/deviations.md "$OUT/report.md" src include tables port_s32k
 rc2=$?
 [ "$rc" = 0 ] && [ "$rc2" = 0 ]

@@ -10,6 +10,9 @@
 # shifts, division by zero and memory access.  The summary and per-function table are
 # written by tools/wp_report.py; the script exits non-zero unless every goal is proved.
 set -eu
+# Debian's interpreter (a python3 earlier on PATH may lack the packages)
+PY=/usr/bin/python3
+[ -x "$PY" ] || PY=python3
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP"
 . tools/jobs.sh
@@ -41,8 +44,8 @@ prove_one() {
     name=$(basename "$unit" .c)
     case "$unit" in
         */lemmas_unit.c) select="-wp-prop=@lemma" ;;
-        proofs/wp/q15_unit.c) select="-wp-fct=$(python3 tools/c_functions.py include/qfoc/q15.h)" ;;
-        *) select="-wp-fct=$(python3 tools/c_functions.py "$unit")" ;;
+        proofs/wp/q15_unit.c) select="-wp-fct=$("$PY" tools/c_functions.py include/qfoc/q15.h)" ;;
+        *) select="-wp-fct=$("$PY" tools/c_functions.py "$unit")" ;;
     esac
     if [ "$select" = "-wp-fct=" ]; then
         # constant data only: nothing to prove, but it must still be valid C for Frama-C
@@ -92,4 +95,4 @@ if [ $# = 0 ]; then
         [ -f "$t" ] && echo "$(basename "$t" .time) $(cat "$t")"
     done | sort > "$TIMES"
 fi
-python3 tools/wp_report.py "$OUT" proofs/wp/results.md
+"$PY" tools/wp_report.py "$OUT" proofs/wp/results.md

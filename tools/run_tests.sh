@@ -4,6 +4,9 @@
 # Each executable's output is kept in build/junit/raw/ and converted to JUnit XML in
 # build/junit/ (tools/junit.py).
 set -u
+# Debian's interpreter (a python3 earlier on PATH may lack the packages)
+PY=/usr/bin/python3
+[ -x "$PY" ] || PY=python3
 JDIR=build/junit
 mkdir -p "$JDIR/raw"
 jargs=
@@ -26,7 +29,7 @@ for t in "$@"; do
         crashed=$((crashed + 1))
     fi
 done
-python3 tools/junit.py "$JDIR" $jargs || echo "test: JUnit XML not written"
+"$PY" tools/junit.py "$JDIR" $jargs || echo "test: JUnit XML not written"
 echo "tests: $# executables"
 echo "$passed passed, $((failed + crashed)) failed"
 [ "$failed" = 0 ] && [ "$crashed" = 0 ] && [ "$passed" -gt 0 ]
