@@ -155,7 +155,8 @@ tune: deps
 
 ## tune-check: the tool's pytest suite; every committed table regenerates byte for byte
 tune-check: deps
-	@$(PYTHON) -m pytest -q tools/tests
+	@mkdir -p $(BUILD)/junit
+	@$(PYTHON) -m pytest -q --junitxml=$(BUILD)/junit/pytest.xml -o junit_suite_name=pytest tools/tests
 	@PYTHON=$(PYTHON) sh tools/tables.sh check
 
 # ---------------------------------------------------------------- demo

@@ -19,6 +19,9 @@
  *    at the start of each PWM period (counter zero, zero vector on the low side),
  *    with optional Gaussian noise; compare values written during period k take
  *    effect at the start of period k + 1 (one period of computation delay).
+ *
+ * Requirements: REQ-SIM-001 .. REQ-SIM-006 (specs/requirements/sim.md), verified
+ * against closed-form solutions by tests/test_sim_plant.c.
  */
 #ifndef QFOC_SIM_H
 #define QFOC_SIM_H

@@ -133,12 +133,14 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
     uint32_t aqu;
     uint32_t r2;
     uint32_t w;
+    int32_t gap;
     bool limited;
 
     if (vm < 0) {
         /* negative radius acts as zero */
         vm = 0;
     }
+    //@ assert vm_clamp: vm == QfocVmaxClamp(vmax);
     dl = vec_clamp(d, vm);                   /* d priority: |dl| <= vm */
     adl = dl;
     if (adl < 0) {
@@ -158,10 +160,17 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
         qo = q;
         limited = false;
     } else {
-        /* vm^2 - dl^2 = (vm - |dl|) (vm + |dl|): both factors in [0, 65534], so
-         * the 16 x 16 bit product cannot overflow 32 bits (2.30, <= 32767^2) */
-        adu = (uint32_t)adl;
-        w = (uint32_t)(uint16_t)(vmu - adu) * (uint32_t)(uint16_t)(vmu + adu);
+        /* vm^2 - dl^2 = (vm - |dl|) (vm + |dl|).  |dl| = min(|d|, vm), so
+         * vm - |dl| = max(vm - |d|, 0), in [0, 32767] on its own bounds (no
+         * relation between two variables needed to see it), and vm + |dl| is
+         * in [0, 65534]: the product cannot overflow 32 bits (2.30, <= 32767^2) */
+        //@ assert outside: (d * d) + (q * q) > vm * vm;
+        gap = vm - (int32_t)adu;
+        if (gap < 0) {
+            gap = 0;
+        }
+        //@ assert gap_value: gap == vm - adl;
+        w = (uint32_t)gap * (uint32_t)(vm + adl);
         //@ assert w_value: w == (vm * vm) - (dl * dl);
         ql = (int32_t)qfoc_isqrt32(w);       /* q room left, 1.15 */
         //@ assert ql_sq: ql * ql <= vm * vm;

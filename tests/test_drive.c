@@ -307,8 +307,9 @@ static void test_drv_010_table_recheck(void **state)
     assert_int_equal(st(&r), QFOC_STATE_ERROR);
 }
 
-/* REQ-DRV-011: a status frame answers every valid command frame; CAN every 100 ms with
-   alternating identifiers; a malformed frame changes nothing but its counter. */
+/* REQ-DRV-011, REQ-DRV-015: a status frame answers every valid command frame; CAN every
+   100 ms with alternating identifiers; a malformed frame changes nothing but its
+   counter. */
 static void test_drv_011_status_and_can(void **state)
 {
     rig_t r;
@@ -412,8 +413,8 @@ static void test_drv_012_para_change(void **state)
     assert_int_equal(r.d.f.flux.params.l, r.table.lq);
 }
 
-/* REQ-DRV-002, REQ-DRV-005: random ADC samples, temperatures and frames: the PWM is enabled only in
-   RUN, the compare values never exceed the period, the invariant holds. */
+/* REQ-DRV-001, REQ-DRV-002, REQ-DRV-005: random ADC samples, temperatures and frames: the PWM is
+   enabled only in RUN, the compare values never exceed the period, the invariant holds. */
 static void test_drv_002_random_inputs(void **state)
 {
     rig_t r;

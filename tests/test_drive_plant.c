@@ -191,6 +191,9 @@ static double ripple_pp(const qfoc_param_table_t *t)
     return hi - lo;
 }
 
+/* REQ-DRV-013: at 1500 rpm with a +-50 % load pulsation at 1x mechanical the torque
+   compensation removes at least 70 % of the speed ripple (table with tc_gain = 0 as the
+   reference). */
 static void test_drv_013_torque_compensation(void **state)
 {
     qfoc_param_table_t off = qfoc_params_reference;

@@ -700,10 +700,10 @@ static void run_physics(double w_pu, bool use_dob, phys_result_t *res)
     res->mean_ang_deg = sum_err / (double)n_err;
 }
 
-/* REQ-EMF-013, REQ-EMF-005, REQ-EMF-007, REQ-EMF-012: reference motor at 0.1, 0.3,
-   0.6, 0.8 pu (and negative speeds): compensated angle within 0.5 degree of the rotor
-   angle at the sample instant (asserted at 0.1 degree), |EMF| within 1 % of
-   w psi sinc(W/2) |H(W)|; 0.03 pu for information (bound 0.5 degree). */
+/* REQ-EMF-005, REQ-EMF-007, REQ-EMF-011, REQ-EMF-012, REQ-EMF-013: reference motor at
+   0.1, 0.3, 0.6, 0.8 pu (and negative speeds): compensated angle within 0.5 degree of the
+   rotor angle at the sample instant (asserted at 0.1 degree), |EMF| within 1 % of w psi
+   sinc(W/2) |H(W)|; 0.03 pu for information (bound 0.5 degree). */
 static void test_physics_reference_motor(void **state)
 {
     static const double speeds[8] = { 0.1, 0.3, 0.6, 0.8, -0.1, -0.3, -0.8, 0.03 };

@@ -191,8 +191,8 @@ static void test_phase_mon_random_vs_reference(void **state)
     assert_true(n_true > 1000u);
 }
 
-/* REQ-FAULT-003, REQ-FAULT-005: balanced sinusoidal currents are never reported,
-   a lost phase is reported once the filter has settled */
+/* REQ-FAULT-003, REQ-FAULT-004, REQ-FAULT-005: balanced sinusoidal currents are never
+   reported, a lost phase is reported once the filter has settled */
 static void test_phase_mon_phase_loss(void **state)
 {
     const double two_pi = 6.28318530717958647692;

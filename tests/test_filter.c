@@ -139,7 +139,7 @@ static void test_lpf_dc_gain(void **state)
     }
 }
 
-/* REQ-FLT-001: init rejects alpha <= 0, reset saturates, validity check. */
+/* REQ-FLT-001, REQ-FLT-003: init rejects alpha <= 0, reset saturates, validity check. */
 static void test_lpf_init_reset_valid(void **state)
 {
     static const int16_t bad[3] = { 0, -1, (int16_t)-32768 };

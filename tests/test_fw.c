@@ -94,8 +94,8 @@ static qfoc_fw_params_t make_params(int16_t kp, uint8_t kps, int16_t ki, uint8_t
 
 /* ---- tests ---------------------------------------------------------------- */
 
-/* REQ-FW-003, REQ-FW-004, REQ-FW-005: random parameters and utilisation
-   sequences against the double model, stage by stage and end to end */
+/* REQ-FW-002, REQ-FW-003, REQ-FW-004, REQ-FW-005, REQ-FW-006: random parameters and
+   utilisation sequences against the double model, stage by stage and end to end */
 static void test_fw_random_vs_model(void **state)
 {
     double max_filt = 0.0;
@@ -333,8 +333,8 @@ static void test_fw_is_valid(void **state)
     assert_true(qfoc_fw_is_valid(&b));
 }
 
-/* REQ-FW-003, REQ-FW-006: corners: utilisation -32768 / 0 / 32767, level 1 and
-   32767, out_min -32767, the largest gains */
+/* REQ-FW-003, REQ-FW-004, REQ-FW-006: corners: utilisation -32768 / 0 / 32767, level 1
+   and 32767, out_min -32767, the largest gains */
 static void test_fw_corners(void **state)
 {
     qfoc_fw_t fw;

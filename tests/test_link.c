@@ -639,8 +639,8 @@ static void test_link_006_is_valid(void **state)
 
 /* ---- REQ-LINK-007 effective command --------------------------------------- */
 
-/* REQ-LINK-007: before the first valid frame the drive is off and the link not
-   lost; malformed frames of every cause change neither the command nor the timer. */
+/* REQ-LINK-007, REQ-LINK-009: before the first valid frame the drive is off and the link
+   not lost; malformed frames of every cause change neither the command nor the timer. */
 static void test_link_007_malformed_no_effect(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();

@@ -204,8 +204,8 @@ static void test_par_002_crc_check_value(void **state)
     }
 }
 
-/* REQ-PAR-002: the table CRC equals the reference serialisation's CRC for random
-   tables (every field random, negative values included). */
+/* REQ-PAR-002, REQ-PAR-006: the table CRC equals the reference serialisation's CRC for
+   random tables (every field random, negative values included). */
 static void test_par_002_table_crc_random(void **state)
 {
     uint32_t k;
@@ -222,8 +222,8 @@ static void test_par_002_table_crc_random(void **state)
     }
 }
 
-/* REQ-PAR-004, REQ-PAR-005: the generated tables pass, their stored CRC is the
-   reference CRC, and they load. */
+/* REQ-PAR-004, REQ-PAR-005, REQ-TUNE-006: the generated tables pass, their stored CRC is
+   the reference CRC, and they load. */
 static void test_par_004_generated_tables_pass(void **state)
 {
     const qfoc_param_table_t *tabs[2] = { &qfoc_params_reference, &qfoc_params_traction350 };
@@ -275,10 +275,10 @@ static const tfield_t tfields[] = {
 };
 #define NTFIELDS (sizeof tfields / sizeof tfields[0])
 
-/* REQ-PAR-002, REQ-PAR-005, REQ-PAR-006: every single-bit flip of every field of the
-   reference table (the drive configuration and the stored CRC included) is refused
-   (CRC-32 detects every 1-bit error), with ERR_ID when it hits magic or version, and the
-   RAM copy is left untouched. */
+/* REQ-PAR-001, REQ-PAR-002, REQ-PAR-005, REQ-PAR-006: every single-bit flip of every
+   field of the reference table (the drive configuration and the stored CRC included) is
+   refused (CRC-32 detects every 1-bit error), with ERR_ID when it hits magic or version,
+   and the RAM copy is left untouched. */
 static void test_par_002_bit_flips_refused(void **state)
 {
     size_t k;
@@ -539,8 +539,9 @@ static void test_par_001_identity(void **state)
     assert_int_equal(QFOC_PARAMS_VERSION, 2u);
 }
 
-/* REQ-PAR-004: the generated reference table carries the estimator parameters of the
-   design the plant validation uses (sim/estim.c est_tune with est_design_default). */
+/* REQ-PAR-004, REQ-TUNE-003: the generated reference table carries the estimator
+   parameters of the design the plant validation uses (sim/estim.c est_tune with
+   est_design_default). */
 static void test_par_004_reference_matches_estimator_design(void **state)
 {
     sim_motor_t m;

@@ -69,8 +69,8 @@ static qfoc_pi_params_t make_params(int16_t kp, uint8_t kps, int16_t ki, uint8_t
 
 /* ---- tests --------------------------------------------------------------- */
 
-/* REQ-PI-004, REQ-PI-005, REQ-PI-007: random gains, limits and error sequences
-   against the double-precision reference with the same anti-windup. */
+/* REQ-PI-004, REQ-PI-005, REQ-PI-007, REQ-PI-008: random gains, limits and error
+   sequences against the double-precision reference with the same anti-windup. */
 static void test_pi_random_vs_reference(void **state)
 {
     double max_err = 0.0;
@@ -168,7 +168,8 @@ static void test_pi_gain_above_one(void **state)
     assert_int_equal(qfoc_pi_step(&pi, 100), 600);
 }
 
-/* REQ-PI-005, REQ-PI-008: output clamped to the limits, flag set exactly then. */
+/* REQ-PI-005, REQ-PI-007, REQ-PI-008: output clamped to the limits, flag set
+   exactly then. */
 static void test_pi_limit_flag(void **state)
 {
     qfoc_pi_t pi;

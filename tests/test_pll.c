@@ -407,11 +407,10 @@ static track_t simulate(qfoc_pll_t *pll, double w_pu, double m, double th0, uint
     return r;
 }
 
-/* REQ-PLL-011: steady-state tracking of a constant speed, acquired from
-   standstill (estimate at angle 0, speed 0; the error clamp 5000 limits the
-   rate of the pull-in), for two damping ratios and two flux amplitudes:
-   angle error < 0.1 deg, speed error < 0.1 %, and the same pull-in time for
-   |psi| = 2000 and 20000 (normalisation). */
+/* REQ-PLL-007, REQ-PLL-011: steady-state tracking of a constant speed, acquired from
+   standstill (estimate at angle 0, speed 0; the error clamp 5000 limits the rate of the
+   pull-in), for two damping ratios and two flux amplitudes: angle error < 0.1 deg, speed
+   error < 0.1 %, and the same pull-in time for |psi| = 2000 and 20000 (normalisation). */
 static void test_pll_req011_tracking(void **state)
 {
     static const double speeds[] = { 0.06, 0.3, 0.6, 0.8 };
@@ -804,8 +803,8 @@ static void test_pll_req009_reset(void **state)
     }
 }
 
-/* REQ-PLL-004: below mag_min (zero vector included) the error is 0, the speed
-   is the held integrator and the angle advances by exactly speed x k_theta per
+/* REQ-PLL-004, REQ-PLL-006: below mag_min (zero vector included) the error is 0, the
+   speed is the held integrator and the angle advances by exactly speed x k_theta per
    sample (modulo 2^32); above it the loop tracks again. */
 static void test_pll_req004_coasting(void **state)
 {

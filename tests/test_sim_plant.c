@@ -59,6 +59,7 @@ static void open_loop_cmp(const sim_t *s, double va, double vb, uint16_t cmp[3])
 /* Motor file: every value of the reference motor as specs/reference-motor.md states. */
 static void test_motor_file(void **state)
 {
+    /* REQ-SIM-001 */
     sim_bases_t b;
     (void)state;
     assert_string_equal(g_motor.name, "qfoc reference compressor IPM");
@@ -84,6 +85,7 @@ static void test_motor_file(void **state)
 
 static void test_motor_file_rejects(void **state)
 {
+    /* REQ-SIM-001 */
     sim_motor_t m;
     FILE *f;
     (void)state;
@@ -152,6 +154,7 @@ static void check_steady_state(double we, double vd, double vq)
 
 static void test_steady_state_phasor(void **state)
 {
+    /* REQ-SIM-002 */
     (void)state;
     check_steady_state(0.0, 3.5, 1.75);            /* DC: i = v / R = 10 A, 5 A */
     check_steady_state(2.0 * SIM_PI * 100.0, -20.0, 60.0);
@@ -162,6 +165,7 @@ static void test_steady_state_phasor(void **state)
    i_d(t) = V/R (1 - exp(-t R / L_d)) (RK4 with the PWM average voltage). */
 static void test_current_step_response(void **state)
 {
+    /* REQ-SIM-003 */
     sim_cfg_t cfg;
     sim_t s;
     const double v = 7.0;
@@ -193,6 +197,7 @@ static void test_current_step_response(void **state)
 /* Dead time: every pole loses (i > 0) or gains (i < 0) Vdc td / T of its average. */
 static void test_dead_time_error(void **state)
 {
+    /* REQ-SIM-004 */
     sim_cfg_t cfg;
     sim_t s;
     const double td = 2.0e-6;
@@ -231,6 +236,7 @@ static void test_dead_time_error(void **state)
    keeps the two within 0.1 %. */
 static void test_mechanics(void **state)
 {
+    /* REQ-SIM-005 */
     sim_cfg_t cfg;
     sim_t s;
     sim_ctrl_t c;
@@ -261,6 +267,7 @@ static void test_mechanics(void **state)
 
 static void test_load_profile(void **state)
 {
+    /* REQ-SIM-005 */
     sim_cfg_t cfg;
     sim_t s;
     (void)state;
@@ -280,6 +287,7 @@ static void test_load_profile(void **state)
 /* ADC: offset at mid-scale, 2048 counts = full scale, clamped, noise of the stated RMS. */
 static void test_adc(void **state)
 {
+    /* REQ-SIM-006 */
     sim_cfg_t cfg;
     sim_t s;
     sim_adc_t a;

@@ -323,8 +323,8 @@ static void test_sm_008_own_faults(void **state)
     assert_int_equal(sm.faults, QFOC_SM_FAULT_STALL | QFOC_SM_FAULT_LINK);
 }
 
-/* REQ-SM-003: ERROR is left only after clear_ms, on a clear request, with no fault and
-   the table intact; to STOP, word cleared. */
+/* REQ-SM-003, REQ-SM-009: ERROR is left only after clear_ms, on a clear request, with no
+   fault and the table intact; to STOP, word cleared. */
 static void test_sm_003_fault_clear(void **state)
 {
     qfoc_sm_t sm;
@@ -458,6 +458,10 @@ static void model_step(model_t *m, const qfoc_sm_in_t *in)
 #undef GOSUB
 }
 
+/* REQ-SM-001, REQ-SM-002, REQ-SM-003, REQ-SM-004, REQ-SM-005, REQ-SM-006, REQ-SM-007,
+   REQ-SM-008, REQ-SM-009: random tick sequences against the model above, which states
+   every rule (faults, Faultclear, PRECHARGE, STOP, start-up, stopping, the machine's own
+   faults, times); the invariant is checked after every tick. */
 static void test_sm_009_random_against_model(void **state)
 {
     qfoc_sm_t sm;

@@ -235,7 +235,7 @@ static void check_case(const qfoc_svpwm_cfg_t *c, qfoc_q15_t alpha, qfoc_q15_t b
         }
     }
 
-    /* REQ-SVPWM-007/008: linear range, unclamped, no compensation:
+    /* REQ-SVPWM-007, REQ-SVPWM-008: linear range, unclamped, no compensation:
      * line-to-line voltages reproduced and pulses centred */
     if ((lim == 0) && (r.unclamped != 0) && (c->dt_comp == 0u) &&
         (o.cmp[0] > 0u) && (o.cmp[1] > 0u) && (o.cmp[2] > 0u) &&
@@ -355,7 +355,7 @@ static void test_req_svpwm_003_vdc_clamp(void **state)
     }
 }
 
-/* REQ-SVPWM-004/010: Q15 corners of every input, three periods */
+/* REQ-SVPWM-004, REQ-SVPWM-010: Q15 corners of every input, three periods */
 static void test_req_svpwm_004_corners(void **state)
 {
     const qfoc_q15_t q[] = { -32768, -32767, -16384, -1, 0, 1, 16384, 32767 };
@@ -428,7 +428,7 @@ static void test_req_svpwm_006_sector_boundaries(void **state)
     assert_int_equal(o.cmp[1], o.cmp[2]);
 }
 
-/* REQ-SVPWM-005: overmodulation limited onto the inscribed circle */
+/* REQ-SVPWM-005, REQ-SVPWM-009: overmodulation limited onto the inscribed circle */
 static void test_req_svpwm_005_overmodulation(void **state)
 {
     const qfoc_q15_t vd[] = { 100, 1000, 16000, 32767 };
@@ -481,7 +481,7 @@ static void test_req_svpwm_005_overmodulation(void **state)
     print_message("overmodulation: max |radius - vdc/sqrt3| = %.3f ticks\n", max_rad_err);
 }
 
-/* REQ-SVPWM-008: dead-time compensation sign and dead band */
+/* REQ-SVPWM-008, REQ-SVPWM-011: dead-time compensation sign and dead band */
 static void test_req_svpwm_008_dead_time(void **state)
 {
     const qfoc_svpwm_cfg_t c = make_cfg(5000u, 200u, 1000, 1000);
@@ -536,7 +536,10 @@ static void test_req_svpwm_008_dead_time(void **state)
     check_case(&c, 11000, 0, 20000, &i);
 }
 
-/* REQ-SVPWM-010/007/009: random inputs vs the reference */
+/* REQ-SVPWM-004, REQ-SVPWM-005, REQ-SVPWM-006, REQ-SVPWM-007, REQ-SVPWM-008, REQ-SVPWM-009,
+   REQ-SVPWM-010: random inputs vs the reference, every case through check_case (ranges,
+   limit flag, sector, line-to-line voltages and centred pulses, utilisation, compare
+   values) */
 static void test_req_svpwm_010_random(void **state)
 {
     uint32_t n;
@@ -585,7 +588,7 @@ static void test_req_svpwm_010_random(void **state)
     print_message("max utilisation error (linear range): %.3f LSB\n", max_err_util);
 }
 
-/* REQ-SVPWM-011: period extremes 100 and 32767 */
+/* REQ-SVPWM-007, REQ-SVPWM-010, REQ-SVPWM-011: period extremes 100 and 32767 */
 static void test_req_svpwm_011_periods(void **state)
 {
     const uint16_t per[] = { 100u, 32767u };

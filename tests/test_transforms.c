@@ -168,7 +168,7 @@ static void test_req_trf_001_002_clarke(void **state)
                   clarke_max_err, CLARKE_BETA_BOUND);
 }
 
-/* REQ-TRF-002: saturation outside the bound, values spelled out */
+/* REQ-TRF-001, REQ-TRF-002: saturation outside the bound, values spelled out */
 static void test_req_trf_002_clarke_saturation(void **state)
 {
     qfoc_ab_t out;

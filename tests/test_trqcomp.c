@@ -486,8 +486,8 @@ static void test_tc_learn_vs_reference(void **state)
                   max_err_rel, (unsigned)n_clamped);
 }
 
-/* REQ-TC-005, REQ-TC-007: coefficients held outside the window, for zero gain and
-   zero error; -32768 error and speed; the learning direction. */
+/* REQ-TC-005, REQ-TC-006, REQ-TC-007: coefficients held outside the window, for zero gain
+   and zero error; -32768 error and speed; the learning direction. */
 static void test_tc_learn_corners(void **state)
 {
     qfoc_trqcomp_t tc;

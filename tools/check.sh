@@ -32,7 +32,9 @@ gate coverage make --no-print-directory coverage
 gate mcdc     make --no-print-directory mcdc
 gate prove    make --no-print-directory prove
 gate cbmc     make --no-print-directory cbmc
+gate eva      make --no-print-directory eva
 gate misra    make --no-print-directory misra
+gate misra-cs make --no-print-directory misra-summary
 gate static   make --no-print-directory static
 gate trace    make --no-print-directory trace
 gate target   make --no-print-directory target
@@ -42,6 +44,11 @@ gate report   make --no-print-directory estimator-report
 gate tune     make --no-print-directory tune-check
 gate demo     make --no-print-directory demo
 gate robust   make --no-print-directory robustness ROBUST_COUNT=24
+gate repro    make --no-print-directory repro
+
+# The evidence bundle last: it collects what the gates above wrote, and fails when one of
+# its summary rows is red (a gate's result missing or failed).
+gate evidence make --no-print-directory evidence EVIDENCE_STRICT=1
 
 echo
 echo "==================== summary ($(( $(date +%s) - start_all )) s)"

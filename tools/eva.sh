@@ -13,7 +13,7 @@ mkdir -p "$OUT"
 max=${EVA_MAX_ALARMS:-0}
 t0=$(date +%s)
 frama-c -cpp-extra-args="-Iinclude -Ispecs -Itables" src/*.c tables/reference_params.c \
-    proofs/eva/eva_main.c -eva -eva-precision "${EVA_PRECISION:-4}" ${EVA_EXTRA:--eva-domains octagon,equality} \
+    proofs/eva/eva_main.c -eva -eva-precision "${EVA_PRECISION:-4}" ${EVA_EXTRA:--eva-domains octagon,equality -eva-use-spec qfoc_isqrt32} \
     -warn-signed-overflow -warn-signed-downcast -warn-unsigned-overflow -warn-unsigned-downcast \
     -eva-no-show-progress > "$OUT/eva.log" 2>&1
 rc=$?

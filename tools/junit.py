@@ -5,7 +5,10 @@ usage: junit.py OUT_DIR SUITE=OUTPUT_FILE...
 
 Each OUTPUT_FILE holds the standard output of one CMocka executable (the '[ RUN      ]',
 '[       OK ]', '[  FAILED  ]', '[  SKIPPED ]' lines and the messages between them);
-SUITE names it.  Writes OUT_DIR/SUITE.xml with one <testcase> per test, the messages as
+SUITE names it; SUITE=vectors:OUTPUT_FILE reads instead the report of the
+target-equivalence runner (tools/target_test/tt_runner.c: one '<group>: <n> vectors,
+identical' or '<group>: DIFFERENT: ...' line per group, then a 'result:' line), one
+<testcase> per group.  Writes OUT_DIR/SUITE.xml with one <testcase> per test, the messages as
 <system-out>, a failure's messages as its <failure> text, and an executable that ended
 without its summary line as an <error>.  Prints 'junit: N suites, T tests, F failures'.
 """
@@ -41,6 +44,23 @@ def parse(text):
             lines.append(line)
     if current is not None:
         tests.append((current, "ERROR", "\n".join(lines) + "\n(the executable ended inside this test)"))
+    return tests, done
+
+
+GROUP = re.compile(r"^([A-Za-z0-9_]+): (\d+ vectors, identical|DIFFERENT: .*)$")
+
+
+def parse_vectors(text):
+    """Golden-vector groups as test records; the run is complete with its 'result:' line."""
+    tests = []
+    done = False
+    for line in text.splitlines():
+        m = GROUP.match(line)
+        if m:
+            ok = m.group(2).endswith("identical")
+            tests.append((m.group(1), "OK" if ok else "FAILED", m.group(2)))
+        elif line.startswith("result: "):
+            done = True
     return tests, done
 
 
@@ -84,8 +104,11 @@ def main(argv):
     n_t = n_f = n_s = 0
     for arg in argv[1:]:
         suite, path = arg.split("=", 1)
+        reader = parse
+        if path.startswith("vectors:"):
+            reader, path = parse_vectors, path[len("vectors:"):]
         with open(path, encoding="utf-8", errors="replace") as f:
-            tests, done = parse(f.read())
+            tests, done = reader(f.read())
         t, fl, er = write(out_dir, suite, tests, done)
         n_s += 1
         n_t += t

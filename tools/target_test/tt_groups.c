@@ -1371,7 +1371,8 @@ static void tt_replay_drive_init(tt_ctx_t *c)
 
 /* drive_fast [iu, iv, vdc] and drive_tick [t_ipm, t_pcb, rx_len, 6 words = 12 frame
    bytes]: the closed-loop run, replayed in its order: after every (f_pwm / 1 kHz)-th
-   fast step, one tick.  c[0] is drive_fast, c[1] drive_tick. */
+   fast step, one tick.  c[0] is drive_fast, c[1] drive_tick.  REQ-TGT-003: the open-loop
+   replay of the recorded inputs reproduces the closed-loop run's outputs. */
 static void tt_replay_drive(tt_ctx_t *c)
 {
     static uint8_t rx[TT_TICK_RX_MAX];
@@ -1415,7 +1416,8 @@ static void tt_replay_drive(tt_ctx_t *c)
 /* ------------------------------------------------------------------ the suites */
 
 /* TT_N_SUITES entries (tt.h); a missing one would be all zero, which the runner and the
-   generator refuse (tt_runner.c: tt_consistent). */
+   generator refuse (tt_runner.c: tt_consistent).  Every group: REQ-TGT-001 (its golden
+   vectors), REQ-TGT-002 (its outputs bit-identical on the Cortex-M4F). */
 const tt_suite_t tt_suites[TT_N_SUITES] = {
     { { "q15_sat", NULL }, 1u, tt_replay_q15_sat },
     { { "q31_sat", NULL }, 1u, tt_replay_q31_sat },

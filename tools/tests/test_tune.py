@@ -67,7 +67,7 @@ def simple_design(tmp_path):
     return qt.design_loops(cfg, b), path
 
 
-# REQ-TUNE-006: the table CRC is CRC-32/ISO-HDLC (check value, zlib agreement).
+# REQ-PAR-002, REQ-TUNE-006: the table CRC is CRC-32/ISO-HDLC (check value, zlib agreement).
 def test_crc_check_value():
     assert qt.crc32_iso_hdlc(b"123456789") == 0xCBF43926
     data = bytes(range(256)) * 3
@@ -298,8 +298,9 @@ def drive_of(tmp_path, motor, *extra):
     return dict(vals[i:i + len(DRIVE_LAYOUT)])
 
 
-# REQ-TUNE-006: the documented defaults of [drive] by hand for the reference motor
-# (n_p 3, f_base 500 Hz, I_base 40 A, f_pwm 8 kHz, rated 20 A / 6000 rpm, max 8000 rpm).
+# REQ-PAR-006, REQ-TUNE-006: the documented defaults of [drive] by hand for the reference
+# motor (n_p 3, f_base 500 Hz, I_base 40 A, f_pwm 8 kHz, rated 20 A / 6000 rpm,
+# max 8000 rpm).
 def test_drive_defaults_by_hand(tmp_path):
     d = drive_of(tmp_path, REFERENCE)
     rpm = 3 / 60 / 500 * 32768                                # Q15 counts per rpm = 3.2768
@@ -333,9 +334,10 @@ def test_drive_defaults_by_hand(tmp_path):
         (0x10, 0x11, 0x310, 0x311)
 
 
-# REQ-TUNE-001, REQ-TUNE-006: the defaults round-trip: a motor file that writes every
-# documented default of [drive] explicitly gives the same table bytes as one without the
-# section, and the stored values convert back to the defaults within half a count.
+# REQ-TUNE-001, REQ-TUNE-006, REQ-PAR-006: the defaults round-trip: a motor file that
+# writes every documented default of [drive] explicitly gives the same table bytes as one
+# without the section, and the stored values convert back to the defaults within half a
+# count.
 def test_drive_defaults_round_trip(tmp_path):
     cfg = qt.load_config(REFERENCE, [])
     ds = qt.design_loops(cfg, qt.make_bases(cfg))
@@ -356,8 +358,8 @@ def test_drive_defaults_round_trip(tmp_path):
     assert abs(flat["drive.ho_angle"] / 65536 * 360 - 15.0) <= 0.5 * 360 / 65536
 
 
-# REQ-TUNE-001, REQ-TUNE-006: [drive] overrides reach the table; motor.ld_hs_h / lq_hs_h set
-# the high-speed inductances.
+# REQ-TUNE-001, REQ-TUNE-006, REQ-PAR-006: [drive] overrides reach the table;
+# motor.ld_hs_h / lq_hs_h set the high-speed inductances.
 def test_drive_overrides(tmp_path):
     d = drive_of(tmp_path, REFERENCE, "--set", "drive.rpm_max=7000", "--set",
                  "drive.lin_id_cmd=0x20", "--set", "drive.tc_gain_q15=0",
@@ -392,7 +394,7 @@ def test_drive_range_refused(tmp_path, capsys, override, message):
     assert not (tmp_path / "tables").exists()
 
 
-# REQ-TUNE-006: a boundary value of a cross-field condition is accepted.
+# REQ-TUNE-006, REQ-PAR-007: a boundary value of a cross-field condition is accepted.
 def test_drive_cross_boundary_accepted(tmp_path):
     d = drive_of(tmp_path, REFERENCE, "--set", "drive.i_align_a=20", "--set",
                  "drive.of_speed_rpm=8000", "--set", "drive.rpm_min=8000")

@@ -2,7 +2,7 @@
  * CBMC harness: qfoc_leaky_step() on any valid instance and any input.
  *
  * Properties checked for every int16_t input (-32768 included) and every
- * instance accepted by qfoc_leaky_is_valid() (REQ-FLT-005, REQ-FLT-007,
+ * instance accepted by qfoc_leaky_is_valid() (REQ-FLT-005, REQ-FLT-006, REQ-FLT-007,
  * REQ-FLT-008):
  *  - no undefined behaviour: signed/unsigned overflow, conversion, shift, bounds,
  *    pointer and division checks of the command line;

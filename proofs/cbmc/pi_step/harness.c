@@ -2,7 +2,8 @@
  * CBMC harness: qfoc_pi_step() on any valid instance and any error value.
  *
  * Properties checked for every int16_t error (-32768 included) and every instance
- * accepted by qfoc_pi_is_valid() (REQ-PI-002, REQ-PI-005, REQ-PI-007, REQ-PI-008):
+ * accepted by qfoc_pi_is_valid() (REQ-PI-002, REQ-PI-004, REQ-PI-005, REQ-PI-007,
+ * REQ-PI-008):
  *  - no undefined behaviour: signed/unsigned overflow, conversion, shift, bounds,
  *    pointer and division checks of the command line;
  *  - the instance is still valid afterwards (integrator inside the limits);

@@ -2,9 +2,9 @@
  * CBMC harness: exact values of qfoc_pll_step_emf() on small EMF vectors.
  *
  * Any valid instance, EMF components of 8 bits (nondet int8_t).  Properties
- * (REQ-PLL-004, REQ-PLL-008, REQ-PLL-010): every property of the pll_step
- * harness; the magnitude of the flux direction the loop uses is the floor
- * square root of e_alpha^2 + e_beta^2 (= |e|), and the coasting decision
+ * (REQ-PLL-002, REQ-PLL-004, REQ-PLL-006, REQ-PLL-008, REQ-PLL-010): every property
+ * of the pll_step harness; the magnitude of the flux direction the loop uses is the
+ * floor square root of e_alpha^2 + e_beta^2 (= |e|), and the coasting decision
  * equals e_alpha^2 + e_beta^2 < mag_min^2.  Which direction is used,
  * (e_beta, -e_alpha) for an integrator >= 0 and (-e_beta, e_alpha) otherwise,
  * and the rounded error on it are proved by Frama-C WP (ensures mag, error of
