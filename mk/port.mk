@@ -8,6 +8,7 @@
 #   make port-test              tests/test_port.c on the host (fake registers, CMocka)
 
 PORT_SRCS    := $(sort $(wildcard port_s32k/*.c))
+PORT_ASMS    := $(sort $(wildcard port_s32k/*.S))
 PORT_HDRS    := $(sort $(wildcard port_s32k/*.h))
 FW_DIR       := $(BUILD)/s32k144
 FW_LD        := port_s32k/s32k144.ld
@@ -29,6 +30,7 @@ FW_BIN       := $(FW_DIR)/$(FW_NAME).bin
 FW_OBJ_DIR   := $(FW_DIR)/obj-$(FW_PWM_KHZ)k
 FW_CFLAGS    := $(ARM_CFLAGS) $(FW_DEFS) -Iport_s32k -Itables
 FW_OBJS      := $(patsubst port_s32k/%.c,$(FW_OBJ_DIR)/%.o,$(PORT_SRCS)) \
+                $(patsubst port_s32k/%.S,$(FW_OBJ_DIR)/%.o,$(PORT_ASMS)) \
                 $(FW_OBJ_DIR)/$(notdir $(FW_TABLE_SRC:.c=.o))
 FW_LDFLAGS   := -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -nostartfiles \
                 --specs=nano.specs -T $(FW_LD) -Wl,--gc-sections -Wl,-Map=$(FW_MAP) \
@@ -37,6 +39,11 @@ FW_LDFLAGS   := -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -nost
 .PHONY: firmware port-test
 
 $(FW_OBJ_DIR)/%.o: port_s32k/%.c $(PORT_HDRS) $(HDRS) $(TABLE_HDRS)
+	@mkdir -p $(@D)
+	$(ARM_CC) $(FW_CFLAGS) -c $< -o $@
+
+# The assembly module (reset.S): preprocessed, then assembled for the same core.
+$(FW_OBJ_DIR)/%.o: port_s32k/%.S
 	@mkdir -p $(@D)
 	$(ARM_CC) $(FW_CFLAGS) -c $< -o $@
 

@@ -14,15 +14,24 @@ reconfigured, ADC calibration done).  The check fails when:
   - any SRAM word is read, or written partially, before a 32-bit write initialised it
     (the S32K144 SRAM has ECC: such an access faults on the real part);
   - an access leaves the mapped regions, or the idle loop's WFI is not reached;
-  - after the set-up: FTM3_MOD differs from --period, the outputs are not masked, the
-    gate driver is not enabled, the watchdog is not enabled at 10 ms, the four interrupts
-    are not enabled in the NVIC, or interrupts are still masked (PRIMASK).
+  - after the set-up: .data in SRAM differs from its load image in flash, FTM3_MOD
+    differs from --period, the outputs are not masked, the gate driver is not enabled, the
+    watchdog is not enabled at 10 ms, the four interrupts are not enabled in the NVIC, or
+    interrupts are still masked (PRIMASK).
 
 Then the interrupt functions are called as the NVIC would (they are ordinary AAPCS
 functions on the Cortex-M4): eight PWM periods (FTM3 period interrupt, ADC-complete
 interrupt with mid-scale samples) and one 1 ms tick; the watchdog must be refreshed and
-the compare registers written.  The executed instruction counts of these calls are
-printed (instructions, not cycles).  Exit status 0 when every check passes.
+the compare registers written; finally qfoc_hal_pwm_write() with the enable true must
+unmask the outputs (no fault latched).  The executed instruction counts of these calls
+are printed (instructions, not cycles).
+
+Two more runs from reset check main()'s handling of a failed set-up (every status tested,
+MISRA C:2012 Dir 4.7): the watchdog never unlocks (qfoc_s32k_wdog_init() times out), and
+the parameter table's CRC is corrupted in flash (qfoc_drive_init() refuses the table).  In
+both, the idle loop must be reached with the interrupts enabled, the gate driver never
+enabled, and the fault output latched: qfoc_hal_pwm_write() with the enable true leaves the
+six outputs masked.  Exit status 0 when every check passes.
 """
 import argparse
 import struct
@@ -33,6 +42,7 @@ try:
     from unicorn import Uc, UcError, UC_ARCH_ARM, UC_MODE_THUMB, UC_MODE_MCLASS
     from unicorn import UC_HOOK_MEM_READ, UC_HOOK_MEM_WRITE, UC_HOOK_CODE, UC_HOOK_MEM_INVALID
     from unicorn.arm_const import UC_ARM_REG_SP, UC_ARM_REG_PC, UC_ARM_REG_LR, UC_ARM_REG_PRIMASK
+    from unicorn.arm_const import UC_ARM_REG_R0
 except ImportError as e:  # pragma: no cover
     print("boot_check: needs python3-unicorn and python3-pyelftools (%s)" % e)
     sys.exit(1)
@@ -54,7 +64,9 @@ class Boot:
     def __init__(self, elf_path):
         with open(elf_path, "rb") as f:
             elf = ELFFile(f)
-            self.syms = {s.name: s["st_value"] for s in elf.get_section_by_name(".symtab").iter_symbols()}
+            symtab = list(elf.get_section_by_name(".symtab").iter_symbols())
+            self.syms = {s.name: s["st_value"] for s in symtab}
+            self.sizes = {s.name: s["st_size"] for s in symtab}
             self.segments = [(seg["p_paddr"], seg.data()) for seg in elf.iter_segments()
                              if seg["p_type"] == "PT_LOAD" and seg["p_filesz"] > 0]
         self.mu = Uc(UC_ARCH_ARM, UC_MODE_THUMB | UC_MODE_MCLASS)
@@ -69,6 +81,8 @@ class Boot:
         self.iser = [0, 0, 0, 0]
         self.insns = 0
         self.wfi = False
+        self.withhold_unlock = False           # the watchdog never unlocks (failure run)
+        self.gate_enabled = False              # a write set PTD5 (GPIOD_PSOR bit 5)
         self.mu.hook_add(UC_HOOK_MEM_READ, self.on_periph_read, begin=PERIPH[0], end=PERIPH[0] + PERIPH[1] - 1)
         self.mu.hook_add(UC_HOOK_MEM_WRITE, self.on_write)
         self.mu.hook_add(UC_HOOK_MEM_READ, self.on_sram_read, begin=SRAM[0], end=SRAM[0] + SRAM[1] - 1)
@@ -98,7 +112,8 @@ class Boot:
             v |= 0x01000000 | 0x08000000
         self.wr(0x40024000, v)
         cs = self.rd(WDOG_CS) | 0x400                            # RCS
-        cs = (cs | 0x800) if self.rd(WDOG_CNT) == 0xD928C520 else (cs & ~0x800)  # ULK
+        unlocked = self.rd(WDOG_CNT) == 0xD928C520 and not self.withhold_unlock
+        cs = (cs | 0x800) if unlocked else (cs & ~0x800)         # ULK
         self.wr(WDOG_CS, cs)
         for base in (0x4003B000, 0x40027000):                    # ADC calibration done
             if self.rd(base + 0x94) & 0x80:
@@ -115,6 +130,8 @@ class Boot:
         elif PERIPH[0] <= addr < PERIPH[0] + PERIPH[1]:
             if len(self.periph_writes) < 8:
                 self.periph_writes.append((addr, value))
+            if addr == GPIOD_PSOR and value & (1 << 5):
+                self.gate_enabled = True
         elif NVIC_ISER0 <= addr < NVIC_ISER0 + 16:
             self.iser[(addr - NVIC_ISER0) // 4] |= value
 
@@ -143,10 +160,13 @@ class Boot:
             self.errors.append("emulation stopped: %s at pc 0x%08X" % (e, self.mu.reg_read(UC_ARM_REG_PC)))
         return self.insns
 
-    def call(self, name):
-        """Call an interrupt function as the NVIC would; return its instruction count."""
+    def call(self, name, r0=None):
+        """Call an interrupt function as the NVIC would (or any function with one pointer
+        argument r0); return its instruction count."""
         self.insns = 0
         self.wfi = False
+        if r0 is not None:
+            self.mu.reg_write(UC_ARM_REG_R0, r0)
         self.mu.reg_write(UC_ARM_REG_LR, STOP | 1)
         try:
             self.mu.emu_start(self.syms[name] | 1, STOP, count=5_000_000)
@@ -155,6 +175,44 @@ class Boot:
         if self.mu.reg_read(UC_ARM_REG_PC) != STOP:
             self.errors.append("%s did not return" % name)
         return self.insns
+
+    def pwm_write_enabled(self):
+        """qfoc_hal_pwm_write() with mid compare values and the enable true; the outputs'
+        mask after it (0: switching, 0x3F: all six masked)."""
+        arg = 0x20000100                    # in SRAM_U, far below the stack in use
+        self.mu.mem_write(arg, struct.pack("<HHHBx", 100, 100, 100, 1))   # qfoc_pwm_t
+        self.call("qfoc_hal_pwm_write", r0=arg)
+        return self.rd(FTM3_OUTMASK) & 0x3F
+
+    def data_copied(self):
+        """.data in SRAM equals its load image in flash (qfoc_data_words words)."""
+        words = self.rd(self.syms["qfoc_data_words"])
+        src, dst = self.syms["qfoc_data_load"], self.syms["qfoc_data_start"]
+        return all(self.rd(src + 4 * k) == self.rd(dst + 4 * k) for k in range(words))
+
+
+def failed_setup(elf, how):
+    """Run from reset with one failure: 'watchdog' (never unlocks) or 'table' (the
+    parameter table's CRC corrupted in flash).  Returns the errors found."""
+    b = Boot(elf)
+    if how == "watchdog":
+        b.withhold_unlock = True
+    else:
+        name = "qfoc_params_reference16k" if "qfoc_params_reference16k" in b.syms \
+            else "qfoc_params_reference"
+        crc = b.syms[name] + b.sizes[name] - 4          # the last field: uint32_t crc
+        b.wr(crc, b.rd(crc) ^ 0xFFFFFFFF)
+    b.run_reset()
+    errors = ["%s failure: %s" % (how, e) for e in b.errors]
+    if not b.wfi:
+        errors.append("%s failure: the idle loop (WFI) was not reached" % how)
+    if b.mu.reg_read(UC_ARM_REG_PRIMASK) & 1:
+        errors.append("%s failure: interrupts still masked (PRIMASK)" % how)
+    if b.gate_enabled:
+        errors.append("%s failure: the gate driver (PTD5) was enabled" % how)
+    if b.pwm_write_enabled() != 0x3F:
+        errors.append("%s failure: the fault output is not latched (outputs unmasked)" % how)
+    return errors
 
 
 def main(argv):
@@ -170,6 +228,8 @@ def main(argv):
                         % ", ".join("0x%08X" % a for a in first))
     if not b.wfi:
         b.errors.append("the idle loop (WFI) was not reached")
+    if not b.data_copied():
+        b.errors.append(".data in SRAM differs from its load image")
     if b.rd(FTM3_MOD) != args.period:
         b.errors.append("FTM3_MOD = %d, expected %d" % (b.rd(FTM3_MOD), args.period))
     if b.rd(FTM3_OUTMASK) & 0x3F != 0x3F:
@@ -198,13 +258,18 @@ def main(argv):
     n_tick = b.call("qfoc_s32k_tick_isr")
     if b.rd(WDOG_CNT) != 0xB480A602:
         b.errors.append("watchdog not refreshed by the tick")
+    if b.pwm_write_enabled() != 0:
+        b.errors.append("outputs still masked after qfoc_hal_pwm_write() with the enable true")
+    for how in ("watchdog", "table"):
+        b.errors += failed_setup(args.elf, how)
     for e in b.errors[:10]:
         print("boot_check: %s" % e)
     if b.errors:
         return 1
     print("boot_check: %s: reset to idle loop in %d instructions (watchdog first, SRAM initialised "
           "before use, FTM3_MOD %d, outputs masked, gate driver on, WDOG 10 ms, 4 IRQs enabled); "
-          "interrupt functions: ADC-complete %d, FTM3 period %d, 1 ms tick %d instructions (PRECHARGE)"
+          "interrupt functions: ADC-complete %d, FTM3 period %d, 1 ms tick %d instructions (PRECHARGE); "
+          "failed watchdog set-up and refused table: gate driver off, fault output latched"
           % (args.elf, n_boot, args.period, n_adc, n_ftm, n_tick))
     return 0
 

@@ -329,22 +329,21 @@ void qfoc_s32k_uart_isr(void)
 
 bool qfoc_hal_can_send(const qfoc_can_frame_t *frame)
 {
-    const uint32_t mb = S32K_CAN0_RAM + (16u * QFOC_S32K_CAN_TX_MB);
-    const uint32_t code = (s32k_read(mb) & S32K_CAN_CS_CODE_MASK) >> S32K_CAN_CS_CODE_SHIFT;
+    const uint32_t code = (s32k_read(S32K_CAN0_MB0_CS) & S32K_CAN_CS_CODE_MASK) >> S32K_CAN_CS_CODE_SHIFT;
     bool sent = false;
     if (code != S32K_CAN_CODE_TX_DATA) {
         const uint32_t dlc = (frame->dlc > 8u) ? 8u : (uint32_t)frame->dlc;
         const uint8_t *const d = frame->data;
-        s32k_write(mb, (uint32_t)S32K_CAN_CODE_TX_INACTIVE << S32K_CAN_CS_CODE_SHIFT);
-        s32k_write(mb + 4u, ((uint32_t)frame->id & 0x7FFu) << S32K_CAN_ID_STD_SHIFT);
-        s32k_write(mb + 8u, ((uint32_t)d[0] << 24u) | ((uint32_t)d[1] << 16u) |
-                            ((uint32_t)d[2] << 8u) | (uint32_t)d[3]);
-        s32k_write(mb + 12u, ((uint32_t)d[4] << 24u) | ((uint32_t)d[5] << 16u) |
-                             ((uint32_t)d[6] << 8u) | (uint32_t)d[7]);
-        s32k_write(S32K_CAN0_IFLAG1, (uint32_t)1u << QFOC_S32K_CAN_TX_MB);
+        s32k_write(S32K_CAN0_MB0_CS, (uint32_t)S32K_CAN_CODE_TX_INACTIVE << S32K_CAN_CS_CODE_SHIFT);
+        s32k_write(S32K_CAN0_MB0_ID, ((uint32_t)frame->id & 0x7FFu) << S32K_CAN_ID_STD_SHIFT);
+        s32k_write(S32K_CAN0_MB0_DATA0, ((uint32_t)d[0] << 24u) | ((uint32_t)d[1] << 16u) |
+                                        ((uint32_t)d[2] << 8u) | (uint32_t)d[3]);
+        s32k_write(S32K_CAN0_MB0_DATA1, ((uint32_t)d[4] << 24u) | ((uint32_t)d[5] << 16u) |
+                                        ((uint32_t)d[6] << 8u) | (uint32_t)d[7]);
+        s32k_write(S32K_CAN0_IFLAG1, S32K_CAN_IFLAG1_BUF0I);
         /* CODE last: the controller arbitrates from this write on. */
-        s32k_write(mb, ((uint32_t)S32K_CAN_CODE_TX_DATA << S32K_CAN_CS_CODE_SHIFT) |
-                       (dlc << S32K_CAN_CS_DLC_SHIFT));
+        s32k_write(S32K_CAN0_MB0_CS, ((uint32_t)S32K_CAN_CODE_TX_DATA << S32K_CAN_CS_CODE_SHIFT) |
+                                     (dlc << S32K_CAN_CS_DLC_SHIFT));
         sent = true;
     } else {
         /* the previous frame is still pending */

@@ -10,6 +10,10 @@
  *   qfoc_s32k_tick_isr() (LPIT0, priority 3): temperatures and the received frame ->
  *        qfoc_drive_tick -> status frame on the UART, CAN frame every 100 ms; the
  *        supervision; the watchdog refresh.
+ * A frame the UART or the CAN controller refuses (the previous one is still being sent)
+ * is dropped, as hal.h allows, and counted (qfoc_s32k_lin_tx_refused,
+ * qfoc_s32k_can_tx_refused): the master polls again, the CAN status frame repeats every
+ * 100 ms, so a drop loses no state.
  * The UART interrupt (priority 4) is in hal_s32k.c.
  *
  * Requirements: REQ-PORT-016, REQ-PORT-017, REQ-PORT-018 (specs/requirements/port.md).
@@ -22,6 +26,8 @@ static qfoc_drive_t *s_drive = NULL;
 static volatile uint32_t s_fast_steps = 0u;   /* written by the ADC interrupt */
 static uint32_t s_seen_steps = 0u;            /* tick: values at the last check */
 static uint32_t s_seen_periods = 0u;
+static uint16_t s_lin_refused = 0u;           /* tick: frames the UART refused */
+static uint16_t s_can_refused = 0u;           /* tick: frames the CAN controller refused */
 
 void qfoc_s32k_isr_bind(qfoc_drive_t *drive)
 {
@@ -29,11 +35,29 @@ void qfoc_s32k_isr_bind(qfoc_drive_t *drive)
     s_fast_steps = 0u;
     s_seen_steps = 0u;
     s_seen_periods = qfoc_hal_pwm_periods();
+    s_lin_refused = 0u;
+    s_can_refused = 0u;
 }
 
 uint32_t qfoc_s32k_fast_steps(void)
 {
     return s_fast_steps;
+}
+
+uint16_t qfoc_s32k_lin_tx_refused(void)
+{
+    return s_lin_refused;
+}
+
+uint16_t qfoc_s32k_can_tx_refused(void)
+{
+    return s_can_refused;
+}
+
+/* A refused frame counted, saturating. */
+static uint16_t s32k_count(uint16_t n)
+{
+    return (n < 0xFFFFu) ? (uint16_t)(n + 1u) : n;
 }
 
 void qfoc_s32k_adc_isr(void)
@@ -89,12 +113,24 @@ void qfoc_s32k_tick_isr(void)
         in.rx = rx;
         out = qfoc_drive_tick(s_drive, &in);
         if (out.tx_len > 0u) {
-            (void)qfoc_hal_lin_transmit(out.tx, out.tx_len);
+            if (!qfoc_hal_lin_transmit(out.tx, out.tx_len)) {
+                /* the previous frame is still being sent: this one is dropped, the
+                   master polls again (hal.h) */
+                s_lin_refused = s32k_count(s_lin_refused);
+            } else {
+                /* queued */
+            }
         } else {
             /* no answer this millisecond */
         }
         if (out.can_send) {
-            (void)qfoc_hal_can_send(&out.can);
+            if (!qfoc_hal_can_send(&out.can)) {
+                /* the previous frame is still pending: this one is dropped, the status
+                   frame repeats in 100 ms (hal.h) */
+                s_can_refused = s32k_count(s_can_refused);
+            } else {
+                /* handed to the controller */
+            }
         } else {
             /* not the 100 ms tick */
         }

@@ -8,11 +8,13 @@
  * 16 kHz table tables/reference16k_params.c.  The port checks that the table's PWM
  * period matches the 80 MHz timer (REQ-PORT-005).
  *
- * A failed set-up step (an oscillator that does not start, a peripheral that does not
- * acknowledge, a table that does not fit the timer) latches the fault output: the six
- * PWM outputs stay masked and the gate driver stays disabled; the drive still runs its
- * tick (state and fault word on LIN and CAN).  A parameter table refused by the drive
- * leaves the drive in ERROR with its PWM off (drive.h).
+ * Every status is tested (MISRA C:2012 Dir 4.7) and the first failure kept: a failed
+ * set-up step (an oscillator that does not start, a peripheral that does not acknowledge,
+ * a table that does not fit the timer), a parameter table the drive refuses (the drive is
+ * then in ERROR with its PWM off, drive.h) or a watchdog that does not take its
+ * configuration latches the fault output: the six PWM outputs stay masked and the gate
+ * driver stays disabled until reset; the drive still runs its tick (state and fault word
+ * on LIN and CAN).  Only a set-up without failure enables the gate driver.
  *
  * Requirements: REQ-PORT-002 .. REQ-PORT-015 (set-up order), REQ-PORT-016, -017.
  */
@@ -40,6 +42,13 @@ static int32_t s32k_first(int32_t status, int32_t next)
     return (status != QFOC_S32K_OK) ? status : next;
 }
 
+/* The drive's initialisation status as a port status: a refused table is
+   QFOC_S32K_ERR_PARAM. */
+static int32_t s32k_drive_status(int32_t params_status)
+{
+    return (params_status == QFOC_PARAMS_OK) ? QFOC_S32K_OK : QFOC_S32K_ERR_PARAM;
+}
+
 int main(void)
 {
     static qfoc_drive_t motor;   /* the one drive of this ECU */
@@ -61,20 +70,23 @@ int main(void)
     qfoc_s32k_ftm_init(&pwm);                                /* McuFtmConfig */
     qfoc_s32k_hal_init(pwm.period);
 
-    (void)qfoc_drive_init(&motor, table);                  /* ERROR on a refused table */
+    status = s32k_first(status, s32k_drive_status(qfoc_drive_init(&motor, table)));
     qfoc_s32k_isr_bind(&motor);
+    status = s32k_first(status, qfoc_s32k_wdog_init());     /* no drive without watchdog */
+
     if (status == QFOC_S32K_OK) {
         qfoc_s32k_gate_enable(true);
     } else {
-        qfoc_hal_fault_output();
+        qfoc_hal_fault_output();                             /* latched until reset */
     }
-    (void)qfoc_s32k_wdog_init();
     qfoc_s32k_irq_init();                                    /* intenable */
     qfoc_s32k_irq_global_enable();
 
     for (;;) {
-        /* Everything runs in the interrupts; the background only sleeps. */
+        /* Everything runs in the interrupts; the background only sleeps.  The flag
+           (a millisecond passed) is taken so that it does not stay set; the background
+           has no work to do on it. */
         (void)qfoc_hal_ms_flag_take();
-        __asm__ volatile ("wfi");
+        qfoc_s32k_wait_for_interrupt();
     }
 }

@@ -12,6 +12,19 @@
 #include "s32k144_port.h"
 #include "s32k144_regs.h"
 
+/* Register fields whose configured value is zero are not written (they stay 0 from the
+   register write that sets the other fields; MISRA C:2012 Rule 2.2: no operation without
+   effect); the code relies on these values being zero: */
+#if (QFOC_S32K_SPLL_PREDIV != 0u)
+#error "SCG_SPLLCFG[PREDIV] is left 0 in qfoc_s32k_clock_init(): write the field"
+#endif
+#if (QFOC_S32K_CAN_PRESDIV != 0u)
+#error "CAN0_CTRL1[PRESDIV] is left 0 in qfoc_s32k_can_init(): write the field"
+#endif
+#if (QFOC_S32K_CAN_TX_MB != 0u)
+#error "the port transmits from MB0 only (S32K_CAN0_MB0_*, MCR[MAXMB] 0)"
+#endif
+
 /* Poll until (register & mask) == value, at most QFOC_S32K_WAIT_POLLS reads. */
 static bool s32k_wait(uint32_t addr, uint32_t mask, uint32_t value)
 {
@@ -55,13 +68,13 @@ int32_t qfoc_s32k_clock_init(void)
         status = QFOC_S32K_ERR_TIMEOUT;
     } else {
         /* SPLL: VCO = 8 MHz / 1 x 40 = 320 MHz, SPLL_CLK 160 MHz; SPLLDIV1 /2 = 80 MHz,
-           SPLLDIV2 /4 = 40 MHz (ADC clock). */
+           SPLLDIV2 /4 = 40 MHz (ADC clock).  PREDIV left 0 (QFOC_S32K_SPLL_PREDIV:
+           divide by 1). */
         s32k_write(S32K_SCG_SPLLCSR, 0u);
         s32k_write(S32K_SCG_SPLLDIV,
                    s32k_fld(QFOC_S32K_SPLLDIV1_FIELD, S32K_SCG_DIV1_SHIFT, S32K_SCG_DIV1_MASK) |
                    s32k_fld(QFOC_S32K_SPLLDIV2_FIELD, S32K_SCG_DIV2_SHIFT, S32K_SCG_DIV2_MASK));
         s32k_write(S32K_SCG_SPLLCFG,
-                   s32k_fld(QFOC_S32K_SPLL_PREDIV, S32K_SCG_PREDIV_SHIFT, S32K_SCG_PREDIV_MASK) |
                    s32k_fld(QFOC_S32K_SPLL_MULT, S32K_SCG_MULT_SHIFT, S32K_SCG_MULT_MASK));
         s32k_write(S32K_SCG_SPLLCSR, S32K_SCG_XCSR_EN);
         if (!s32k_wait(S32K_SCG_SPLLCSR, S32K_SCG_XCSR_VLD, S32K_SCG_XCSR_VLD)) {
@@ -389,8 +402,8 @@ int32_t qfoc_s32k_can_init(void)
     } else {
         /* freeze mode: configuration allowed */
     }
+    /* PRESDIV left 0 (QFOC_S32K_CAN_PRESDIV: time quantum = 1 oscillator clock). */
     s32k_write(S32K_CAN0_CTRL1,
-               ((uint32_t)QFOC_S32K_CAN_PRESDIV << S32K_CAN_CTRL1_PRESDIV_SHIFT) |
                ((uint32_t)QFOC_S32K_CAN_RJW << S32K_CAN_CTRL1_RJW_SHIFT) |
                ((uint32_t)QFOC_S32K_CAN_PSEG1 << S32K_CAN_CTRL1_PSEG1_SHIFT) |
                ((uint32_t)QFOC_S32K_CAN_PSEG2 << S32K_CAN_CTRL1_PSEG2_SHIFT) |
@@ -403,12 +416,11 @@ int32_t qfoc_s32k_can_init(void)
         s32k_write(S32K_CAN0_RXIMR0 + (4u * k), 0xFFFFFFFFu);
     }
     s32k_write(S32K_CAN0_RXMGMASK, 0xFFFFFFFFu);
-    /* MB0: inactive transmit buffer. */
-    s32k_write(S32K_CAN0_RAM + (16u * QFOC_S32K_CAN_TX_MB),
-               (uint32_t)S32K_CAN_CODE_TX_INACTIVE << S32K_CAN_CS_CODE_SHIFT);
-    /* Leave freeze: one MB (MAXMB 0), individual masks, no self reception. */
-    s32k_write(S32K_CAN0_MCR, S32K_CAN_MCR_SRXDIS | S32K_CAN_MCR_IRMQ |
-                              ((uint32_t)QFOC_S32K_CAN_TX_MB & S32K_CAN_MCR_MAXMB_MASK));
+    /* MB0 (QFOC_S32K_CAN_TX_MB): inactive transmit buffer. */
+    s32k_write(S32K_CAN0_MB0_CS, (uint32_t)S32K_CAN_CODE_TX_INACTIVE << S32K_CAN_CS_CODE_SHIFT);
+    /* Leave freeze: one MB (MAXMB left 0: MB0 is the last buffer in use), individual
+       masks, no self reception. */
+    s32k_write(S32K_CAN0_MCR, S32K_CAN_MCR_SRXDIS | S32K_CAN_MCR_IRMQ);
     if (!s32k_wait(S32K_CAN0_MCR, S32K_CAN_MCR_FRZACK, 0u)) {
         status = QFOC_S32K_ERR_TIMEOUT;
     } else if (!s32k_wait(S32K_CAN0_MCR, S32K_CAN_MCR_NOTRDY, 0u)) {
@@ -474,29 +486,3 @@ void qfoc_s32k_irq_init(void)
     s32k_nvic_setup(S32K_IRQ_LPIT0_CH0, QFOC_S32K_PRIO_TICK);
     s32k_nvic_setup(S32K_IRQ_LPUART1, QFOC_S32K_PRIO_UART);
 }
-
-#if defined(QFOC_PORT_FAKE_REGS)
-/* Host build: the global mask is a flag the tests read (declared in fake/fake_regs.h). */
-extern bool qfoc_fake_irq_enabled;
-bool qfoc_fake_irq_enabled = false;
-
-void qfoc_s32k_irq_global_enable(void)
-{
-    qfoc_fake_irq_enabled = true;
-}
-
-void qfoc_s32k_irq_global_disable(void)
-{
-    qfoc_fake_irq_enabled = false;
-}
-#else
-void qfoc_s32k_irq_global_enable(void)
-{
-    __asm__ volatile ("cpsie i" ::: "memory");
-}
-
-void qfoc_s32k_irq_global_disable(void)
-{
-    __asm__ volatile ("cpsid i" ::: "memory");
-}
-#endif

@@ -191,10 +191,21 @@ int32_t qfoc_s32k_wdog_init(void);
 void qfoc_s32k_irq_init(void);
 /** Gate-driver enable pin PTD5 (true = driver enabled); REQ-PORT-004. */
 void qfoc_s32k_gate_enable(bool on);
-/** Unmask interrupts (CPSIE i). */
+
+/* ------------------------------------------------------------------ core instructions (cpu.c) */
+/* One function per instruction, the port's only inline assembly (Dir 4.3). */
+
+/** Unmask interrupts (CPSIE i); REQ-PORT-015. */
 void qfoc_s32k_irq_global_enable(void);
-/** Mask interrupts (CPSID i). */
+/** Mask interrupts (CPSID i); REQ-PORT-015. */
 void qfoc_s32k_irq_global_disable(void);
+/** Sleep until an interrupt is pending (WFI): the idle loop of main(); target only. */
+void qfoc_s32k_wait_for_interrupt(void);
+/** Data synchronization barrier (DSB); target only. */
+void qfoc_s32k_data_sync_barrier(void);
+/** Instruction synchronization barrier (ISB): after a system register write such as CPACR
+    (FPU enable, startup.c); target only. */
+void qfoc_s32k_instruction_sync_barrier(void);
 
 /* ------------------------------------------------------------------ runtime (hal_s32k.c) */
 
@@ -221,11 +232,22 @@ void qfoc_s32k_tick_isr(void);
 void qfoc_s32k_uart_isr(void);
 /** Fast steps run since start (supervision and tests). */
 uint32_t qfoc_s32k_fast_steps(void);
+/** Status frames the UART refused since qfoc_s32k_isr_bind() (the previous frame was still
+    being sent: the frame is dropped, the master polls again), saturating at 65535;
+    REQ-PORT-017. */
+uint16_t qfoc_s32k_lin_tx_refused(void);
+/** CAN frames the controller refused since qfoc_s32k_isr_bind() (the previous frame was
+    still pending: the frame is dropped, the next follows 100 ms later), saturating at
+    65535; REQ-PORT-017. */
+uint16_t qfoc_s32k_can_tx_refused(void);
 
-/* ------------------------------------------------------------------ reset (startup.c) */
-/** The reset vector; the vector table holds the four interrupt functions above:
-    IRQ 33 LPUART1 qfoc_s32k_uart_isr, IRQ 40 ADC1 qfoc_s32k_adc_isr, IRQ 48 LPIT0 channel 0
+/* ------------------------------------------------------------------ reset (reset.S, startup.c) */
+/** The reset vector, defined in the assembly module reset.S (it runs before any stack
+    exists): an identifier defined outside C, deviation DEV-004 (Rule 8.6).  The vector
+    table (startup.c) holds it and the four interrupt functions above: IRQ 33 LPUART1
+    qfoc_s32k_uart_isr, IRQ 40 ADC1 qfoc_s32k_adc_isr, IRQ 48 LPIT0 channel 0
     qfoc_s32k_tick_isr, IRQ 122 FTM3 overflow/reload qfoc_s32k_ftm_isr. */
+/* cppcheck-suppress misra-c2012-8.6 ; DEV-004 */
 void Reset_Handler(void);
 
 #endif /* QFOC_S32K144_PORT_H */

@@ -103,8 +103,7 @@ static inline uint32_t s32k_fld(uint32_t value, uint32_t shift, uint32_t mask)
 #define S32K_SCG_DIV2_SHIFT   (8u)                     /* xDIV2[10:8] */
 #define S32K_SCG_DIV2_MASK    ((uint32_t)0x00000700u)
 /* SCG_SPLLCFG fields: VCO = f_SOSC / (PREDIV + 1) x (MULT + 16), SPLL_CLK = VCO / 2 */
-#define S32K_SCG_PREDIV_SHIFT (8u)                     /* PREDIV[10:8] */
-#define S32K_SCG_PREDIV_MASK  ((uint32_t)0x00000700u)
+/* PREDIV[10:8]: not written, left 0 (QFOC_S32K_SPLL_PREDIV, mcu.c) */
 #define S32K_SCG_MULT_SHIFT   (16u)                    /* MULT[20:16] */
 #define S32K_SCG_MULT_MASK    ((uint32_t)0x001F0000u)
 
@@ -318,9 +317,14 @@ static inline uint32_t s32k_fld(uint32_t value, uint32_t shift, uint32_t mask)
 #define S32K_CAN0_IFLAG1      ((uint32_t)0x40024030u)  /* CAN0_IFLAG1: MB flags (w1c) */
 #define S32K_CAN0_RAM         ((uint32_t)0x40024080u)  /* CAN0_RAMn: message buffers, 16 bytes each */
 #define S32K_CAN0_RAM_WORDS   (128u)                   /* 32 MBs x 4 words */
+#define S32K_CAN0_MB0_CS      ((uint32_t)0x40024080u)  /* CAN0_RAM0: MB0 word 0 (CODE, DLC) */
+#define S32K_CAN0_MB0_ID      ((uint32_t)0x40024084u)  /* CAN0_RAM1: MB0 word 1 (ID) */
+#define S32K_CAN0_MB0_DATA0   ((uint32_t)0x40024088u)  /* CAN0_RAM2: MB0 data bytes 0..3 */
+#define S32K_CAN0_MB0_DATA1   ((uint32_t)0x4002408Cu)  /* CAN0_RAM3: MB0 data bytes 4..7 */
+#define S32K_CAN_IFLAG1_BUF0I ((uint32_t)0x00000001u)  /* IFLAG1[BUF0I], bit 0: MB0 flag */
 #define S32K_CAN0_RXIMR0      ((uint32_t)0x40024880u)  /* CAN0_RXIMRn = +4 n, n < 32 */
 #define S32K_CAN0_RXIMR_WORDS (32u)
-#define S32K_CAN_MCR_MAXMB_MASK ((uint32_t)0x0000007Fu) /* MAXMB[6:0]: last MB in use */
+/* MCR MAXMB[6:0], last MB in use: not written, left 0 (MB0 only, QFOC_S32K_CAN_TX_MB) */
 #define S32K_CAN_MCR_IRMQ     ((uint32_t)0x00010000u)  /* IRMQ, bit 16: individual masks */
 #define S32K_CAN_MCR_SRXDIS   ((uint32_t)0x00020000u)  /* SRXDIS, bit 17: no self reception */
 #define S32K_CAN_MCR_LPMACK   ((uint32_t)0x00100000u)  /* LPMACK, bit 20: low-power acknowledge */
@@ -334,7 +338,7 @@ static inline uint32_t s32k_fld(uint32_t value, uint32_t shift, uint32_t mask)
 #define S32K_CAN_CTRL1_PSEG2_SHIFT   (16u)             /* PSEG2[18:16]: + 1 tq */
 #define S32K_CAN_CTRL1_PSEG1_SHIFT   (19u)             /* PSEG1[21:19]: + 1 tq */
 #define S32K_CAN_CTRL1_RJW_SHIFT     (22u)             /* RJW[23:22]: + 1 tq */
-#define S32K_CAN_CTRL1_PRESDIV_SHIFT (24u)             /* PRESDIV[31:24]: S clock = f / (n + 1) */
+/* CTRL1 PRESDIV[31:24], S clock = f / (n + 1): not written, left 0 (QFOC_S32K_CAN_PRESDIV) */
 #define S32K_CAN_CS_CODE_SHIFT (24u)                   /* MB word 0 CODE[27:24] */
 #define S32K_CAN_CS_CODE_MASK ((uint32_t)0x0F000000u)
 #define S32K_CAN_CODE_TX_INACTIVE (8u)                 /* 1000: TX MB inactive */

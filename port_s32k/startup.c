@@ -1,23 +1,29 @@
 /**
  * @file startup.c
- * @brief S32K144 start-up: the vector table, the reset
- *        handler (watchdog first, SRAM initialisation, FPU, .data) and the trap handler.
+ * @brief S32K144 start-up: the vector table, the C part of the reset sequence (FPU,
+ *        .data, main()) and the trap handler.
  *
  * Reset sequence (S32K1xx RM Rev. 13):
  *   1. The watchdog runs after reset (LPO clock, short timeout): it is unlocked and
  *      stopped first, with UPDATE set so that main() can configure it (RM, WDOG chapter);
  *   2. SRAM_L and SRAM_U are written with 32-bit zeros: the SRAM has ECC, and a read or
  *      a byte/half-word write of a word never written raises an ECC error (RM, SRAM/ECC);
- *      this also clears .bss.  Steps 1 and 2 run before any stack use (naked handler);
- *   3. CP10/CP11 full access (the FPU) through SCB CPACR before any floating-point
- *      instruction (ARMv7-M ARM, CPACR);
- *   4. .data copied from flash; main() called.
+ *      this also clears .bss.  Steps 1 and 2 run before any stack use: Reset_Handler,
+ *      the assembly module reset.S, which then calls qfoc_s32k_c_start() below;
+ *   3. CP10/CP11 full access (the FPU) through SCB CPACR, then DSB and ISB, before any
+ *      floating-point instruction (ARMv7-M ARM, CPACR);
+ *   4. .data copied from flash, word by word, qfoc_data_words words (a length the linker
+ *      script computes once); main() called.  main() does not return: its idle loop is
+ *      endless, and nothing follows the call.
  *
  * The flash configuration field (flash_config.c) is its own section at 0x400, placed by
  * s32k144.ld and checked in the binary by port_s32k/check_image.py.
  *
  * Every unexpected exception or interrupt ends in s32k_trap(): PWM outputs masked, gate
  * driver off, then wait for the watchdog reset.
+ *
+ * Deviations (misra/deviations.md): DEV-004 (Rules 8.6, 8.11) for the objects the linker
+ * script defines; DEV-005 (Rule 1.2) for the section placement of the vector table.
  *
  * Requirements: REQ-PORT-019 (specs/requirements/port.md).
  */
@@ -27,11 +33,19 @@
 #include "s32k144_port.h"
 #include "s32k144_regs.h"
 
-/* Linker symbols (s32k144.ld). */
-extern uint32_t qfoc_stack_top;
-extern uint32_t qfoc_data_load;
-extern uint32_t qfoc_data_start;
-extern uint32_t qfoc_data_end;
+/* Objects defined by the linker script (s32k144.ld), not by C: deviation DEV-004.  The
+   arrays have the length the script gives them (qfoc_data_words words each), which C
+   cannot state in the declaration. */
+/* cppcheck-suppress misra-c2012-8.6 ; DEV-004 */
+extern uint32_t qfoc_stack_top;                /* end of SRAM_U: the initial stack pointer */
+/* cppcheck-suppress misra-c2012-8.6 ; DEV-004 */
+extern const uint32_t qfoc_data_words;         /* length of .data in 32-bit words */
+/* cppcheck-suppress misra-c2012-8.6 ; DEV-004 */
+/* cppcheck-suppress misra-c2012-8.11 ; DEV-004 */
+extern const uint32_t qfoc_data_load[];        /* .data's initial values, in flash */
+/* cppcheck-suppress misra-c2012-8.6 ; DEV-004 */
+/* cppcheck-suppress misra-c2012-8.11 ; DEV-004 */
+extern uint32_t qfoc_data_start[];             /* .data in SRAM_L */
 
 int main(void);
 void qfoc_s32k_c_start(void);
@@ -58,7 +72,10 @@ typedef struct {
 
 extern const qfoc_s32k_vectors_t qfoc_s32k_vectors;
 
-__attribute__((section(".isr_vector"), used))
+/* In its own section, which s32k144.ld places at 0x0 and keeps (KEEP): a GCC attribute,
+   deviation DEV-005. */
+/* cppcheck-suppress misra-c2012-1.2 ; DEV-005 */
+__attribute__((section(".isr_vector")))
 const qfoc_s32k_vectors_t qfoc_s32k_vectors = {
     &qfoc_stack_top,
     {
@@ -205,52 +222,19 @@ const qfoc_s32k_vectors_t qfoc_s32k_vectors = {
 
 /* ------------------------------------------------------------------ reset */
 
-/* The first instructions run without a usable stack (SRAM not yet initialised, ECC), so
-   this handler is naked assembly. */
-__attribute__((naked)) void Reset_Handler(void)
-{
-    __asm__ volatile (
-        "cpsid i\n\t"
-        /* WDOG: unlock (32-bit key to WDOG_CNT), TOVAL 0xFFFF, CS = CMD32EN | CLK LPO |
-           UPDATE, EN = 0. */
-        "ldr r0, =0x40052000\n\t"
-        "ldr r1, =0xD928C520\n\t"
-        "str r1, [r0, #4]\n\t"
-        "ldr r1, =0x0000FFFF\n\t"
-        "str r1, [r0, #8]\n\t"
-        "ldr r1, =0x00002120\n\t"
-        "str r1, [r0, #0]\n\t"
-        /* SRAM_L and SRAM_U: 32-bit zero writes. */
-        "ldr r0, =qfoc_sram_start\n\t"
-        "ldr r1, =qfoc_sram_end\n\t"
-        "movs r2, #0\n"
-        "1:\n\t"
-        "cmp r0, r1\n\t"
-        "bhs 2f\n\t"
-        "str r2, [r0], #4\n\t"
-        "b 1b\n"
-        "2:\n\t"
-        "bl qfoc_s32k_c_start\n"
-        "3:\n\t"
-        "b 3b\n\t"
-        ".ltorg\n"
-    );
-}
-
+/* Called by Reset_Handler (reset.S) once the watchdog is stopped and the SRAM written. */
 void qfoc_s32k_c_start(void)
 {
-    const uint32_t *src = &qfoc_data_load;
-    uint32_t *dst = &qfoc_data_start;
+    const uint32_t words = qfoc_data_words;   /* read once: the loop bound */
+    uint32_t k;
 
     s32k_modify(S32K_SCB_CPACR, 0u, S32K_SCB_CPACR_FPU);
-    __asm__ volatile ("dsb\n\tisb" ::: "memory");
+    qfoc_s32k_data_sync_barrier();
+    qfoc_s32k_instruction_sync_barrier();
 
-    /* The linker's section bounds are compared as addresses (.data is word aligned). */
-    while (dst < &qfoc_data_end) {
-        *dst = *src;
-        dst++;
-        src++;
+    for (k = 0u; k < words; k++) {
+        qfoc_data_start[k] = qfoc_data_load[k];
     }
+    /* The drive's application; its idle loop does not end. */
     (void)main();
-    s32k_trap();
 }

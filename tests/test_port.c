@@ -39,6 +39,7 @@
 
 #include "../port_s32k/fake/fake_regs.c"
 #include "../port_s32k/mcu.c"
+#include "../port_s32k/cpu.c"
 #include "../port_s32k/hal_s32k.c"
 #include "../port_s32k/isr.c"
 #include "../port_s32k/flash_config.c"
@@ -50,6 +51,7 @@
 /* Register facts used by the tests only (S32K1xx RM Rev. 13). */
 #define T_FTM_FMS_FAULTF0 ((uint32_t)0x00000001u)   /* FTM_FMS[FAULTF0], bit 0 */
 #define T_WDOG_CS_UPDATE  ((uint32_t)0x00000020u)   /* WDOG_CS[UPDATE], bit 5 */
+#define T_CAN_MCR_MAXMB   ((uint32_t)0x0000007Fu)   /* CAN_MCR[MAXMB], bits 6..0 */
 
 /* Status bits the model withholds (timeout tests). */
 #define W_SOSC    (1u << 0)   /* SOSCVLD never set */
@@ -549,8 +551,8 @@ static void test_port_007_trip_reported_once_then_cleared(void **state)
 /* ------------------------------------------------------------------ REQ-PORT-008 */
 
 /* REQ-PORT-008: compare values to the even channels, clamped to the period, loaded at
-   the next reload point (LDOK); the enable drives the output mask; a latched fault
-   output keeps the outputs masked. */
+   the next reload point (LDOK); the enable drives the output mask.  REQ-PORT-018: a
+   latched fault output keeps the outputs masked. */
 static void test_port_008_pwm_write(void **state)
 {
     qfoc_pwm_t p = { { 0u, 2500u, 6000u }, true };
@@ -924,7 +926,7 @@ static void test_port_012_can_setup(void **state)
     assert_true((field(c1, 16u, 3u) + 1u) >= 2u);
     assert_int_equal(c1 & S32K_CAN_CTRL1_CLKSRC, 0u);                      /* oscillator clock */
     assert_int_equal(mcr & (S32K_CAN_MCR_MDIS | S32K_CAN_MCR_FRZ | S32K_CAN_MCR_HALT), 0u);
-    assert_int_equal(mcr & S32K_CAN_MCR_MAXMB_MASK, 0u);
+    assert_int_equal(mcr & T_CAN_MCR_MAXMB, 0u);
     assert_true((mcr & S32K_CAN_MCR_SRXDIS) != 0u);
     assert_int_equal(field(qfoc_fake_peek(S32K_CAN0_RAM), 24u, 4u), 8u);   /* TX inactive */
 }
@@ -1030,7 +1032,9 @@ static void test_port_015_nvic(void **state)
 
 /* ------------------------------------------------------------------ REQ-PORT-016/017 */
 
-/* REQ-PORT-016, REQ-PORT-017: the interrupts call the library in order.  Drive A runs
+/* REQ-PORT-016, REQ-PORT-017 (with REQ-PORT-008 compare values and output mask,
+   REQ-PORT-011 status frames on the UART, REQ-PORT-012 CAN frames in MB0, as the
+   interrupts use them): the interrupts call the library in order.  Drive A runs
    through the port's interrupts only (samples in ADC result registers, command frames
    byte by byte through the UART interrupt, status frames and CAN frames taken from the
    registers); twin B is called directly with the same samples, temperatures and frames.
@@ -1158,6 +1162,58 @@ static void test_port_017_status_frame_after_command(void **state)
     qfoc_s32k_isr_bind(NULL);
 }
 
+/* REQ-PORT-017: a status frame the UART refuses (the transmitter still busy with the
+   previous frame) and a CAN frame the controller refuses (MB0 still pending) are dropped
+   and counted, not retried; the next command is answered and the next CAN frame sent;
+   binding a drive resets the counts. */
+static void test_port_017_refused_frames_counted(void **state)
+{
+    static qfoc_drive_t d;
+    uint8_t f[7];
+    uint8_t tx[16];
+    const uint8_t other[3] = { 0x01u, 0x02u, 0x03u };
+    uint32_t ms;
+    (void)state;
+    assert_int_equal(port_init_all(&qfoc_params_reference, QFOC_S32K_FTM_INT_RELOAD), QFOC_S32K_OK);
+    assert_int_equal(qfoc_drive_init(&d, &qfoc_params_reference), QFOC_PARAMS_OK);
+    qfoc_s32k_isr_bind(&d);
+    set_samples(2048u, 2048u, 2621u, 2048u, 2048u);
+    assert_int_equal(qfoc_s32k_lin_tx_refused(), 0u);
+    assert_int_equal(qfoc_s32k_can_tx_refused(), 0u);
+    /* LIN: a command is taken while the transmitter still sends another frame. */
+    t_cmd_frame(f, false, false, 0u);
+    uart_rx_frame(f, 7u);
+    assert_true(qfoc_hal_lin_transmit(other, 3u));
+    qfoc_s32k_tick_isr();
+    assert_int_equal(qfoc_s32k_lin_tx_refused(), 1u);
+    assert_int_equal(uart_drain_tx(tx, sizeof tx), 3u);          /* only the other frame */
+    uart_rx_frame(f, 7u);                                         /* the master polls again */
+    qfoc_s32k_tick_isr();
+    assert_int_equal(uart_drain_tx(tx, sizeof tx), 11u);
+    assert_int_equal(qfoc_s32k_lin_tx_refused(), 1u);
+    /* CAN: the first status frame stays pending in MB0 (the fake bus never sends it). */
+    for (ms = 0u; (ms < 200u) && (field(qfoc_fake_peek(S32K_CAN0_MB0_CS), 24u, 4u) != 12u); ms++) {
+        qfoc_s32k_tick_isr();
+    }
+    assert_int_equal(field(qfoc_fake_peek(S32K_CAN0_MB0_CS), 24u, 4u), 12u);
+    assert_int_equal(qfoc_s32k_can_tx_refused(), 0u);
+    for (ms = 0u; ms < 100u; ms++) {
+        qfoc_s32k_tick_isr();
+    }
+    assert_int_equal(qfoc_s32k_can_tx_refused(), 1u);             /* 100 ms later: refused */
+    qfoc_fake_poke(S32K_CAN0_MB0_CS, 8u << 24);                   /* the bus sent it */
+    for (ms = 0u; ms < 100u; ms++) {
+        qfoc_s32k_tick_isr();
+    }
+    assert_int_equal(field(qfoc_fake_peek(S32K_CAN0_MB0_CS), 24u, 4u), 12u);
+    assert_int_equal(qfoc_s32k_can_tx_refused(), 1u);
+    assert_false(qfoc_hal_fault_latched());
+    qfoc_s32k_isr_bind(&d);
+    assert_int_equal(qfoc_s32k_lin_tx_refused(), 0u);
+    assert_int_equal(qfoc_s32k_can_tx_refused(), 0u);
+    qfoc_s32k_isr_bind(NULL);
+}
+
 /* ------------------------------------------------------------------ REQ-PORT-018 */
 
 /* REQ-PORT-018: the ADC chain is supervised: up to QFOC_S32K_MISSED_STEPS_MAX missing
@@ -1218,7 +1274,7 @@ static void test_port_016_unbound_isr_outputs_off(void **state)
     assert_int_equal(qfoc_hal_ms_count(), 1u);
 }
 
-/* REQ-PORT-002, -012, -014: every bounded wait of the set-up ends with a timeout status
+/* REQ-PORT-002, REQ-PORT-012, REQ-PORT-014: every bounded wait of the set-up ends with a timeout status
    when the hardware never answers (and the set-up goes on, so main() can keep the
    outputs off). */
 static void test_port_002_012_014_wait_timeouts(void **state)
@@ -1298,6 +1354,7 @@ int main(void)
         cmocka_unit_test_setup(test_port_016_017_isr_twin, setup),
         cmocka_unit_test_setup(test_port_016_unbound_isr_outputs_off, setup),
         cmocka_unit_test_setup(test_port_017_status_frame_after_command, setup),
+        cmocka_unit_test_setup(test_port_017_refused_frames_counted, setup),
         cmocka_unit_test_setup(test_port_018_supervision, setup),
         cmocka_unit_test_setup(test_port_002_012_014_wait_timeouts, setup),
         cmocka_unit_test_setup(test_port_019_flash_config_field, setup),

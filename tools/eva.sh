@@ -5,6 +5,15 @@
 # of memory accesses) apart from the ACSL properties EVA leaves unknown (those are proved
 # by WP, make prove), writes build/eva/eva.log, eva.md and eva.json, and exits non-zero
 # when a runtime-error alarm remains and EVA_MAX_ALARMS (default 0) is exceeded.
+#
+# Domains: octagons and equalities beside the default intervals, so that relations
+# between two variables (a clamp and its bound) are kept.  One function is analysed by
+# its contract instead of its code (-eva-use-spec): qfoc_isqrt32, whose 16-step loop
+# the intervals cannot follow (the remainder and the root are bounded only together);
+# its contract (include/qfoc/vector.h: the result is the floor of the square root, at
+# most 65535) is proved by WP with every runtime-error check (make prove), and its code
+# has no memory access beyond its locals, so the two analyses together cover it.
+# EVA_EXTRA replaces these options, EVA_PRECISION (default 4) sets -eva-precision.
 set -u
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP"

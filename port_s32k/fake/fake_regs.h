@@ -32,7 +32,7 @@ uint32_t qfoc_fake_addr(uint32_t i);
 /** Number of accessor calls since the last reset. */
 uint32_t qfoc_fake_accesses(void);
 
-/** The interrupt mask of the host build (mcu.c): true after qfoc_s32k_irq_global_enable(). */
+/** The interrupt mask of the host build (cpu.c): true after qfoc_s32k_irq_global_enable(). */
 extern bool qfoc_fake_irq_enabled;
 
 #endif /* QFOC_FAKE_REGS_H */
