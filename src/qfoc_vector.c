@@ -170,7 +170,7 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
             gap = 0;
         }
         //@ assert gap_value: gap == vm - adl;
-        w = (uint32_t)gap * (uint32_t)(vm + adl);
+        w = (uint32_t)gap * (vmu + (uint32_t)adl);
         //@ assert w_value: w == (vm * vm) - (dl * dl);
         ql = (int32_t)qfoc_isqrt32(w);       /* q room left, 1.15 */
         //@ assert ql_sq: ql * ql <= vm * vm;
