@@ -36,10 +36,10 @@ gate eva      make --no-print-directory eva
 gate misra    make --no-print-directory misra
 gate misra-cs make --no-print-directory misra-summary
 gate static   make --no-print-directory static
-gate trace    make --no-print-directory trace
 gate target   make --no-print-directory target
 gate tgt-test make --no-print-directory target-test
 gate bench    make --no-print-directory bench
+gate trace    make --no-print-directory trace
 gate report   make --no-print-directory estimator-report
 gate tune     make --no-print-directory tune-check
 gate demo     make --no-print-directory demo
