@@ -43,6 +43,8 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
+from misra_rule_texts import read_guidelines
+
 BASELINE = "MISRA C:2012 (third edition) with Amendment 1 (2016) and Amendment 2 (2020)"
 FRAMEWORK = "MISRA Compliance:2020"
 CATEGORIES = ("mandatory", "required", "advisory")
@@ -95,16 +97,8 @@ def gid_key(gid):
 
 def read_list(path, prefix):
     """qfoc's guideline list: 'N.M C|summary' lines -> {id: (category, summary)}."""
-    out = {}
-    with open(path, encoding="utf-8") as f:
-        for raw in f:
-            raw = raw.strip()
-            if not raw or raw.startswith("#"):
-                continue
-            head, text = raw.split("|", 1)
-            num, cat = head.split()
-            out[f"{prefix} {num}"] = (CAT_LETTER[cat], text.strip())
-    return out
+    return {f"{prefix} {num}": (CAT_LETTER[cat], text)
+            for num, cat, text in read_guidelines(path)}
 
 
 def read_plan(path, errors):

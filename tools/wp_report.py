@@ -3,7 +3,7 @@
 
 usage: wp_report.py OUTDIR RESULTS_MD
 Reads OUTDIR/<unit>.json (-wp-report-json) and OUTDIR/<unit>.log, writes
-RESULTS_MD (committed under proofs/wp/) and OUTDIR/summary.json, prints
+RESULTS_MD (committed under proofs/wp/) and OUTDIR/wp-summary.json, prints
 'proved N / M goals' and exits 1 unless N == M and every unit ran cleanly.
 """
 import json
