@@ -3,8 +3,10 @@
 #
 # Each unit (src/*.c, and proofs/wp/q15_unit.c for the static inline Q15 header) is
 # proved on its own with -wp-fct restricted to the functions that unit defines, so a
-# header's inline functions are proved once, in their own unit.  Units run two at a
-# time.  Lemmas (specs/*.acsl) are not selected by -wp-fct: they are proved in a unit
+# header's inline functions are proved once, in their own unit.  A unit is proved by
+# one or more jobs (tools/wp_jobs.py: the prover order recorded per unit or function
+# in proofs/wp/provers.txt, and large units split over several jobs); jobs run two at
+# a time.  Lemmas (specs/*.acsl) are not selected by -wp-fct: they are proved in a unit
 # of their own that includes every public header, with -wp-prop=@lemma, so no lemma
 # is ever used unproved.  Runtime-error goals (-wp-rte) cover signed and unsigned overflow, downcasts,
 # shifts, division by zero and memory access.  The summary and per-function table are
@@ -28,68 +30,59 @@ rm -f "$OUT"/*.json "$OUT"/*.log "$OUT"/*.time
     for h in include/qfoc/*.h; do echo "#include \"qfoc/$(basename "$h")\""; done
 } > "$OUT/lemmas_unit.c"
 
-# Longest units first, by the wall times of the last full run (proofs/wp/times.txt,
-# committed; a unit not listed there goes first), so the job slots finish close together.
+# The jobs (tools/wp_jobs.py): a unit's functions in one or more Frama-C runs, each with
+# the prover order proofs/wp/provers.txt records for them, the longest jobs first by the
+# wall times of the last full run (proofs/wp/times.txt, committed).
 TIMES=proofs/wp/times.txt
-order_by_time() {
-    for u in src/*.c "$OUT/lemmas_unit.c" proofs/wp/q15_unit.c; do
-        t=$(sed -n "s/^$(basename "$u" .c) \([0-9]*\)$/\1/p" "$TIMES" 2>/dev/null)
-        echo "${t:-999999} $u"
-    done | sort -rn | cut -d' ' -f2
-}
-units=${*:-$(order_by_time)}
+"$PY" tools/wp_jobs.py "$OUT" "$@" > "$OUT/jobs.txt"
 
-prove_one() {
-    unit=$1
-    name=$(basename "$unit" .c)
-    case "$unit" in
-        */lemmas_unit.c) select="-wp-prop=@lemma" ;;
-        proofs/wp/q15_unit.c) select="-wp-fct=$("$PY" tools/c_functions.py include/qfoc/q15.h)" ;;
-        *) select="-wp-fct=$("$PY" tools/c_functions.py "$unit")" ;;
+prove_one() {  # prove_one JOB UNIT_PATH PROVERS SELECT
+    job=$1
+    unit=$2
+    provers=$3
+    case "$4" in
+        @lemma) select="-wp-prop=@lemma" ;;
+        -) select="" ;;
+        *) select="-wp-fct=$4" ;;
     esac
-    if [ "$select" = "-wp-fct=" ]; then
+    if [ -z "$select" ]; then
         # constant data only: nothing to prove, but it must still be valid C for Frama-C
-        if frama-c -cpp-extra-args="-Iinclude -Ispecs" "$unit" > "$OUT/$name.data" 2>&1; then
-            echo "  $name: data only, no function (parsed by Frama-C)"
+        if frama-c -cpp-extra-args="-Iinclude -Ispecs" "$unit" > "$OUT/$job.data" 2>&1; then
+            echo "  $job: data only, no function (parsed by Frama-C)"
         else
-            echo "  $name: Frama-C cannot parse it (see $OUT/$name.data)"
-            echo "$name" >> "$OUT/failed"
+            echo "  $job: Frama-C cannot parse it (see $OUT/$job.data)"
+            echo "$job" >> "$OUT/failed"
         fi
         return 0
     fi
-    # Prover order of the unit (proofs/wp/provers.txt; z3 first unless listed): WP tries
-    # the provers of a goal one after the other, so the one that usually succeeds on a
-    # unit's goals goes first.  Both are always available to every goal.
-    provers=$(sed -n "s/^$name \([a-z0-9,]*\)$/\1/p" proofs/wp/provers.txt 2>/dev/null)
-    provers=${provers:-z3,cvc4}
     start=$(date +%s)
     if frama-c -cpp-extra-args="-Iinclude -Ispecs" "$unit" \
         -wp -wp-rte "$select" \
         -warn-signed-overflow -warn-signed-downcast \
         -warn-unsigned-overflow -warn-unsigned-downcast \
         -wp-prover "$provers" -wp-timeout "$TIMEOUT" -wp-par 1 \
-        -wp-report-json "$OUT/$name.json" > "$OUT/$name.log" 2>&1; then
+        -wp-report-json "$OUT/$job.json" > "$OUT/$job.log" 2>&1; then
         rc=0
     else
         rc=$?
     fi
     end=$(date +%s)
-    echo "$((end - start))" > "$OUT/$name.time"
-    echo "  $name: $(grep 'Proved goals' "$OUT/$name.log" | sed 's/.*Proved goals: *//') ($((end - start)) s, $provers, frama-c exit $rc)"
-    [ "$rc" = 0 ] || echo "$name" >> "$OUT/failed"
+    echo "$((end - start))" > "$OUT/$job.time"
+    echo "  $job: $(grep 'Proved goals' "$OUT/$job.log" | sed 's/.*Proved goals: *//') ($((end - start)) s, $provers, frama-c exit $rc)"
+    [ "$rc" = 0 ] || echo "$job" >> "$OUT/failed"
 }
 
 rm -f "$OUT/failed"
-echo "prove: Frama-C WP (z3 and cvc4, timeout ${TIMEOUT} s) on $(echo $units | wc -w) units"
+echo "prove: Frama-C WP (z3 and cvc4, timeout ${TIMEOUT} s): $(wc -l < "$OUT/jobs.txt") jobs over $(cut -d' ' -f2 "$OUT/jobs.txt" | sort -u | wc -l) units"
 export OUT TIMEOUT
 pids=""
-for u in $units; do
-    prove_one "$u" &
+while read -r job unit provers select; do
+    prove_one "$job" "$unit" "$provers" "$select" &
     pids="$pids $!"
     throttle
-done
+done < "$OUT/jobs.txt"
 wait
-# after a full run, record the wall time of every unit for the next run's order
+# after a full run, record the wall time of every job for the next run's order
 if [ $# = 0 ]; then
     for t in "$OUT"/*.time; do
         [ -f "$t" ] && echo "$(basename "$t" .time) $(cat "$t")"

@@ -2,7 +2,8 @@
 """Summarise Frama-C WP runs: per-function goals, proved, provers and time.
 
 usage: wp_report.py OUTDIR RESULTS_MD
-Reads OUTDIR/<unit>.json (-wp-report-json) and OUTDIR/<unit>.log, writes
+Reads OUTDIR/<job>.json (-wp-report-json) and OUTDIR/<job>.log of every job
+(a unit, or a part UNIT@K of one: tools/wp_jobs.py), writes
 RESULTS_MD (committed under proofs/wp/) and OUTDIR/wp-summary.json, prints
 'proved N / M goals' and exits 1 unless N == M and every unit ran cleanly.
 """
@@ -22,6 +23,33 @@ def goal_time_ms(rest: str) -> float:
         t = float(value) * (1000.0 if unit == "s" else 1.0)
         best = max(best, t)
     return best
+
+
+def print_second_prover(outdir: str) -> None:
+    """Name the functions with goals that their job's first prover did not prove: each
+    of them waited for that prover to fail (a time-out for Z3), and is a candidate for
+    a line of proofs/wp/provers.txt."""
+    jobs = os.path.join(outdir, "jobs.txt")
+    if not os.path.exists(jobs):
+        return
+    with open(jobs, encoding="utf-8") as f:
+        first = {w[0]: w[2].split(",")[0] for w in (line.split() for line in f) if len(w) == 4}
+    for job, prover in sorted(first.items()):
+        log = os.path.join(outdir, job + ".log")
+        if not os.path.exists(log):
+            continue
+        late = {}
+        with open(log, encoding="utf-8") as f:
+            for line in f:
+                m = GOAL.match(line.strip())
+                if m and m.group(3) == "Valid":
+                    who = m.group(1).split()[0].lower()
+                    if who not in ("qed", prover):
+                        fn = m.group(2)[len("typed_"):]
+                        late[fn] = late.get(fn, 0) + 1
+        if late:
+            print(f"prove: {job}: {sum(late.values())} goal(s) proved only after {prover} "
+                  f"(see proofs/wp/provers.txt): " + ", ".join(sorted(late)))
 
 
 def main() -> int:
@@ -66,7 +94,8 @@ def main() -> int:
                 mine = [g for g in goals if g[0].startswith("typed_" + fn + "_")]
             provers = sorted({g[1].split()[0] for g in mine if g[2] == "Valid"})
             ms = sum(g[3] for g in mine)
-            rows.append((unit, fn, t, v, "+".join(provers) or "-", ms))
+            # a unit proved in several jobs (tools/wp_jobs.py) logs as UNIT@K
+            rows.append((unit.split("@")[0], fn, t, v, "+".join(provers) or "-", ms))
             total += t
             valid += v
     rows.sort(key=lambda r: (r[0], r[1]))
@@ -85,6 +114,7 @@ def main() -> int:
         json.dump({"proved": valid, "total": total, "clean": clean,
                    "functions": [dict(zip(("unit", "function", "goals", "proved", "provers",
                                            "time_ms"), r)) for r in rows]}, f, indent=1)
+    print_second_prover(outdir)
     for unit, fn, t, v, _p, _ms in rows:
         if v != t:
             print(f"prove: {unit}: {fn}: {t - v} goal(s) not proved")
