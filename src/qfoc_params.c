@@ -74,7 +74,9 @@ static uint32_t qfoc_crc_u32(uint32_t crc, uint32_t v)
 }
 
 /* two consecutive 16-bit fields, lo first: their four bytes in serialisation order
-   (lo low, lo high, hi low, hi high) are the little-endian bytes of lo | hi << 16 */
+   (lo low, lo high, hi low, hi high) are the little-endian bytes of lo | hi << 16,
+   written as a product (hi * 65536 <= 4294901760: linear, so WP proves it free of
+   overflow; it does not for the shift) */
 /*@ assigns \nothing; */
 static inline uint32_t qfoc_crc_2x16(uint32_t crc, uint16_t lo, uint16_t hi)
 {
