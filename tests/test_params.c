@@ -182,7 +182,7 @@ static int setup(void **state)
 }
 
 /* REQ-PAR-002: the CRC-32 of "123456789" is the published check value 0xCBF43926,
-   and the table-driven reference agrees with the library's bitwise update for every
+   and the byte-table reference agrees with the library's nibble-table update for every
    register value class and every byte. */
 static void test_par_002_crc_check_value(void **state)
 {

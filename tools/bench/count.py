@@ -894,8 +894,8 @@ def write_report(md_path, r):
              + ", ".join(f"`{n}` {i}" + (f" ({c} calls)" if c > 1 else "")
                          for n, i, c in fn["svpwm"]["max_breakdown"]) + ".\n")
     L.append(f"Tick: the 100 ms job re-checks the parameter table (`qfoc_params_check`, "
-             f"{fn['params_check']['max']} instructions): its CRC-32 is computed bit by bit "
-             "(8 shift / XOR steps per byte, no lookup table), most of the tick's "
+             f"{fn['params_check']['max']} instructions): its CRC-32 takes two lookups in a "
+             "16-entry table per byte (199 bytes), most of the tick's "
              f"{main['tick']['max']}; the other ticks take at most "
              f"{max(x for x in (main['tick']['plain_max'], main['tick']['frame_max']) if x)}.\n")
     big = sorted(sz["drive_unused_by_object"].items(), key=lambda kv: -kv[1])
