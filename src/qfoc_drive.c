@@ -24,6 +24,8 @@
 #define DRV_OFFSET_SHIFT_MAX ((uint8_t)10u)
 /** The 100 ms job runs when ms100 reaches this (first run 100 ms after init). */
 #define DRV_MS100_LAST ((uint8_t)99u)
+/** The table check's steps run at ms100 = 94 .. 98, one a tick, the verdict at 98. */
+#define DRV_SCAN_FIRST ((uint8_t)(DRV_MS100_LAST - QFOC_PARAMS_SCAN_STEPS))
 /** A quarter turn, 90 electrical degrees, in angle units. */
 #define DRV_QUARTER_TURN ((int32_t)16384)
 /** motorParaChange hysteresis: switch back below para_speed x 15/16. */
@@ -939,13 +941,38 @@ static void drv_status(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     st->temp_dc = (in->t_ipm > in->t_pcb) ? in->t_ipm : in->t_pcb;
 }
 
-/* The 100 ms job (document Ms_100_job, REQ-DRV-011, REQ-DRV-012): table re-check, CAN
-   status frame with the alternating identifier, motorParaChange. */
+/* The table re-check (REQ-DRV-010), one step of qfoc_params_scan_step() a tick at
+   ms100 = 94 .. 98: four quarters of the CRC, then identity, CRC and ranges; a failed
+   verdict clears table_ok for good. */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  assigns d->s.table_ok, d->s.scan_crc;
+  ensures kept: !\old(d->s.table_ok) ==> !d->s.table_ok;
+*/
+static void drv_table_scan(qfoc_drive_t *d)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    if ((s->ms100 >= DRV_SCAN_FIRST) && (s->ms100 < DRV_MS100_LAST)) {
+        const int32_t st = qfoc_params_scan_step(&s->scan_crc, d->p,
+                                                 (uint8_t)(s->ms100 - DRV_SCAN_FIRST));
+        if (st != QFOC_PARAMS_BUSY) {
+            s->table_ok = s->table_ok && (st == QFOC_PARAMS_OK);
+        } else {
+            /* the scan goes on */
+        }
+    } else {
+        /* no step of the scan in this tick */
+    }
+}
+
+/* The 100 ms job (document Ms_100_job, REQ-DRV-011, REQ-DRV-012): CAN status frame with
+   the alternating identifier, motorParaChange. */
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
   requires inv: DRV_LINK(&d->s.link);
-  assigns d->s.table_ok, d->s.hs, d->s.link.can_b, d->s.out.can, d->s.out.can_send;
+  assigns d->s.hs, d->s.link.can_b, d->s.out.can, d->s.out.can_send;
   ensures inv: DRV_LINK(&d->s.link);
 */
 static void drv_job_100ms(qfoc_drive_t *d)
@@ -955,7 +982,6 @@ static void drv_job_100ms(qfoc_drive_t *d)
     const qfoc_q15_t w = qfoc_q15_abs(d->f.speed_f);
     const qfoc_q15_t hs_on = qfoc_q15_abs(p->drive.para_speed);
     const qfoc_q15_t hs_off = (qfoc_q15_t)((int32_t)hs_on - ((int32_t)hs_on / DRV_HS_HYST_DIV));
-    s->table_ok = s->table_ok && (qfoc_params_check(p) == QFOC_PARAMS_OK);
     qfoc_can_status(&s->link, &s->status, &s->out.can);
     s->out.can_send = true;
     if (w > hs_on) {
@@ -1032,16 +1058,18 @@ static void drv_answer(qfoc_drive_slow_t *s, bool accepted)
     }
 }
 
-/* The 100 ms period: its job on the last millisecond of each period. */
+/* The 100 ms period: the table check on its ticks 94 .. 98, the job on the last. */
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
   requires inv: DRV_LINK(&d->s.link);
-  assigns d->s.ms100, d->s.table_ok, d->s.hs, d->s.link.can_b, d->s.out.can, d->s.out.can_send;
+  assigns d->s.ms100, d->s.table_ok, d->s.scan_crc, d->s.hs, d->s.link.can_b, d->s.out.can,
+          d->s.out.can_send;
   ensures inv: DRV_LINK(&d->s.link);
 */
 static void drv_ms100(qfoc_drive_t *d)
 {
+    drv_table_scan(d);
     if (d->s.ms100 >= DRV_MS100_LAST) {
         d->s.ms100 = 0u;
         drv_job_100ms(d);
@@ -1207,7 +1235,7 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
           s->db_stall, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
           s->iq_ref, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
-          s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
+          s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
   ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
                s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);
   ensures accepted: st == QFOC_PARAMS_OK ==>
@@ -1255,6 +1283,7 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int
     s->clear_seq = 0u;
     s->ms100 = 0u;
     s->table_ok = (st == QFOC_PARAMS_OK);
+    s->scan_crc = 0u;
     s->calib_done = false;
     s->hs = false;
     s->run_ms = 0u;

@@ -319,15 +319,22 @@ bool qfoc_params_is_valid(const qfoc_param_table_t *t)
     return scaling && blocks && limits && drive && cross;
 }
 
-/* public interface, also called by qfoc_params_load (DEV-002) */
-/* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
-int32_t qfoc_params_check(const qfoc_param_table_t *t)
+/* The verdict of a check from the table and a CRC of it: identity, CRC, ranges, the
+   order of qfoc_params_check(). */
+/*@ requires valid_t: \valid_read(t);
+    assigns \nothing;
+    ensures status: \result == QFOC_PARAMS_OK || \result == QFOC_PARAMS_ERR_ID ||
+                    \result == QFOC_PARAMS_ERR_CRC || \result == QFOC_PARAMS_ERR_RANGE;
+    ensures id: \result == QFOC_PARAMS_ERR_ID <==> !ParamsIdOk(t);
+    ensures ok: \result == QFOC_PARAMS_OK ==> ParamsIdOk(t) && ParamsValid(t);
+    ensures range: \result == QFOC_PARAMS_ERR_RANGE ==> ParamsIdOk(t) && !ParamsValid(t); */
+static int32_t qfoc_params_verdict(const qfoc_param_table_t *t, uint32_t crc)
 {
     int32_t status;
 
     if ((t->magic != QFOC_PARAMS_MAGIC) || (t->version != QFOC_PARAMS_VERSION)) {
         status = QFOC_PARAMS_ERR_ID;
-    } else if (t->crc != qfoc_params_crc(t)) {
+    } else if (t->crc != crc) {
         status = QFOC_PARAMS_ERR_CRC;
     } else if (!qfoc_params_is_valid(t)) {
         status = QFOC_PARAMS_ERR_RANGE;
@@ -335,6 +342,13 @@ int32_t qfoc_params_check(const qfoc_param_table_t *t)
         status = QFOC_PARAMS_OK;
     }
     return status;
+}
+
+/* public interface, also called by qfoc_params_load (DEV-002) */
+/* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
+int32_t qfoc_params_check(const qfoc_param_table_t *t)
+{
+    return qfoc_params_verdict(t, qfoc_params_crc(t));
 }
 
 int32_t qfoc_params_load(qfoc_param_table_t *ram, const qfoc_param_table_t *rom)
@@ -348,5 +362,37 @@ int32_t qfoc_params_load(qfoc_param_table_t *ram, const qfoc_param_table_t *rom)
     } else {
         /* refused: RAM keeps what it held, the caller stays in its safe state */
     }
+    return status;
+}
+
+int32_t qfoc_params_scan_step(uint32_t *crc, const qfoc_param_table_t *t, uint8_t step)
+{
+    int32_t status = QFOC_PARAMS_BUSY;
+    uint32_t c = *crc;
+
+    /* the serialisation of qfoc_params_crc() in four parts of 46 to 56 bytes */
+    if (step == 0u) {
+        c = qfoc_crc_head(QFOC_CRC32_INIT, t);
+        c = qfoc_crc_svpwm(c, &t->svpwm);
+        c = qfoc_crc_pi(c, &t->pi_id);
+        c = qfoc_crc_pi(c, &t->pi_iq);
+    } else if (step == 1u) {
+        c = qfoc_crc_pi(c, &t->pi_speed);
+        c = qfoc_crc_pi(c, &t->pi_fw);
+        c = qfoc_crc_flux(c, &t->flux);
+        c = qfoc_crc_pll(c, &t->pll);
+    } else if (step == 2u) {
+        c = qfoc_crc_limits(c, t);
+        c = qfoc_crc_drive_start(c, &t->drive);
+        c = qfoc_crc_drive_run(c, &t->drive);
+    } else if (step == 3u) {
+        c = qfoc_crc_drive_prot(c, &t->drive);
+        c = qfoc_crc_drive_feat(c, &t->drive);
+    } else if (step == 4u) {
+        status = qfoc_params_verdict(t, c ^ QFOC_CRC32_XOROUT);
+    } else {
+        /* not a step of the scan: nothing */
+    }
+    *crc = c;
     return status;
 }

@@ -222,6 +222,7 @@ typedef struct {
     uint8_t clear_seq;        /**< incremented when a fault clear is accepted */
     uint8_t ms100;            /**< ticks of the current 100 ms period, 0..99 */
     bool table_ok;            /**< result of the last table check */
+    uint32_t scan_crc;        /**< CRC register of the table check in progress */
     bool calib_done;          /**< offsets calibrated in range */
     bool hs;                  /**< request: high-speed inductances (motorParaChange) */
     uint32_t run_ms;          /**< time in RUN, ms, saturating (Motor_Run_Time) */

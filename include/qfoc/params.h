@@ -41,7 +41,7 @@
  * Only a table that passes all three is copied to RAM.  Every function is total:
  * any bit pattern in the table is accepted as input.
  *
- * Requirements: REQ-PAR-001 .. REQ-PAR-007 (specs/requirements/params.md).
+ * Requirements: REQ-PAR-001 .. REQ-PAR-008 (specs/requirements/params.md).
  */
 #ifndef QFOC_PARAMS_H
 #define QFOC_PARAMS_H
@@ -193,6 +193,61 @@ bool qfoc_params_is_valid(const qfoc_param_table_t *t);
   ensures range: \result == QFOC_PARAMS_ERR_RANGE ==> ParamsIdOk(t) && !ParamsValid(t);
 */
 int32_t qfoc_params_check(const qfoc_param_table_t *t);
+
+/** qfoc_params_scan_step(): the scan goes on (a step before the last). */
+#define QFOC_PARAMS_BUSY ((int32_t)1)
+/** Steps of the table check spread over several calls (qfoc_params_scan_step()). */
+#define QFOC_PARAMS_SCAN_STEPS ((uint8_t)5u)
+
+/**
+ * @brief One step of the table check of qfoc_params_check(), spread over
+ *        QFOC_PARAMS_SCAN_STEPS calls so that no call takes long (the drive's tick).
+ * @param[in,out] crc  the CRC register carried from one step to the next (any value;
+ *                     step 0 starts it)
+ * @param[in]     t    table (any bit pattern)
+ * @param[in]     step 0 .. QFOC_PARAMS_SCAN_STEPS - 1, in this order: steps 0 .. 3
+ *                     fold a quarter of the table's serialisation (params.h file
+ *                     comment) each into *crc; step 4 checks identity, compares the CRC
+ *                     and checks the ranges.  Any other value does nothing.
+ * @return QFOC_PARAMS_BUSY after steps 0 .. 3 and any step out of range; after
+ *         step 4, the status qfoc_params_check() gives (same order: identity, CRC,
+ *         ranges), the CRC being the one folded by steps 0 .. 3.  When the table did not
+ *         change between step 0 and step 4 that is qfoc_params_check(t); when it did,
+ *         a changed byte is seen by this scan or by the next one.  A corrupted *crc
+ *         between two steps gives QFOC_PARAMS_ERR_CRC (never a false OK but with the
+ *         probability of a CRC-32 collision).
+ *
+ * Instructions per step: at most one quarter of the CRC, or the range check
+ * (`make bench`, row `qfoc_params_scan_step`).
+ *
+ * Requirements: REQ-PAR-008.
+ */
+/*@
+  requires valid_crc: \valid(crc);
+  requires valid_t: \valid_read(t);
+  requires sep: \separated(crc, t);
+  assigns *crc;
+  ensures status: \result == QFOC_PARAMS_BUSY || \result == QFOC_PARAMS_OK ||
+                  \result == QFOC_PARAMS_ERR_ID || \result == QFOC_PARAMS_ERR_CRC ||
+                  \result == QFOC_PARAMS_ERR_RANGE;
+  behavior fold:
+    assumes step < QFOC_PARAMS_SCAN_STEPS - 1;
+    ensures busy: \result == QFOC_PARAMS_BUSY;
+  behavior last:
+    assumes step == QFOC_PARAMS_SCAN_STEPS - 1;
+    ensures done: \result != QFOC_PARAMS_BUSY;
+    ensures crc: *crc == \old(*crc);
+    ensures id: \result == QFOC_PARAMS_ERR_ID <==> !ParamsIdOk(t);
+    ensures ok: \result == QFOC_PARAMS_OK ==> ParamsIdOk(t) && ParamsValid(t);
+    ensures range: \result == QFOC_PARAMS_ERR_RANGE ==> ParamsIdOk(t) && !ParamsValid(t);
+  behavior other:
+    assumes step >= QFOC_PARAMS_SCAN_STEPS;
+    ensures busy: \result == QFOC_PARAMS_BUSY;
+    ensures crc: *crc == \old(*crc);
+  complete behaviors;
+  disjoint behaviors;
+*/
+int32_t qfoc_params_scan_step(uint32_t *crc, const qfoc_param_table_t *t, uint8_t step);
 
 /**
  * @brief Check a constant table and copy it to RAM (the document's

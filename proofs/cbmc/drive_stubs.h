@@ -152,6 +152,19 @@ void stub_pm_update(qfoc_phase_mon_t *m, const qfoc_abc_t *i) { (void)m; (void)i
 void stub_pm_reset(qfoc_phase_mon_t *m) { (void)m; }
 bool stub_pm_imbalanced(const qfoc_phase_mon_t *m, qfoc_q15_t a, qfoc_q15_t b) { (void)m; (void)a; (void)b; return ANY_B(1); }
 int32_t stub_params_check(const qfoc_param_table_t *t) { (void)t; return ANY_B(0) ? QFOC_PARAMS_OK : QFOC_PARAMS_ERR_CRC; }
+int32_t stub_params_scan_step(uint32_t *crc, const qfoc_param_table_t *t, uint8_t step)
+{
+    int32_t st = QFOC_PARAMS_BUSY;
+    (void)t;
+    if (step == (uint8_t)(QFOC_PARAMS_SCAN_STEPS - 1u)) {
+        st = ANY_B(0) ? QFOC_PARAMS_OK : QFOC_PARAMS_ERR_CRC;
+    } else if (step < QFOC_PARAMS_SCAN_STEPS) {
+        *crc = (uint32_t)ANY_U16(1);
+    } else {
+        /* not a step: nothing */
+    }
+    return st;
+}
 qfoc_q15_t stub_vec_mag(qfoc_q15_t x, qfoc_q15_t y)
 {
     const qfoc_q15_t m = ANY_S16(3);
