@@ -14,6 +14,19 @@
 #define QFOC_FLT_Q15_HALF ((int64_t)16384)
 /** Q30 -> Q31 factor: a Q15 x Q15 product (2.30) times 2 is 1.31. */
 #define QFOC_FLT_Q30_TO_Q31 ((int32_t)2)
+/** Round-to-nearest offset of the Q31 -> Q15 conversion: 2^15 = 32768. */
+#define QFOC_FLT_Q31_HALF_U ((uint32_t)32768u)
+/** Q31 -> Q15 divisor: 2^16 = 65536. */
+#define QFOC_FLT_Q31_ONE_U ((uint32_t)65536u)
+/** Largest Q15 magnitude of the symmetric range: 32767. */
+#define QFOC_FLT_Q15_MAX_U ((uint32_t)32767u)
+/** Low-pass coefficient scale 2^17: alpha (Q15) x 2^17 puts the increment (Q31)
+    in the high word of the 64-bit product. */
+#define QFOC_LPF_ALPHA_SCALE ((uint32_t)131072u)
+/** Round-to-nearest offset 16384 x 2^17 = 2^31 of that product. */
+#define QFOC_LPF_ROUND_HALF ((uint64_t)2147483648u)
+/** 2^32: the weight of the high word. */
+#define QFOC_LPF_HIGH_WORD ((uint64_t)4294967296u)
 /** Safe low-pass coefficient after a rejected init: 32767 / 32768 = 0.99997. */
 #define QFOC_LPF_ALPHA_SAFE ((qfoc_q15_t)32767)
 /** Safe leak after a rejected init: 32767 / 32768 = 0.99997 (state decays at once). */
@@ -56,6 +69,66 @@ static int64_t qfoc_flt_round_q15(int64_t x)
         r = -((QFOC_FLT_Q15_HALF - x) / QFOC_FLT_Q15_ONE);
     }
     return r;
+}
+
+/**
+ * @brief Q31 -> Q15: x / 65536 rounded to nearest (ties away from zero) and
+ *        saturated to [-32767, 32767], for x in the symmetric Q31 range.
+ *
+ * Scaling and overflow: the magnitude |x| <= 2^31 - 1 is rounded as an unsigned
+ * value, |x| + 32768 < 2^32, so no right shift of a negative value is needed; the
+ * quotient is at most 32768 and is saturated before the sign is restored.
+ */
+/*@
+  requires x_range: QfocQ31Sym(x);
+  assigns \nothing;
+  ensures value: \result == QfocSat15(QfocRoundDiv(x, 65536));
+  ensures range: QfocQ15Sym(\result);
+*/
+static qfoc_q15_t qfoc_flt_q15_from_q31(qfoc_q31_t x)
+{
+    int32_t r;
+    if (x >= 0) {
+        const uint32_t ux = (uint32_t)x;
+        uint32_t m = (ux + QFOC_FLT_Q31_HALF_U) / QFOC_FLT_Q31_ONE_U;
+        if (m > QFOC_FLT_Q15_MAX_U) {
+            m = QFOC_FLT_Q15_MAX_U;
+        }
+        r = (int32_t)m;
+    } else {
+        const int32_t nx = -x;
+        const uint32_t ux = (uint32_t)nx;
+        uint32_t m = (ux + QFOC_FLT_Q31_HALF_U) / QFOC_FLT_Q31_ONE_U;
+        if (m > QFOC_FLT_Q15_MAX_U) {
+            m = QFOC_FLT_Q15_MAX_U;
+        }
+        r = -(int32_t)m;
+    }
+    return (qfoc_q15_t)r;
+}
+
+/**
+ * @brief Rounded low-pass increment magnitude: alpha x d / 32768 rounded to
+ *        nearest (ties away from zero), for a distance 0 <= d < 2^32.
+ *
+ * Scaling and overflow: alpha x 2^17 < 2^32; (alpha 2^17) x d + 2^31 =
+ * 2^17 (alpha d + 16384) < 2^64 in one unsigned 32 x 32 -> 64 bit
+ * multiply-accumulate, whose high word is (alpha d + 16384) / 32768 (no shift
+ * of a 64-bit value).  The result is at most d (alpha < 32768).
+ */
+/*@
+  requires alpha_range: 0 < alpha <= 32767;
+  requires d_range: 0 <= d <= 4294967295;
+  assigns \nothing;
+  ensures value: \result == QfocRoundDiv(alpha * d, 32768);
+  ensures bound: \result <= d;
+*/
+static uint32_t qfoc_lpf_inc(qfoc_q15_t alpha, uint32_t d)
+{
+    const uint32_t a17 = (uint32_t)alpha * QFOC_LPF_ALPHA_SCALE;
+    const uint64_t p = ((uint64_t)a17 * (uint64_t)d) + QFOC_LPF_ROUND_HALF;
+    /*@ assert p_value: p == 131072 * (alpha * d + 16384); */
+    return (uint32_t)(p / QFOC_LPF_HIGH_WORD);
 }
 
 /**
@@ -104,29 +177,32 @@ void qfoc_lpf_reset(qfoc_lpf_t *f, qfoc_q15_t value)
 
 qfoc_q15_t qfoc_lpf_step(qfoc_lpf_t *f, qfoc_q15_t u)
 {
-    const int64_t y = (int64_t)f->state;
-    const int64_t alpha = (int64_t)f->alpha;
-    /* u - y in Q31, |d| <= 2147418112 + 2147483647 < 2^33 */
-    const int64_t d = (int64_t)qfoc_flt_q31_from_input(u) - y;
-    int64_t prod;
-    int64_t inc;
+    const qfoc_q31_t y = f->state;
+    /* u in Q31, within [-32767, 32767] x 65536 */
+    const qfoc_q31_t in = qfoc_flt_q31_from_input(u);
+    qfoc_q31_t next;
 
-    /*@ assert d_range: -4294901759 <= d <= 4294901759; */
-    /*@ assert prod_hi: d >= 0 ==> 0 <= alpha * d <= 32767 * d; */
-    /*@ assert prod_lo: d < 0 ==> 32767 * d <= alpha * d < 0; */
-    /* alpha (1.15) x d (1.31) = 2.46, |.| < 2^48 */
-    prod = alpha * d;
-    /* back to Q31, rounded: |inc| <= |d| because alpha < 32768 */
-    inc = qfoc_flt_round_q15(prod);
-    /*@ assert inc_hi: d >= 0 ==> 0 <= inc <= d; */
-    /*@ assert inc_lo: d < 0 ==> d <= inc <= 0; */
-    /* y + inc lies between y and u (both in the symmetric Q31 range), so the
-       saturation never changes the value (proved: contract of qfoc_lpf_step); it
-       makes the range of the state evident to bit-level checkers as well */
-    f->state = qfoc_q31_sat(y + inc);
+    if (in >= y) {
+        /* rising: d = u - y in [0, 2^32); 0 <= increment <= d, so y + increment
+           lies in [y, u] and fits 32 bits */
+        const int64_t d64 = (int64_t)in - (int64_t)y;
+        const uint32_t d = (uint32_t)d64;
+        const uint32_t inc = qfoc_lpf_inc(f->alpha, d);
+        /*@ assert inc_value: inc == QfocRoundDiv(f->alpha * (LpfInput(u) - y), 32768); */
+        next = (qfoc_q31_t)((int64_t)y + (int64_t)inc);
+    } else {
+        /* falling: d = y - u in (0, 2^32); the increment is -round(alpha d / 32768)
+           (rounding ties away from zero is symmetric), y - |increment| in [u, y] */
+        const int64_t d64 = (int64_t)y - (int64_t)in;
+        const uint32_t d = (uint32_t)d64;
+        const uint32_t inc = qfoc_lpf_inc(f->alpha, d);
+        /*@ assert inc_value: -inc == QfocRoundDiv(f->alpha * (LpfInput(u) - y), 32768); */
+        next = (qfoc_q31_t)((int64_t)y - (int64_t)inc);
+    }
+    f->state = next;
     /* Q31 -> Q15 rounded (saturates only if the state was set outside the Q15
        range by the caller) */
-    return qfoc_q15_from_q31(f->state);
+    return qfoc_flt_q15_from_q31(next);
 }
 
 bool qfoc_leaky_is_valid(const qfoc_leaky_int_t *f)

@@ -8,49 +8,61 @@
 #include "qfoc/q15.h"
 
 /** Q15 -> Q31 widening factor: 2^16 = 65536. */
-#define QFOC_PI_Q15_TO_Q31 ((int64_t)65536)
-/** Q30 -> Q31 factor: a Q15 x Q15 product (2.30) times 2 is 1.31. */
-#define QFOC_PI_Q30_TO_Q31 ((int64_t)2)
+#define QFOC_PI_Q15_TO_Q31 ((int32_t)65536)
+/** Q31 -> Q15 divisor, 2^16, for the rounding of the output. */
+#define QFOC_PI_Q31_ONE_U ((uint32_t)65536u)
+/** Rounding bias: 32768 x 65536 (makes every clamped output non-negative) plus
+    the round-to-nearest offset 32768: 2147516416. */
+#define QFOC_PI_ROUND_BIAS ((int64_t)2147516416)
+/** The bias in Q15: 32768. */
+#define QFOC_PI_Q15_BIAS ((int32_t)32768)
 
 /**
- * @brief 2^s for a gain shift s in 0..15 (table look-up, no shift operator).
+ * @brief Gain scale 2^(s+1) for a gain shift s in 0..15: the shift and the
+ *        Q30 -> Q31 factor 2 in one table look-up (no shift operator).
  */
 /*@
   requires shift_range: s <= 15;
   assigns \nothing;
-  ensures value: \result == PiPow2(s);
-  ensures range: 1 <= \result <= 32768;
+  ensures value: \result == 2 * PiPow2(s);
+  ensures range: 2 <= \result <= 65536;
 */
-static int64_t qfoc_pi_pow2(uint8_t s)
+static int32_t qfoc_pi_scale(uint8_t s)
 {
-    /* 2^s for s = 0..15 (the gain shifts); exact integers 1 .. 32768 */
-    static const int32_t qfoc_pi_pow2_table[16] = {
-        1, 2, 4, 8, 16, 32, 64, 128,
-        256, 512, 1024, 2048, 4096, 8192, 16384, 32768
+    /* 2^(s+1) for s = 0..15; exact integers 2 .. 65536 */
+    static const int32_t qfoc_pi_scale_table[16] = {
+        2, 4, 8, 16, 32, 64, 128, 256,
+        512, 1024, 2048, 4096, 8192, 16384, 32768, 65536
     };
-    return (int64_t)qfoc_pi_pow2_table[s];
+    return qfoc_pi_scale_table[s];
 }
 
 /**
- * @brief Gain term e x g x 2^s x 2 in Q31 (g >= 0, s <= 15), exact in 64 bits.
+ * @brief x / 65536 rounded to nearest, ties away from zero, for x inside the
+ *        symmetric Q15 range widened to Q31 (the clamped PI output).
+ *
+ * Scaling and overflow: round(x / 65536) = floor((x + 32768 - [x < 0]) / 65536);
+ * the floor is taken of the value biased by 32768 x 65536, which lies in
+ * [98303, 4294934528] (non-negative, below 2^32), as an unsigned quotient, so no
+ * right shift of a negative value is needed; the bias is taken off the quotient.
  */
 /*@
-  requires gain_range: 0 <= g <= 32767;
-  requires shift_range: s <= 15;
+  requires x_range: -2147418112 <= x <= 2147418112;
   assigns \nothing;
-  ensures value: \result == 2 * (e * g) * PiPow2(s);
-  ensures range: -70366596694016 <= \result <= 70364449275904;
+  ensures value: \result == QfocRoundDiv(x, 65536);
+  ensures range: QfocQ15Sym(\result);
 */
-static int64_t qfoc_pi_gain_term(qfoc_q15_t e, qfoc_q15_t g, uint8_t s)
+static qfoc_q15_t qfoc_pi_round(int32_t x)
 {
-    /* |e g| <= 32768 x 32767 = 1073709056 < 2^31: exact in 32 bits (Q30) */
-    const int32_t prod = (int32_t)e * (int32_t)g;
-    const int64_t p2 = qfoc_pi_pow2(s);
-    /*@ assert prod_range: -1073709056 <= prod <= 1073676289; */
-    /*@ assert scaled_hi: prod * p2 <= 1073676289 * 32768; */
-    /*@ assert scaled_lo: prod * p2 >= -1073709056 * 32768; */
-    /* |prod x 2^s x 2| <= 1073709056 x 32768 x 2 < 2^46 */
-    return ((int64_t)prod * p2) * QFOC_PI_Q30_TO_Q31;
+    /* tie correction: 1 for a negative x, which rounds its ties downwards */
+    const int64_t tie = (x < 0) ? (int64_t)1 : (int64_t)0;
+    const int64_t biased = ((int64_t)x + QFOC_PI_ROUND_BIAS) - tie;
+    /*@ assert biased_range: 98303 <= biased <= 4294934528; */
+    const uint32_t ub = (uint32_t)biased;
+    const uint32_t uq = ub / QFOC_PI_Q31_ONE_U;
+    const int32_t q = (int32_t)uq;
+    /*@ assert q_value: q - 32768 == QfocRoundDiv(x, 65536); */
+    return (qfoc_q15_t)(q - QFOC_PI_Q15_BIAS);
 }
 
 /**
@@ -145,41 +157,91 @@ void qfoc_pi_reset(qfoc_pi_t *pi, qfoc_q15_t preset)
 
 qfoc_q15_t qfoc_pi_step(qfoc_pi_t *pi, qfoc_q15_t error)
 {
-    /* limits in Q31 (x 65536): within [-2147418112, 2147418112] */
-    const int64_t lo = (int64_t)pi->params.out_min * QFOC_PI_Q15_TO_Q31;
-    const int64_t hi = (int64_t)pi->params.out_max * QFOC_PI_Q15_TO_Q31;
-    /* P = e kp 2^kp_shift, Q31, |P| < 2^46 */
-    const int64_t prop = qfoc_pi_gain_term(error, pi->params.kp, pi->params.kp_shift);
-    /* I(k-1) + e ki 2^ki_shift, Q31, |.| < 2^47 */
-    int64_t integ = (int64_t)pi->integ
-                    + qfoc_pi_gain_term(error, pi->params.ki, pi->params.ki_shift);
-    int64_t sum;
+    const int32_t integ_old = pi->integ;
+    const int32_t kp_scale = qfoc_pi_scale(pi->params.kp_shift);
+    const int32_t ki_scale = qfoc_pi_scale(pi->params.ki_shift);
+    int32_t integ;
+    uint32_t room;
+    qfoc_q15_t out;
     bool limited;
 
-    /* anti-windup: the integrator never leaves the output limits */
-    if (integ > hi) {
-        integ = hi;
-    } else if (integ < lo) {
-        integ = lo;
+    if (error >= 0) {
+        /* e kp and e ki (2.30): <= 32767 x 32767 < 2^30, exact in 32 bits */
+        const int32_t pprod = (int32_t)error * (int32_t)pi->params.kp;
+        const int32_t iprod = (int32_t)error * (int32_t)pi->params.ki;
+        /* P = e kp 2^kp_shift x 2, Q31, in [0, 2^46): one 32 x 32 -> 64 bit product */
+        const int64_t pmag = (int64_t)pprod * (int64_t)kp_scale;
+        /* increment e ki 2^ki_shift x 2, Q31, in [0, 2^46): the same */
+        const int64_t imag = (int64_t)iprod * (int64_t)ki_scale;
+        /* P >= 0 and the increment >= 0: only the upper limit can be reached.
+           room = out_max x 65536 - I, in [0, 2^32) (I inside the limits) */
+        const int32_t hi = (int32_t)pi->params.out_max * QFOC_PI_Q15_TO_Q31;
+        const int64_t room0 = (int64_t)hi - (int64_t)integ_old;
+        /*@ assert pmag_value: pmag == PiProp(error, pi->params.kp, pi->params.kp_shift); */
+        /*@ assert imag_value: imag == PiIncr(error, pi->params.ki, pi->params.ki_shift); */
+        /*@ assert room0_range: 0 <= room0 <= 4294836224; */
+        room = (uint32_t)room0;
+        /* anti-windup: I(k) = min(I(k-1) + increment, out_max x 65536) */
+        if (imag > (int64_t)room) {
+            integ = hi;
+            room = 0u;
+        } else {
+            const int64_t room1 = (int64_t)room - imag;
+            integ = (int32_t)((int64_t)integ_old + imag);
+            room = (uint32_t)room1;
+        }
+        /*@ assert room_left: integ + room == hi; */
+        /*@ assert integ_value: integ == PiNextInteg(pi, error); */
+        /* u = P + I(k) clamped; a clamped output is the limit itself (no rounding) */
+        if (pmag > (int64_t)room) {
+            out = pi->params.out_max;
+            limited = true;
+        } else {
+            /* P + I(k) in [I(k), out_max x 65536]: fits 32 bits; Q31 -> Q15 rounded */
+            /*@ assert sum_value: integ + pmag == PiNextSum(pi, error); */
+            out = qfoc_pi_round((int32_t)((int64_t)integ + pmag));
+            limited = false;
+        }
     } else {
-        /* integrator inside the limits */
+        /* |e| kp and |e| ki (2.30): <= 32768 x 32767 < 2^30, exact in 32 bits */
+        const int32_t mag = -(int32_t)error;
+        const int32_t pprod = mag * (int32_t)pi->params.kp;
+        const int32_t iprod = mag * (int32_t)pi->params.ki;
+        /* |P| = |e| kp 2^kp_shift x 2, Q31, < 2^46: one 32 x 32 -> 64 bit product */
+        const int64_t pmag = (int64_t)pprod * (int64_t)kp_scale;
+        /* |increment| = |e| ki 2^ki_shift x 2, Q31, < 2^46: the same */
+        const int64_t imag = (int64_t)iprod * (int64_t)ki_scale;
+        /* P <= 0 and the increment <= 0: only the lower limit can be reached.
+           room = I - out_min x 65536, in [0, 2^32) */
+        const int32_t lo = (int32_t)pi->params.out_min * QFOC_PI_Q15_TO_Q31;
+        const int64_t room0 = (int64_t)integ_old - (int64_t)lo;
+        /*@ assert pmag_value: pmag == -PiProp(error, pi->params.kp, pi->params.kp_shift); */
+        /*@ assert imag_value: imag == -PiIncr(error, pi->params.ki, pi->params.ki_shift); */
+        /*@ assert room0_range: 0 <= room0 <= 4294836224; */
+        room = (uint32_t)room0;
+        /* anti-windup: I(k) = max(I(k-1) + increment, out_min x 65536) */
+        if (imag > (int64_t)room) {
+            integ = lo;
+            room = 0u;
+        } else {
+            const int64_t room1 = (int64_t)room - imag;
+            integ = (int32_t)((int64_t)integ_old - imag);
+            room = (uint32_t)room1;
+        }
+        /*@ assert room_left: integ - room == lo; */
+        /*@ assert integ_value: integ == PiNextInteg(pi, error); */
+        if (pmag > (int64_t)room) {
+            out = pi->params.out_min;
+            limited = true;
+        } else {
+            /* P + I(k) in [out_min x 65536, I(k)]: fits 32 bits; Q31 -> Q15 rounded */
+            /*@ assert sum_value: integ - pmag == PiNextSum(pi, error); */
+            out = qfoc_pi_round((int32_t)((int64_t)integ - pmag));
+            limited = false;
+        }
     }
 
-    /* u = P + I(k), Q31, |u| < 2^47, then clamped to the limits */
-    sum = prop + integ;
-    if (sum > hi) {
-        sum = hi;
-        limited = true;
-    } else if (sum < lo) {
-        sum = lo;
-        limited = true;
-    } else {
-        limited = false;
-    }
-
-    pi->integ = (qfoc_q31_t)integ;
+    pi->integ = integ;
     pi->limited = limited;
-    /* Q31 -> Q15, rounded to nearest; the limits are multiples of 65536, so the
-       rounded value stays inside them */
-    return qfoc_q15_from_q31((qfoc_q31_t)sum);
+    return out;
 }

@@ -196,6 +196,31 @@ static void test_lpf_corners(void **state)
     assert_int_equal(f.state, 0);
 }
 
+/* REQ-FLT-002, REQ-FLT-003: a state at the ends of the symmetric Q31 range (set by
+   hand) moves towards the input by round(alpha (u - y) / 32768); its output,
+   state / 65536 rounded = +-32768, saturates to +-32767. */
+static void test_lpf_output_saturation(void **state)
+{
+    qfoc_lpf_t f;
+    (void)state;
+    assert_int_equal(qfoc_lpf_init(&f, 1), QFOC_FILTER_OK);
+    f.state = 2147483647;
+    assert_int_equal(qfoc_lpf_step(&f, 32767), 32767);
+    /* 2147483647 + round((2147418112 - 2147483647) / 32768) = 2147483647 - 2 */
+    assert_int_equal(f.state, (int32_t)(2147483647.0
+                     + round((2147418112.0 - 2147483647.0) / 32768.0)));
+    f.state = -2147483647;
+    assert_int_equal(qfoc_lpf_step(&f, -32767), -32767);
+    assert_int_equal(f.state, (int32_t)(-2147483647.0
+                     + round((2147483647.0 - 2147418112.0) / 32768.0)));
+    /* the largest distance, 2^32 - 65537, crossed with the largest alpha */
+    assert_int_equal(qfoc_lpf_init(&f, 32767), QFOC_FILTER_OK);
+    f.state = -2147483647;
+    assert_int_equal(qfoc_lpf_step(&f, 32767), 32765);
+    assert_int_equal(f.state, (int32_t)(-2147483647.0
+                     + round((32767.0 / 32768.0) * (2147418112.0 + 2147483647.0))));
+}
+
 /* ------------------------------------------------------------------------ */
 /* leaky integrator                                                          */
 /* ------------------------------------------------------------------------ */
@@ -426,6 +451,7 @@ int main(void)
         cmocka_unit_test(test_lpf_dc_gain),
         cmocka_unit_test(test_lpf_init_reset_valid),
         cmocka_unit_test(test_lpf_corners),
+        cmocka_unit_test(test_lpf_output_saturation),
         cmocka_unit_test(test_leaky_random_vs_reference),
         cmocka_unit_test(test_leaky_dc_gain),
         cmocka_unit_test(test_leaky_sine_gain_phase),

@@ -356,6 +356,58 @@ static void test_pi_corners(void **state)
     assert_true(pi.limited);
 }
 
+/* REQ-PI-004, REQ-PI-005, REQ-PI-007: the whole span between the limits (2^32 - 2^17
+   in Q31) covered in one step, exactly and one LSB beyond, in both directions. */
+static void test_pi_full_span(void **state)
+{
+    /* 2 x 32767 x 2^15 x 2 = 65534 x 65536: the distance from -32767 to 32767 in Q31 */
+    qfoc_pi_t pi;
+    qfoc_pi_params_t p = make_params(0, 0u, 32767, 15u, -32767, 32767);
+    (void)state;
+    assert_int_equal(qfoc_pi_init(&pi, &p), QFOC_PI_OK);
+    qfoc_pi_reset(&pi, -32767);
+    /* integral term: the increment reaches the upper limit exactly, not limited */
+    assert_int_equal(qfoc_pi_step(&pi, 2), 32767);
+    assert_int_equal(pi.integ, 32767 * 65536);
+    assert_false(pi.limited);
+    /* and back to the lower limit exactly */
+    assert_int_equal(qfoc_pi_step(&pi, -2), -32767);
+    assert_int_equal(pi.integ, -32767 * 65536);
+    assert_false(pi.limited);
+    /* one more error LSB: clamped (anti-windup), the output on the limit, unlimited
+       because P = 0 */
+    assert_int_equal(qfoc_pi_step(&pi, 3), 32767);
+    assert_int_equal(pi.integ, 32767 * 65536);
+    assert_false(pi.limited);
+    assert_int_equal(qfoc_pi_step(&pi, -3), -32767);
+    assert_int_equal(pi.integ, -32767 * 65536);
+    assert_false(pi.limited);
+    /* proportional term: P + I lands on the opposite limit exactly, then beyond it */
+    p = make_params(32767, 15u, 0, 0u, -32767, 32767);
+    assert_int_equal(qfoc_pi_init(&pi, &p), QFOC_PI_OK);
+    qfoc_pi_reset(&pi, -32767);
+    assert_int_equal(qfoc_pi_step(&pi, 2), 32767);
+    assert_false(pi.limited);
+    assert_int_equal(qfoc_pi_step(&pi, 3), 32767);
+    assert_true(pi.limited);
+    qfoc_pi_reset(&pi, 32767);
+    assert_int_equal(qfoc_pi_step(&pi, -2), -32767);
+    assert_false(pi.limited);
+    assert_int_equal(qfoc_pi_step(&pi, -3), -32767);
+    assert_true(pi.limited);
+    assert_int_equal(pi.integ, 32767 * 65536);
+    /* rounding ties next to the limits: kp = 0.5, I = -32000, e = -1 gives
+       -32000.5 -> -32001, e = 1 gives -31999.5 -> -32000 (away from zero) */
+    p = make_params(16384, 0u, 0, 0u, -32767, 32767);
+    assert_int_equal(qfoc_pi_init(&pi, &p), QFOC_PI_OK);
+    qfoc_pi_reset(&pi, -32000);
+    assert_int_equal(qfoc_pi_step(&pi, -1), -32001);
+    assert_int_equal(qfoc_pi_step(&pi, 1), -32000);
+    qfoc_pi_reset(&pi, 32000);
+    assert_int_equal(qfoc_pi_step(&pi, 1), 32001);
+    assert_int_equal(qfoc_pi_step(&pi, -1), 32000);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -368,6 +420,7 @@ int main(void)
         cmocka_unit_test(test_pi_is_valid),
         cmocka_unit_test(test_pi_reset),
         cmocka_unit_test(test_pi_corners),
+        cmocka_unit_test(test_pi_full_span),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -174,15 +174,16 @@ void qfoc_lpf_reset(qfoc_lpf_t *f, qfoc_q15_t value);
  * The new state is a convex combination of the input and the old state: it lies
  * between them (inclusive) exactly in Q31, and the Q15 output lies between the
  * input and the previous output.  Hence the filter never overshoots and never
- * overflows, and a state within [-32767, 32767] x 65536 stays there.  The final
- * saturation to the symmetric Q31 range never changes the value (it is there so
- * that the range of the state is evident without the convexity argument).
+ * overflows, and a state within [-32767, 32767] x 65536 stays there.
  *
- * Scaling and overflow: u (1.15) x 65536 -> 1.31; d = u - y in 64 bits
- * (|d| < 2^33); alpha (1.15) x d (1.31) = 2.46 in 64 bits
- * (|.| < 2^48); / 32768 rounded to nearest gives the Q31 increment, whose
- * magnitude is at most |d| because alpha < 32768, so y + increment stays between
- * y and u.  Output: Q31 -> Q15 rounded (error <= 1/2 LSB).  The increment's
+ * Scaling and overflow: u (1.15) x 65536 -> 1.31; the distance |u - y| < 2^32 is
+ * formed unsigned on the side given by the compare of u and y; (alpha x 2^17) x
+ * |u - y| + 2^31 (< 2^64, one unsigned 32 x 32 -> 64 bit multiply-accumulate) has
+ * the rounded increment magnitude round(alpha |u - y| / 32768) as its high
+ * word, which is at most |u - y| because alpha < 32768, so y +- that magnitude
+ * stays between y and u and fits 32 bits.  Output: Q31 -> Q15 rounded (error
+ * <= 1/2 LSB), saturated to [-32767, 32767] (only a state set beyond the Q15
+ * range by the caller reaches the saturation).  The increment's
  * rounding (<= 1/2 Q31 LSB) makes the state settle within 16384 / alpha Q31 LSB
  * (<= 1/4 Q15 LSB) of a constant input, so the Q15 DC gain is exactly 1.
  * Error against the real-valued recursion (2-34): the increment roundings

@@ -205,13 +205,16 @@ void qfoc_pi_reset(qfoc_pi_t *pi, qfoc_q15_t preset);
  * the limits (contract behaviour `exact`).
  *
  * Scaling and overflow: e (1.15) x kp (1.15) = 2.30, |e kp| <= 32768 x 32767
- * < 2^30, exact in 32 bits; x 2^kp_shift (<= 2^15) and x 2 (2.30 -> 1.31) in
- * 64 bits gives |P| < 2^46, no overflow.  The increment e ki 2^ki_shift x 2 is
- * formed the same way (|.| < 2^46); I(k-1) + increment < 2^47 in 64 bits, then
- * clamped to [out_min, out_max] x 65536 (a subset of the symmetric Q31 range).
- * P + I(k) < 2^47 in 64 bits, clamped to the same interval, so the clamped sum
- * fits 32 bits; the Q31 -> Q15 conversion rounds to nearest (error <= 1/2 LSB)
- * and, because the limits are multiples of 65536, stays inside the limits.
+ * < 2^30, exact in 32 bits; x 2^(kp_shift + 1) (2.30 -> 1.31, <= 2^16) in one
+ * 32 x 32 -> 64 bit product gives |P| < 2^46, no overflow.  The increment
+ * e ki 2^ki_shift x 2 is formed the same way (|.| < 2^46).  P and the increment
+ * both have the sign of e (kp, ki >= 0), so only the limit on that side can be
+ * reached: its distance from I(k-1), in [0, 2^32), is compared with the
+ * increment's magnitude (anti-windup), and the distance left with |P| (output
+ * clamp), so I(k) and the unclamped P + I(k) are formed exactly in 32 bits.  The
+ * Q31 -> Q15 conversion rounds to nearest (error <= 1/2 LSB) and, because the
+ * limits are multiples of 65536, stays inside the limits; a clamped output is
+ * the limit itself.
  *
  * Requirements: REQ-PI-004, REQ-PI-005, REQ-PI-007, REQ-PI-008.
  */
