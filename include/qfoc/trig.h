@@ -19,7 +19,8 @@
  * src/qfoc_trig_tables.c; they are exported read-only (below) so that the unit
  * test can recompute every entry independently.  The proofs of the functions
  * do not use the table contents: every range stated below follows from the
- * types alone.
+ * types alone, and the values of the sine and the cosine are proved equal to
+ * the logic function QfocTrigSin (specs/trig.acsl) of whatever the table holds.
  *
  * Requirements: REQ-TRIG-001 .. REQ-TRIG-005 (specs/requirements/trig.md).
  */
@@ -27,10 +28,6 @@
 #define QFOC_TRIG_H
 
 #include "qfoc/types.h"
-
-#ifdef __FRAMAC__
-#include "trig.acsl"
-#endif
 
 /** Number of entries of the quarter-wave sine table (0 .. 90 degrees, step 64 counts). */
 #define QFOC_TRIG_SIN_TAB_LEN (257u)
@@ -52,6 +49,11 @@ extern const uint16_t qfoc_trig_sin_tab[QFOC_TRIG_SIN_TAB_LEN];
  */
 extern const uint16_t qfoc_trig_atan_tab[QFOC_TRIG_ATAN_TAB_LEN];
 
+/* The ACSL logic of the module (the sine defined on the table above). */
+#ifdef __FRAMAC__
+#include "trig.acsl"
+#endif
+
 /**
  * @brief Sine of an electrical angle (document: csin_calculation(u16_theta)).
  *
@@ -68,19 +70,27 @@ extern const uint16_t qfoc_trig_atan_tab[QFOC_TRIG_ATAN_TAB_LEN];
  * Bad input: none possible; every uint16_t is an angle.
  *
  * Scaling and overflow: theta (u0.16 turn) splits into quadrant (theta / 2^14)
- * and the offset r in [0, 16383]; the first-quadrant argument x = r or
- * 16384 - r (in [0, 16384]) splits into the table index x / 64 (0 .. 256) and
- * the 6-bit fraction f.  The interpolation t[i] (64 - f) + t[i+1] f is formed
- * in uint32 (t <= 65535, sum <= 65535 * 64 < 2^22), then divided by
- * 2 * 64 = 128 with rounding (+64) to Q15: <= 32768 for any table contents,
- * negated for quadrants 3 and 4 in int32 and saturated with qfoc_q15_sat, so
- * the range [-32767, 32767] is proved from the types alone.
+ * and the offset r in [0, 16383], r into the table index i = r / 64
+ * (0 .. 255) and the 6-bit fraction f = r % 64.  The first-quadrant argument
+ * is x = r (quadrants 1, 3: entries i, i + 1 weighted 64 - f and f) or
+ * 16384 - r = 64 (255 - i) + (64 - f) (quadrants 2, 4: the table read from the
+ * other end, entries 256 - i, 255 - i with the same weights 64 - f and f), so
+ * every index is in [0, 256] and a node (f = 0, 90 degrees included) is the
+ * node's entry exactly, with no case of its own.  The interpolation is formed in
+ * uint32 (t <= 65535, sum + 64 <= 65535 * 64 + 64 = 2^22), then divided by
+ * 2 * 64 = 128 with rounding (+64) to Q15: m <= 32768 for any table contents;
+ * m - m / 32768 limits it to 32767 (m / 32768 is 1 only at 32768, which the
+ * table's largest entry 65534 never reaches: the identity on the real table),
+ * and the negation for quadrants 3 and 4 in int32 gives the range
+ * [-32767, 32767] from the types alone.  The value is QfocTrigSin(theta)
+ * (specs/trig.acsl), proved.
  *
  * Requirements: REQ-TRIG-001, REQ-TRIG-005.
  */
 /*@
   assigns \nothing;
   ensures range: QfocQ15Sym(\result);
+  ensures value: \result == QfocTrigSin(theta);
 */
 qfoc_q15_t qfoc_sin(qfoc_angle_t theta);
 
@@ -97,9 +107,14 @@ qfoc_q15_t qfoc_sin(qfoc_angle_t theta);
  *
  * Bad input: out must point to writable storage (precondition, not checked).
  *
- * Scaling and overflow: the angle sum is formed in uint32 (<= 65535 + 16384)
- * and reduced with & 0xFFFF before the conversion back to qfoc_angle_t, so no
- * wrap-around happens in any C type; the rest as qfoc_sin.
+ * Scaling and overflow: one split of theta as in qfoc_sin serves both: the
+ * cosine's angle theta + 0x4000 (modulo 2^16) has the same offset r and the
+ * quadrant quad + 1 (modulo 4), so its first-quadrant argument is the
+ * complement of the sine's; both interpolations (at r and at 16384 - r) are
+ * formed and the quadrant's parity says which is the sine.  Signs: the sine is
+ * negative for quad 2, 3, the cosine for quad 1, 2.  No angle sum is formed in
+ * C; the rest as qfoc_sin.  The values are proved equal to QfocTrigSin(theta)
+ * and QfocTrigSin((theta + 16384) % 65536), i.e. to qfoc_sin's.
  *
  * Requirements: REQ-TRIG-002.
  */
@@ -108,6 +123,8 @@ qfoc_q15_t qfoc_sin(qfoc_angle_t theta);
   assigns out->sine, out->cosine;
   ensures sine_range: QfocQ15Sym(out->sine);
   ensures cosine_range: QfocQ15Sym(out->cosine);
+  ensures sine_value: out->sine == QfocTrigSin(theta);
+  ensures cosine_value: out->cosine == QfocTrigSin((theta + 16384) % 65536);
 */
 void qfoc_sincos(qfoc_angle_t theta, qfoc_sincos_t *out);
 
