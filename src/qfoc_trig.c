@@ -142,6 +142,7 @@ qfoc_q15_t qfoc_sin(qfoc_angle_t theta)
     uint32_t idx = r / TRIG_SIN_STEP;    /* 0 .. 255 */
     uint32_t frac = r % TRIG_SIN_STEP;   /* 0 .. 63 */
     uint32_t mag;
+    qfoc_q15_t res;
 
     //@ assert split: r == 64 * idx + frac;
     if ((quad % 2u) != 0u) {
@@ -151,7 +152,9 @@ qfoc_q15_t qfoc_sin(qfoc_angle_t theta)
         mag = trig_quarter_up(idx, frac);
     }
     /* third / fourth quadrant: sin(180 deg + a) = -sin(a) */
-    return trig_signed(mag, quad >= 2u);
+    res = trig_signed(mag, quad >= 2u);
+    //@ assert value: res == QfocTrigSin(theta);
+    return res;
 }
 
 void qfoc_sincos(qfoc_angle_t theta, qfoc_sincos_t *out)
@@ -184,6 +187,8 @@ void qfoc_sincos(qfoc_angle_t theta, qfoc_sincos_t *out)
      * (quad 1, 2), i.e. where quad + 1 (modulo 4) is 2 or 3 */
     out->sine = trig_signed(m_sin, quad >= 2u);
     out->cosine = trig_signed(m_cos, (((quad + 1u) / 2u) % 2u) != 0u);
+    //@ assert sine_value: out->sine == QfocTrigSin(theta);
+    //@ assert cosine_value: out->cosine == QfocTrigSin((theta + 16384) % 65536);
 }
 
 /* |v| as uint32 (0 .. 32768). */

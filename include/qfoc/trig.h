@@ -19,8 +19,10 @@
  * src/qfoc_trig_tables.c; they are exported read-only (below) so that the unit
  * test can recompute every entry independently.  The proofs of the functions
  * do not use the table contents: every range stated below follows from the
- * types alone, and the values of the sine and the cosine are proved equal to
- * the logic function QfocTrigSin (specs/trig.acsl) of whatever the table holds.
+ * types alone.  The values of the sine and the cosine are proved equal to the
+ * logic function QfocTrigSin (below) of whatever the table holds, by asserts
+ * at the end of qfoc_sin and qfoc_sincos (kept out of the contracts, so that
+ * the callers' proofs do not carry the table's definition).
  *
  * Requirements: REQ-TRIG-001 .. REQ-TRIG-005 (specs/requirements/trig.md).
  */
@@ -28,6 +30,10 @@
 #define QFOC_TRIG_H
 
 #include "qfoc/types.h"
+
+#ifdef __FRAMAC__
+#include "trig.acsl"
+#endif
 
 /** Number of entries of the quarter-wave sine table (0 .. 90 degrees, step 64 counts). */
 #define QFOC_TRIG_SIN_TAB_LEN (257u)
@@ -49,10 +55,31 @@ extern const uint16_t qfoc_trig_sin_tab[QFOC_TRIG_SIN_TAB_LEN];
  */
 extern const uint16_t qfoc_trig_atan_tab[QFOC_TRIG_ATAN_TAB_LEN];
 
-/* The ACSL logic of the module (the sine defined on the table above). */
-#ifdef __FRAMAC__
-#include "trig.acsl"
-#endif
+/* ACSL: the sine defined on the table above (the value of qfoc_sin). */
+/*@
+  // REQ-TRIG-001: the quarter-wave table value at the first-quadrant argument
+  // x in [0, 16384], in table scale x 64: on a node (x % 64 == 0) the node
+  // entry, between nodes the entries x / 64 and x / 64 + 1 weighted
+  // 64 - x % 64 and x % 64.
+  logic integer QfocTrigQuarterAcc{L}(integer x) =
+    (x % 64 == 0) ? qfoc_trig_sin_tab[x / 64] * 64
+                  : qfoc_trig_sin_tab[x / 64] * (64 - x % 64)
+                    + qfoc_trig_sin_tab[x / 64 + 1] * (x % 64);
+
+  // The same rounded once to Q15 (divided by 2 * 64 = 128) and limited to 32767.
+  logic integer QfocTrigQuarter{L}(integer x) =
+    ((QfocTrigQuarterAcc(x) + 64) / 128 > 32767) ? 32767
+                                                 : (QfocTrigQuarterAcc(x) + 64) / 128;
+
+  // REQ-TRIG-001: the sine of an angle theta in [0, 65535] (qfoc_sin): quadrant
+  // theta / 16384, offset theta % 16384 mirrored in the second and fourth
+  // quadrants, negated in the third and fourth.
+  logic integer QfocTrigSinMag{L}(integer theta) =
+    ((theta / 16384) % 2 == 1) ? QfocTrigQuarter(16384 - theta % 16384)
+                               : QfocTrigQuarter(theta % 16384);
+  logic integer QfocTrigSin{L}(integer theta) =
+    (theta >= 32768) ? -QfocTrigSinMag(theta) : QfocTrigSinMag(theta);
+*/
 
 /**
  * @brief Sine of an electrical angle (document: csin_calculation(u16_theta)).
@@ -83,14 +110,13 @@ extern const uint16_t qfoc_trig_atan_tab[QFOC_TRIG_ATAN_TAB_LEN];
  * table's largest entry 65534 never reaches: the identity on the real table),
  * and the negation for quadrants 3 and 4 in int32 gives the range
  * [-32767, 32767] from the types alone.  The value is QfocTrigSin(theta)
- * (specs/trig.acsl), proved.
+ * (above), proved by the assert value in the body.
  *
  * Requirements: REQ-TRIG-001, REQ-TRIG-005.
  */
 /*@
   assigns \nothing;
   ensures range: QfocQ15Sym(\result);
-  ensures value: \result == QfocTrigSin(theta);
 */
 qfoc_q15_t qfoc_sin(qfoc_angle_t theta);
 
@@ -114,7 +140,8 @@ qfoc_q15_t qfoc_sin(qfoc_angle_t theta);
  * formed and the quadrant's parity says which is the sine.  Signs: the sine is
  * negative for quad 2, 3, the cosine for quad 1, 2.  No angle sum is formed in
  * C; the rest as qfoc_sin.  The values are proved equal to QfocTrigSin(theta)
- * and QfocTrigSin((theta + 16384) % 65536), i.e. to qfoc_sin's.
+ * and QfocTrigSin((theta + 16384) % 65536), i.e. to qfoc_sin's (asserts
+ * sine_value, cosine_value in the body).
  *
  * Requirements: REQ-TRIG-002.
  */
@@ -123,8 +150,6 @@ qfoc_q15_t qfoc_sin(qfoc_angle_t theta);
   assigns out->sine, out->cosine;
   ensures sine_range: QfocQ15Sym(out->sine);
   ensures cosine_range: QfocQ15Sym(out->cosine);
-  ensures sine_value: out->sine == QfocTrigSin(theta);
-  ensures cosine_value: out->cosine == QfocTrigSin((theta + 16384) % 65536);
 */
 void qfoc_sincos(qfoc_angle_t theta, qfoc_sincos_t *out);
 
