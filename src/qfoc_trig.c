@@ -10,13 +10,11 @@
  * Requirements: REQ-TRIG-001 .. REQ-TRIG-005 (specs/requirements/trig.md).
  */
 #include "qfoc/trig.h"
-#include "qfoc/q15.h"
 
 /* Angle counts (65536 per turn). */
 #define TRIG_QUARTER   (16384u)   /* 0x4000 = 90 deg */
 #define TRIG_HALF      (32768u)   /* 0x8000 = 180 deg */
 #define TRIG_TURN      (65536u)   /* 0x10000 = 360 deg, one full turn */
-#define TRIG_ANGLE_MASK (0xFFFFu) /* reduction modulo 2^16 */
 #define TRIG_OCTANT    (8192u)    /* 0x2000 = 45 deg: atan(1) */
 
 /* Sine table: 256 intervals per quarter, 16384 / 256 = 64 counts per interval. */
@@ -33,31 +31,107 @@
 #define TRIG_ATAN_DIV  (1024u)
 #define TRIG_ATAN_HALF (512u)
 
+/* Interpolation nodes of the quarter wave: indices 0 .. 255 start an interval. */
+#define TRIG_SIN_LAST  (255u)
+/* Q15 magnitude bound of the symmetric range (QfocQ15Sym). */
+#define TRIG_Q15_ONE   (32768u)
+
 /*
- * 32767 * sin(pi/2 * x / 16384) for x in [0, 16384] (first quadrant), Q15,
- * interpolated linearly between the table entries and rounded once.
+ * 32767 * sin(pi/2 * x / 16384) for the first-quadrant argument
+ * x = 64 * idx + w (idx in [0, 255], w in [0, 64]), Q15: the table entries
+ * idx and idx + 1 weighted (64 - w) and w, rounded once, limited to 32767.
+ * Every x in [0, 16384] has such a split (x = 16384 is idx 255, w = 64), so no
+ * node needs a case of its own; on a node (w = 0 or 64) the other entry is
+ * weighted 0 and the result is the node's value exactly.
  */
 /*@
-  requires arg: x <= 16384;
+  requires idx: idx <= 255;
+  requires weight: w <= 64;
   assigns \nothing;
-  ensures range: 0 <= \result <= 32768;
+  ensures range: 0 <= \result <= 32767;
+  ensures value: \result ==
+    (((qfoc_trig_sin_tab[idx] * (64 - w) + qfoc_trig_sin_tab[idx + 1] * w + 64) / 128 > 32767)
+       ? 32767
+       : (qfoc_trig_sin_tab[idx] * (64 - w) + qfoc_trig_sin_tab[idx + 1] * w + 64) / 128);
 */
-static uint32_t trig_sin_quarter(uint32_t x)
+static inline uint32_t trig_sin_interp(uint32_t idx, uint32_t w)
 {
-    uint32_t idx = x / TRIG_SIN_STEP;     /* 0 .. 256 */
-    uint32_t frac = x % TRIG_SIN_STEP;    /* 0 .. 63 */
-    uint32_t acc;                         /* table scale x 64, <= 65535 * 64 */
+    /* <= 65535 * 64 + 64 < 2^23 */
+    uint32_t acc = ((uint32_t)qfoc_trig_sin_tab[idx] * (TRIG_SIN_STEP - w))
+                   + ((uint32_t)qfoc_trig_sin_tab[idx + 1u] * w)
+                   + TRIG_SIN_HALF;
+    uint32_t mag = acc / TRIG_SIN_DIV;   /* 0 .. 32768 */
 
-    if (frac == 0u) {
-        /* on a table node (idx may be 256 = 90 deg): no interpolation */
-        acc = (uint32_t)qfoc_trig_sin_tab[idx] * TRIG_SIN_STEP;
-    } else {
-        /* frac > 0 implies x < 16384, so idx <= 255 and idx + 1 <= 256 */
-        //@ assert idx_bound: idx <= 255;
-        acc = ((uint32_t)qfoc_trig_sin_tab[idx] * (TRIG_SIN_STEP - frac))
-              + ((uint32_t)qfoc_trig_sin_tab[idx + 1u] * frac);
+    /* 32768 (only for entries of 65535, above the table's 65534) becomes
+     * 32767: mag / 32768 is 1 exactly there and 0 below */
+    return mag - (mag / TRIG_Q15_ONE);
+}
+
+/*
+ * The first-quadrant value at x = 64 * idx + frac (the offset r in the first
+ * and third quadrants): entries idx and idx + 1, weights 64 - frac and frac.
+ */
+/*@
+  requires idx: idx <= 255;
+  requires frac: frac <= 63;
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+  ensures value: \result == QfocTrigQuarter(64 * idx + frac);
+*/
+static inline uint32_t trig_quarter_up(uint32_t idx, uint32_t frac)
+{
+    /*@ assert node: frac == 0 ==>
+          QfocTrigQuarterAcc(64 * idx + frac) == qfoc_trig_sin_tab[idx] * 64; */
+    /*@ assert acc: QfocTrigQuarterAcc(64 * idx + frac) ==
+          qfoc_trig_sin_tab[idx] * (64 - frac) + qfoc_trig_sin_tab[idx + 1] * frac; */
+    return trig_sin_interp(idx, frac);
+}
+
+/*
+ * The first-quadrant value at the complement x = 16384 - (64 * idx + frac)
+ * = 64 * (255 - idx) + (64 - frac) (the offset mirrored in the second and
+ * fourth quadrants): the same weights as trig_quarter_up, the table read from
+ * the other end, entries 256 - idx and 255 - idx.
+ */
+/*@
+  requires idx: idx <= 255;
+  requires frac: frac <= 63;
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+  ensures value: \result == QfocTrigQuarter(16384 - (64 * idx + frac));
+*/
+static inline uint32_t trig_quarter_down(uint32_t idx, uint32_t frac)
+{
+    /*@ assert split_node: frac == 0 ==>
+          (16384 - (64 * idx + frac)) / 64 == 256 - idx &&
+          (16384 - (64 * idx + frac)) % 64 == 0; */
+    /*@ assert split_between: frac != 0 ==>
+          (16384 - (64 * idx + frac)) / 64 == 255 - idx &&
+          (16384 - (64 * idx + frac)) % 64 == 64 - frac; */
+    /*@ assert acc_node: frac == 0 ==>
+          QfocTrigQuarterAcc(16384 - (64 * idx + frac)) == qfoc_trig_sin_tab[256 - idx] * 64; */
+    /*@ assert acc_between: frac != 0 ==> QfocTrigQuarterAcc(16384 - (64 * idx + frac)) ==
+          qfoc_trig_sin_tab[255 - idx] * frac + qfoc_trig_sin_tab[256 - idx] * (64 - frac); */
+    /*@ assert acc: QfocTrigQuarterAcc(16384 - (64 * idx + frac)) ==
+          qfoc_trig_sin_tab[255 - idx] * frac + qfoc_trig_sin_tab[256 - idx] * (64 - frac); */
+    return trig_sin_interp(TRIG_SIN_LAST - idx, TRIG_SIN_STEP - frac);
+}
+
+/* The magnitude m (0 .. 32767) with the sign of a negative half wave when neg. */
+/*@
+  requires arg: m <= 32767;
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  ensures value: \result == (neg ? -m : m);
+*/
+static inline qfoc_q15_t trig_signed(uint32_t m, bool neg)
+{
+    int32_t v = (int32_t)m;
+
+    if (neg) {
+        v = -v;
     }
-    return (acc + TRIG_SIN_HALF) / TRIG_SIN_DIV;
+    return (qfoc_q15_t)v;
 }
 
 qfoc_q15_t qfoc_sin(qfoc_angle_t theta)
@@ -65,30 +139,56 @@ qfoc_q15_t qfoc_sin(qfoc_angle_t theta)
     uint32_t th = (uint32_t)theta;
     uint32_t quad = th / TRIG_QUARTER;   /* 0 .. 3 */
     uint32_t r = th % TRIG_QUARTER;      /* 0 .. 16383 */
-    uint32_t x;
-    int32_t mag;
+    uint32_t idx = r / TRIG_SIN_STEP;    /* 0 .. 255 */
+    uint32_t frac = r % TRIG_SIN_STEP;   /* 0 .. 63 */
+    uint32_t mag;
+    qfoc_q15_t res;
 
-    if ((quad == 1u) || (quad == 3u)) {
+    //@ assert split: r == 64 * idx + frac;
+    if ((quad % 2u) != 0u) {
         /* second / fourth quadrant: sin(90 deg + r) = sin(90 deg - r) */
-        x = TRIG_QUARTER - r;            /* 1 .. 16384 */
+        mag = trig_quarter_down(idx, frac);
     } else {
-        x = r;                           /* 0 .. 16383 */
+        mag = trig_quarter_up(idx, frac);
     }
-    mag = (int32_t)trig_sin_quarter(x);  /* 0 .. 32768 */
-    if (quad >= 2u) {
-        /* third / fourth quadrant: sin(180 deg + a) = -sin(a) */
-        mag = -mag;
-    }
-    return qfoc_q15_sat(mag);
+    /* third / fourth quadrant: sin(180 deg + a) = -sin(a) */
+    res = trig_signed(mag, quad >= 2u);
+    //@ assert value: res == QfocTrigSin(theta);
+    return res;
 }
 
 void qfoc_sincos(qfoc_angle_t theta, qfoc_sincos_t *out)
 {
-    /* theta + 90 deg modulo 2^16, formed without wrap-around (<= 81919) */
-    uint32_t th_cos = ((uint32_t)theta + TRIG_QUARTER) & TRIG_ANGLE_MASK;
+    uint32_t th = (uint32_t)theta;
+    uint32_t quad = th / TRIG_QUARTER;   /* 0 .. 3 */
+    uint32_t r = th % TRIG_QUARTER;      /* 0 .. 16383 */
+    uint32_t idx = r / TRIG_SIN_STEP;    /* 0 .. 255 */
+    uint32_t frac = r % TRIG_SIN_STEP;   /* 0 .. 63 */
+    /* the quarter wave at r and at its complement 16384 - r: one split, the
+     * table read from both ends */
+    uint32_t m_up = trig_quarter_up(idx, frac);
+    uint32_t m_down = trig_quarter_down(idx, frac);
+    uint32_t m_sin;
+    uint32_t m_cos;
 
-    out->sine = qfoc_sin(theta);
-    out->cosine = qfoc_sin((qfoc_angle_t)th_cos);
+    //@ assert split: r == 64 * idx + frac;
+    /* the cosine is the sine 90 deg ahead: the same offset r, quadrant
+     * quad + 1 (modulo 4) */
+    /*@ assert cos_angle: ((theta + 16384) % 65536) % 16384 == r &&
+          ((theta + 16384) % 65536) / 16384 == (quad + 1) % 4; */
+    if ((quad % 2u) != 0u) {
+        m_sin = m_down;
+        m_cos = m_up;
+    } else {
+        m_sin = m_up;
+        m_cos = m_down;
+    }
+    /* sine negative in quadrants 3, 4 (quad 2, 3); cosine in quadrants 2, 3
+     * (quad 1, 2), i.e. where quad + 1 (modulo 4) is 2 or 3 */
+    out->sine = trig_signed(m_sin, quad >= 2u);
+    out->cosine = trig_signed(m_cos, (((quad + 1u) / 2u) % 2u) != 0u);
+    //@ assert sine_value: out->sine == QfocTrigSin(theta);
+    //@ assert cosine_value: out->cosine == QfocTrigSin((theta + 16384) % 65536);
 }
 
 /* |v| as uint32 (0 .. 32768). */

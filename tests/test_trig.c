@@ -148,6 +148,53 @@ static void test_req_trig_002_sincos_exhaustive(void **state)
     assert_true(max_norm <= 1.5);
 }
 
+/* REQ-TRIG-001, REQ-TRIG-002: on every table node (theta = 16384 q + 64 i) the
+ * result is the node's entry halved with rounding, (t + 1) / 2, with the
+ * quadrant's mirror (node 256 - i in quadrants 2 and 4, the 90-degree node 256
+ * included) and sign (negative in quadrants 3 and 4), for the sine and for the
+ * cosine 90 degrees ahead. */
+static void test_req_trig_001_sincos_nodes(void **state)
+{
+    uint32_t q;
+    uint32_t i;
+    (void)state;
+    for (q = 0u; q < 4u; q++) {
+        for (i = 0u; i < 256u; i++) {
+            uint32_t t = (q * 16384u) + (i * 64u);
+            uint32_t qc = (q + 1u) % 4u;              /* quadrant of theta + 90 deg */
+            uint32_t ns = ((q % 2u) != 0u) ? (256u - i) : i;
+            uint32_t nc = ((qc % 2u) != 0u) ? (256u - i) : i;
+            int32_t s = ((int32_t)qfoc_trig_sin_tab[ns] + 1) / 2;
+            int32_t c = ((int32_t)qfoc_trig_sin_tab[nc] + 1) / 2;
+            qfoc_sincos_t sc;
+            if (q >= 2u) {
+                s = -s;
+            }
+            if (qc >= 2u) {
+                c = -c;
+            }
+            qfoc_sincos((qfoc_angle_t)t, &sc);
+            assert_int_equal(qfoc_sin((qfoc_angle_t)t), s);
+            assert_int_equal(sc.sine, s);
+            assert_int_equal(sc.cosine, c);
+        }
+    }
+}
+
+/* REQ-TRIG-002: the pair is (qfoc_sin(theta), qfoc_sin(theta + 0x4000)) for
+ * every angle, the sum taken modulo 2^16 (the definition in trig.h). */
+static void test_req_trig_002_sincos_is_sin_pair(void **state)
+{
+    uint32_t t;
+    (void)state;
+    for (t = 0u; t < 65536u; t++) {
+        qfoc_sincos_t sc;
+        qfoc_sincos((qfoc_angle_t)t, &sc);
+        assert_int_equal(sc.sine, qfoc_sin((qfoc_angle_t)t));
+        assert_int_equal(sc.cosine, qfoc_sin((qfoc_angle_t)((t + 0x4000u) & 0xFFFFu)));
+    }
+}
+
 /* REQ-TRIG-002: cosine wraps modulo 2^16 (theta + 0x4000 past 0xFFFF). */
 static void test_req_trig_002_sincos_wrap(void **state)
 {
@@ -310,6 +357,8 @@ int main(void)
         cmocka_unit_test(test_req_trig_001_sin_symmetry),
         cmocka_unit_test(test_req_trig_002_sincos_exhaustive),
         cmocka_unit_test(test_req_trig_002_sincos_wrap),
+        cmocka_unit_test(test_req_trig_001_sincos_nodes),
+        cmocka_unit_test(test_req_trig_002_sincos_is_sin_pair),
         cmocka_unit_test(test_req_trig_003_atan2_grid),
         cmocka_unit_test(test_req_trig_003_atan2_small_and_random),
         cmocka_unit_test(test_req_trig_003_atan2_diagonals),

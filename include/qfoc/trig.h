@@ -19,7 +19,10 @@
  * src/qfoc_trig_tables.c; they are exported read-only (below) so that the unit
  * test can recompute every entry independently.  The proofs of the functions
  * do not use the table contents: every range stated below follows from the
- * types alone.
+ * types alone.  The values of the sine and the cosine are proved equal to the
+ * logic function QfocTrigSin (below) of whatever the table holds, by asserts
+ * at the end of qfoc_sin and qfoc_sincos (kept out of the contracts, so that
+ * the callers' proofs do not carry the table's definition).
  *
  * Requirements: REQ-TRIG-001 .. REQ-TRIG-005 (specs/requirements/trig.md).
  */
@@ -52,6 +55,32 @@ extern const uint16_t qfoc_trig_sin_tab[QFOC_TRIG_SIN_TAB_LEN];
  */
 extern const uint16_t qfoc_trig_atan_tab[QFOC_TRIG_ATAN_TAB_LEN];
 
+/* ACSL: the sine defined on the table above (the value of qfoc_sin). */
+/*@
+  // REQ-TRIG-001: the quarter-wave table value at the first-quadrant argument
+  // x in [0, 16384], in table scale x 64: on a node (x % 64 == 0) the node
+  // entry, between nodes the entries x / 64 and x / 64 + 1 weighted
+  // 64 - x % 64 and x % 64.
+  logic integer QfocTrigQuarterAcc{L}(integer x) =
+    (x % 64 == 0) ? qfoc_trig_sin_tab[x / 64] * 64
+                  : qfoc_trig_sin_tab[x / 64] * (64 - x % 64)
+                    + qfoc_trig_sin_tab[x / 64 + 1] * (x % 64);
+
+  // The same rounded once to Q15 (divided by 2 * 64 = 128) and limited to 32767.
+  logic integer QfocTrigQuarter{L}(integer x) =
+    ((QfocTrigQuarterAcc(x) + 64) / 128 > 32767) ? 32767
+                                                 : (QfocTrigQuarterAcc(x) + 64) / 128;
+
+  // REQ-TRIG-001: the sine of an angle theta in [0, 65535] (qfoc_sin): quadrant
+  // theta / 16384, offset theta % 16384 mirrored in the second and fourth
+  // quadrants, negated in the third and fourth.
+  logic integer QfocTrigSinMag{L}(integer theta) =
+    ((theta / 16384) % 2 == 1) ? QfocTrigQuarter(16384 - theta % 16384)
+                               : QfocTrigQuarter(theta % 16384);
+  logic integer QfocTrigSin{L}(integer theta) =
+    (theta >= 32768) ? -QfocTrigSinMag(theta) : QfocTrigSinMag(theta);
+*/
+
 /**
  * @brief Sine of an electrical angle (document: csin_calculation(u16_theta)).
  *
@@ -68,13 +97,20 @@ extern const uint16_t qfoc_trig_atan_tab[QFOC_TRIG_ATAN_TAB_LEN];
  * Bad input: none possible; every uint16_t is an angle.
  *
  * Scaling and overflow: theta (u0.16 turn) splits into quadrant (theta / 2^14)
- * and the offset r in [0, 16383]; the first-quadrant argument x = r or
- * 16384 - r (in [0, 16384]) splits into the table index x / 64 (0 .. 256) and
- * the 6-bit fraction f.  The interpolation t[i] (64 - f) + t[i+1] f is formed
- * in uint32 (t <= 65535, sum <= 65535 * 64 < 2^22), then divided by
- * 2 * 64 = 128 with rounding (+64) to Q15: <= 32768 for any table contents,
- * negated for quadrants 3 and 4 in int32 and saturated with qfoc_q15_sat, so
- * the range [-32767, 32767] is proved from the types alone.
+ * and the offset r in [0, 16383], r into the table index i = r / 64
+ * (0 .. 255) and the 6-bit fraction f = r % 64.  The first-quadrant argument
+ * is x = r (quadrants 1, 3: entries i, i + 1 weighted 64 - f and f) or
+ * 16384 - r = 64 (255 - i) + (64 - f) (quadrants 2, 4: the table read from the
+ * other end, entries 256 - i, 255 - i with the same weights 64 - f and f), so
+ * every index is in [0, 256] and a node (f = 0, 90 degrees included) is the
+ * node's entry exactly, with no case of its own.  The interpolation is formed in
+ * uint32 (t <= 65535, sum + 64 <= 65535 * 64 + 64 = 2^22), then divided by
+ * 2 * 64 = 128 with rounding (+64) to Q15: m <= 32768 for any table contents;
+ * m - m / 32768 limits it to 32767 (m / 32768 is 1 only at 32768, which the
+ * table's largest entry 65534 never reaches: the identity on the real table),
+ * and the negation for quadrants 3 and 4 in int32 gives the range
+ * [-32767, 32767] from the types alone.  The value is QfocTrigSin(theta)
+ * (above), proved by the assert value in the body.
  *
  * Requirements: REQ-TRIG-001, REQ-TRIG-005.
  */
@@ -97,9 +133,15 @@ qfoc_q15_t qfoc_sin(qfoc_angle_t theta);
  *
  * Bad input: out must point to writable storage (precondition, not checked).
  *
- * Scaling and overflow: the angle sum is formed in uint32 (<= 65535 + 16384)
- * and reduced with & 0xFFFF before the conversion back to qfoc_angle_t, so no
- * wrap-around happens in any C type; the rest as qfoc_sin.
+ * Scaling and overflow: one split of theta as in qfoc_sin serves both: the
+ * cosine's angle theta + 0x4000 (modulo 2^16) has the same offset r and the
+ * quadrant quad + 1 (modulo 4), so its first-quadrant argument is the
+ * complement of the sine's; both interpolations (at r and at 16384 - r) are
+ * formed and the quadrant's parity says which is the sine.  Signs: the sine is
+ * negative for quad 2, 3, the cosine for quad 1, 2.  No angle sum is formed in
+ * C; the rest as qfoc_sin.  The values are proved equal to QfocTrigSin(theta)
+ * and QfocTrigSin((theta + 16384) % 65536), i.e. to qfoc_sin's (asserts
+ * sine_value, cosine_value in the body).
  *
  * Requirements: REQ-TRIG-002.
  */
