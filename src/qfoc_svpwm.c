@@ -19,8 +19,6 @@
 #define SVPWM_ONE_Q16 ((int32_t)65536)
 /** 1.0 in Q16, unsigned (tick factor and phase times in magnitude). */
 #define SVPWM_ONE_Q16_U (65536u)
-/** 0.5 in Q16 = 32768 (rounding offset of a Q16 product). */
-#define SVPWM_HALF_Q16 ((int32_t)32768)
 
 /** 32767^2 = 1073676289: the squared length from which qfoc_vec_mag() saturates. */
 #define SVPWM_MAG_SAT_SQ ((uint32_t)1073676289u)
