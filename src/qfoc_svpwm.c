@@ -17,25 +17,99 @@
 #define SVPWM_SQRT3_Q15 ((int32_t)56756)
 /** 1.0 in Q16 = 65536 (scale of the overmodulation gain and of the tick factor). */
 #define SVPWM_ONE_Q16 ((int32_t)65536)
-/** 0.5 in Q16 = 32768 (rounding offset of a Q16 product). */
-#define SVPWM_HALF_Q16 ((int32_t)32768)
+/** 1.0 in Q16, unsigned (tick factor and phase times in magnitude). */
+#define SVPWM_ONE_Q16_U (65536u)
+
+/** 32767^2 = 1073676289: the squared length from which qfoc_vec_mag() saturates. */
+#define SVPWM_MAG_SAT_SQ ((uint32_t)1073676289u)
+
+/*@
+  assigns \nothing;
+  ensures value: \result == x * x;
+  ensures bound: \result <= 1073741824;
+*/
+static inline uint32_t svpwm_square(qfoc_q15_t x)
+{
+    int32_t sq = (int32_t)x * (int32_t)x;   /* 2.30, <= 2^30 */
+    return (uint32_t)sq;
+}
 
 /*@
   assigns \nothing;
   ensures range: 0 <= \result <= 65534;
 */
-static int32_t svpwm_mag(qfoc_q15_t a, qfoc_q15_t b)
+static inline int32_t svpwm_mag(qfoc_q15_t a, qfoc_q15_t b)
 {
-    int32_t m = (int32_t)qfoc_vec_mag(a, b);
-    if (m >= (int32_t)QFOC_Q15_MAX) {
-        /* |v| may exceed the Q15 range (up to sqrt(2) * 32768): measure half */
-        qfoc_q15_t ah = (qfoc_q15_t)((int32_t)a / 2);
-        qfoc_q15_t bh = (qfoc_q15_t)((int32_t)b / 2);
-        m = 2 * (int32_t)qfoc_vec_mag(ah, bh);
+    /* |v|^2 <= 2^31 fits uint32; qfoc_vec_mag() saturates exactly when
+     * |v|^2 >= 32767^2, so that case is decided here and only one square
+     * root runs */
+    uint32_t s = svpwm_square(a) + svpwm_square(b);
+    bool sat = (s >= SVPWM_MAG_SAT_SQ);
+    qfoc_q15_t x = a;
+    qfoc_q15_t y = b;
+    int32_t m;
+    if (sat) {
+        /* |v| may exceed the Q15 range (up to sqrt(2) * 32768): measure half,
+         * |v / 2|^2 <= 2^29 never saturates */
+        x = (qfoc_q15_t)((int32_t)a / 2);
+        y = (qfoc_q15_t)((int32_t)b / 2);
     } else {
         /* magnitude is exact in Q15 */
     }
+    m = (int32_t)qfoc_vec_mag(x, y);
+    if (sat) {
+        m = 2 * m;
+    } else {
+        /* measured at full scale */
+    }
     return m;
+}
+
+/*@
+  requires range_dt: 0 <= dt <= 8191;
+  requires range_db: 1 <= db <= 32767;
+  requires range_ai: 0 <= ai <= 32768;
+  assigns \nothing;
+  ensures range: 0 <= \result <= dt;
+  ensures zero: ai == 0 ==> \result == 0;
+  ensures full: ai >= db ==> \result == dt;
+  ensures fade: ai < db ==> \result == (ai * dt) / db;
+*/
+static inline int32_t svpwm_dt_mag(int32_t ai, int32_t dt, int32_t db)
+{
+    int32_t c;
+    if (ai >= db) {
+        c = dt;
+    } else {
+        /* linear fade inside the dead band, 0 <= ai < db: 0 <= c < dt, and
+         * c == 0 for ai == 0 (db >= 1 also for a pure sign() compensation) */
+        //@ assert fade_num: 0 <= ai * dt <= 268402687;
+        c = (ai * dt) / db;
+        //@ assert fade_le: dt == 0 || ai * dt < dt * db;
+        //@ assert fade_range: 0 <= c <= dt;
+    }
+    return c;
+}
+
+/*@
+  requires range_dt: 0 <= dt <= 8191;
+  requires range_db: 1 <= db <= 32767;
+  requires range_t: -32767 <= t <= 32767;
+  assigns \nothing;
+  ensures range: t - dt <= \result <= t + dt;
+  ensures sign: (i > 0 ==> \result >= t) && (i < 0 ==> \result <= t) && (i == 0 ==> \result == t);
+*/
+static inline int32_t svpwm_dt_add(int32_t t, qfoc_q15_t i, int32_t dt, int32_t db)
+{
+    int32_t r;
+    if (i < 0) {
+        /* negative current: high-side time removed */
+        r = t - svpwm_dt_mag(-(int32_t)i, dt, db);
+    } else {
+        /* positive current: high-side time added; zero current: nothing */
+        r = t + svpwm_dt_mag((int32_t)i, dt, db);
+    }
+    return r;
 }
 
 /*@
@@ -54,7 +128,7 @@ static int32_t svpwm_mag(qfoc_q15_t a, qfoc_q15_t b)
   complete behaviors;
   disjoint behaviors;
 */
-static int32_t svpwm_clamp(int32_t x, int32_t lo, int32_t hi)
+static inline int32_t svpwm_clamp(int32_t x, int32_t lo, int32_t hi)
 {
     int32_t r = x;
     if (x < lo) {
@@ -68,72 +142,11 @@ static int32_t svpwm_clamp(int32_t x, int32_t lo, int32_t hi)
 }
 
 /*@
-  requires range_dt: 0 <= dt <= 8191;
-  requires range_db: 0 <= db <= 32767;
-  assigns \nothing;
-  ensures range: -dt <= \result <= dt;
-  ensures sign: (i > 0 ==> \result >= 0) && (i < 0 ==> \result <= 0) &&
-                (i == 0 ==> \result == 0);
-  ensures full: (i >= db && i > 0 ==> \result == dt) && (-i >= db && i < 0 ==> \result == -dt);
-*/
-static int32_t svpwm_dt_comp(qfoc_q15_t i, int32_t dt, int32_t db)
-{
-    int32_t ai = (int32_t)i;
-    int32_t c;
-    if (ai < 0) {
-        ai = -ai;
-    } else {
-        /* non-negative already */
-    }
-    if (ai == 0) {
-        c = 0;
-    } else if (ai >= db) {
-        c = dt;
-    } else {
-        /* linear fade inside the dead band: 0 < ai < db, so 0 <= c < dt;
-         * the clamp is a no-op that keeps the bound local */
-        c = svpwm_clamp((ai * dt) / db, 0, dt);
-    }
-    if (i < 0) {
-        c = -c;
-    } else {
-        /* positive current: high-side time added */
-    }
-    return c;
-}
-
-/*@
-  assigns \nothing;
-  ensures value: \result == SvpwmSector(a, b, c);
-  ensures order: SvpwmSectorOrder(\result, a, b, c);
-  ensures range: 1 <= \result <= 6;
-*/
-static uint8_t svpwm_sector(int32_t a, int32_t b, int32_t c)
-{
-    uint8_t s;
-    if ((a >= b) && (b >= c)) {
-        s = 1u;
-    } else if ((a >= c) && (c >= b)) {
-        s = 2u;
-    } else if ((b >= c) && (c >= a)) {
-        s = 3u;
-    } else if ((b >= a) && (a >= c)) {
-        s = 4u;
-    } else if (a >= b) {
-        /* rows 1 .. 4 failed, so Tc is the largest: row 5 Tc >= Ta >= Tb */
-        s = 5u;
-    } else {
-        s = 6u;
-    }
-    return s;
-}
-
-/*@
   requires range_g: 0 <= g <= 65535;
   assigns \nothing;
   ensures value: \result == (x * g) / 65536;
 */
-static qfoc_q15_t svpwm_scale(qfoc_q15_t x, int32_t g)
+static inline qfoc_q15_t svpwm_scale(qfoc_q15_t x, int32_t g)
 {
     int32_t p = (int32_t)x * g;
     //@ assert prod: -2147450880 <= p <= 2147385345 && -32767 <= p / 65536 <= 32766;
@@ -150,7 +163,8 @@ static qfoc_q15_t svpwm_scale(qfoc_q15_t x, int32_t g)
   assigns *ab, out->limited, out->utilisation;
   ensures range_util: 0 <= out->utilisation <= 32767;
 */
-static void svpwm_limit(const qfoc_ab_t *in, int32_t v, qfoc_ab_t *ab, qfoc_svpwm_out_t *out)
+static inline void svpwm_limit(const qfoc_ab_t *in, int32_t v, qfoc_ab_t *ab,
+                               qfoc_svpwm_out_t *out)
 {
     /* r_lim = Vdc / sqrt(3), Q15 of the voltage base, <= 18918 */
     int32_t r_lim = (v * SVPWM_INV_SQRT3_Q16) / SVPWM_ONE_Q16;
@@ -167,62 +181,61 @@ static void svpwm_limit(const qfoc_ab_t *in, int32_t v, qfoc_ab_t *ab, qfoc_svpw
         out->limited = true;
         out->utilisation = QFOC_Q15_MAX;
     } else {
-        /* utilisation |v| * sqrt(3) / Vdc, rounded; |v| <= 18918 here */
+        /* utilisation |v| * sqrt(3) / Vdc, rounded; 0 <= |v| <= 18918 here, so
+         * u >= 0 and only the upper saturation can act */
         int32_t u = ((mag * SVPWM_SQRT3_Q15) + (v / 2)) / v;
+        u = svpwm_clamp(u, 0, (int32_t)QFOC_Q15_MAX);
         ab->alpha = in->alpha;
         ab->beta = in->beta;
         out->limited = false;
-        out->utilisation = qfoc_q15_sat(u);
+        out->utilisation = (qfoc_q15_t)u;
     }
 }
 
 /*@
   requires range_v: 1 <= v <= 32767;
   requires range_p: 100 <= p <= 32767;
-  requires range_k: 0 <= k && v * k <= p * 65536;
+  requires range_k: 0 <= kh <= 65535 && 0 <= kl <= 65535 && v * (kh * 65536 + kl) <= p * 65536;
   assigns \nothing;
   ensures range: -p <= \result <= p;
 */
-static int32_t svpwm_time(qfoc_q15_t ux, int32_t v, int32_t k, int32_t p)
+static inline int32_t svpwm_time(qfoc_q15_t ux, int32_t v, uint32_t kh, uint32_t kl, int32_t p)
 {
-    /* phase voltage limited to what the bus can produce (never active after
-     * the overmodulation limit); bounds the product independently of the
-     * transform's accuracy */
-    int32_t u = svpwm_clamp((int32_t)ux, -v, v);
-    int64_t t;
-    int64_t r;
-    //@ assert prod: -(v * k) <= u * k <= v * k;
-    /* |u k| <= Vdc k <= P * 65536 < 2^31 (proved above); the product is formed
-     * in 64 bits (one SMULL on the Cortex-M4) so that its bound also follows
-     * from the operand widths alone (2^15 * 2^31), which bit-level checkers
-     * (CBMC) can establish without the nonlinear argument */
-    t = (int64_t)u * (int64_t)k;
-    if (t >= 0) {
-        r = (t + (int64_t)SVPWM_HALF_Q16) / (int64_t)SVPWM_ONE_Q16;
+    int32_t u = (int32_t)ux;
+    int32_t au = u;
+    uint32_t ua;
+    uint32_t lo;
+    uint32_t q;
+    int32_t r;
+    if (au < 0) {
+        au = -au;
     } else {
-        r = -(((int64_t)SVPWM_HALF_Q16 - t) / (int64_t)SVPWM_ONE_Q16);
+        /* non-negative already */
     }
-    //@ assert r_range: -p <= r <= p;
-    /* no-op (|r| <= P proved); keeps every later sum locally bounded */
-    return svpwm_clamp((int32_t)r, -p, p);
-}
-
-/*@
-  requires range_v: 1 <= v <= 32767;
-  requires range_p: 100 <= p <= 32767;
-  requires valid: \valid_read(uvw) && \valid(t + (0 .. 2));
-  requires sep: \separated(uvw, t + (0 .. 2));
-  assigns t[0 .. 2];
-  ensures range: \forall integer j; 0 <= j < 3 ==> -p <= t[j] <= p;
-*/
-static void svpwm_times(const qfoc_abc_t *uvw, int32_t v, int32_t p, int32_t t[3])
-{
-    /* Tx = Ux / Vdc * P: k = P / Vdc in Q16 is the one division of the step */
-    int32_t k = (p * SVPWM_ONE_Q16) / v;
-    //@ assert k_range: 0 <= k && v * k <= p * 65536;
-    t[0] = svpwm_time(uvw->u, v, k, p);
-    t[1] = svpwm_time(uvw->v, v, k, p);
-    t[2] = svpwm_time(uvw->w, v, k, p);
+    /* |Ux| limited to what the bus can produce, i.e. Ux clamped to [-Vdc, Vdc]
+     * (never active after the overmodulation limit); bounds the product
+     * independently of the transform's accuracy */
+    au = svpwm_clamp(au, 0, v);
+    ua = (uint32_t)au;
+    //@ assert prod: 0 <= ua * (kh * 65536 + kl) <= v * (kh * 65536 + kl) <= p * 65536;
+    /* |Ux| k / 65536 rounded half away from zero, k = kh 65536 + kl:
+     * (|Ux| k + 32768) / 65536 = |Ux| kh + (|Ux| kl + 32768) / 65536, both
+     * products below 2^31 from the operand widths alone (2^15 * 2^16), which
+     * bit-level checkers (CBMC) establish without the nonlinear argument
+     * |Ux| k <= Vdc k <= P * 65536 (proved above) */
+    lo = ((ua * kl) + 32768u) / SVPWM_ONE_Q16_U;
+    q = (ua * kh) + lo;
+    //@ assert split: q == (ua * (kh * 65536 + kl) + 32768) / 65536;
+    //@ assert q_range: q <= p;
+    /* no-op (q <= P proved); keeps every later sum locally bounded (q < 2^31
+     * from the widths) */
+    r = svpwm_clamp((int32_t)q, 0, p);
+    if (u < 0) {
+        r = -r;
+    } else {
+        /* non-negative voltage, non-negative time */
+    }
+    return r;
 }
 
 /*@
@@ -232,45 +245,57 @@ static void svpwm_times(const qfoc_abc_t *uvw, int32_t v, int32_t p, int32_t t[3
   assigns out->cmp[0 .. 2], out->sector;
   ensures range_cmp: \forall integer j; 0 <= j < 3 ==> 0 <= out->cmp[j] <= p;
   ensures range_sector: 1 <= out->sector <= 6;
+  ensures sector_value: out->sector == SvpwmSector(ta, tb, tc);
   ensures sector_order: SvpwmSectorOrder(out->sector, out->cmp[0], out->cmp[1], out->cmp[2]);
   ensures centred: (\forall integer j; 0 <= j < 3 ==> 0 < out->cmp[j] < p) ==>
     p - 1 <= SvpwmMax3(out->cmp[0], out->cmp[1], out->cmp[2]) +
              SvpwmMin3(out->cmp[0], out->cmp[1], out->cmp[2]) <= p + 1;
 */
-static void svpwm_modulate(int32_t ta, int32_t tb, int32_t tc, int32_t p, qfoc_svpwm_out_t *out)
+static inline void svpwm_modulate(int32_t ta, int32_t tb, int32_t tc, int32_t p,
+                                  qfoc_svpwm_out_t *out)
 {
-    int32_t tmax = ta;
-    int32_t tmin = ta;
+    int32_t tmax;
+    int32_t tmin;
+    uint8_t s;
     int32_t off;
     int32_t ca;
     int32_t cb;
     int32_t cc;
 
-    /* (6) sector from the document's table */
-    out->sector = svpwm_sector(ta, tb, tc);
+    /* (6) sector from the document's table (first row that holds), and with it
+     * the largest and smallest time: two or three compares */
+    if (ta >= tb) {
+        if (tb >= tc) {
+            s = 1u;             /* Ta >= Tb >= Tc */
+            tmax = ta;
+            tmin = tc;
+        } else if (ta >= tc) {
+            s = 2u;             /* Ta >= Tc > Tb */
+            tmax = ta;
+            tmin = tb;
+        } else {
+            s = 5u;             /* Tc > Ta >= Tb */
+            tmax = tc;
+            tmin = tb;
+        }
+    } else if (tc < ta) {
+        s = 4u;                 /* Tb > Ta > Tc */
+        tmax = tb;
+        tmin = tc;
+    } else if (tb >= tc) {
+        s = 3u;                 /* Tb >= Tc >= Ta, Tb > Ta */
+        tmax = tb;
+        tmin = ta;
+    } else {
+        s = 6u;                 /* Tc > Tb > Ta */
+        tmax = tc;
+        tmin = ta;
+    }
+    //@ assert sector: s == SvpwmSector(ta, tb, tc) && SvpwmSectorOrder(s, ta, tb, tc);
+    //@ assert max_min: tmax == SvpwmMax3(ta, tb, tc) && tmin == SvpwmMin3(ta, tb, tc);
+    out->sector = s;
 
     /* (7) min-max zero-sequence injection Tpwm/2 - (Tmax + Tmin)/2 */
-    if (tb > tmax) {
-        tmax = tb;
-    } else {
-        /* keep */
-    }
-    if (tc > tmax) {
-        tmax = tc;
-    } else {
-        /* keep */
-    }
-    if (tb < tmin) {
-        tmin = tb;
-    } else {
-        /* keep */
-    }
-    if (tc < tmin) {
-        tmin = tc;
-    } else {
-        /* keep */
-    }
-    //@ assert max_min: tmax == SvpwmMax3(ta, tb, tc) && tmin == SvpwmMin3(ta, tb, tc);
     off = (p - (tmax + tmin)) / 2;
 
     /* (8) compare values clamped to [0, P] */
@@ -309,9 +334,14 @@ void qfoc_svpwm_step(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q1
         int32_t dt = (int32_t)cfg->dt_comp;
         int32_t db = (int32_t)cfg->i_deadband;
         int32_t v = (int32_t)vdc;
+        uint32_t k;
+        uint32_t kh;
+        uint32_t kl;
+        int32_t ta;
+        int32_t tb;
+        int32_t tc;
         qfoc_ab_t ab;
         qfoc_abc_t uvw;
-        int32_t t[3];
 
         /* (1) DC bus clamped to [vdc_min, 32767] */
         if (v < (int32_t)cfg->vdc_min) {
@@ -327,16 +357,31 @@ void qfoc_svpwm_step(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q1
         /* (3) inverse Clarke to the phase voltages */
         qfoc_inv_clarke(&ab, &uvw);
 
-        /* (4) phase times Tx = Ux / Vdc * P, |Tx| <= P */
-        svpwm_times(&uvw, v, p, t);
+        /* (4) phase times Tx = Ux / Vdc * P, |Tx| <= P: k = P / Vdc in Q16 is
+         * the one division of the phase times */
+        k = ((uint32_t)p * SVPWM_ONE_Q16_U) / (uint32_t)v;
+        //@ assert k_range: v * k <= p * 65536;
+        kh = k / SVPWM_ONE_Q16_U;
+        kl = k % SVPWM_ONE_Q16_U;
+        //@ assert k_split: k == kh * 65536 + kl && 0 <= kh <= 65535 && 0 <= kl <= 65535;
+        ta = svpwm_time(uvw.u, v, kh, kl, p);
+        tb = svpwm_time(uvw.v, v, kh, kl, p);
+        tc = svpwm_time(uvw.w, v, kh, kl, p);
 
-        /* (5) dead-time compensation, |c| <= P / 4 */
-        t[0] += svpwm_dt_comp(i_abc->u, dt, db);
-        t[1] += svpwm_dt_comp(i_abc->v, dt, db);
-        t[2] += svpwm_dt_comp(i_abc->w, dt, db);
+        /* (5) dead-time compensation, |c| <= P / 4; a zero dead band is the
+         * dead band 1 (the same pure sign() compensation: |i| >= 1 for every
+         * non-zero current, and the fade of a zero current is zero) */
+        if (db < 1) {
+            db = 1;
+        } else {
+            /* a dead band of its own */
+        }
+        ta = svpwm_dt_add(ta, i_abc->u, dt, db);
+        tb = svpwm_dt_add(tb, i_abc->v, dt, db);
+        tc = svpwm_dt_add(tc, i_abc->w, dt, db);
 
         /* (6) .. (8) sector, injection, clamp */
-        svpwm_modulate(t[0], t[1], t[2], p, out);
+        svpwm_modulate(ta, tb, tc, p, out);
     } else {
         /* invalid configuration: zero voltage, flagged as limited */
         uint16_t half = (uint16_t)(cfg->period / 2u);

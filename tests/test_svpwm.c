@@ -478,6 +478,24 @@ static void test_req_svpwm_005_overmodulation(void **state)
         check_case(&c, -32768, -32768, 32767, &i_zero);
         check_case(&c, -32768, 32767, 20000, &i_zero);
     }
+    /* |v|^2 on both sides of 32767^2, where the magnitude switches to the halved
+     * vector: (32766, 255) has |v|^2 = 32767^2 - 508, (32766, 256) and (32767, 0)
+     * reach 32767^2 or more; every such vector is limited onto the circle */
+    {
+        const qfoc_svpwm_cfg_t c = make_cfg(5000u, 0u, 0, 1);
+        const qfoc_q15_t edge[][2] = { { 32766, 255 }, { 32766, 256 }, { 32767, 0 },
+                                       { 0, -32768 }, { -32768, 0 }, { -255, -32766 } };
+        size_t e;
+        for (e = 0; e < sizeof(edge) / sizeof(edge[0]); e++) {
+            qfoc_ab_t ab = { edge[e][0], edge[e][1] };
+            qfoc_svpwm_out_t o;
+            check_case(&c, edge[e][0], edge[e][1], 32767, &i_zero);
+            check_case(&c, edge[e][0], edge[e][1], 100, &i_zero);
+            qfoc_svpwm_step(&c, &ab, 32767, &i_zero, &o);
+            assert_true(o.limited);
+            assert_int_equal(o.utilisation, 32767);
+        }
+    }
     print_message("overmodulation: max |radius - vdc/sqrt3| = %.3f ticks\n", max_rad_err);
 }
 

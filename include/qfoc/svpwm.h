@@ -139,8 +139,10 @@ bool qfoc_svpwm_cfg_is_valid(const qfoc_svpwm_cfg_t *c);
  * Scaling and overflow (all arithmetic in int32, every bound proved by WP):
  *  - r_lim = Vdc * 37837 / 65536 (1/sqrt 3 in Q16, floor) <= 18918, Q15 volts;
  *    Vdc * 37837 <= 1.24e9.
- *  - |v| from qfoc_vec_mag(); when that saturates (|v| >= 32767, possible up to
- *    sqrt 2 * 32768) the halved vector is measured and doubled, so |v| <= 65534.
+ *  - |v|^2 = alpha^2 + beta^2 <= 2^31 (uint32) picks the one square root: below
+ *    32767^2, |v| = qfoc_vec_mag(alpha, beta) (exact); from 32767^2 on (|v| up to
+ *    sqrt 2 * 32768, where qfoc_vec_mag() saturates) the halved vector is
+ *    measured and doubled, so |v| <= 65534.
  *  - |v| > r_lim: g = r_lim * 65536 / |v| (Q16, 0 <= g <= 65535, one division),
  *    alpha' = alpha * g / 65536 (|alpha * g| <= 32768 * 65535 < 2^31),
  *    truncated towards zero so the limited vector never grows; utilisation = 32767.
@@ -150,7 +152,9 @@ bool qfoc_svpwm_cfg_is_valid(const qfoc_svpwm_cfg_t *c);
  *    it makes the next bound independent of the transform's accuracy).
  *  - k = P * 65536 / Vdc (Q16 ticks per voltage LSB, the one division of the
  *    phase times; P * 65536 <= 2147418112); Ux * k is bounded by
- *    Vdc * k <= P * 65536 and rounded to ticks: |Tx| <= P.
+ *    Vdc * k <= P * 65536 and rounded to ticks (half away from zero): |Tx| <= P,
+ *    formed in 32 bits as |Ux| kh + (|Ux| kl + 32768) / 65536 with
+ *    k = kh * 65536 + kl (each product of a 15-bit and a 16-bit factor).
  *  - Dead-time compensation |c| <= P / 4 (|ix| * dt_comp <= 32767 * 8191);
  *    |Tx| <= 5 P / 4 afterwards; the injected offset (P - Tmax - Tmin) / 2
  *    (truncated towards zero) and Tx + offset stay within +-4 P; clamped to [0, P].
