@@ -1078,40 +1078,45 @@ static void drv_ms100(qfoc_drive_t *d)
     }
 }
 
-qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
+/* The received frame through the command link, and the command it holds (REQ-DRV-009,
+   REQ-DRV-015). */
+/*@
+  requires valid: \valid(s);
+  requires valid_rx: \valid_read(rx + (0 .. rx_len - 1));
+  requires sep: \separated(s, rx + (0 .. rx_len - 1));
+  requires inv: DRV_LINK(&s->link);
+  assigns s->link, s->cmd;
+  ensures inv: DRV_LINK(&s->link);
+*/
+static bool drv_link_in(qfoc_drive_slow_t *s, const uint8_t *rx, uint8_t rx_len)
+{
+    const bool accepted = qfoc_link_service(&s->link, rx, rx_len);
+
+    qfoc_link_command(&s->link, &s->cmd);
+    return accepted;
+}
+
+/* The state machine's inputs of this tick (REQ-DRV-008, REQ-DRV-009). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(d, d->p);
+  assigns d->s.sm_in, d->s.db_ho;
+*/
+static void drv_sm_inputs(qfoc_drive_t *d, uint16_t faults, uint8_t old_state,
+                          uint8_t old_sub)
 {
     qfoc_drive_slow_t *const s = &d->s;
     const qfoc_param_table_t *const p = d->p;
     const qfoc_drive_cfg_t *const c = &p->drive;
-    const uint8_t old_state = s->sm.state;
-    const uint8_t old_sub = s->sm.sub;
-    static const uint8_t no_frame[1] = { 0u };
-    const uint8_t *const rx = (in->rx_len > 0u) ? in->rx : no_frame;
-    bool accepted;
-    bool lost;
-    uint16_t faults;
     qfoc_q15_t of_speed;
 
-    s->out.tx_len = 0u;
-    s->out.can_send = false;
-    /* command link (document Communication_service) */
-    accepted = qfoc_link_service(&s->link, rx, in->rx_len);
-    qfoc_link_command(&s->link, &s->cmd);
-    s->speed_target = drv_rpm_to_speed(s->cmd.target_rpm, c->k_rpm, p->speed_max);
-    /* faults and the offset calibration */
-    faults = drv_faults(d, in);
-    faults = (uint16_t)(faults + drv_calibrate(s, &d->f, c,
-                                              (old_state == QFOC_STATE_PRECHARGE) &&
-                                              (old_sub == QFOC_SUB_CALIB)));
-    /* the state machine */
     s->sm_in.faults = faults;
     s->sm_in.bus_ok = !qfoc_fault_under(d->f.vdc, p->vdc_uv);
     s->sm_in.calib_done = s->calib_done;
-    lost = qfoc_link_lost(&s->link);
     /* the link passes power_on only while it is not lost (link.h) */
     s->sm_in.run_request = s->cmd.power_on && (s->cmd.target_rpm >= c->rpm_min) &&
                            s->calib_done;
-    s->sm_in.link_lost = lost;
+    s->sm_in.link_lost = qfoc_link_lost(&s->link);
     s->sm_in.fault_clear = s->cmd.fault_clear;
     s->sm_in.table_ok = s->table_ok;
     s->sm_in.converged = drv_converged(s, &d->f, p,
@@ -1119,6 +1124,75 @@ qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
                                        (old_sub == QFOC_SUB_OPEN_LOOP));
     of_speed = qfoc_q15_abs(c->of_speed);
     s->sm_in.stop_reached = (old_sub == QFOC_SUB_STOPPING) && (s->speed_ref <= of_speed);
+}
+
+/* The tick's first half: the command link, the faults, the offset calibration and the
+   state machine's inputs (REQ-DRV-005, REQ-DRV-008, REQ-DRV-009); the state machine
+   itself is not stepped. */
+/*@
+  requires valid: \valid(d) && \valid_read(in);
+  requires rx: in->rx_len > 0 ==> \valid_read(in->rx + (0 .. in->rx_len - 1));
+  requires sep: \separated(d, in) &&
+                (in->rx_len > 0 ==> \separated(d, in->rx + (0 .. in->rx_len - 1)));
+  requires inv: DRV_VALID(d);
+  assigns d->s;
+  ensures inv_table: DrvTableOk(d);
+  ensures inv_fast: DRV_FAST(&d->f);
+  ensures inv_modules: DRV_SM(&d->s.sm) && DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
+  ensures inv_link: DRV_LINK(&d->s.link);
+  ensures inv_offsets: d->s.offset_u <= 4095 && d->s.offset_v <= 4095 && DRV_OFF_SUMS(&d->s);
+  ensures table: d->p == \old(d->p);
+  ensures none: d->s.out.tx_len == 0;
+  ensures sm: d->s.sm.state == \old(d->s.sm.state) && d->s.sm.sub == \old(d->s.sm.sub);
+*/
+static bool drv_tick_in(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_state,
+                        uint8_t old_sub)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    static const uint8_t no_frame[1] = { 0u };
+    const uint8_t *const rx = (in->rx_len > 0u) ? in->rx : no_frame;
+    bool accepted;
+    uint16_t faults;
+
+    s->out.tx_len = 0u;
+    s->out.can_send = false;
+    /* command link (document Communication_service) */
+    accepted = drv_link_in(s, rx, in->rx_len);
+    s->speed_target = drv_rpm_to_speed(s->cmd.target_rpm, c->k_rpm, p->speed_max);
+    /* faults and the offset calibration */
+    faults = drv_faults(d, in);
+    faults = (uint16_t)(faults + drv_calibrate(s, &d->f, c,
+                                              (old_state == QFOC_STATE_PRECHARGE) &&
+                                              (old_sub == QFOC_SUB_CALIB)));
+    drv_sm_inputs(d, faults, old_state, old_sub);
+    return accepted;
+}
+
+/* The tick's second half: the state machine step and its transition, the speed loop,
+   the status, the answer frame and the 100 ms period (REQ-DRV-005, REQ-DRV-006,
+   REQ-DRV-010, REQ-DRV-011). */
+/*@
+  requires valid: \valid(d) && \valid_read(in);
+  requires sep: \separated(d, in);
+  requires inv: DRV_VALID(d);
+  requires none: d->s.out.tx_len == 0;
+  requires sm: old_state == d->s.sm.state && old_sub == d->s.sm.sub;
+  assigns d->s;
+  ensures inv: DRV_VALID(d);
+  ensures table: d->p == \old(d->p);
+  ensures tx: d->s.out.tx_len == 0 || d->s.out.tx_len == QFOC_LIN_STATUS_LEN;
+  ensures error_exit: old_state == QFOC_STATE_ERROR &&
+      d->s.sm.state != QFOC_STATE_ERROR ==> d->s.sm.state == QFOC_STATE_STOP;
+  ensures run_entry: old_state != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>
+      old_state == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN;
+*/
+static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_state,
+                         uint8_t old_sub, bool accepted)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+
     drv_sm_step(s);
     drv_transition(d, old_state, old_sub);
     drv_run(d);
@@ -1126,7 +1200,16 @@ qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     drv_status(d, in);
     drv_answer(s, accepted);
     drv_ms100(d);
-    return s->out;
+}
+
+qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
+{
+    const uint8_t old_state = d->s.sm.state;
+    const uint8_t old_sub = d->s.sm.sub;
+    const bool accepted = drv_tick_in(d, in, old_state, old_sub);
+
+    drv_tick_out(d, in, old_state, old_sub, accepted);
+    return d->s.out;
 }
 
 /* ================================================================== init */
@@ -1227,52 +1310,20 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
     drv_pwm_off(&f->out);
 }
 
-/* Tick data from the table (REQ-DRV-001). */
+/* The tick's references, counters, link buffers and state-machine inputs at their reset
+   values (REQ-DRV-001); a part of drv_init_slow() of its own, so that the invariant
+   drv_init_slow() establishes is proved over a short sequence of updates. */
 /*@
-  requires valid: \valid(s) && \valid_read(p);
-  requires sep: \separated(s, p);
-  assigns s->sm, s->pi_speed, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
-          s->db_stall, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
-          s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
-          s->iq_ref, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
-          s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
-  ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
-               s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);
-  ensures accepted: st == QFOC_PARAMS_OK ==>
-      s->sm.state == QFOC_STATE_PRECHARGE && s->table_ok;
-  ensures refused: st != QFOC_PARAMS_OK ==> s->sm.state == QFOC_STATE_ERROR && !s->table_ok;
+  requires valid: \valid(s) && \valid_read(c);
+  requires sep: \separated(s, c);
+  assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->trip_seen,
+          s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done, s->hs,
+          s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
 */
-static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int32_t st)
+static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
 {
-    const qfoc_drive_cfg_t *const c = &p->drive;
-    qfoc_trqcomp_params_t tcp;
     uint32_t k;
 
-    tcp.gain = c->tc_gain;
-    tcp.amp_max = c->tc_amp_max;
-    tcp.speed_min = c->tc_speed_min;
-    tcp.speed_max = c->tc_speed_max;
-    tcp.pole_pairs = c->pole_pairs;
-    qfoc_sm_init(&s->sm);
-    if (st != QFOC_PARAMS_OK) {
-        qfoc_sm_fail(&s->sm, QFOC_FAULT_PARAM);
-    } else {
-        /* the table passed its check: PRECHARGE */
-    }
-    (void)qfoc_pi_init(&s->pi_speed, &p->pi_speed);
-    (void)qfoc_trqcomp_init(&s->tc, &tcp);
-    qfoc_debounce_reset(&s->db_ov);
-    qfoc_debounce_reset(&s->db_uv);
-    qfoc_debounce_reset(&s->db_ot_ipm);
-    qfoc_debounce_reset(&s->db_ot_pcb);
-    qfoc_debounce_reset(&s->db_stall);
-    qfoc_debounce_reset(&s->db_phase);
-    qfoc_debounce_reset(&s->db_ho);
-    s->off_sum_u = 0u;
-    s->off_sum_v = 0u;
-    s->off_n = 0u;
-    s->offset_u = QFOC_ADC_MID;
-    s->offset_v = QFOC_ADC_MID;
     s->speed_target = 0;
     s->speed_ref = 0;
     s->ol_speed = 0;
@@ -1282,7 +1333,6 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int
     s->clamp_seen = 0u;
     s->clear_seq = 0u;
     s->ms100 = 0u;
-    s->table_ok = (st == QFOC_PARAMS_OK);
     s->scan_crc = 0u;
     s->calib_done = false;
     s->hs = false;
@@ -1327,6 +1377,55 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int
         s->out.can.data[k] = 0u;
     }
     s->out.can_send = false;
+}
+
+/* Tick data from the table (REQ-DRV-001). */
+/*@
+  requires valid: \valid(s) && \valid_read(p);
+  requires sep: \separated(s, p);
+  assigns s->sm, s->pi_speed, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
+          s->db_stall, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
+          s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
+          s->iq_ref, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
+          s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
+  ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
+               s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);
+  ensures accepted: st == QFOC_PARAMS_OK ==>
+      s->sm.state == QFOC_STATE_PRECHARGE && s->table_ok;
+  ensures refused: st != QFOC_PARAMS_OK ==> s->sm.state == QFOC_STATE_ERROR && !s->table_ok;
+*/
+static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int32_t st)
+{
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    qfoc_trqcomp_params_t tcp;
+
+    tcp.gain = c->tc_gain;
+    tcp.amp_max = c->tc_amp_max;
+    tcp.speed_min = c->tc_speed_min;
+    tcp.speed_max = c->tc_speed_max;
+    tcp.pole_pairs = c->pole_pairs;
+    qfoc_sm_init(&s->sm);
+    if (st != QFOC_PARAMS_OK) {
+        qfoc_sm_fail(&s->sm, QFOC_FAULT_PARAM);
+    } else {
+        /* the table passed its check: PRECHARGE */
+    }
+    (void)qfoc_pi_init(&s->pi_speed, &p->pi_speed);
+    (void)qfoc_trqcomp_init(&s->tc, &tcp);
+    qfoc_debounce_reset(&s->db_ov);
+    qfoc_debounce_reset(&s->db_uv);
+    qfoc_debounce_reset(&s->db_ot_ipm);
+    qfoc_debounce_reset(&s->db_ot_pcb);
+    qfoc_debounce_reset(&s->db_stall);
+    qfoc_debounce_reset(&s->db_phase);
+    qfoc_debounce_reset(&s->db_ho);
+    s->off_sum_u = 0u;
+    s->off_sum_v = 0u;
+    s->off_n = 0u;
+    s->offset_u = QFOC_ADC_MID;
+    s->offset_v = QFOC_ADC_MID;
+    s->table_ok = (st == QFOC_PARAMS_OK);
+    drv_init_slow_io(s, c);
 }
 
 /* The command link from the table's identifiers, speed limit and timeout (REQ-DRV-001). */

@@ -41,7 +41,8 @@ prove_one() {  # prove_one JOB UNIT_PATH PROVERS SELECT
     unit=$2
     provers=$3
     case "$4" in
-        @lemma) select="-wp-prop=@lemma" ;;
+        @lemma*) select="-wp-prop=$4" ;;
+        prop:*) select="-wp-prop=${4#prop:}" ;;
         -) select="" ;;
         *) select="-wp-fct=$4" ;;
     esac

@@ -8,7 +8,8 @@ jobs; a job is one Frama-C run over a set of the unit's functions with one prove
 order.  proofs/wp/provers.txt sets, from the results of earlier runs:
 
     <unit> <provers>              the unit's prover order (z3,cvc4 when not listed)
-    <unit>:<function> <provers>   the order for one function of the unit
+    <unit>:<function> <provers>   the order for one function of the unit (for the
+                                  lemma unit: one lemma, by its name)
     split <unit> <n>              the unit's functions of its own order in n jobs
 
 WP tries the provers of a goal one after the other and the timeout is the same for
@@ -22,7 +23,8 @@ nothing in what is proved: every job proves its functions against the contracts 
 the functions it calls, exactly as the whole unit does.
 
 Each output line: JOB UNIT_PATH PROVERS SELECT, where SELECT is the comma-separated
-function list, '@lemma' for the lemma unit, or '-' for a unit without functions.
+function list, '@lemma' (with ',-Name' for each lemma proved in a job of its own) or
+'prop:Name,...' for the lemma unit, or '-' for a unit without functions.
 Jobs are ordered by the wall times of the last full run (proofs/wp/times.txt), the
 longest first, a job not listed there first of all.
 """
@@ -115,7 +117,17 @@ def main():
         unit = os.path.basename(path)[:-2]
         order = unit_order.get(unit, DEFAULT_ORDER)
         if unit == "lemmas_unit":
-            jobs.append((unit, path, order, "@lemma"))
+            # lemmas by name: the ones with an order of their own in one job each order,
+            # every other lemma in the unit's job
+            named = {}
+            for (u, lemma), prov in sorted(fn_order.items()):
+                if u == unit:
+                    named.setdefault(prov, []).append(lemma)
+            rest = "".join(f",-{lemma}" for prov in named for lemma in named[prov])
+            parts = [(order, "@lemma" + rest)]
+            parts += [(prov, "prop:" + ",".join(names)) for prov, names in sorted(named.items())]
+            for k, (prov, sel) in enumerate(parts, 1):
+                jobs.append((unit if len(parts) == 1 else f"{unit}@{k}", path, prov, sel))
             continue
         fns = functions_of(path)
         if not fns:
