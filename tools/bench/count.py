@@ -79,27 +79,27 @@ GOAL_FAST_STEP = 600
 GOAL_TICK = 2000
 GOAL_FLASH = 8 * 1024
 GOAL_FLASH_DRIVE = 10 * 1024
-LIMIT_FAST_STEP = 3000
-LIMIT_TICK = 12500
-LIMIT_FLASH = 24 * 1024
-LIMIT_FLASH_DRIVE = 18 * 1024
-LIMIT_RAM_MOTOR = 512
-LIMIT_STACK_FAST = 256
+LIMIT_FAST_STEP = 2250
+LIMIT_TICK = 1700
+LIMIT_FLASH = 21 * 1024
+LIMIT_FLASH_DRIVE = 16800
+LIMIT_RAM_MOTOR = 496
+LIMIT_STACK_FAST = 224
 # per function (bench key): (limit, goal) in instructions on the longest case
 FUNC_BUDGET = {
-    "clarke": (40, 18),
-    "park": (60, 23),
-    "inv_park": (60, 23),
-    "inv_clarke": (45, 22),
-    "sincos": (75, 55),
-    "pi": (86, 45),
-    "lpf": (70, None),
+    "clarke": (37, 18),
+    "park": (55, 23),
+    "inv_park": (55, 23),
+    "inv_clarke": (44, 22),
+    "sincos": (42, 55),
+    "pi": (42, 45),
+    "lpf": (26, None),
     "vec_mag": (176, None),
-    "circle_limit": (196, None),
-    "svpwm": (640, 150),
+    "circle_limit": (195, None),
+    "svpwm": (405, 150),
     "flux": (232, None),
-    "pll": (480, None),
-    "params_scan": (2750, None),
+    "pll": (370, None),
+    "params_scan": (500, None),
 }
 LIMIT_CLARKE, LIMIT_PARK, LIMIT_SVPWM = (FUNC_BUDGET[k][0] for k in ("clarke", "park", "svpwm"))
 
