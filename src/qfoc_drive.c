@@ -663,30 +663,25 @@ static uint16_t drv_calibrate(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
     return fault;
 }
 
-/* Tick-evaluated faults (fault.h; reaction times in drive.h, REQ-DRV-008). */
+/* Tick-evaluated faults of the bus and the temperatures, and the fast step's new trips
+   (fault.h; reaction times in drive.h, REQ-DRV-008). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
   requires sep: \separated(&d->s, d->p) && \separated(&d->s, in);
-  requires inv: DRV_PHASE(&d->f.phase);
-  assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall,
-          d->s.db_phase, d->s.trip_seen;
-  ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET;
+  assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.trip_seen;
+  ensures bits: \result <= QFOC_FAULT_OC + QFOC_FAULT_OV + QFOC_FAULT_UV +
+                           QFOC_FAULT_OT_IPM + QFOC_FAULT_OT_PCB;
 */
-static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
+static uint16_t drv_faults_power(qfoc_drive_t *d, const qfoc_tick_in_t *in)
 {
     qfoc_drive_slow_t *const s = &d->s;
     const qfoc_drive_fast_t *const f = &d->f;
     const qfoc_param_table_t *const p = d->p;
     const qfoc_drive_cfg_t *const c = &p->drive;
-    const uint8_t st = s->sm.state;
-    const uint8_t sub = s->sm.sub;
-    const bool run = (st == QFOC_STATE_RUN);
-    const bool rotating = run && (sub != QFOC_SUB_ALIGN);
-    const bool closed = run && ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
+    const bool run = (s->sm.state == QFOC_STATE_RUN);
     const uint8_t trips = f->trip_count;
-    const bool imbalanced = qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, c->phase_ratio);
     uint16_t w = 0u;
-    bool stall;
+
     /* over-current, detected by the fast step */
     if (trips != s->trip_seen) {
         w = (uint16_t)(w + QFOC_FAULT_OC);
@@ -714,6 +709,33 @@ static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     } else {
         /* PCB cool */
     }
+    return w;
+}
+
+/* Tick-evaluated faults of the motor and the table: stall, phase loss, table re-check
+   (fault.h; reaction times in drive.h, REQ-DRV-008, REQ-DRV-010). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  requires inv: DRV_PHASE(&d->f.phase);
+  assigns d->s.db_stall, d->s.db_phase;
+  ensures bits: \result <= QFOC_FAULT_STALL + QFOC_FAULT_PHASE + QFOC_FAULT_PARAM;
+*/
+static uint16_t drv_faults_motor(qfoc_drive_t *d)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const uint8_t st = s->sm.state;
+    const uint8_t sub = s->sm.sub;
+    const bool run = (st == QFOC_STATE_RUN);
+    const bool rotating = run && (sub != QFOC_SUB_ALIGN);
+    const bool closed = run && ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
+    const bool imbalanced = qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, c->phase_ratio);
+    uint16_t w = 0u;
+    bool stall;
+
     /* stall / loss of synchronisation: speed error or flux magnitude off its expectation
        psi_f + (L_d - L_q) i_d (the active flux the observer estimates) */
     {
@@ -742,6 +764,23 @@ static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
         /* table intact */
     }
     return w;
+}
+
+/* Tick-evaluated faults (fault.h; reaction times in drive.h, REQ-DRV-008). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
+  requires sep: \separated(&d->s, d->p) && \separated(&d->s, in);
+  requires inv: DRV_PHASE(&d->f.phase);
+  assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall,
+          d->s.db_phase, d->s.trip_seen;
+  ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET;
+*/
+static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
+{
+    const uint16_t w_power = drv_faults_power(d, in);
+    const uint16_t w_motor = drv_faults_motor(d);
+
+    return (uint16_t)(w_power + w_motor);
 }
 
 /* Handover condition (REQ-DRV-006).  The I/f current lies on the q axis of the open-loop

@@ -2,8 +2,9 @@
 # tools/check.sh -- every qfoc gate, then a summary.
 # All gates run even when one fails, so one run shows every shortfall; the exit
 # status is non-zero when any gate failed.  The gates run one after the other, except
-# EVA: it uses one processor for minutes and shares no file with the gates after CBMC,
-# so it runs beside them (the summary lists the gates in the order they ended).
+# two that use one processor for minutes and share no file with the gates beside them:
+# MC/DC (in its own chroot) runs beside the tests and coverage, EVA beside the gates after
+# CBMC (the summary lists the gates in the order they ended).
 set -u
 TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP"
@@ -29,23 +30,23 @@ gate() {  # gate NAME COMMAND...
     printf '%-9s %s  %4ss  %s\n' "$name" "$res" "$((t1 - t0))" "$last" >> "$summary"
 }
 
-# gate_bg NAME COMMAND...: the gate in the background, its output kept until gate_wait
+# gate_bg NAME COMMAND...: the gate in the background, its output kept until gate_wait NAME
 gate_bg() {
-    bg_name=$1
     ( gate "$@" ) > "build/check-$1.out" 2>&1 &
-    bg_pid=$!
+    eval "bg_$(echo "$1" | tr -c 'a-z0-9\n' _)=$!"
 }
 
-gate_wait() {
-    wait "$bg_pid" || true
-    cat "build/check-$bg_name.out"
-    grep -q "^$bg_name  *FAIL " "$summary" && status=1
+gate_wait() {  # gate_wait NAME
+    eval "wait \"\$bg_$(echo "$1" | tr -c 'a-z0-9\n' _)\"" || true
+    cat "build/check-$1.out"
+    grep -q "^$1  *FAIL " "$summary" && status=1
     return 0
 }
 
+gate_bg mcdc  make --no-print-directory mcdc
 gate test     make --no-print-directory test
 gate coverage make --no-print-directory coverage
-gate mcdc     make --no-print-directory mcdc
+gate_wait mcdc
 gate prove    make --no-print-directory prove
 gate cbmc     make --no-print-directory cbmc
 gate_bg eva   make --no-print-directory eva
@@ -61,7 +62,7 @@ gate tune     make --no-print-directory tune-check
 gate demo     make --no-print-directory demo
 gate robust   make --no-print-directory robustness ROBUST_COUNT=24
 gate repro    make --no-print-directory repro
-gate_wait
+gate_wait eva
 
 # The evidence bundle last: it collects what the gates above wrote, and fails when one of
 # its summary rows is red (a gate's result missing or failed).
