@@ -188,8 +188,10 @@ qfoc_q15_t qfoc_lpf_step(qfoc_lpf_t *f, qfoc_q15_t u)
         const int64_t d64 = (int64_t)in - (int64_t)y;
         const uint32_t d = (uint32_t)d64;
         const uint32_t inc = qfoc_lpf_inc(f->alpha, d);
+        const int64_t sum = (int64_t)y + (int64_t)inc;
         /*@ assert inc_value: inc == QfocRoundDiv(f->alpha * (LpfInput(u) - y), 32768); */
-        next = (qfoc_q31_t)((int64_t)y + (int64_t)inc);
+        /*@ assert sum_range: sum <= in; */
+        next = (qfoc_q31_t)sum;
     } else {
         /* falling: d = y - u in (0, 2^32); the increment is -round(alpha d / 32768)
            (rounding ties away from zero is symmetric), y - |increment| in [u, y] */

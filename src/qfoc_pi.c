@@ -198,8 +198,10 @@ qfoc_q15_t qfoc_pi_step(qfoc_pi_t *pi, qfoc_q15_t error)
             limited = true;
         } else {
             /* P + I(k) in [I(k), out_max x 65536]: fits 32 bits; Q31 -> Q15 rounded */
-            /*@ assert sum_value: integ + pmag == PiNextSum(pi, error); */
-            out = qfoc_pi_round((int32_t)((int64_t)integ + pmag));
+            const int64_t sum = (int64_t)integ + pmag;
+            /*@ assert sum_value: sum == PiNextSum(pi, error); */
+            /*@ assert sum_range: sum <= 2147483647; */
+            out = qfoc_pi_round((int32_t)sum);
             limited = false;
         }
     } else {
@@ -235,8 +237,10 @@ qfoc_q15_t qfoc_pi_step(qfoc_pi_t *pi, qfoc_q15_t error)
             limited = true;
         } else {
             /* P + I(k) in [out_min x 65536, I(k)]: fits 32 bits; Q31 -> Q15 rounded */
-            /*@ assert sum_value: integ - pmag == PiNextSum(pi, error); */
-            out = qfoc_pi_round((int32_t)((int64_t)integ - pmag));
+            const int64_t sum = (int64_t)integ - pmag;
+            /*@ assert sum_value: sum == PiNextSum(pi, error); */
+            /*@ assert sum_range: -2147483648 <= sum; */
+            out = qfoc_pi_round((int32_t)sum);
             limited = false;
         }
     }

@@ -8,12 +8,30 @@
  * check_full():  the post-conditions of one step for any input (REQ-PLL-002 ..
  *                REQ-PLL-007, REQ-PLL-010).
  * check_exact(): the magnitude and the coasting decision for small loop vectors.
+ * qfoc_sincos():  a stub returning any pair its contract allows (see below).
  */
 #ifndef QFOC_PLL_COMMON_H
 #define QFOC_PLL_COMMON_H
 
 #include "qfoc/pll.h"
 #include "harness_util.h"
+
+/* contract of qfoc_sincos: both outputs in [-32767, 32767] (weakened: any such pair).
+   The PLL's properties checked here do not depend on the values of the pair, only on
+   their range; qfoc_sincos has its own harness (trig_sincos), and its exact values and
+   the PLL's use of them are proved for every input by Frama-C WP (ensures sc). */
+void qfoc_sincos(qfoc_angle_t theta, qfoc_sincos_t *out)
+{
+    qfoc_sincos_t r;
+
+    (void)theta;
+    __CPROVER_assert(__CPROVER_w_ok(out, sizeof(*out)), "sincos pointer valid");
+    r.sine = nondet_int16();
+    r.cosine = nondet_int16();
+    __CPROVER_assume((r.sine >= -32767) && (r.sine <= 32767) &&
+                     (r.cosine >= -32767) && (r.cosine <= 32767));
+    *out = r;
+}
 
 /* Any instance that qfoc_pll_is_valid() accepts. */
 static void build(qfoc_pll_t *pll)

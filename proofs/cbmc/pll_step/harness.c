@@ -5,7 +5,8 @@
  * qfoc_pll_is_valid() accepts it (any gains, limits, integrator inside them,
  * low-pass coefficient and state, theta_acc, clamp, mag_min, k_theta); the
  * flux components are any int16_t values (-32768 included).  The real bodies
- * of qfoc_sincos, qfoc_vec_mag, qfoc_pi_step and qfoc_lpf_step are linked.
+ * of qfoc_vec_mag, qfoc_pi_step and qfoc_lpf_step are linked; qfoc_sincos is a
+ * stub returning any pair its contract allows (pll_common.h).
  * Properties (REQ-PLL-002, REQ-PLL-003, REQ-PLL-004, REQ-PLL-005, REQ-PLL-006,
  * REQ-PLL-007, REQ-PLL-010):
  *  - no undefined behaviour anywhere in the step (signed/unsigned overflow,

@@ -3,7 +3,8 @@
  * instance and any back-EMF vector.
  *
  * Any valid instance (as proofs/cbmc/pll_step), EMF components any int16_t
- * values (-32768 included), real bodies of the called functions.  Properties
+ * values (-32768 included), real bodies of the called functions but qfoc_sincos (a
+ * stub returning any pair its contract allows, pll_common.h).  Properties
  * (REQ-PLL-002, REQ-PLL-004, REQ-PLL-006, REQ-PLL-008, REQ-PLL-010): every
  * property of the pll_step harness (no undefined behaviour, still valid,
  * configuration unchanged, theta / theta_next, accumulator modulo 2^32,
