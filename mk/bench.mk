@@ -64,6 +64,7 @@ $(BENCH_DIR)/fw8000.bin: $(BENCH_DIR)/gen_replay specs/motors/reference.toml
 ## bench: instructions per function and per drive step on the Cortex-M4F (Unicorn), flash, RAM, stack: build/bench/bench.md
 bench: deps $(BENCH_DIR)/bench.elf $(BENCH_DIR)/drive_only.elf $(BENCH_DIR)/fwtc.bin \
        $(BENCH_DIR)/fw8000.bin
+	@sh tools/bench/isqrt_steps.sh $(BENCH_DIR)
 	@$(PYTHON) tools/bench/count.py --elf $(BENCH_DIR)/bench.elf \
 	    --drive-elf $(BENCH_DIR)/drive_only.elf --obj-dir $(BENCH_OBJ) \
 	    --replay "fwtc=$(BENCH_DIR)/fwtc.bin=$(BENCH_FWTC_TITLE)" \

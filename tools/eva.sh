@@ -8,7 +8,7 @@
 #
 # Domains: octagons and equalities beside the default intervals, so that relations
 # between two variables (a clamp and its bound) are kept.  One function is analysed by
-# its contract instead of its code (-eva-use-spec): qfoc_isqrt32, whose 16-step loop
+# its contract instead of its code (-eva-use-spec): qfoc_isqrt32, whose Newton steps and loop
 # the intervals cannot follow (the remainder and the root are bounded only together);
 # its contract (include/qfoc/vector.h: the result is the floor of the square root, at
 # most 65535) is proved by WP with every runtime-error check (make prove), and its code

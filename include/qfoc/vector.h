@@ -4,9 +4,9 @@
  *
  * Used by the current loop and the SVPWM overmodulation (qfoc_circle_limit),
  * field weakening, and estimators (qfoc_vec_mag).  All functions are total
- * and exact in integer arithmetic: no floating point, no division, a fixed
- * number of loop iterations (16) in the square root, so the execution time
- * does not depend on the data.
+ * and exact in integer arithmetic: no floating point; the square root takes
+ * four compares, three unsigned divisions and one correction step at most,
+ * so its execution time is bounded.
  *
  * Requirements: REQ-VEC-001 .. REQ-VEC-004 (specs/requirements/trig.md).
  */
@@ -25,17 +25,23 @@
  * @param[in] v any uint32_t value
  * @return r with r * r <= v < (r + 1) * (r + 1), r in [0, 65535]
  *
- * Method: digit by digit, most significant root bit first, keeping
- * rem = v - r^2 >= 0 and v < (r + q)^2 with q = 65536, 32768, ..., 1; each
- * step tries the bit p = q / 2 with the increment (r + p)^2 - r^2 = (2 r + p) p.
- * Exactly 16 iterations for every v; only additions, comparisons and products
- * by the data-independent power of two p.
+ * Method: four compares find the range [4^k, 4^(k+1)) of v; from the start
+ * value 2 c, c = sqrt(2) 2^(k-1), one Newton step v / (4 c) + c comes within
+ * 6.1 % of sqrt(v); two more Newton steps r = (r + v / r) / 2 (unsigned
+ * divisions) leave r at floor(sqrt(v)) or one above it (the last step, a
+ * mean of r and v / r, is never below the floor); a correction loop
+ * decrements r while r^2 > v.  Over all 2^32 values of v it runs at most
+ * once (checked on every v by tools/bench/isqrt_steps.sh, part of
+ * `make bench`; by CBMC for v < 2^16 and v >= 2^32 - 2^24), so the execution
+ * time is bounded;
+ * its invariant v < (r + 1)^2 and exit r^2 <= v are the result's definition.
  *
  * Bad input: none possible.
  *
- * Scaling and overflow: plain unsigned integers; r + 2 p <= 65536 bounds the
- * increment (2 r + p) p <= (131072 - 3 p) p < 2^31; the bound
- * (r + q)^2 <= 2^32 appears only in the (mathematical) loop invariant.
+ * Scaling and overflow: plain unsigned integers; the first divisors are
+ * >= 4 and >= 2, so the middle step's halves r / 2 + (v / r) / 2 and the last
+ * step's sum r + v / r (two terms below 2^31) stay below 2^32; the
+ * correction forms r^2 in 64 bits (r is bounded by 2^31 there only).
  *
  * Requirements: REQ-VEC-001.
  */
@@ -58,8 +64,9 @@ uint32_t qfoc_isqrt32(uint32_t v);
  * saturates to 32767.
  *
  * Scaling and overflow: 1.15 x 1.15 = 2.30 per square, formed in int32
- * (<= 2^30) and converted to uint32; the sum <= 2^31 fits uint32 exactly; the
- * square root of a 2.30 value is a 1.15 value (<= 46341), saturated to 32767.
+ * (<= 2^30); the saturation is decided exactly as x^2 >= 32767^2 - y^2 (the
+ * difference in [-2^30, 2^30], while the sum could reach 2^31); below it the
+ * sum (< 32767^2) goes to qfoc_isqrt32, a 1.15 root <= 32766.
  *
  * Requirements: REQ-VEC-002.
  */
@@ -101,12 +108,13 @@ qfoc_q15_t qfoc_vec_mag(qfoc_q15_t x, qfoc_q15_t y);
  * Bad input: in and out must be valid pointers (precondition, not checked).
  *
  * Scaling and overflow: whether the input lies inside the circle is decided
- * exactly on the squares, d^2 + q^2 <= vmax^2 in uint32 (<= 2^31); outside it,
+ * exactly on the squares, as d^2 <= vmax^2 - q^2 in int32 (each square
+ * <= 2^30, the difference in [-2^30, 2^30]); outside it,
  * vmax^2 - d'^2 is formed as the 2.30 product
  * (vmax - |d'|) (vmax + |d'|) of two factors in [0, 65534] (|d'| <= vmax),
  * a 16 x 16 bit product in uint32 (<= 32767^2 < 2^30); its integer square
- * root is a 1.15 value <= vmax <= 32767, so the final qfoc_q15_sat never
- * acts (proved) and every result fits qfoc_q15_t.
+ * root is a 1.15 value <= vmax <= 32767, so both outputs lie in
+ * [-vmax, vmax] and fit qfoc_q15_t (proved).
  *
  * Requirements: REQ-VEC-003, REQ-VEC-004.
  */

@@ -8,13 +8,15 @@
  * check_full():  the post-conditions of one step for any input (REQ-PLL-002 ..
  *                REQ-PLL-007, REQ-PLL-010).
  * check_exact(): the magnitude and the coasting decision for small loop vectors.
- * qfoc_sincos():  a stub returning any pair its contract allows (see below).
+ * qfoc_sincos():  a stub returning any pair its contract allows (see below);
+ *                qfoc_isqrt32() is replaced by its contract (isqrt_stub.h).
  */
 #ifndef QFOC_PLL_COMMON_H
 #define QFOC_PLL_COMMON_H
 
 #include "qfoc/pll.h"
 #include "harness_util.h"
+#include "isqrt_stub.h"
 
 /* contract of qfoc_sincos: both outputs in [-32767, 32767] (weakened: any such pair).
    The PLL's properties checked here do not depend on the values of the pair, only on

@@ -79,8 +79,8 @@ GOAL_FAST_STEP = 600
 GOAL_TICK = 2000
 GOAL_FLASH = 8 * 1024
 GOAL_FLASH_DRIVE = 10 * 1024
-LIMIT_FAST_STEP = 2250
-LIMIT_TICK = 1700
+LIMIT_FAST_STEP = 1920
+LIMIT_TICK = 1620
 LIMIT_FLASH = 21 * 1024
 LIMIT_FLASH_DRIVE = 16800
 LIMIT_RAM_MOTOR = 496
@@ -94,11 +94,11 @@ FUNC_BUDGET = {
     "sincos": (42, 55),
     "pi": (42, 45),
     "lpf": (26, None),
-    "vec_mag": (176, None),
-    "circle_limit": (195, None),
-    "svpwm": (405, 150),
+    "vec_mag": (46, None),
+    "circle_limit": (69, None),
+    "svpwm": (285, 150),
     "flux": (232, None),
-    "pll": (370, None),
+    "pll": (240, None),
     "params_scan": (500, None),
 }
 LIMIT_CLARKE, LIMIT_PARK, LIMIT_SVPWM = (FUNC_BUDGET[k][0] for k in ("clarke", "park", "svpwm"))
@@ -797,12 +797,15 @@ COST_NOTES = {
                      "PLL speed, field-weakening utilisation, three phase-monitor channels",
     "qfoc_pi_step": "PI in 64-bit Q31 with shifted gains, anti-windup and rounding: d and q "
                     "currents, PLL, field weakening",
-    "qfoc_vec_mag": "magnitude by a 16-step square root: PLL input, SVPWM utilisation",
+    "qfoc_vec_mag": "magnitude (saturation decided on the squares): PLL input, SVPWM "
+                    "utilisation",
+    "qfoc_isqrt32": "floor square root: range estimate, three Newton steps (unsigned "
+                    "divisions), at most one correction: PLL, SVPWM, circle limit",
     "qfoc_sin": "quarter-wave table with interpolation, twice per `qfoc_sincos`",
     "qfoc_sincos": "control angle, advanced angle, PLL, torque compensation (1x and 2x)",
     "qfoc_svpwm_step": "SVPWM without the magnitude (see below)",
     "qfoc_circle_limit": "voltage limit V_dc / sqrt 3; when the vector is outside, the q room "
-                         "left by a square root (inlined)",
+                         "left by a square root",
     "qfoc_flux_axis": "flux observer, per axis (2-19 .. 2-24)",
     "qfoc_pll_loop": "PLL phase detector (normalised, clamped error) and angle update",
     "qfoc_flux_step": "flux observer",
@@ -912,7 +915,7 @@ def write_report(md_path, r):
              "conditional move or two per bound, on top of the multiplies; the longest cases "
              "are at the corners of the input range.  `qfoc_svpwm_step` "
              f"{fn['svpwm']['min']}..{fn['svpwm']['max']} (goal {FUNC_BUDGET['svpwm'][1]}): besides the "
-             "min-max injection it computes the vector's magnitude (a 16-step square root, for "
+             "min-max injection it computes the vector's magnitude (a square root by Newton steps, for "
              "the utilisation and the overmodulation limit), scales the vector onto the circle "
              "when it is outside, clamps the DC bus, divides for the phase times, adds the "
              "dead-time compensation per phase with its fade inside the current dead band (a "

@@ -1,4 +1,4 @@
-SRCS = src/qfoc_params.c src/qfoc_drive_cfg.c src/qfoc_pi.c src/qfoc_svpwm.c src/qfoc_flux.c src/qfoc_pll.c src/qfoc_filter.c src/qfoc_trig.c src/qfoc_trig_tables.c src/qfoc_vector.c
+SRCS = src/qfoc_params.c src/qfoc_drive_cfg.c src/qfoc_pi.c src/qfoc_svpwm.c src/qfoc_flux.c src/qfoc_pll.c src/qfoc_filter.c src/qfoc_trig.c src/qfoc_trig_tables.c src/qfoc_vector.c src/qfoc_isqrt.c
 UNWIND = 250
 GOTO_INSTRUMENT = --replace-calls qfoc_params_crc:harness_crc_any
 # The rpm cross-field condition multiplies two 16-bit fields in the library and in the

@@ -1,5 +1,6 @@
 /*
- * CBMC harness: qfoc_circle_limit.
+ * CBMC harness: qfoc_circle_limit, with qfoc_isqrt32 replaced by its contract
+ * (../isqrt_stub.h; its own harness is vector_isqrt).
  *
  * Part 1, every int16 value of (d, q, vmax): no run-time error (overflow,
  * conversion, bounds, pointer), and the properties that are linear in the
@@ -21,6 +22,7 @@
  * Requirements: REQ-VEC-003, REQ-VEC-004.
  */
 #include "qfoc/vector.h"
+#include "../isqrt_stub.h"
 
 int16_t nondet_int16(void);
 int8_t nondet_int8(void);

@@ -1,0 +1,2 @@
+SRCS = src/qfoc_isqrt.c
+UNWIND = 3
