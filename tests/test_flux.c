@@ -183,6 +183,87 @@ static void test_flux_003_004_005_step_bit_exact(void **state)
     assert_true(n_sat_out > 1000u);
 }
 
+/* REQ-FLUX-003, REQ-FLUX-005: the corners of the leak term and of the output
+   rounding against the recursion in double: states at and around multiples of
+   4096 (the split psi = 4096 ph + pl), exact ties of kg psi / 4096 of either sign,
+   the ends of the Q31 range, and states at the output's saturation boundary
+   (32767 x 4096 + 2047 rounds to 32767, one more to 32768 -> 32767). */
+static void test_flux_003_005_leak_and_output_corners(void **state)
+{
+    static const int32_t psis[] = {
+        0, 1, -1, 2047, -2047, 2048, -2048, 2049, -2049, 4095, -4095, 4096, -4096,
+        4097, -4097, 6144, -6144, -1024, -512, -3 * 4096, -3 * 4096 - 2048,
+        134213631, -134213631, 134213632, -134213632, 134215679, -134215679,
+        134215680, -134215680, 134217727, -134217727, 134217728, -134217728,
+        2147481599, -2147481599, 2147481600, -2147481600, 2147483646, -2147483646,
+        2147483647, -2147483647, -2147479552, 2147479552
+    };
+    static const int16_t kgs[] = { 0, 1, 2, 3, 1043, 2048, 4095, 4096, 32767 };
+    static const int16_t gains[] = { 0, 1, 12868, 32767 };
+    static const int16_t ins[] = { (int16_t)-32768, -32767, -1, 0, 1, 32767 };
+    uint32_t n = 0u;
+    size_t a;
+    size_t b;
+    size_t c;
+    size_t k;
+    (void)state;
+    for (a = 0u; a < (sizeof psis / sizeof psis[0]); a++) {
+        for (b = 0u; b < (sizeof kgs / sizeof kgs[0]); b++) {
+            for (c = 0u; c < (sizeof gains / sizeof gains[0]); c++) {
+                for (k = 0u; k < (sizeof ins / sizeof ins[0]); k++) {
+                    qfoc_flux_params_t p;
+                    qfoc_flux_t o;
+                    qfoc_ab_t u;
+                    qfoc_ab_t i;
+                    qfoc_ab_t out;
+                    double ea;
+                    double eb;
+                    p.gain = gains[c];
+                    p.gain_shift = (uint8_t)((a + k) % 16u);
+                    p.r = (int16_t)((b * 4093u) % 32768u);
+                    p.l = (k < 3u) ? 0 : 32767;
+                    p.kg = kgs[b];
+                    assert_int_equal(qfoc_flux_init(&o, &p), QFOC_FLUX_OK);
+                    o.psi_alpha = psis[a];
+                    o.psi_beta = -psis[a];
+                    o.i_prev.alpha = (int16_t)((k < 3u) ? 0 : -32767);
+                    o.i_prev.beta = 0;
+                    u.alpha = ins[k];
+                    u.beta = ins[5u - k];
+                    i.alpha = ins[(k + 1u) % 6u];
+                    i.beta = 0;
+                    ea = ref_axis(&p, (double)o.psi_alpha, u.alpha, i.alpha,
+                                  (double)o.i_prev.alpha);
+                    eb = ref_axis(&p, (double)o.psi_beta, u.beta, i.beta,
+                                  (double)o.i_prev.beta);
+                    qfoc_flux_step(&o, &u, &i, &out);
+                    assert_true((double)o.psi_alpha == ea);
+                    assert_true((double)o.psi_beta == eb);
+                    assert_true((double)out.alpha == ref_out(ea));
+                    assert_true((double)out.beta == ref_out(eb));
+                    n++;
+                }
+            }
+        }
+    }
+    /* the output alone: gain = 0, l = 0 keep the state, which is then rounded */
+    for (a = 0u; a < (sizeof psis / sizeof psis[0]); a++) {
+        qfoc_flux_params_t p = { 0, 0u, 0, 0, 0 };
+        qfoc_flux_t o;
+        qfoc_ab_t z = { 0, 0 };
+        qfoc_ab_t out;
+        assert_int_equal(qfoc_flux_init(&o, &p), QFOC_FLUX_OK);
+        o.psi_alpha = psis[a];
+        o.psi_beta = -psis[a];
+        qfoc_flux_step(&o, &z, &z, &out);
+        assert_int_equal(o.psi_alpha, psis[a]);
+        assert_true((double)out.alpha == ref_out((double)psis[a]));
+        assert_true((double)out.beta == ref_out(-(double)psis[a]));
+        n++;
+    }
+    print_message("flux leak and output corners: %u steps bit-exact\n", n);
+}
+
 /* REQ-FLUX-003, REQ-FLUX-008: against the real-valued recursion without rounding
    (2-19 .. 2-24 in rotor-flux form): the state stays within 0.5625 / (g kg) Q27
    LSB, as stated in flux.h. */
@@ -894,6 +975,7 @@ int main(void)
         cmocka_unit_test(test_flux_001_init_valid),
         cmocka_unit_test(test_flux_002_reset),
         cmocka_unit_test(test_flux_003_004_005_step_bit_exact),
+        cmocka_unit_test(test_flux_003_005_leak_and_output_corners),
         cmocka_unit_test(test_flux_003_008_vs_real_recursion),
         cmocka_unit_test(test_flux_004_005_corners),
         cmocka_unit_test(test_flux_006_bound_invariance),

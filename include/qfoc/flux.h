@@ -304,14 +304,20 @@ void qfoc_flux_reset(qfoc_flux_t *o, const qfoc_ab_t *psi0, const qfoc_ab_t *i0)
  *     out  = Sat15(RoundDiv(psi', 4096))                    Q27 -> Q15
  *     i_prev = i
  *
- * Scaling and overflow: |x30| <= 32767 x 65535 < 2^31; |kg psi| < 2^46 (64 bit);
- * |leak| <= 17179344888 < 2^35; |(x30 - leak) gain| < 2^50 (64 bit).  The
+ * Scaling and overflow: |x30| <= 32767 x 65535 < 2^31.  kg psi (< 2^46) is
+ * not formed: the state is split as psi = 4096 ph + pl, 0 <= pl < 4096 (floor
+ * division of psi + 2^31 in unsigned 32-bit arithmetic), so that
+ * leak = kg ph + lr with lr = floor((kg pl + 2048 - [psi < 0]) / 4096) in
+ * [0, 32760] (kg pl < 2^27, 32 bits), and
+ * (x30 - leak) gain = (x30 - lr) gain - (kg gain) ph: one 32 x 32 -> 64-bit
+ * product and one 64-bit multiply-accumulate, |.| <= 633280043253767 < 2^50
+ * (the identity with RoundDiv(kg psi, 4096) is proved, assert leak_split).  The
  * division by 2^(18 + gain_shift) is done on the magnitude plus the rounding
  * offset 2^(17 + gain_shift) as a 64-bit division by the constant 2^18 (the
  * quotient is below 2^32) followed by a 32-bit unsigned division by
  * 2^gain_shift.  Two floor divisions equal one floor division by
  * 2^(18 + gain_shift), so inc is a single rounding to nearest, ties away from
- * zero, |inc| <= 2415783937; the contract states the two-step form
+ * zero, |inc| <= 2415788033; the contract states the two-step form
  * (FluxScaleDiv in specs/flux.acsl), its rounding error
  * |2^(18 + s) inc - x| <= 2^(17 + s) is proved (lemma FluxScaleDivErr), and the
  * tests compare it bit-exactly with a single-rounding reference.

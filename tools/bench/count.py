@@ -79,7 +79,7 @@ GOAL_FAST_STEP = 600
 GOAL_TICK = 2000
 GOAL_FLASH = 8 * 1024
 GOAL_FLASH_DRIVE = 10 * 1024
-LIMIT_FAST_STEP = 1920
+LIMIT_FAST_STEP = 1860
 LIMIT_TICK = 1620
 LIMIT_FLASH = 21 * 1024
 LIMIT_FLASH_DRIVE = 16800
@@ -97,7 +97,7 @@ FUNC_BUDGET = {
     "vec_mag": (46, None),
     "circle_limit": (69, None),
     "svpwm": (285, 150),
-    "flux": (232, None),
+    "flux": (166, None),
     "pll": (240, None),
     "params_scan": (500, None),
 }
