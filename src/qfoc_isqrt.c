@@ -44,22 +44,15 @@ uint32_t qfoc_isqrt32(uint32_t v)
     uint32_t c;   /* sqrt(2) 2^(k-1) for v in [4^k, 4^(k+1)), at least 4 */
     uint32_t r;
 
-    /* The range [4^k, 4^(k+1)) of v (k = 0 takes 0 too) by four compares;
+    /* The range [4^k, 4^(k+1)) of v (k = 0 takes 0 too) by at most four
+     * compares (three below 4^3, where c = 4 serves k = 0 .. 2);
      * c = sqrt(2) 2^(k-1) (181 2^(k-8) for k >= 8, an 8-bit constant). */
     if (v < 65536u) {
         if (v < 256u) {
-            if (v < 16u) {
-                if (v < 4u) {
-                    c = 4u;       /* v in [0, 4) */
-                } else {
-                    c = 4u;       /* v in [4^1, 4^2) */
-                }
+            if (v < 64u) {
+                c = 4u;           /* v in [0, 4^3): k = 0 .. 2 share c = 4 */
             } else {
-                if (v < 64u) {
-                    c = 4u;       /* v in [4^2, 4^3) */
-                } else {
-                    c = 6u;       /* v in [4^3, 4^4) */
-                }
+                c = 6u;           /* v in [4^3, 4^4) */
             }
         } else {
             if (v < 4096u) {

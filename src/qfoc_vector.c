@@ -11,23 +11,49 @@
 #include "qfoc/q15.h"
 
 /* 32767^2 = 1073676289: from this squared length on the magnitude saturates. */
-#define VEC_MAG_SAT_SQ (1073676289)
+#define VEC_MAG_SAT_SQ (1073676289u)
+
+/* m * m for a 16-bit m (<= 65535^2 = 4294836225 < 2^32).  The 16-bit
+ * parameter type states the operand width to the provers and to CBMC. */
+/*@
+  assigns \nothing;
+  ensures value: \result == m * m;
+*/
+static uint32_t vec_sq_u16(uint16_t m)
+{
+    uint32_t w = (uint32_t)m;
+    //@ assert sq_u16: w * w <= 4294836225;
+    return w * w;
+}
+
+/* v * v as uint32 for |v| <= 32768 (<= 2^30). */
+/*@
+  requires v_range: -32768 <= v <= 32768;
+  assigns \nothing;
+  ensures value: \result == v * v;
+  ensures bound: \result <= 1073741824;
+*/
+static uint32_t vec_square(int32_t v)
+{
+    int32_t a = v;
+
+    if (a < 0) {
+        a = -a;                          /* |v| <= 32768 */
+    }
+    //@ assert sq_bound: 0 <= a * a <= 1073741824;
+    return vec_sq_u16((uint16_t)a);
+}
 
 qfoc_q15_t qfoc_vec_mag(qfoc_q15_t x, qfoc_q15_t y)
 {
-    int32_t xx = (int32_t)x * (int32_t)x;          /* 2.30, <= 2^30 */
-    int32_t yy = (int32_t)y * (int32_t)y;          /* 2.30, <= 2^30 */
-    int32_t s;
+    const uint32_t s = vec_square((int32_t)x) + vec_square((int32_t)y);   /* 2.30, <= 2^31 */
     int32_t m;
 
-    /* x^2 + y^2 >= 32767^2 decided as x^2 >= 32767^2 - y^2, exact in int32
-     * (the sum itself could reach 2^31) */
-    if (xx >= (VEC_MAG_SAT_SQ - yy)) {
-        /* at least 32767 long: saturate (the root would be >= 32767) */
+    if (s >= VEC_MAG_SAT_SQ) {
+        /* at least 32767 long: saturate (the root would be >= 32767), no root */
         m = (int32_t)QFOC_Q15_MAX;
     } else {
-        s = xx + yy;                                /* < 32767^2 */
-        m = (int32_t)qfoc_isqrt32((uint32_t)s);   /* <= 32766 */
+        m = (int32_t)qfoc_isqrt32(s);             /* 1.15, <= 32766 */
         //@ assert m_max: m * m < 32767 * 32767;
         //@ assert m_range: 0 <= m <= 32766;
     }
@@ -64,9 +90,10 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
     int32_t adl;
     int32_t ql;
     int32_t qo;
-    int32_t dd;
-    int32_t room;
     uint32_t vmu;
+    uint32_t adu;
+    uint32_t aqu;
+    uint32_t r2;
     uint32_t w;
     int32_t gap;
     bool limited;
@@ -82,12 +109,12 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
         adl = -adl;
     }
     vmu = (uint32_t)vm;
-    /* d^2 + q^2 <= vm^2 decided as d^2 <= vm^2 - q^2: each square <= 2^30
-     * and the difference in [-2^30, 2^30], all exact in int32 (the sum
-     * itself could reach 2^31) */
-    dd = d * d;
-    room = (vm * vm) - (q * q);
-    if (dd <= room) {
+    adu = (uint32_t)((d < 0) ? -d : d);      /* |d| <= 32768 */
+    aqu = (uint32_t)((q < 0) ? -q : q);      /* |q| <= 32768 */
+    /* d^2 + q^2 <= 2 * 2^30 = 2^31: exact in uint32 */
+    r2 = (adu * adu) + (aqu * aqu);
+    //@ assert r2_value: r2 == (d * d) + (q * q);
+    if (r2 <= (vmu * vmu)) {
         /* inside or on the circle: nothing to limit (decided exactly, on the
          * squared radius, so the result never depends on square-root rounding) */
         //@ assert d_sq: d * d <= vm * vm;
@@ -100,11 +127,7 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
          * relation between two variables needed to see it), and vm + |dl| is
          * in [0, 65534]: the product cannot overflow 32 bits (2.30, <= 32767^2) */
         //@ assert outside: (d * d) + (q * q) > vm * vm;
-        if (d < 0) {
-            gap = vm + d;                    /* vm - |d| */
-        } else {
-            gap = vm - d;
-        }
+        gap = vm - (int32_t)adu;
         if (gap < 0) {
             gap = 0;
         }
@@ -118,9 +141,8 @@ bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out)
         //@ assert qo_sq: qo * qo <= ql * ql;
         limited = true;
     }
-    /* |dl|, |qo| <= vm <= 32767: both fit qfoc_q15_t (proved) */
-    //@ assert fits: -32767 <= dl <= 32767 && -32767 <= qo <= 32767;
-    out->d = (qfoc_q15_t)dl;
-    out->q = (qfoc_q15_t)qo;
+    /* |dl|, |qo| <= vm <= 32767: the saturation never acts (proved) */
+    out->d = qfoc_q15_sat(dl);
+    out->q = qfoc_q15_sat(qo);
     return limited;
 }

@@ -64,9 +64,9 @@ uint32_t qfoc_isqrt32(uint32_t v);
  * saturates to 32767.
  *
  * Scaling and overflow: 1.15 x 1.15 = 2.30 per square, formed in int32
- * (<= 2^30); the saturation is decided exactly as x^2 >= 32767^2 - y^2 (the
- * difference in [-2^30, 2^30], while the sum could reach 2^31); below it the
- * sum (< 32767^2) goes to qfoc_isqrt32, a 1.15 root <= 32766.
+ * (<= 2^30) and converted to uint32; the sum <= 2^31 fits uint32 exactly; a
+ * sum of at least 32767^2 saturates without a square root, below it the
+ * square root of the 2.30 sum is a 1.15 value <= 32766.
  *
  * Requirements: REQ-VEC-002.
  */
@@ -108,13 +108,12 @@ qfoc_q15_t qfoc_vec_mag(qfoc_q15_t x, qfoc_q15_t y);
  * Bad input: in and out must be valid pointers (precondition, not checked).
  *
  * Scaling and overflow: whether the input lies inside the circle is decided
- * exactly on the squares, as d^2 <= vmax^2 - q^2 in int32 (each square
- * <= 2^30, the difference in [-2^30, 2^30]); outside it,
+ * exactly on the squares, d^2 + q^2 <= vmax^2 in uint32 (<= 2^31); outside it,
  * vmax^2 - d'^2 is formed as the 2.30 product
  * (vmax - |d'|) (vmax + |d'|) of two factors in [0, 65534] (|d'| <= vmax),
  * a 16 x 16 bit product in uint32 (<= 32767^2 < 2^30); its integer square
- * root is a 1.15 value <= vmax <= 32767, so both outputs lie in
- * [-vmax, vmax] and fit qfoc_q15_t (proved).
+ * root is a 1.15 value <= vmax <= 32767, so the final qfoc_q15_sat never
+ * acts (proved) and every result fits qfoc_q15_t.
  *
  * Requirements: REQ-VEC-003, REQ-VEC-004.
  */
