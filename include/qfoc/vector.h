@@ -5,7 +5,7 @@
  * Used by the current loop and the SVPWM overmodulation (qfoc_circle_limit),
  * field weakening, and estimators (qfoc_vec_mag).  All functions are total
  * and exact in integer arithmetic: no floating point; the square root takes
- * four compares, three unsigned divisions and one correction step at most,
+ * at most four compares, three unsigned divisions and one correction step,
  * so its execution time is bounded.
  *
  * Requirements: REQ-VEC-001 .. REQ-VEC-004 (specs/requirements/trig.md).
@@ -25,16 +25,16 @@
  * @param[in] v any uint32_t value
  * @return r with r * r <= v < (r + 1) * (r + 1), r in [0, 65535]
  *
- * Method: four compares find the range [4^k, 4^(k+1)) of v; from the start
- * value 2 c, c = sqrt(2) 2^(k-1), one Newton step v / (4 c) + c comes within
- * 6.1 % of sqrt(v); two more Newton steps r = (r + v / r) / 2 (unsigned
- * divisions) leave r at floor(sqrt(v)) or one above it (the last step, a
- * mean of r and v / r, is never below the floor); a correction loop
- * decrements r while r^2 > v.  Over all 2^32 values of v it runs at most
- * once (checked on every v by tools/bench/isqrt_steps.sh, part of
- * `make bench`; by CBMC for v < 2^16 and v >= 2^32 - 2^24), so the execution
- * time is bounded;
- * its invariant v < (r + 1)^2 and exit r^2 <= v are the result's definition.
+ * Method: at most four compares find the range [4^k, 4^(k+1)) of v; from
+ * the start value 2 c, c = sqrt(2) 2^(k-1) (c = 4 for k <= 2), one Newton
+ * step v / (4 c) + c comes within 6.1 % of sqrt(v) (k >= 3); two more
+ * Newton steps r = (r + v / r) / 2 (unsigned divisions) leave r at
+ * floor(sqrt(v)) or one above it (the last step, a mean of r and v / r, is
+ * never below the floor); a correction loop decrements r while r^2 > v.
+ * Over all 2^32 values of v it runs at most once (checked on every v by
+ * tools/bench/isqrt_steps.sh, part of `make bench`; by CBMC for v < 2^16
+ * and v >= 2^32 - 2^24), so the execution time is bounded; its invariant
+ * v < (r + 1)^2 and exit r^2 <= v are the result's definition.
  *
  * Bad input: none possible.
  *
