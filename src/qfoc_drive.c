@@ -13,6 +13,7 @@
 #include "qfoc/transforms.h"
 #include "qfoc/vector.h"
 #include "qfoc/ramp.h"
+#include "qfoc_fast.h"
 
 /** 1 / sqrt(3) in Q15: 0.57735 x 32768 = 18918.6 -> 18919. */
 #define DRV_INV_SQRT3 ((qfoc_q15_t)18919)
@@ -228,7 +229,10 @@ static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 }
 
 /* Estimator: flux observer and PLL on this period's currents and the voltage applied
-   during the period that ended at this sample. */
+   during the period that ended at this sample; the rotor angle is the PLL angle less
+   the observer's phase lead, which the tick computes from the filtered speed
+   (qfoc_flux_lead, once a millisecond: the lead follows the speed, which moves little
+   in 1 ms). */
 /*@
   requires valid: \valid(f) && \valid_read(i_ab);
   requires sep: \separated(f, i_ab);
@@ -238,14 +242,12 @@ static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
           f->theta_est, f->speed, f->speed_f, f->psi_mag;
   ensures inv: DRV_FAST(f);
 */
-static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab)
+static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab, qfoc_angle_t lead)
 {
     qfoc_ab_t psi;
     qfoc_pll_out_t po;
-    qfoc_angle_t lead;
     qfoc_flux_step(&f->flux, &f->u_applied, i_ab, &psi);
     qfoc_pll_step(&f->pll, &psi, &po);
-    lead = qfoc_flux_lead(&f->flux, po.speed_f);
     f->theta_est = drv_angle_shift(po.theta, -(int32_t)lead);
     f->speed = po.speed;
     f->speed_f = po.speed_f;
@@ -295,6 +297,7 @@ static bool drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff, qf
   requires inv: DRV_FAST(f);
   assigns f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited, *v;
   ensures inv: DRV_FAST(f);
+  ensures v_range: QfocQ15Sym(v->d) && QfocQ15Sym(v->q);
 */
 static void drv_current_loop(qfoc_drive_fast_t *f, const qfoc_param_table_t *p,
                              const qfoc_dq_t *ref, qfoc_q15_t w, qfoc_dq_t *v)
@@ -343,7 +346,7 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
     qfoc_svpwm_out_t sv;
 
     qfoc_clarke(i_abc->u, i_abc->v, &i_ab);
-    drv_estimate(f, &i_ab);
+    drv_estimate(f, &i_ab, d->s.lead);
     /* control angle and speed of the sub-state */
     if (sub == QFOC_SUB_ALIGN) {
         theta = 0u;
@@ -356,7 +359,8 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
         w = f->speed_f;
     }
     qfoc_sincos(theta, &sc);
-    qfoc_park(&i_ab, &sc, &f->i_dq);
+    /* Clarke and sincos give symmetric Q15: the Park step needs no clamps */
+    qfoc_park_sym(&i_ab, &sc, &f->i_dq);
     if (drv_references(d, sub, ff, &ref)) {
         f->clamp_count = (uint8_t)(((uint32_t)f->clamp_count + 1u) % 256u);
     } else {
@@ -368,7 +372,8 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
         const int32_t adv = drv_advance(w, p->pll.k_theta);
         qfoc_sincos(drv_angle_shift(theta, adv + (adv / 2)), &sc);
     }
-    qfoc_inv_park(&v_dq, &sc, &v_ab);
+    /* the circle limit and sincos give symmetric Q15: no clamps */
+    qfoc_inv_park_sym(&v_dq, &sc, &v_ab);
     qfoc_svpwm_step(&p->svpwm, &v_ab, f->vdc, i_abc, &sv);
     f->out.cmp[0] = sv.cmp[0];
     f->out.cmp[1] = sv.cmp[1];
@@ -1235,6 +1240,8 @@ static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_
     drv_sm_step(s);
     drv_transition(d, old_state, old_sub);
     drv_run(d);
+    /* the observer's phase lead at the present speed, for the fast step's rotor angle */
+    s->lead = qfoc_flux_lead(&d->f.flux, d->f.speed_f);
     drv_count_run(s);
     drv_status(d, in);
     drv_answer(s, accepted);
@@ -1355,8 +1362,8 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 /*@
   requires valid: \valid(s) && \valid_read(c);
   requires sep: \separated(s, c);
-  assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->trip_seen,
-          s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done, s->hs,
+  assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->lead,
+          s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done, s->hs,
           s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
 */
 static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
@@ -1368,6 +1375,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->ol_speed = 0;
     s->id_ref = 0;
     s->iq_ref = 0;
+    s->lead = 0u;
     s->trip_seen = 0u;
     s->clamp_seen = 0u;
     s->clear_seq = 0u;
@@ -1425,7 +1433,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
   assigns s->sm, s->pi_speed, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
           s->db_stall, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
-          s->iq_ref, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
+          s->iq_ref, s->lead, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
           s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
   ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
                s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);

@@ -33,8 +33,6 @@ static uint32_t isqrt_newton_up(uint32_t v, uint32_t r)
     //@ assert amgm: 4 * r * (q + 1) <= (r + q + 1) * (r + q + 1);
     n = (r + q) / 2u;
     //@ assert twice: 0 <= r + q + 1 <= 2 * (n + 1);
-    //@ assert mono_a: (r + q + 1) * (r + q + 1) <= (r + q + 1) * (2 * (n + 1));
-    //@ assert mono_b: (r + q + 1) * (2 * (n + 1)) <= (2 * (n + 1)) * (2 * (n + 1));
     //@ assert sq_twice: (r + q + 1) * (r + q + 1) <= (2 * (n + 1)) * (2 * (n + 1));
     return n;
 }

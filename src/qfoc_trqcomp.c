@@ -91,13 +91,14 @@ static qfoc_angle_t qfoc_mech_scale(const qfoc_mech_t *m)
 {
     /* electrical counts since the mechanical zero: < 16 x 65536 = 2^20 */
     const uint32_t n = ((uint32_t)m->turn * QFOC_TC_TURN) + (uint32_t)m->theta_e;
-    const uint32_t q = qfoc_mech_div(n, m->recip);
+    uint32_t q;
     /*@ assert cases: m->pole_pairs == 1 || m->pole_pairs == 2 || m->pole_pairs == 3 ||
           m->pole_pairs == 4 || m->pole_pairs == 5 || m->pole_pairs == 6 ||
           m->pole_pairs == 7 || m->pole_pairs == 8 || m->pole_pairs == 9 ||
           m->pole_pairs == 10 || m->pole_pairs == 11 || m->pole_pairs == 12 ||
           m->pole_pairs == 13 || m->pole_pairs == 14 || m->pole_pairs == 15 ||
           m->pole_pairs == 16; */
+    q = qfoc_mech_div(n, m->recip);
     /*@ assert exact: q == n / m->pole_pairs; */
     /* q = floor(n / pp) < 65536 because n < pp x 65536 */
     return (qfoc_angle_t)q;

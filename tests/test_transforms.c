@@ -17,6 +17,7 @@
 #include <stdlib.h>
 
 #include "qfoc/transforms.h"
+#include "../src/qfoc_fast.h"
 
 /* error bounds stated in include/qfoc/transforms.h, in LSB */
 #define CLARKE_BETA_BOUND   0.70  /* inside ClarkeDocBound */
@@ -426,6 +427,85 @@ static void check_inv_park(int16_t d, int16_t q, qfoc_sincos_t sc, double x, boo
     }
 }
 
+/* The fast path's Park and inverse Park steps (src/qfoc_fast.h) against the equations
+   in exact integer arithmetic: the sum of the two products of factors in
+   [-32767, 32767], divided by 32768, rounded to nearest with ties away from zero,
+   saturated to +-32767.  The reference is formed in double (every value is an integer
+   below 2^32, exact), so the step must match it exactly; and the public function, which
+   clamps and then calls the step, gives the same. */
+static int16_t ref_round_sat(double q30)
+{
+    double r = floor((fabs(q30) / 32768.0) + 0.5);
+    if (r > 32767.0) {
+        r = 32767.0;
+    } else {
+        /* in range */
+    }
+    return (int16_t)((q30 < 0.0) ? -r : r);
+}
+
+static int16_t rand_sym(void)
+{
+    int16_t x = rand_q15();
+    return (x == -32768) ? (int16_t)-32767 : x;
+}
+
+/* REQ-TRF-003, REQ-TRF-005, REQ-TRF-009: the steps without clamps, random and corners */
+static void test_req_trf_003_005_sym_steps(void **state)
+{
+    static const int16_t sym_corners[] = { -32767, -32766, -16384, -1, 0, 1, 16384, 32767 };
+    const uint32_t nc = (uint32_t)(sizeof(sym_corners) / sizeof(sym_corners[0]));
+    uint32_t i;
+    (void)state;
+
+    lcg_seed(0x5EEDF00Du);
+    for (i = 0u; i < (N_RANDOM + (nc * nc * nc * nc)); i++) {
+        qfoc_ab_t ab;
+        qfoc_dq_t dq;
+        qfoc_sincos_t sc;
+        qfoc_dq_t park;
+        qfoc_dq_t park_pub;
+        qfoc_ab_t inv;
+        qfoc_ab_t inv_pub;
+        double a;
+        double b;
+        double sn;
+        double cs;
+        if (i < N_RANDOM) {
+            ab.alpha = rand_sym();
+            ab.beta = rand_sym();
+            sc.sine = rand_sym();
+            sc.cosine = rand_sym();
+        } else {
+            uint32_t k = i - N_RANDOM;
+            ab.alpha = sym_corners[k % nc];
+            ab.beta = sym_corners[(k / nc) % nc];
+            sc.sine = sym_corners[(k / (nc * nc)) % nc];
+            sc.cosine = sym_corners[(k / (nc * nc * nc)) % nc];
+        }
+        dq.d = ab.alpha;
+        dq.q = ab.beta;
+        a = (double)ab.alpha;
+        b = (double)ab.beta;
+        sn = (double)sc.sine;
+        cs = (double)sc.cosine;
+
+        qfoc_park_sym(&ab, &sc, &park);
+        assert_int_equal(park.d, ref_round_sat((a * cs) + (b * sn)));
+        assert_int_equal(park.q, ref_round_sat((b * cs) - (a * sn)));
+        qfoc_park(&ab, &sc, &park_pub);
+        assert_int_equal(park.d, park_pub.d);
+        assert_int_equal(park.q, park_pub.q);
+
+        qfoc_inv_park_sym(&dq, &sc, &inv);
+        assert_int_equal(inv.alpha, ref_round_sat((a * cs) - (b * sn)));
+        assert_int_equal(inv.beta, ref_round_sat((a * sn) + (b * cs)));
+        qfoc_inv_park(&dq, &sc, &inv_pub);
+        assert_int_equal(inv.alpha, inv_pub.alpha);
+        assert_int_equal(inv.beta, inv_pub.beta);
+    }
+}
+
 /* REQ-TRF-005, REQ-TRF-006, REQ-TRF-010 */
 static void test_req_trf_005_006_inv_park(void **state)
 {
@@ -663,6 +743,7 @@ int main(void)
         cmocka_unit_test(test_req_trf_003_park_saturation),
         cmocka_unit_test(test_req_trf_005_006_inv_park),
         cmocka_unit_test(test_req_trf_005_inv_park_saturation),
+        cmocka_unit_test(test_req_trf_003_005_sym_steps),
         cmocka_unit_test(test_req_trf_007_008_inv_clarke),
         cmocka_unit_test(test_req_trf_008_inv_clarke_saturation),
         cmocka_unit_test(test_req_trf_009_inv_clarke_balanced),

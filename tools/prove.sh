@@ -5,8 +5,8 @@
 # proved on its own with -wp-fct restricted to the functions that unit defines, so a
 # header's inline functions are proved once, in their own unit.  A unit is proved by
 # one or more jobs (tools/wp_jobs.py: the prover order recorded per unit or function
-# in proofs/wp/provers.txt, and large units split over several jobs); jobs run two at
-# a time.  Lemmas (specs/*.acsl) are not selected by -wp-fct: they are proved in a unit
+# in proofs/wp/provers.txt, and large units split over several jobs); jobs run three
+# at a time (WP_JOBS).  Lemmas (specs/*.acsl) are not selected by -wp-fct: they are proved in a unit
 # of their own that includes every public header, with -wp-prop=@lemma, so no lemma
 # is ever used unproved.  Runtime-error goals (-wp-rte) cover signed and unsigned overflow, downcasts,
 # shifts, division by zero and memory access.  The summary and per-function table are
@@ -19,7 +19,13 @@ TOP=$(cd "$(dirname "$0")/.." && pwd)
 cd "$TOP"
 . tools/jobs.sh
 OUT=${WP_OUT:-build/wp}
-JOBS=${JOBS:-2}
+# Three jobs at a time on the two processors: a WP job waits on its prover processes for
+# about a third of its wall time (process start, Why3's polling), which a third job fills.
+# Measured on the 2-core machine, the transforms unit proved n times at once: 2 at a time
+# 21.5 s per job, 3 at a time 15.5 s, 4 at a time 14.5 s.  Sharing two processors among
+# three jobs stretches a goal's time by at most 1.5: the longest goal (28 s alone) stays
+# well inside the 60 s timeout.
+JOBS=${WP_JOBS:-3}
 TIMEOUT=${WP_TIMEOUT:-60}
 mkdir -p "$OUT"
 rm -f "$OUT"/*.json "$OUT"/*.log "$OUT"/*.time

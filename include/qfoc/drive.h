@@ -217,6 +217,7 @@ typedef struct {
     qfoc_q15_t ol_speed;      /**< open-loop frame speed */
     qfoc_q15_t id_ref;        /**< ALIGN d-current reference */
     qfoc_q15_t iq_ref;        /**< q-current reference (speed PI, or i_start in OPEN_LOOP) */
+    qfoc_angle_t lead;        /**< observer phase lead at the filtered speed (qfoc_flux_lead) */
     uint8_t trip_seen;        /**< trip_count already reported */
     uint8_t clamp_seen;       /**< clamp_count at the last tick */
     uint8_t clear_seq;        /**< incremented when a fault clear is accepted */
