@@ -7,7 +7,8 @@
  * their contracts *require* what the caller has already proved (the symmetric Q15
  * range of every factor, as the outputs of qfoc_clarke, qfoc_sincos and
  * qfoc_circle_limit guarantee), and ensure exactly what the public function
- * ensures for such inputs.  The public functions are the clamps followed by these
+ * ensures for such inputs (stated on the equations themselves, QfocParkD and the
+ * like, which for such inputs equal the clamped forms QfocParkDQ30 and the like).  The public functions are the clamps followed by these
  * steps, so both give the same value for every input the steps accept.
  *
  * Scaling, rounding and overflow are those of include/qfoc/transforms.h (the two
@@ -38,17 +39,17 @@
   assigns *out;
   ensures range: QfocQ15Sym(out->d) && QfocQ15Sym(out->q);
   behavior d_exact:
-    assumes QfocQ30Fits(QfocParkDQ30(in->alpha, in->beta, sc->sine, sc->cosine));
-    ensures out->d == QfocRoundDiv(QfocParkDQ30(in->alpha, in->beta, sc->sine, sc->cosine), 32768);
+    assumes QfocQ30Fits(QfocParkD(in->alpha, in->beta, sc->sine, sc->cosine));
+    ensures out->d == QfocRoundDiv(QfocParkD(in->alpha, in->beta, sc->sine, sc->cosine), 32768);
   behavior d_saturated:
-    assumes !QfocQ30Fits(QfocParkDQ30(in->alpha, in->beta, sc->sine, sc->cosine));
-    ensures out->d == ((QfocParkDQ30(in->alpha, in->beta, sc->sine, sc->cosine) > 0) ? 32767 : -32767);
+    assumes !QfocQ30Fits(QfocParkD(in->alpha, in->beta, sc->sine, sc->cosine));
+    ensures out->d == ((QfocParkD(in->alpha, in->beta, sc->sine, sc->cosine) > 0) ? 32767 : -32767);
   behavior q_exact:
-    assumes QfocQ30Fits(QfocParkQQ30(in->alpha, in->beta, sc->sine, sc->cosine));
-    ensures out->q == QfocRoundDiv(QfocParkQQ30(in->alpha, in->beta, sc->sine, sc->cosine), 32768);
+    assumes QfocQ30Fits(QfocParkQ(in->alpha, in->beta, sc->sine, sc->cosine));
+    ensures out->q == QfocRoundDiv(QfocParkQ(in->alpha, in->beta, sc->sine, sc->cosine), 32768);
   behavior q_saturated:
-    assumes !QfocQ30Fits(QfocParkQQ30(in->alpha, in->beta, sc->sine, sc->cosine));
-    ensures out->q == ((QfocParkQQ30(in->alpha, in->beta, sc->sine, sc->cosine) > 0) ? 32767 : -32767);
+    assumes !QfocQ30Fits(QfocParkQ(in->alpha, in->beta, sc->sine, sc->cosine));
+    ensures out->q == ((QfocParkQ(in->alpha, in->beta, sc->sine, sc->cosine) > 0) ? 32767 : -32767);
   complete behaviors d_exact, d_saturated;
   disjoint behaviors d_exact, d_saturated;
   complete behaviors q_exact, q_saturated;
@@ -72,17 +73,17 @@ void qfoc_park_sym(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
   assigns *out;
   ensures range: QfocQ15Sym(out->alpha) && QfocQ15Sym(out->beta);
   behavior alpha_exact:
-    assumes QfocQ30Fits(QfocInvParkAlphaQ30(in->d, in->q, sc->sine, sc->cosine));
-    ensures out->alpha == QfocRoundDiv(QfocInvParkAlphaQ30(in->d, in->q, sc->sine, sc->cosine), 32768);
+    assumes QfocQ30Fits(QfocInvParkAlpha(in->d, in->q, sc->sine, sc->cosine));
+    ensures out->alpha == QfocRoundDiv(QfocInvParkAlpha(in->d, in->q, sc->sine, sc->cosine), 32768);
   behavior alpha_saturated:
-    assumes !QfocQ30Fits(QfocInvParkAlphaQ30(in->d, in->q, sc->sine, sc->cosine));
-    ensures out->alpha == ((QfocInvParkAlphaQ30(in->d, in->q, sc->sine, sc->cosine) > 0) ? 32767 : -32767);
+    assumes !QfocQ30Fits(QfocInvParkAlpha(in->d, in->q, sc->sine, sc->cosine));
+    ensures out->alpha == ((QfocInvParkAlpha(in->d, in->q, sc->sine, sc->cosine) > 0) ? 32767 : -32767);
   behavior beta_exact:
-    assumes QfocQ30Fits(QfocInvParkBetaQ30(in->d, in->q, sc->sine, sc->cosine));
-    ensures out->beta == QfocRoundDiv(QfocInvParkBetaQ30(in->d, in->q, sc->sine, sc->cosine), 32768);
+    assumes QfocQ30Fits(QfocInvParkBeta(in->d, in->q, sc->sine, sc->cosine));
+    ensures out->beta == QfocRoundDiv(QfocInvParkBeta(in->d, in->q, sc->sine, sc->cosine), 32768);
   behavior beta_saturated:
-    assumes !QfocQ30Fits(QfocInvParkBetaQ30(in->d, in->q, sc->sine, sc->cosine));
-    ensures out->beta == ((QfocInvParkBetaQ30(in->d, in->q, sc->sine, sc->cosine) > 0) ? 32767 : -32767);
+    assumes !QfocQ30Fits(QfocInvParkBeta(in->d, in->q, sc->sine, sc->cosine));
+    ensures out->beta == ((QfocInvParkBeta(in->d, in->q, sc->sine, sc->cosine) > 0) ? 32767 : -32767);
   complete behaviors alpha_exact, alpha_saturated;
   disjoint behaviors alpha_exact, alpha_saturated;
   complete behaviors beta_exact, beta_saturated;

@@ -56,8 +56,8 @@ void qfoc_park_sym(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
     int32_t d_q30;
     int32_t q_q30;
 
-    /*@ assert unclamped: alpha == QfocSat15(in->alpha) && beta == QfocSat15(in->beta) &&
-                          s == QfocSat15(sc->sine) && c == QfocSat15(sc->cosine); */
+    /*@ assert same: alpha == in->alpha && beta == in->beta && s == sc->sine &&
+                     c == sc->cosine; */
     /*@ assert prod_ac: -1073676289 <= alpha * c <= 1073676289; */
     /*@ assert prod_bs: -1073676289 <= beta * s <= 1073676289; */
     /*@ assert prod_bc: -1073676289 <= beta * c <= 1073676289; */
@@ -65,8 +65,8 @@ void qfoc_park_sym(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
     /* 2.30 sums, |sum| <= 2 * 32767^2 = 2147352578 < 2^31 */
     d_q30 = (alpha * c) + (beta * s);                 /* (2-7) */
     q_q30 = (beta * c) - (alpha * s);                 /* (2-8) */
-    /*@ assert d_sum: d_q30 == QfocParkDQ30(in->alpha, in->beta, sc->sine, sc->cosine); */
-    /*@ assert q_sum: q_q30 == QfocParkQQ30(in->alpha, in->beta, sc->sine, sc->cosine); */
+    /*@ assert d_sum: d_q30 == QfocParkD(in->alpha, in->beta, sc->sine, sc->cosine); */
+    /*@ assert q_sum: q_q30 == QfocParkQ(in->alpha, in->beta, sc->sine, sc->cosine); */
 
     out->d = qfoc_q15_from_q30(d_q30);
     out->q = qfoc_q15_from_q30(q_q30);
@@ -84,9 +84,9 @@ void qfoc_park(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
 
     /*@ assert clamped: ab.alpha == QfocSat15(in->alpha) && ab.beta == QfocSat15(in->beta) &&
                         cs.sine == QfocSat15(sc->sine) && cs.cosine == QfocSat15(sc->cosine); */
-    /*@ assert same_d: QfocParkDQ30(ab.alpha, ab.beta, cs.sine, cs.cosine) ==
+    /*@ assert same_d: QfocParkD(ab.alpha, ab.beta, cs.sine, cs.cosine) ==
                        QfocParkDQ30(in->alpha, in->beta, sc->sine, sc->cosine); */
-    /*@ assert same_q: QfocParkQQ30(ab.alpha, ab.beta, cs.sine, cs.cosine) ==
+    /*@ assert same_q: QfocParkQ(ab.alpha, ab.beta, cs.sine, cs.cosine) ==
                        QfocParkQQ30(in->alpha, in->beta, sc->sine, sc->cosine); */
     /*@ for vector_bound: assert unclamped: ab.alpha == in->alpha && ab.beta == in->beta &&
                                             cs.sine == sc->sine && cs.cosine == sc->cosine; */
@@ -113,8 +113,7 @@ void qfoc_inv_park_sym(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *
     int32_t alpha_q30;
     int32_t beta_q30;
 
-    /*@ assert unclamped: d == QfocSat15(in->d) && q == QfocSat15(in->q) &&
-                          s == QfocSat15(sc->sine) && c == QfocSat15(sc->cosine); */
+    /*@ assert same: d == in->d && q == in->q && s == sc->sine && c == sc->cosine; */
     /*@ assert prod_dc: -1073676289 <= d * c <= 1073676289; */
     /*@ assert prod_qs: -1073676289 <= q * s <= 1073676289; */
     /*@ assert prod_ds: -1073676289 <= d * s <= 1073676289; */
@@ -122,8 +121,8 @@ void qfoc_inv_park_sym(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *
     /* 2.30 sums, |sum| <= 2 * 32767^2 = 2147352578 < 2^31 */
     alpha_q30 = (d * c) - (q * s);
     beta_q30 = (d * s) + (q * c);
-    /*@ assert alpha_sum: alpha_q30 == QfocInvParkAlphaQ30(in->d, in->q, sc->sine, sc->cosine); */
-    /*@ assert beta_sum: beta_q30 == QfocInvParkBetaQ30(in->d, in->q, sc->sine, sc->cosine); */
+    /*@ assert alpha_sum: alpha_q30 == QfocInvParkAlpha(in->d, in->q, sc->sine, sc->cosine); */
+    /*@ assert beta_sum: beta_q30 == QfocInvParkBeta(in->d, in->q, sc->sine, sc->cosine); */
 
     out->alpha = qfoc_q15_from_q30(alpha_q30);
     out->beta = qfoc_q15_from_q30(beta_q30);
@@ -141,9 +140,9 @@ void qfoc_inv_park(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *out)
 
     /*@ assert clamped: dq.d == QfocSat15(in->d) && dq.q == QfocSat15(in->q) &&
                         cs.sine == QfocSat15(sc->sine) && cs.cosine == QfocSat15(sc->cosine); */
-    /*@ assert same_alpha: QfocInvParkAlphaQ30(dq.d, dq.q, cs.sine, cs.cosine) ==
+    /*@ assert same_alpha: QfocInvParkAlpha(dq.d, dq.q, cs.sine, cs.cosine) ==
                            QfocInvParkAlphaQ30(in->d, in->q, sc->sine, sc->cosine); */
-    /*@ assert same_beta: QfocInvParkBetaQ30(dq.d, dq.q, cs.sine, cs.cosine) ==
+    /*@ assert same_beta: QfocInvParkBeta(dq.d, dq.q, cs.sine, cs.cosine) ==
                           QfocInvParkBetaQ30(in->d, in->q, sc->sine, sc->cosine); */
     /*@ for vector_bound: assert unclamped: dq.d == in->d && dq.q == in->q &&
                                             cs.sine == sc->sine && cs.cosine == sc->cosine; */
