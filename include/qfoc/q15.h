@@ -212,17 +212,24 @@ static inline qfoc_q15_t qfoc_q15_abs(qfoc_q15_t a)
 */
 static inline qfoc_q15_t qfoc_q15_from_q30(int32_t x)
 {
-    int32_t r;
-    if (x >= QFOC_Q30_SAT_LIMIT) {
-        r = (int32_t)QFOC_Q15_MAX;
-    } else if (x <= -QFOC_Q30_SAT_LIMIT) {
-        r = (int32_t)QFOC_Q15_MIN;
-    } else if (x >= 0) {
-        r = (x + 16384) / 32768;
+    int32_t c = x;
+    int32_t tie;
+    int32_t biased;
+    uint32_t u;
+    /* clamp to the last values that round into [-32767, 32767] */
+    if (c > (QFOC_Q30_SAT_LIMIT - 1)) {
+        c = QFOC_Q30_SAT_LIMIT - 1;
+    } else if (c < (1 - QFOC_Q30_SAT_LIMIT)) {
+        c = 1 - QFOC_Q30_SAT_LIMIT;
     } else {
-        r = -((16384 - x) / 32768);
+        /* rounds into range */
     }
-    return (qfoc_q15_t)r;
+    /* ties away from zero: a negative value rounds as c - 1 would round up */
+    tie = (c < 0) ? 1 : 0;
+    /* |c| < 2^30: c + 2^30 + 2^14 - tie lies in [32768, 2^31 - 1] */
+    biased = (c + 1073758208) - tie;
+    u = (uint32_t)biased / 32768u;
+    return (qfoc_q15_t)((int32_t)u - 32768);
 }
 
 /**
@@ -301,16 +308,24 @@ static inline qfoc_q31_t qfoc_q31_mac(qfoc_q31_t acc, qfoc_q15_t a, qfoc_q15_t b
 */
 static inline qfoc_q15_t qfoc_q15_from_q31(qfoc_q31_t x)
 {
-    int32_t q = x / 65536;
-    int32_t rem = x % 65536;
-    if (rem >= 32768) {
-        q = q + 1;
-    } else if (rem <= -32768) {
-        q = q - 1;
+    int32_t c = x;
+    int64_t tie;
+    int64_t biased;
+    uint32_t u;
+    /* clamp to the last values that round into [-32767, 32767] */
+    if (c > 2147450879) {
+        c = 2147450879;
+    } else if (c < -2147450879) {
+        c = -2147450879;
     } else {
-        /* rounds towards zero */
+        /* rounds into range */
     }
-    return qfoc_q15_sat(q);
+    /* ties away from zero: a negative value rounds as c - 1 would round up */
+    tie = (c < 0) ? 1 : 0;
+    /* c + 2^31 + 2^15 - tie lies in [65536, 2^32 - 1] */
+    biased = (((int64_t)c + 2147483648LL) + 32768LL) - tie;
+    u = (uint32_t)biased / 65536u;
+    return (qfoc_q15_t)((int32_t)u - 32768);
 }
 
 /**
