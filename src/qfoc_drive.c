@@ -406,7 +406,8 @@ static uint32_t drv_ol_increment(qfoc_q15_t w_ol, uint16_t k_theta)
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->f, d->p);
   requires inv: DRV_FAST(&d->f);
-  assigns d->f.fw, d->f.id_fw, d->f.theta_ol, d->f.mech, d->f.theta_m, d->f.phase;
+  assigns d->f.fw, d->f.id_fw, d->f.theta_ol, d->f.mech, d->f.theta_m, d->f.phase,
+          d->f.phase_k;
   ensures inv: DRV_FAST(&d->f);
 */
 static void drv_control_after(qfoc_drive_t *d, uint8_t sub)
@@ -421,7 +422,10 @@ static void drv_control_after(qfoc_drive_t *d, uint8_t sub)
         /* the open-loop frame stands still outside OPEN_LOOP */
     }
     f->theta_m = qfoc_mech_update(&f->mech, f->theta_est);
-    qfoc_phase_mon_update(&f->phase, &f->i_abc);
+    /* one phase per period, in turn (the monitor's coefficient is for every third
+       period, qfoc_phase_mon_alpha3) */
+    qfoc_phase_mon_update_one(&f->phase, &f->i_abc, f->phase_k);
+    f->phase_k = (f->phase_k >= 2u) ? 0u : (uint8_t)(f->phase_k + 1u);
 }
 
 /* Measurement and the over-current latch (REQ-DRV-003, REQ-DRV-004). */
@@ -1306,12 +1310,14 @@ static void drv_init_fw(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 /*@
   requires valid: \valid(f) && \valid_read(p);
   requires sep: \separated(f, p);
-  assigns f->phase, f->mech;
+  assigns f->phase, f->phase_k, f->mech;
   ensures inv: DRV_PHASE(&f->phase) && DRV_MECH(&f->mech);
 */
 static void drv_init_monitors(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 {
-    (void)qfoc_phase_mon_init(&f->phase, p->drive.phase_alpha);
+    /* each phase is filtered every third period: the coefficient for that rate */
+    (void)qfoc_phase_mon_init(&f->phase, qfoc_phase_mon_alpha3(p->drive.phase_alpha));
+    f->phase_k = 0u;
     (void)qfoc_mech_init(&f->mech, p->drive.pole_pairs, 0u);
 }
 

@@ -100,6 +100,39 @@ void qfoc_phase_mon_update(qfoc_phase_mon_t *m, const qfoc_abc_t *i)
     (void)qfoc_lpf_step(&m->abs_lpf[2], aw);
 }
 
+void qfoc_phase_mon_update_one(qfoc_phase_mon_t *m, const qfoc_abc_t *i, uint8_t k)
+{
+    /* the filter output is not needed here (read by qfoc_phase_mon_imbalanced) */
+    if (k == 0u) {
+        (void)qfoc_lpf_step(&m->abs_lpf[0], qfoc_q15_abs(i->u));
+    } else if (k == 1u) {
+        (void)qfoc_lpf_step(&m->abs_lpf[1], qfoc_q15_abs(i->v));
+    } else {
+        (void)qfoc_lpf_step(&m->abs_lpf[2], qfoc_q15_abs(i->w));
+    }
+}
+
+qfoc_q15_t qfoc_phase_mon_alpha3(qfoc_q15_t alpha)
+{
+    const int32_t a = (alpha < 1) ? (int32_t)1 : (int32_t)alpha;
+    /* b = 1 - alpha in [1, 32767]; b^2 and b^3 rounded to Q15, each in [0, 32767] */
+    const int32_t b = 32768 - a;
+    const int32_t b2 = ((b * b) + 16384) / 32768;
+    const int32_t b3 = ((b2 * b) + 16384) / 32768;
+    int32_t r = 32768 - b3;
+    /*@ assert b_value: b == PhaseMonB(alpha); */
+    /*@ assert b2_range: 0 <= b2 <= 32767; */
+    /*@ assert b3_value: b3 == (((b * b + 16384) / 32768) * b + 16384) / 32768; */
+    /*@ assert b3_logic: b3 == PhaseMonB3(alpha); */
+    /*@ assert b3_range: 0 <= b3 <= 32767; */
+    if (r > 32767) {
+        r = 32767;
+    } else {
+        /* b3 >= 1 */
+    }
+    return (qfoc_q15_t)r;
+}
+
 bool qfoc_phase_mon_imbalanced(const qfoc_phase_mon_t *m, qfoc_q15_t i_min, qfoc_q15_t ratio)
 {
     /* filtered magnitudes, Q15, each in [0, 32767] (state in [0, 32767 x 65536]) */

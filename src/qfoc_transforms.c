@@ -43,7 +43,7 @@ void qfoc_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out)
     beta_q31 = sum * QFOC_INV_SQRT3_Q16;
 
     out->alpha = qfoc_q15_sat((int32_t)iu);           /* (2-3) */
-    out->beta = qfoc_q15_from_q31(beta_q31);          /* (2-4), rounded */
+    out->beta = qfoc_q15_round_q31(beta_q31);         /* (2-4), rounded (in range) */
 }
 
 void qfoc_park_sym(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)

@@ -191,6 +191,126 @@ static void test_phase_mon_random_vs_reference(void **state)
     assert_true(n_true > 1000u);
 }
 
+/* REQ-FAULT-003: one phase per call, every index (3 and above select w), against the
+   double low-pass of the selected phase; the two others unchanged */
+static void test_phase_mon_update_one_vs_reference(void **state)
+{
+    qfoc_phase_mon_t m;
+    double y[3] = { 0.0, 0.0, 0.0 };
+    double max_err = 0.0;
+    uint32_t seq;
+    uint32_t k;
+    (void)state;
+    for (seq = 0u; seq < 20u; seq++) {
+        const int16_t alpha = (seq == 0u) ? (int16_t)32767 : (int16_t)rand_range(1, 32767);
+        assert_int_equal(qfoc_phase_mon_init(&m, alpha), QFOC_FAULT_OK);
+        y[0] = 0.0;
+        y[1] = 0.0;
+        y[2] = 0.0;
+        for (k = 0u; k < 3000u; k++) {
+            qfoc_abc_t i;
+            const uint8_t idx = ((k % 11u) == 0u) ? (uint8_t)rand_range(0, 255) : (uint8_t)(k % 3u);
+            const size_t sel = (idx >= 2u) ? 2u : (size_t)idx;
+            int32_t before[3];
+            size_t x;
+            i.u = rand_i16();
+            i.v = ((k % 7u) == 0u) ? (int16_t)-32768 : rand_i16();
+            i.w = rand_i16();
+            for (x = 0u; x < 3u; x++) {
+                before[x] = m.abs_lpf[x].state;
+            }
+            qfoc_phase_mon_update_one(&m, &i, idx);
+            {
+                const double in = (sel == 0u) ? absq(i.u) : ((sel == 1u) ? absq(i.v) : absq(i.w));
+                y[sel] += ((double)alpha / 32768.0) * (in - y[sel]);
+            }
+            assert_true(qfoc_phase_mon_is_valid(&m));
+            for (x = 0u; x < 3u; x++) {
+                if (x == sel) {
+                    max_err = fmax(max_err, fabs(out_of(&m.abs_lpf[x]) - y[x]));
+                } else {
+                    assert_int_equal(m.abs_lpf[x].state, before[x]);
+                }
+            }
+        }
+    }
+    print_message("phase monitor, one phase per call: max |filtered |i| - double low-pass| = "
+                  "%.3f LSB (bound 0.75)\n", max_err);
+    assert_true(max_err <= 0.75);
+}
+
+/* REQ-FAULT-003: the coefficient for every third period, for every int16_t alpha,
+   against 1 - (1 - alpha / 32768)^3 in double (alpha below 1 taken as 1) */
+static void test_phase_mon_alpha3(void **state)
+{
+    double max_err = 0.0;
+    int32_t a;
+    (void)state;
+    for (a = -32768; a <= 32767; a++) {
+        const double al = (a < 1) ? 1.0 : (double)a;
+        const double b = 1.0 - (al / 32768.0);
+        double ref = (1.0 - (b * b * b)) * 32768.0;
+        const qfoc_q15_t r = qfoc_phase_mon_alpha3((qfoc_q15_t)a);
+        if (ref > 32767.0) {
+            ref = 32767.0;
+        }
+        assert_true(r >= 1);
+        assert_true((a < 1) || (r >= a));
+        max_err = fmax(max_err, fabs((double)r - ref));
+    }
+    print_message("phase monitor alpha3: max |result - 1 - (1 - alpha)^3| = %.3f LSB "
+                  "(bound 1.5)\n", max_err);
+    assert_true(max_err <= 1.5);
+}
+
+/* REQ-FAULT-003, REQ-FAULT-004, REQ-FAULT-005: the drive's use, one phase per period
+   with the coefficient alpha3: a lost phase is reported, balanced currents never, and
+   each filtered magnitude follows the all-phases monitor at alpha (time constant kept) */
+static void test_phase_mon_round_robin(void **state)
+{
+    const double two_pi = 6.28318530717958647692;
+    const double amp = 0.5 * 32768.0;
+    const double w = two_pi * 300.0 / 8000.0;
+    const int16_t alpha = 515;                  /* 20 Hz at 8 kHz */
+    const int16_t i_min = 3277;
+    const int16_t ratio = 8192;
+    qfoc_phase_mon_t full;
+    qfoc_phase_mon_t one;
+    double max_diff = 0.0;
+    uint32_t k;
+    uint32_t first = 0u;
+    (void)state;
+    assert_int_equal(qfoc_phase_mon_init(&full, alpha), QFOC_FAULT_OK);
+    assert_int_equal(qfoc_phase_mon_init(&one, qfoc_phase_mon_alpha3(alpha)), QFOC_FAULT_OK);
+    for (k = 0u; k < 16000u; k++) {
+        const bool lost = (k >= 8000u);
+        const double th = w * (double)k;
+        qfoc_abc_t i;
+        size_t x;
+        i.u = (int16_t)lround(amp * cos(th));
+        i.v = lost ? (int16_t)0 : (int16_t)lround(amp * cos(th - (two_pi / 3.0)));
+        i.w = (int16_t)(-(int32_t)i.u - (int32_t)i.v);
+        qfoc_phase_mon_update(&full, &i);
+        qfoc_phase_mon_update_one(&one, &i, (uint8_t)(k % 3u));
+        if ((k >= 2000u) && (k < 8000u)) {
+            for (x = 0u; x < 3u; x++) {
+                max_diff = fmax(max_diff, fabs(out_of(&one.abs_lpf[x]) - out_of(&full.abs_lpf[x])));
+            }
+            assert_false(qfoc_phase_mon_imbalanced(&one, i_min, ratio));
+        }
+        if (lost && (first == 0u) && qfoc_phase_mon_imbalanced(&one, i_min, ratio)) {
+            first = k;
+        }
+    }
+    /* settled magnitude 2 A / pi = 10430 LSB; ripple at twice 300 Hz differs */
+    print_message("phase monitor, one phase per period: max |magnitude - all-phases monitor| = "
+                  "%.1f LSB of 10430, phase loss reported after %u periods\n", max_diff,
+                  (unsigned)(first - 8000u));
+    assert_true(max_diff <= 0.02 * 10430.0);
+    assert_true(first > 8000u);
+    assert_true((first - 8000u) < 800u);        /* within 100 ms at 8 kHz */
+}
+
 /* REQ-FAULT-003, REQ-FAULT-004, REQ-FAULT-005: balanced sinusoidal currents are never
    reported, a lost phase is reported once the filter has settled */
 static void test_phase_mon_phase_loss(void **state)
@@ -325,6 +445,9 @@ int main(void)
         cmocka_unit_test(test_debounce_corners),
         cmocka_unit_test(test_phase_mon_random_vs_reference),
         cmocka_unit_test(test_phase_mon_phase_loss),
+        cmocka_unit_test(test_phase_mon_update_one_vs_reference),
+        cmocka_unit_test(test_phase_mon_alpha3),
+        cmocka_unit_test(test_phase_mon_round_robin),
         cmocka_unit_test(test_phase_mon_init_valid),
         cmocka_unit_test(test_fault_thresholds),
     };

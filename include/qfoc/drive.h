@@ -190,6 +190,7 @@ typedef struct {
     bool trip;                /**< over-current latch: PWM held off */
     bool active;              /**< the control ran in the last period */
     bool hs;                  /**< high-speed inductances in use (motorParaChange) */
+    uint8_t phase_k;          /**< phase the monitor filters in this period (0, 1, 2) */
     qfoc_abc_t i_abc;         /**< this period's phase currents, offset-corrected, Q15 */
     qfoc_pwm_t out;           /**< this period's output (returned by the fast step) */
 } qfoc_drive_fast_t;

@@ -245,6 +245,81 @@ void qfoc_phase_mon_reset(qfoc_phase_mon_t *m);
 void qfoc_phase_mon_update(qfoc_phase_mon_t *m, const qfoc_abc_t *i);
 
 /**
+ * @brief One phase of the monitor per call: low-pass |i_k| of phase k only
+ *        (k = 0: u, 1: v, any other value: w); the two other filters are kept.
+ * @param[in,out] m valid monitor
+ * @param[in]     i phase currents, Q15 of I_base, any int16_t (|-32768| is
+ *                  saturated to 32767)
+ * @param[in]     k phase to update, any value (2 and above select w)
+ *
+ * The filter of phase k computes y(k+1) = y(k) + alpha (|i_k| - y(k)) with the
+ * semantics of qfoc_lpf_step(), as qfoc_phase_mon_update() does for all three.
+ *
+ * Drive use: every PWM period, k cycling 0, 1, 2, the monitor initialised with
+ * qfoc_phase_mon_alpha3() of the per-period coefficient: each filter then sees
+ * every third sample with the same time constant (one filter step instead of
+ * three per period; the sampled |i| of each phase is the same sinusoid at a third
+ * of the rate, far above twice the largest electrical frequency).
+ *
+ * Scaling and overflow: as qfoc_phase_mon_update().
+ *
+ * Requirements: REQ-FAULT-003.
+ */
+/*@
+  requires valid_m: \valid(m);
+  requires valid_i: \valid_read(i);
+  requires sep: \separated(m, i);
+  requires m_valid: PhaseMonValid(m);
+  assigns m->abs_lpf[0].state, m->abs_lpf[1].state, m->abs_lpf[2].state;
+  ensures valid: PhaseMonValid(m);
+  behavior phase_u:
+    assumes k == 0;
+    ensures state_u: m->abs_lpf[0].state ==
+                     LpfNext(\old(m->abs_lpf[0].state), FaultAbs15(i->u), m->abs_lpf[0].alpha);
+    ensures kept: m->abs_lpf[1].state == \old(m->abs_lpf[1].state) &&
+                  m->abs_lpf[2].state == \old(m->abs_lpf[2].state);
+  behavior phase_v:
+    assumes k == 1;
+    ensures state_v: m->abs_lpf[1].state ==
+                     LpfNext(\old(m->abs_lpf[1].state), FaultAbs15(i->v), m->abs_lpf[1].alpha);
+    ensures kept: m->abs_lpf[0].state == \old(m->abs_lpf[0].state) &&
+                  m->abs_lpf[2].state == \old(m->abs_lpf[2].state);
+  behavior phase_w:
+    assumes k >= 2;
+    ensures state_w: m->abs_lpf[2].state ==
+                     LpfNext(\old(m->abs_lpf[2].state), FaultAbs15(i->w), m->abs_lpf[2].alpha);
+    ensures kept: m->abs_lpf[0].state == \old(m->abs_lpf[0].state) &&
+                  m->abs_lpf[1].state == \old(m->abs_lpf[1].state);
+  complete behaviors;
+  disjoint behaviors;
+*/
+void qfoc_phase_mon_update_one(qfoc_phase_mon_t *m, const qfoc_abc_t *i, uint8_t k);
+
+/**
+ * @brief The coefficient of a low-pass stepped every third period with the time
+ *        constant of alpha stepped every period: 1 - (1 - alpha)^3, Q15.
+ * @param[in] alpha per-period coefficient, Q15, any int16_t (taken as 1 below 1)
+ * @return b = 32768 - alpha, b2 = b^2 / 32768 and b3 = b2 b / 32768, each rounded
+ *         to nearest; the result 32768 - b3, at most 32767; always in [1, 32767].
+ *
+ * Against the real 1 - (1 - alpha / 32768)^3 (x 32768): within 1.5 LSB
+ * (tests/test_fault.c measures it for every alpha).
+ *
+ * Drive use: at initialisation, for qfoc_phase_mon_update_one().
+ *
+ * Scaling and overflow: b in [1, 32767]; b^2 + 16384 and b2 b + 16384 are below
+ * 2^30 + 2^14, exact in 32 bits.
+ *
+ * Requirements: REQ-FAULT-003.
+ */
+/*@
+  assigns \nothing;
+  ensures range: 1 <= \result <= 32767;
+  ensures value: \result == PhaseMonAlpha3(alpha);
+*/
+qfoc_q15_t qfoc_phase_mon_alpha3(qfoc_q15_t alpha);
+
+/**
  * @brief Phase-loss criterion on the filtered magnitudes.
  * @param[in] m     valid monitor
  * @param[in] i_min smallest largest-magnitude at which the check applies, Q15 of

@@ -28,6 +28,8 @@
 
 /** Q30 magnitude from which a Q30 -> Q15 conversion saturates: 32767.5 * 32768. */
 #define QFOC_Q30_SAT_LIMIT (1073725440L)
+/** Largest Q31 magnitude that rounds (x / 65536) into the Q15 range: 32767.5 x 65536 - 1. */
+#define QFOC_Q31_ROUND_MAX ((int32_t)2147450879)
 
 /**
  * @brief Saturate a 32-bit integer to the symmetric Q15 range.
@@ -294,12 +296,39 @@ static inline qfoc_q31_t qfoc_q31_mac(qfoc_q31_t acc, qfoc_q15_t a, qfoc_q15_t b
 }
 
 /**
+ * @brief Q31 to Q15 without saturation, for a value already known to round into
+ *        [-32767, 32767]: x / 65536 rounded to nearest (ties away from zero).
+ * Requirement: REQ-Q15-008.
+ * @param[in] x Q1.31, |x| <= QFOC_Q31_ROUND_MAX (required: the caller proves it)
+ *
+ * Scaling and overflow: x + 2^31 + 2^15 (less 1 for a negative x, which turns the
+ * round-half-up of the unsigned quotient into ties away from zero) lies in
+ * [65536, 2^32 - 1]: formed in 64 bits, divided as an unsigned 32-bit value (no
+ * right shift of a negative value), the bias 2^15 removed from the quotient.
+ */
+/*@
+  requires range: -2147450879 <= x <= 2147450879;
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  ensures value: \result == QfocRoundDiv(x, 65536);
+*/
+static inline qfoc_q15_t qfoc_q15_round_q31(int32_t x)
+{
+    /* ties away from zero: a negative value rounds as x - 1 would round up */
+    const int64_t tie = (x < 0) ? 1 : 0;
+    const int64_t biased = (((int64_t)x + 2147483648LL) + 32768LL) - tie;
+    const uint32_t u = (uint32_t)biased / 65536u;
+    return (qfoc_q15_t)((int32_t)u - 32768);
+}
+
+/**
  * @brief Convert Q31 to Q15: x / 65536 rounded to nearest (ties away from zero),
  *        saturated to [-32767, 32767].
  * Requirement: REQ-Q15-008.
  *
- * Scaling and overflow: 1.31 -> 1.15 drops 16 fraction bits; the quotient and the
- * remainder are formed separately so no intermediate exceeds 32 bits.
+ * Scaling and overflow: 1.31 -> 1.15 drops 16 fraction bits; x is first clamped to
+ * the last values that round into [-32767, 32767], then rounded by
+ * qfoc_q15_round_q31.
  */
 /*@
   assigns \nothing;
@@ -309,23 +338,15 @@ static inline qfoc_q31_t qfoc_q31_mac(qfoc_q31_t acc, qfoc_q15_t a, qfoc_q15_t b
 static inline qfoc_q15_t qfoc_q15_from_q31(qfoc_q31_t x)
 {
     int32_t c = x;
-    int64_t tie;
-    int64_t biased;
-    uint32_t u;
     /* clamp to the last values that round into [-32767, 32767] */
-    if (c > 2147450879) {
-        c = 2147450879;
-    } else if (c < -2147450879) {
-        c = -2147450879;
+    if (c > QFOC_Q31_ROUND_MAX) {
+        c = QFOC_Q31_ROUND_MAX;
+    } else if (c < -QFOC_Q31_ROUND_MAX) {
+        c = -QFOC_Q31_ROUND_MAX;
     } else {
         /* rounds into range */
     }
-    /* ties away from zero: a negative value rounds as c - 1 would round up */
-    tie = (c < 0) ? 1 : 0;
-    /* c + 2^31 + 2^15 - tie lies in [65536, 2^32 - 1] */
-    biased = (((int64_t)c + 2147483648LL) + 32768LL) - tie;
-    u = (uint32_t)biased / 65536u;
-    return (qfoc_q15_t)((int32_t)u - 32768);
+    return qfoc_q15_round_q31(c);
 }
 
 /**

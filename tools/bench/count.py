@@ -446,10 +446,19 @@ def build_benches(t, rng):
             b.case([mech, th], pre=[("qfoc_mech_init", [mech, 3, th0])], label=f"{th0} -> {th}")
     benches.append(b)
 
-    b = Bench("phase_mon", "`qfoc_phase_mon_update` (phase-loss monitor)", "qfoc_phase_mon_update")
+    b = Bench("phase_mon", "`qfoc_phase_mon_update` (phase-loss monitor, three phases)",
+              "qfoc_phase_mon_update")
     for cur in ((0, 0, 0), (5000, -2000, -3000), (32767, -32768, 1), (-32768, -32768, -32768)):
         b.case([phase, a0], writes=[(a0, i16(*cur))], pre=[("qfoc_phase_mon_reset", [phase])],
                label=f"i={cur}")
+    benches.append(b)
+
+    b = Bench("phase_mon_one", "`qfoc_phase_mon_update_one` (phase-loss monitor, one phase: "
+              "the fast step's)", "qfoc_phase_mon_update_one")
+    for cur in ((0, 0, 0), (5000, -2000, -3000), (32767, -32768, 1), (-32768, -32768, -32768)):
+        for k in (0, 1, 2, 200):
+            b.case([phase, a0, k], writes=[(a0, i16(*cur))], pre=[("qfoc_phase_mon_reset", [phase])],
+                   label=f"i={cur} k={k}")
     benches.append(b)
 
     b = Bench("params_check", "`qfoc_params_check` (table identity, CRC, ranges)",

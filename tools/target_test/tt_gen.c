@@ -554,8 +554,10 @@ static void gen_phase_mon(rows_t *r)
         const double dth = (double)rr(1, 3000) * 1e-4;
         int j;
         uint16_t *p = row(r);
+        const int one = chance(50);   /* the drive's use: one phase per period, alpha3 */
         p[0] = TT_OP_INIT;
         p[1] = (uint16_t)(chance(90) ? rr(1, 32767) : rq15());
+        p[2] = (uint16_t)one;
         k++;
         for (j = 0; j < len; j++) {
             p = row(r);
@@ -568,7 +570,8 @@ static void gen_phase_mon(rows_t *r)
                 p[0] = TT_OP_RESET;
             } else {
                 int ph;
-                p[0] = TT_OP_STEP;
+                p[0] = one ? TT_OP_AUX2 : TT_OP_STEP;
+                p[4] = (uint16_t)(chance(95) ? (j % 3) : rr(0, 255));
                 for (ph = 0; ph < 3; ph++) {
                     double v = amp * cos(th - (double)ph * 2.0 * SIM_PI / 3.0);
                     if (ph == lost) {
@@ -1463,7 +1466,7 @@ static const gen_entry_t GEN[] = {
     { "ramp", 3u, 0u, gen_ramp },
     { "fault_level", 2u, 0u, gen_fault_level },
     { "debounce", 3u, 0u, gen_debounce },
-    { "phase_mon", 4u, 0u, gen_phase_mon },
+    { "phase_mon", 5u, 0u, gen_phase_mon },
     { "lpf", 2u, 0u, gen_lpf },
     { "leaky", 4u, 0u, gen_leaky },
     { "pi", 7u, 0u, gen_pi },

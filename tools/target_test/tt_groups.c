@@ -479,8 +479,10 @@ static void tt_replay_debounce(tt_ctx_t *c)
     }
 }
 
-/* phase_mon (operations): INIT [alpha]; RESET; STEP [i_u, i_v, i_w] (update);
-   AUX [i_min, ratio] (imbalanced).  Digest: status or result, valid, three filters. */
+/* phase_mon (operations): INIT [alpha, one] (one != 0: the coefficient
+   qfoc_phase_mon_alpha3(alpha), in the digest); RESET; STEP [i_u, i_v, i_w] (update);
+   AUX2 [i_u, i_v, i_w, k] (update of phase k only); AUX [i_min, ratio] (imbalanced).
+   Digest: status or result, valid, three filters. */
 static void tt_replay_phase_mon(tt_ctx_t *c)
 {
     qfoc_phase_mon_t m;
@@ -493,8 +495,13 @@ static void tt_replay_phase_mon(tt_ctx_t *c)
         uint16_t j;
         tt_d_init(&d);
         if (op == TT_OP_INIT) {
+            qfoc_q15_t alpha = tt_in_i16(c, k, 1u);
             (void)memset(&m, 0, sizeof m);
-            tt_d_i32(&d, qfoc_phase_mon_init(&m, tt_in_i16(c, k, 1u)));
+            if (tt_in(c, k, 2u) != 0u) {
+                alpha = qfoc_phase_mon_alpha3(alpha);
+                tt_d_i32(&d, (int32_t)alpha);
+            }
+            tt_d_i32(&d, qfoc_phase_mon_init(&m, alpha));
         } else if (!valid) {
             /* not initialised: only init is called */
         } else if (op == TT_OP_RESET) {
@@ -505,6 +512,12 @@ static void tt_replay_phase_mon(tt_ctx_t *c)
             i.v = tt_in_i16(c, k, 2u);
             i.w = tt_in_i16(c, k, 3u);
             qfoc_phase_mon_update(&m, &i);
+        } else if (op == TT_OP_AUX2) {
+            qfoc_abc_t i;
+            i.u = tt_in_i16(c, k, 1u);
+            i.v = tt_in_i16(c, k, 2u);
+            i.w = tt_in_i16(c, k, 3u);
+            qfoc_phase_mon_update_one(&m, &i, (uint8_t)tt_in(c, k, 4u));
         } else if (op == TT_OP_AUX) {
             tt_d_bool(&d, qfoc_phase_mon_imbalanced(&m, tt_in_i16(c, k, 1u), tt_in_i16(c, k, 2u)));
         } else {

@@ -17,6 +17,11 @@
  *    for the ratios 0, 1 LSB, 0.25, 0.5 and -1 the result equals
  *    (max >= i_min && min x 32768 < ratio x max) exactly (the general product is
  *    proved by WP: contract of qfoc_phase_mon_imbalanced, ensures result);
+ *  - no undefined behaviour in qfoc_phase_mon_update_one() for every phase index,
+ *    current and valid state; the two phases not selected and every coefficient
+ *    are kept (the step of the selected filter and the invariant after it are
+ *    proved by WP: contract of qfoc_phase_mon_update_one, state_u/v/w, valid); qfoc_phase_mon_alpha3() of every int16_t
+ *    lies in [1, 32767] and is not below a positive alpha;
  *  - init and reset leave a valid monitor with zero states.
  * The exact recursion (lpf semantics, y + round(alpha (u - y) / 32768)), the
  * no-overshoot half of the convex combination and hence the invariant after an
@@ -51,6 +56,8 @@ int main(void)
 {
     qfoc_phase_mon_t m;
     qfoc_phase_mon_t m2;
+    qfoc_phase_mon_t m3;
+    const uint8_t kk = nondet_uint8();
     qfoc_q15_t alpha_old[3];
     qfoc_abc_t i;
     int64_t old[3];
@@ -83,7 +90,24 @@ int main(void)
     in[1] = abs15(i.v) * 65536;
     in[2] = abs15(i.w) * 65536;
 
+    m3 = m;
     qfoc_phase_mon_update(&m, &i);
+
+    /* one phase only: that phase as in the full update, the others kept */
+    qfoc_phase_mon_update_one(&m3, &i, kk);
+    for (k = 0u; k < 3u; k++) {
+        const uint32_t sel = (kk >= 2u) ? 2u : (uint32_t)kk;
+        __CPROVER_assert(m3.abs_lpf[k].alpha == alpha_old[k], "one phase: coefficient unchanged");
+        if (k != sel) {
+            __CPROVER_assert(m3.abs_lpf[k].state == old[k], "one phase: the others are kept");
+        }
+    }
+    {
+        const int16_t a1 = nondet_int16();
+        const int16_t a3 = qfoc_phase_mon_alpha3(a1);
+        __CPROVER_assert((a3 >= 1) && (a3 <= 32767), "alpha3 in [1, 32767]");
+        __CPROVER_assert((a1 < 1) || (a3 >= a1), "alpha3 >= alpha: a third of the steps, not slower");
+    }
 
     for (k = 0u; k < 3u; k++) {
         const int64_t s = m.abs_lpf[k].state;
