@@ -647,7 +647,7 @@ static int scn_speed_steps(scn_ctx_t *c, const scn_table_t *tab, const sim_motor
             id_sum += ds->plant.id;
             id_n++;
         }
-        util_max = fmax(util_max, (double)ds->drv.f.utilisation / 32768.0);
+        util_max = fmax(util_max, (double)ds->drv.s.util / 32768.0);
     }
     scn_metric(c, "t_closed_loop_s", "time from the run command to CLOSED_LOOP", "s",
                (c->t_cl >= 0.0) ? c->t_cl : NAN);

@@ -374,12 +374,13 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
     }
     /* the circle limit and sincos give symmetric Q15: no clamps */
     qfoc_inv_park_sym(&v_dq, &sc, &v_ab);
-    qfoc_svpwm_step(&p->svpwm, &v_ab, f->vdc, i_abc, &sv);
+    /* the circle limit kept |v| within V_dc / sqrt 3: SVPWM without its own limit; the
+       tick computes the utilisation for field weakening */
+    qfoc_svpwm_step_lin(&p->svpwm, &v_ab, f->vdc, i_abc, &sv);
     f->out.cmp[0] = sv.cmp[0];
     f->out.cmp[1] = sv.cmp[1];
     f->out.cmp[2] = sv.cmp[2];
     f->out.enable = true;
-    f->utilisation = sv.utilisation;
     /* voltage history for the observer: this command is applied during the next period */
     f->u_applied = f->u_last;
     f->u_last = v_ab;
@@ -414,7 +415,7 @@ static void drv_control_after(qfoc_drive_t *d, uint8_t sub)
 {
     qfoc_drive_fast_t *const f = &d->f;
     const bool fw_on = (sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING);
-    f->id_fw = qfoc_fw_step(&f->fw, f->utilisation, fw_on);
+    f->id_fw = qfoc_fw_step(&f->fw, d->s.util, fw_on);
     if (sub == QFOC_SUB_OPEN_LOOP) {
         f->theta_ol = drv_angle_add(f->theta_ol, drv_ol_increment(d->s.ol_speed,
                                                                   d->p->pll.k_theta));
@@ -488,7 +489,7 @@ static void drv_inductance(qfoc_drive_fast_t *f, const qfoc_param_table_t *p, bo
 /*@
   requires valid: \valid(f);
   requires inv: DRV_FAST(f);
-  assigns f->active, f->i_dq, f->utilisation, f->out;
+  assigns f->active, f->i_dq, f->out;
   ensures inv: DRV_FAST(f);
   ensures off: f->out.enable == \false;
   ensures cmp: f->out.cmp[0] == 0 && f->out.cmp[1] == 0 && f->out.cmp[2] == 0;
@@ -499,7 +500,6 @@ static void drv_off(qfoc_drive_fast_t *f)
     f->active = false;
     f->i_dq.d = 0;
     f->i_dq.q = 0;
-    f->utilisation = 0;
 }
 
 /* One controlled period in RUN (REQ-DRV-006). */
@@ -1218,6 +1218,39 @@ static bool drv_tick_in(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_s
     return accepted;
 }
 
+/* Voltage utilisation of a command, |v| / (V_dc / sqrt 3) in Q15 (REQ-DRV-006): |v| sqrt 3
+   / V_dc rounded (sqrt 3 in Q15: 56756), the bus at least vdc_min and 1, at most 32767;
+   the formula of qfoc_svpwm_step() for a vector inside the linear range. */
+/*@
+  requires valid: \valid_read(v);
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+*/
+static qfoc_q15_t drv_utilisation(const qfoc_ab_t *v, qfoc_q15_t vdc, qfoc_q15_t vdc_min)
+{
+    /* |v| in [0, 32767]: |v| 56756 + 16383 < 2^31 */
+    const int32_t mag = (int32_t)qfoc_vec_mag(v->alpha, v->beta);
+    int32_t bus = (int32_t)vdc;
+    int32_t u;
+    if (bus < (int32_t)vdc_min) {
+        bus = (int32_t)vdc_min;
+    } else {
+        /* the bus above its minimum */
+    }
+    if (bus < 1) {
+        bus = 1;
+    } else {
+        /* a positive bus */
+    }
+    u = ((mag * 56756) + (bus / 2)) / bus;
+    if (u > 32767) {
+        u = 32767;
+    } else {
+        /* inside the linear range */
+    }
+    return (qfoc_q15_t)u;
+}
+
 /* The tick's second half: the state machine step and its transition, the speed loop,
    the status, the answer frame and the 100 ms period (REQ-DRV-005, REQ-DRV-006,
    REQ-DRV-010, REQ-DRV-011). */
@@ -1246,6 +1279,8 @@ static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_
     drv_run(d);
     /* the observer's phase lead at the present speed, for the fast step's rotor angle */
     s->lead = qfoc_flux_lead(&d->f.flux, d->f.speed_f);
+    /* the voltage utilisation of the last command, for the fast step's field weakening */
+    s->util = drv_utilisation(&d->f.u_last, d->f.vdc, d->p->svpwm.vdc_min);
     drv_count_run(s);
     drv_status(d, in);
     drv_answer(s, accepted);
@@ -1348,7 +1383,6 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
     f->speed = 0;
     f->speed_f = 0;
     f->psi_mag = 0;
-    f->utilisation = 0;
     f->id_fw = 0;
     f->trip_count = 0u;
     f->clamp_count = 0u;
@@ -1368,7 +1402,7 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 /*@
   requires valid: \valid(s) && \valid_read(c);
   requires sep: \separated(s, c);
-  assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->lead,
+  assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->lead, s->util,
           s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done, s->hs,
           s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
 */
@@ -1382,6 +1416,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->id_ref = 0;
     s->iq_ref = 0;
     s->lead = 0u;
+    s->util = 0;
     s->trip_seen = 0u;
     s->clamp_seen = 0u;
     s->clear_seq = 0u;
@@ -1439,7 +1474,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
   assigns s->sm, s->pi_speed, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
           s->db_stall, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
-          s->iq_ref, s->lead, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
+          s->iq_ref, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
           s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
   ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
                s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);

@@ -326,71 +326,147 @@ bool qfoc_svpwm_cfg_is_valid(const qfoc_svpwm_cfg_t *c)
     return ok;
 }
 
+/*
+ * Steps (3) .. (8) on a valid configuration and the clamped bus v: inverse Clarke,
+ * phase times, dead-time compensation, sector, injection, clamp.
+ */
+/*@
+  requires cfg_ok: SvpwmCfgValid(cfg->period, cfg->dt_comp, cfg->i_deadband, cfg->vdc_min);
+  requires range_v: cfg->vdc_min <= v <= 32767;
+  requires valid_cfg: \valid_read(cfg);
+  requires valid_ab: \valid_read(ab);
+  requires valid_i: \valid_read(i_abc);
+  requires valid_out: \valid(out);
+  requires sep: \separated(out, cfg) && \separated(out, ab) && \separated(out, i_abc);
+  assigns out->cmp[0 .. 2], out->sector;
+  ensures range_sector: 1 <= out->sector <= 6;
+  ensures range_cmp: \forall integer j; 0 <= j < 3 ==> 0 <= out->cmp[j] <= cfg->period;
+  ensures sector_order: SvpwmSectorOrder(out->sector, out->cmp[0], out->cmp[1], out->cmp[2]);
+  ensures centred: (\forall integer j; 0 <= j < 3 ==> 0 < out->cmp[j] < cfg->period) ==>
+    cfg->period - 1 <= SvpwmMax3(out->cmp[0], out->cmp[1], out->cmp[2]) +
+                       SvpwmMin3(out->cmp[0], out->cmp[1], out->cmp[2]) <= cfg->period + 1;
+*/
+static inline void svpwm_core(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *ab, int32_t v,
+                       const qfoc_abc_t *i_abc, qfoc_svpwm_out_t *out)
+{
+    int32_t p = (int32_t)cfg->period;
+    int32_t dt = (int32_t)cfg->dt_comp;
+    int32_t db = (int32_t)cfg->i_deadband;
+    uint32_t k;
+    uint32_t kh;
+    uint32_t kl;
+    int32_t ta;
+    int32_t tb;
+    int32_t tc;
+    qfoc_abc_t uvw;
+
+    /* (3) inverse Clarke to the phase voltages */
+    qfoc_inv_clarke(ab, &uvw);
+
+    /* (4) phase times Tx = Ux / Vdc * P, |Tx| <= P: k = P / Vdc in Q16 is
+     * the one division of the phase times */
+    k = ((uint32_t)p * SVPWM_ONE_Q16_U) / (uint32_t)v;
+    //@ assert k_range: v * k <= p * 65536;
+    kh = k / SVPWM_ONE_Q16_U;
+    kl = k % SVPWM_ONE_Q16_U;
+    //@ assert k_split: k == kh * 65536 + kl && 0 <= kh <= 65535 && 0 <= kl <= 65535;
+    ta = svpwm_time(uvw.u, v, kh, kl, p);
+    tb = svpwm_time(uvw.v, v, kh, kl, p);
+    tc = svpwm_time(uvw.w, v, kh, kl, p);
+
+    /* (5) dead-time compensation, |c| <= P / 4; a zero dead band is the
+     * dead band 1 (the same pure sign() compensation: |i| >= 1 for every
+     * non-zero current, and the fade of a zero current is zero) */
+    if (db < 1) {
+        db = 1;
+    } else {
+        /* a dead band of its own */
+    }
+    ta = svpwm_dt_add(ta, i_abc->u, dt, db);
+    tb = svpwm_dt_add(tb, i_abc->v, dt, db);
+    tc = svpwm_dt_add(tc, i_abc->w, dt, db);
+
+    /* (6) .. (8) sector, injection, clamp */
+    svpwm_modulate(ta, tb, tc, p, out);
+}
+
+/*
+ * (1) DC bus clamped to [vdc_min, 32767], with the flag.
+ */
+/*@
+  requires valid_cfg: \valid_read(cfg);
+  requires valid_out: \valid(out);
+  requires sep: \separated(out, cfg);
+  requires min_ok: cfg->vdc_min > 0;
+  assigns out->vdc_low;
+  ensures range: cfg->vdc_min <= \result <= 32767;
+  ensures vdc_flag: out->vdc_low == \true <==> vdc < cfg->vdc_min;
+*/
+static int32_t svpwm_bus(const qfoc_svpwm_cfg_t *cfg, qfoc_q15_t vdc, qfoc_svpwm_out_t *out)
+{
+    int32_t v = (int32_t)vdc;
+    if (v < (int32_t)cfg->vdc_min) {
+        v = (int32_t)cfg->vdc_min;
+        out->vdc_low = true;
+    } else {
+        out->vdc_low = false;
+    }
+    return v;
+}
+
+/*
+ * The output for an invalid configuration: zero voltage, flagged as limited.
+ */
+/*@
+  requires valid_cfg: \valid_read(cfg);
+  requires valid_out: \valid(out);
+  requires sep: \separated(out, cfg);
+  assigns *out;
+  ensures safe_cmp: out->cmp[0] == cfg->period / 2 && out->cmp[1] == cfg->period / 2 &&
+                    out->cmp[2] == cfg->period / 2;
+  ensures safe_flags: out->limited == \true && out->vdc_low == \false &&
+                      out->sector == 1 && out->utilisation == 0;
+*/
+static void svpwm_safe(const qfoc_svpwm_cfg_t *cfg, qfoc_svpwm_out_t *out)
+{
+    uint16_t half = (uint16_t)(cfg->period / 2u);
+    out->cmp[QFOC_SVPWM_U] = half;
+    out->cmp[QFOC_SVPWM_V] = half;
+    out->cmp[QFOC_SVPWM_W] = half;
+    out->sector = 1u;
+    out->utilisation = 0;
+    out->limited = true;
+    out->vdc_low = false;
+}
+
+void qfoc_svpwm_step_lin(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q15_t vdc,
+                         const qfoc_abc_t *i_abc, qfoc_svpwm_out_t *out)
+{
+    if (qfoc_svpwm_cfg_is_valid(cfg)) {
+        /* no overmodulation limit and no magnitude: the caller keeps |v_ab| within
+           Vdc / sqrt 3; beyond it the phase voltages are still clamped to [-Vdc, Vdc]
+           by the phase times */
+        const int32_t v = svpwm_bus(cfg, vdc, out);
+        out->utilisation = 0;
+        out->limited = false;
+        svpwm_core(cfg, v_ab, v, i_abc, out);
+    } else {
+        svpwm_safe(cfg, out);
+    }
+}
+
 void qfoc_svpwm_step(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q15_t vdc,
                      const qfoc_abc_t *i_abc, qfoc_svpwm_out_t *out)
 {
     if (qfoc_svpwm_cfg_is_valid(cfg)) {
-        int32_t p = (int32_t)cfg->period;
-        int32_t dt = (int32_t)cfg->dt_comp;
-        int32_t db = (int32_t)cfg->i_deadband;
-        int32_t v = (int32_t)vdc;
-        uint32_t k;
-        uint32_t kh;
-        uint32_t kl;
-        int32_t ta;
-        int32_t tb;
-        int32_t tc;
         qfoc_ab_t ab;
-        qfoc_abc_t uvw;
-
-        /* (1) DC bus clamped to [vdc_min, 32767] */
-        if (v < (int32_t)cfg->vdc_min) {
-            v = (int32_t)cfg->vdc_min;
-            out->vdc_low = true;
-        } else {
-            out->vdc_low = false;
-        }
-
+        const int32_t v = svpwm_bus(cfg, vdc, out);
         /* (2) overmodulation: |v_ab| limited to Vdc / sqrt(3) */
         svpwm_limit(v_ab, v, &ab, out);
-
-        /* (3) inverse Clarke to the phase voltages */
-        qfoc_inv_clarke(&ab, &uvw);
-
-        /* (4) phase times Tx = Ux / Vdc * P, |Tx| <= P: k = P / Vdc in Q16 is
-         * the one division of the phase times */
-        k = ((uint32_t)p * SVPWM_ONE_Q16_U) / (uint32_t)v;
-        //@ assert k_range: v * k <= p * 65536;
-        kh = k / SVPWM_ONE_Q16_U;
-        kl = k % SVPWM_ONE_Q16_U;
-        //@ assert k_split: k == kh * 65536 + kl && 0 <= kh <= 65535 && 0 <= kl <= 65535;
-        ta = svpwm_time(uvw.u, v, kh, kl, p);
-        tb = svpwm_time(uvw.v, v, kh, kl, p);
-        tc = svpwm_time(uvw.w, v, kh, kl, p);
-
-        /* (5) dead-time compensation, |c| <= P / 4; a zero dead band is the
-         * dead band 1 (the same pure sign() compensation: |i| >= 1 for every
-         * non-zero current, and the fade of a zero current is zero) */
-        if (db < 1) {
-            db = 1;
-        } else {
-            /* a dead band of its own */
-        }
-        ta = svpwm_dt_add(ta, i_abc->u, dt, db);
-        tb = svpwm_dt_add(tb, i_abc->v, dt, db);
-        tc = svpwm_dt_add(tc, i_abc->w, dt, db);
-
-        /* (6) .. (8) sector, injection, clamp */
-        svpwm_modulate(ta, tb, tc, p, out);
+        /* (3) .. (8) */
+        svpwm_core(cfg, &ab, v, i_abc, out);
     } else {
         /* invalid configuration: zero voltage, flagged as limited */
-        uint16_t half = (uint16_t)(cfg->period / 2u);
-        out->cmp[QFOC_SVPWM_U] = half;
-        out->cmp[QFOC_SVPWM_V] = half;
-        out->cmp[QFOC_SVPWM_W] = half;
-        out->sector = 1u;
-        out->utilisation = 0;
-        out->limited = true;
-        out->vdc_low = false;
+        svpwm_safe(cfg, out);
     }
 }

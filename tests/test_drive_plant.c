@@ -159,7 +159,7 @@ static void test_drv_013_field_weakening_8000rpm(void **state)
     id_mean /= n;
     print_message("8000 rpm at 320 V, 4.5 N m: |speed error| %.1f rpm, mean i_d %.2f A, "
                   "peak |i| %.1f A, utilisation %.3f\n", err_max, id_mean, i_peak,
-                  ds->drv.f.utilisation / 32768.0);
+                  ds->drv.s.util / 32768.0);
     assert_true(err_max < 80.0);             /* 1 % */
     assert_true(id_mean < -2.0);             /* weakened */
     assert_true(i_peak < 20.5);              /* within i_max */

@@ -182,7 +182,6 @@ typedef struct {
     qfoc_q15_t speed;         /**< PLL speed, unfiltered */
     qfoc_q15_t speed_f;       /**< PLL speed after the 2-34 low-pass */
     qfoc_q15_t psi_mag;       /**< observer flux magnitude */
-    qfoc_q15_t utilisation;   /**< SVPWM voltage utilisation */
     qfoc_q15_t id_fw;         /**< field-weakening d-current reference */
     uint8_t trip_count;       /**< over-current events (mod 256) */
     uint8_t clamp_count;      /**< periods with the q reference clamped to +-i_max (mod 256) */
@@ -219,6 +218,7 @@ typedef struct {
     qfoc_q15_t id_ref;        /**< ALIGN d-current reference */
     qfoc_q15_t iq_ref;        /**< q-current reference (speed PI, or i_start in OPEN_LOOP) */
     qfoc_angle_t lead;        /**< observer phase lead at the filtered speed (qfoc_flux_lead) */
+    qfoc_q15_t util;          /**< voltage utilisation of the last command, |v| / (V_dc / sqrt 3) */
     uint8_t trip_seen;        /**< trip_count already reported */
     uint8_t clamp_seen;       /**< clamp_count at the last tick */
     uint8_t clear_seq;        /**< incremented when a fault clear is accepted */

@@ -220,7 +220,8 @@ void qfoc_phase_mon_reset(qfoc_phase_mon_t *m);
  * amplitude A settles at its mean 2 A / pi, with a ripple at twice the electrical
  * frequency reduced by the filter.
  *
- * Drive use: every PWM period with the measured phase currents.
+ * Drive use: none (the drive filters one phase a period with
+ * qfoc_phase_mon_update_one()); for a monitor that filters all three every period.
  *
  * Scaling and overflow: |i| in [0, 32767] (Q15); the filter states stay between
  * their old value and the new input (qfoc_lpf_step contract `between`), hence in

@@ -192,4 +192,54 @@ bool qfoc_svpwm_cfg_is_valid(const qfoc_svpwm_cfg_t *c);
 void qfoc_svpwm_step(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q15_t vdc,
                      const qfoc_abc_t *i_abc, qfoc_svpwm_out_t *out);
 
+/**
+ * @brief One SVPWM step without the overmodulation limit: voltage vector to three
+ *        compare values, for a caller that keeps the vector inside the linear range.
+ *
+ * The same as qfoc_svpwm_step() without its step (2): the vector's magnitude is not
+ * computed, the vector is not scaled onto the inscribed circle, the utilisation is
+ * not computed (0) and limited is false.  A vector beyond Vdc / sqrt 3 is not
+ * rejected: its phase voltages are clamped to [-Vdc, Vdc] and the compare values to
+ * [0, period] as in qfoc_svpwm_step(), which distorts the output voltage instead of
+ * scaling it.  Any input value is accepted; an invalid configuration gives the safe
+ * pattern of qfoc_svpwm_step().
+ *
+ * Drive use: every PWM period, after the circle limit V_dc / sqrt 3 of the current
+ * loop (qfoc_circle_limit) and the inverse Park transform, which keep the vector in
+ * the linear range (up to the rounding of the rotation); the utilisation for field
+ * weakening is computed by the tick.
+ *
+ * Scaling and overflow: as qfoc_svpwm_step(), steps (1) and (3) .. (8).
+ *
+ * Requirements: REQ-SVPWM-012.
+ */
+/*@
+  requires valid_cfg: \valid_read(cfg);
+  requires valid_v: \valid_read(v_ab);
+  requires valid_i: \valid_read(i_abc);
+  requires valid_out: \valid(out);
+  requires sep: \separated(out, cfg) && \separated(out, v_ab) && \separated(out, i_abc);
+  assigns *out;
+  ensures range_sector: 1 <= out->sector <= 6;
+  behavior invalid_cfg:
+    assumes !SvpwmCfgValid(cfg->period, cfg->dt_comp, cfg->i_deadband, cfg->vdc_min);
+    ensures safe_cmp: out->cmp[0] == cfg->period / 2 && out->cmp[1] == cfg->period / 2 &&
+                      out->cmp[2] == cfg->period / 2;
+    ensures safe_flags: out->limited == \true && out->vdc_low == \false &&
+                        out->sector == 1 && out->utilisation == 0;
+  behavior valid_cfg:
+    assumes SvpwmCfgValid(cfg->period, cfg->dt_comp, cfg->i_deadband, cfg->vdc_min);
+    ensures range_cmp: \forall integer j; 0 <= j < 3 ==> 0 <= out->cmp[j] <= cfg->period;
+    ensures flags: out->limited == \false && out->utilisation == 0;
+    ensures vdc_flag: out->vdc_low == \true <==> vdc < cfg->vdc_min;
+    ensures sector_order: SvpwmSectorOrder(out->sector, out->cmp[0], out->cmp[1], out->cmp[2]);
+    ensures centred: (\forall integer j; 0 <= j < 3 ==> 0 < out->cmp[j] < cfg->period) ==>
+      cfg->period - 1 <= SvpwmMax3(out->cmp[0], out->cmp[1], out->cmp[2]) +
+                         SvpwmMin3(out->cmp[0], out->cmp[1], out->cmp[2]) <= cfg->period + 1;
+  complete behaviors;
+  disjoint behaviors;
+*/
+void qfoc_svpwm_step_lin(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q15_t vdc,
+                         const qfoc_abc_t *i_abc, qfoc_svpwm_out_t *out);
+
 #endif /* QFOC_SVPWM_H */

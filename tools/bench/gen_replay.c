@@ -147,7 +147,7 @@ static void probe(const qfoc_drive_t *d, int32_t out[8])
     out[0] = d->s.sm.state;
     out[1] = d->s.sm.sub;
     out[2] = d->f.id_fw;
-    out[3] = d->f.utilisation;
+    out[3] = d->s.util;
     out[4] = d->f.speed_f;
     out[5] = d->s.tc.a[0];
     out[6] = d->s.tc.b[0];
@@ -313,7 +313,7 @@ int main(int argc, char **argv)
            "load %.2f N m %+.0f %%; id_fw %.2f A, utilisation %.3f, tc a1 %.3f A b1 %.3f A\n",
            out, warm_ms * 1e-3, h.warm_periods, measure_ms, dsim_rpm(&ds), vdc, load,
            100.0 * pulse, ds.drv.f.id_fw / 32768.0 * m.i_full_scale_a,
-           ds.drv.f.utilisation / 32768.0, ds.drv.s.tc.a[0] / 2147483648.0 * m.i_full_scale_a,
+           ds.drv.s.util / 32768.0, ds.drv.s.tc.a[0] / 2147483648.0 * m.i_full_scale_a,
            ds.drv.s.tc.b[0] / 2147483648.0 * m.i_full_scale_a);
     free(r.per);
     free(r.tick);
