@@ -289,16 +289,28 @@ static bool qfoc_trqcomp_in_window(const qfoc_trqcomp_t *tc, qfoc_q15_t speed)
 }
 
 /**
- * @brief Twice an angle, modulo 2^16 (formed in uint32, no wrap in a C type).
+ * @brief The second harmonic from the first: sin 2x = 2 sin x cos x,
+ *        cos 2x = cos^2 x - sin^2 x, each rounded to Q15 (qfoc_q15_from_q30).
+ *
+ * Scaling and overflow: |sin|, |cos| <= 32767: |2 s c| <= 2 x 32767^2 = 2147352578
+ * and |c^2 - s^2| <= 32767^2, exact in int32 (Q30); the rounding saturates to the
+ * symmetric Q15 range.  Against sin / cos of the doubled angle: the error of the
+ * first harmonic doubled, plus 1/2 LSB (tests/test_trqcomp.c).
  */
 /*@
-  assigns \nothing;
-  ensures value: \result == (2 * theta) % 65536;
+  requires valid: \valid_read(h1) && \valid(h2);
+  requires sep: \separated(h1, h2);
+  requires sym: QfocQ15Sym(h1->sine) && QfocQ15Sym(h1->cosine);
+  assigns *h2;
+  ensures sym: QfocQ15Sym(h2->sine) && QfocQ15Sym(h2->cosine);
 */
-static qfoc_angle_t qfoc_trqcomp_double(qfoc_angle_t theta)
+static void qfoc_trqcomp_double(const qfoc_sincos_t *h1, qfoc_sincos_t *h2)
 {
-    /* 2 theta <= 131070 in uint32, reduced modulo 2^16 (a mask) */
-    return (qfoc_angle_t)(((uint32_t)theta * 2u) % QFOC_TC_TURN);
+    const int32_t s = (int32_t)h1->sine;
+    const int32_t c = (int32_t)h1->cosine;
+    const int32_t sc = s * c;
+    h2->sine = qfoc_q15_from_q30(sc * 2);
+    h2->cosine = qfoc_q15_from_q30((c * c) - (s * s));
 }
 
 /**
@@ -370,7 +382,7 @@ void qfoc_trqcomp_learn(qfoc_trqcomp_t *tc, qfoc_angle_t theta_m, qfoc_q15_t spe
         qfoc_sincos_t h1;
         qfoc_sincos_t h2;
         qfoc_sincos(theta_m, &h1);
-        qfoc_sincos(qfoc_trqcomp_double(theta_m), &h2);
+        qfoc_trqcomp_double(&h1, &h2);
         /* shifted regressors (model phase -90 degrees, +90 in reverse):
            a_h with +sigma sin(h theta), b_h with -sigma cos(h theta) */
         tc->a[0] = qfoc_trqcomp_adapt(tc->a[0], speed_err,
@@ -435,7 +447,7 @@ qfoc_q15_t qfoc_trqcomp_output(const qfoc_trqcomp_t *tc, qfoc_angle_t theta_m, q
         qfoc_sincos_t h2;
         int64_t sum;
         qfoc_sincos(theta_m, &h1);
-        qfoc_sincos(qfoc_trqcomp_double(theta_m), &h2);
+        qfoc_trqcomp_double(&h1, &h2);
         /* two harmonics, each |.| <= 2 amp x 65536 x 32767 < 2^47: sum < 2^48 */
         sum = qfoc_trqcomp_harmonic(tc->a[0], tc->b[0], h1.cosine, h1.sine)
               + qfoc_trqcomp_harmonic(tc->a[1], tc->b[1], h2.cosine, h2.sine);

@@ -12,6 +12,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <string.h>
+#include <math.h>
 #include <cmocka.h>
 
 #define TEST_SEED 0xD21E0001u
@@ -448,6 +449,48 @@ static void test_drv_012_para_change(void **state)
     assert_int_equal(r.d.f.flux.params.l, r.table.lq);
 }
 
+/* REQ-DRV-006: the tick's voltage utilisation of the last command, |v| sqrt 3 / V_dc
+   (V_dc at least vdc_min), against the double formula, for random commands and buses
+   (the fast step's field weakening reads it). */
+static void test_req_drv_006_utilisation_tick(void **state)
+{
+    rig_t r;
+    double max_err = 0.0;
+    int k;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    for (k = 0; k < 20000; k++) {
+        const qfoc_q15_t vmin = r.table.svpwm.vdc_min;
+        double bus;
+        double ref;
+        r.d.f.u_last.alpha = (k % 50 == 0) ? rand_i16() : (int16_t)rand_range(-12000, 12000);
+        r.d.f.u_last.beta = (k % 50 == 1) ? rand_i16() : (int16_t)rand_range(-12000, 12000);
+        r.d.f.vdc = (k % 40 == 0) ? rand_i16() : (int16_t)rand_range(1000, 32767);
+        rig_tick_rx(&r, NULL, 0u);
+        bus = (r.d.f.vdc < vmin) ? (double)vmin : (double)r.d.f.vdc;
+        if (bus < 1.0) {
+            bus = 1.0;
+        }
+        ref = sqrt((double)r.d.f.u_last.alpha * r.d.f.u_last.alpha +
+                   (double)r.d.f.u_last.beta * r.d.f.u_last.beta);
+        if (ref > 32767.0) {
+            ref = 32767.0;    /* the magnitude saturates at 32767 */
+        }
+        ref = ref * 1.7320508075688772 / bus * 32768.0;
+        if (ref > 32767.0) {
+            ref = 32767.0;
+        }
+        assert_true((r.d.s.util >= 0) && (r.d.s.util <= 32767));
+        /* floor square root (< 1 LSB of |v|) scaled by sqrt 3 / V_dc, and the rounding */
+        max_err = fmax(max_err, fabs((double)r.d.s.util - ref) / (0.5 + 1.7320508075688772 *
+                                                                  32768.0 / bus));
+        assert_true(fabs((double)r.d.s.util - ref) <= 0.5 + 1.7320508075688772 * 32768.0 / bus);
+    }
+    print_message("utilisation of the tick: max error / bound (0.5 + sqrt 3 x 32768 / V_dc) = %.3f\n",
+                  max_err);
+}
+
 /* REQ-DRV-001, REQ-DRV-002, REQ-DRV-005: random ADC samples, temperatures and frames: the PWM is
    enabled only in RUN, the compare values never exceed the period, the invariant holds. */
 static void test_drv_002_random_inputs(void **state)
@@ -503,6 +546,7 @@ int main(void)
         cmocka_unit_test(test_drv_010_table_recheck),
         cmocka_unit_test(test_drv_011_status_and_can),
         cmocka_unit_test(test_drv_012_para_change),
+        cmocka_unit_test(test_req_drv_006_utilisation_tick),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

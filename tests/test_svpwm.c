@@ -606,6 +606,96 @@ static void test_req_svpwm_010_random(void **state)
     print_message("max utilisation error (linear range): %.3f LSB\n", max_err_util);
 }
 
+/* REQ-SVPWM-012: without the overmodulation limit.  Inside the circle (|v| <= Vdc /
+   sqrt 3 of the bus used) the compare values, sector and bus flag equal those of
+   qfoc_svpwm_step() (which the double reference checks above), and the double
+   reference of the document's equations holds as well; outside, the compare values stay
+   in [0, P]; an invalid configuration gives the safe pattern; utilisation 0, limited
+   false. */
+static void test_req_svpwm_012_linear_step(void **state)
+{
+    uint32_t n;
+    uint32_t n_inside = 0u;
+    double max_err = 0.0;
+    (void)state;
+    for (n = 0u; n < 200000u; n++) {
+        qfoc_svpwm_cfg_t c;
+        qfoc_abc_t i;
+        qfoc_ab_t v;
+        qfoc_svpwm_out_t a;
+        qfoc_svpwm_out_t b;
+        qfoc_q15_t vd;
+        double vbus;
+        double mag;
+        int j;
+        c.period = (n % 3u == 0u) ? 5000u : (uint16_t)lcg_range(100, 32767);
+        c.vdc_min = (qfoc_q15_t)lcg_range(1, 12000);
+        c.dt_comp = (uint16_t)lcg_range(0, (int32_t)c.period / 4);
+        c.i_deadband = (qfoc_q15_t)lcg_range(0, 3000);
+        vd = (n % 17u == 0u) ? (qfoc_q15_t)lcg_range(-32768, 32767)
+                             : (qfoc_q15_t)lcg_range(2000, 32767);
+        if (n % 5u == 0u) {
+            v.alpha = (qfoc_q15_t)lcg_range(-32768, 32767);
+            v.beta = (qfoc_q15_t)lcg_range(-32768, 32767);
+        } else {
+            const int32_t r = ((int32_t)(vd > c.vdc_min ? vd : c.vdc_min) * 55) / 100;
+            v.alpha = (qfoc_q15_t)lcg_range(-r, r);
+            v.beta = (qfoc_q15_t)lcg_range(-r, r);
+        }
+        i.u = (qfoc_q15_t)lcg_range(-4000, 4000);
+        i.v = (qfoc_q15_t)lcg_range(-4000, 4000);
+        i.w = (qfoc_q15_t)lcg_range(-32768, 32767);
+        qfoc_svpwm_step_lin(&c, &v, vd, &i, &a);
+        qfoc_svpwm_step(&c, &v, vd, &i, &b);
+        assert_false(a.limited);
+        assert_int_equal(a.utilisation, 0);
+        assert_int_equal(a.vdc_low, b.vdc_low);
+        assert_true((a.sector >= 1u) && (a.sector <= 6u));
+        for (j = 0; j < 3; j++) {
+            assert_true(a.cmp[j] <= c.period);
+        }
+        vbus = (vd < c.vdc_min) ? (double)c.vdc_min : (double)vd;
+        mag = sqrt((double)v.alpha * v.alpha + (double)v.beta * v.beta);
+        if (mag <= vbus / SQRT3 - 1.0) {
+            ref_t r;
+            n_inside++;
+            assert_false(b.limited);
+            assert_int_equal(a.sector, b.sector);
+            for (j = 0; j < 3; j++) {
+                assert_int_equal(a.cmp[j], b.cmp[j]);
+            }
+            ref_svpwm(&c, (double)v.alpha, (double)v.beta, (double)vd, (double)i.u,
+                      (double)i.v, (double)i.w, &r);
+            {
+                const double bnd = bound_ticks(&c, r.vdc, 0, in_fade(&c, &i));
+                for (j = 0; j < 3; j++) {
+                    const double e = fabs((double)a.cmp[j] - r.cmp[j]);
+                    assert_true(e <= bnd);
+                    max_err = fmax(max_err, e / bnd);
+                }
+            }
+        }
+    }
+    {
+        /* invalid configuration: the safe pattern */
+        qfoc_svpwm_cfg_t c = { 50u, 0u, 0, 100 };
+        qfoc_ab_t v = { 1000, -1000 };
+        qfoc_abc_t i = { 0, 0, 0 };
+        qfoc_svpwm_out_t a;
+        qfoc_svpwm_step_lin(&c, &v, 20000, &i, &a);
+        assert_int_equal(a.cmp[0], 25u);
+        assert_int_equal(a.cmp[1], 25u);
+        assert_int_equal(a.cmp[2], 25u);
+        assert_true(a.limited);
+        assert_false(a.vdc_low);
+        assert_int_equal(a.sector, 1u);
+    }
+    print_message("linear step: %u vectors inside the circle equal to qfoc_svpwm_step, max "
+                  "|cmp - double reference| / bound of REQ-SVPWM-010 %.3f\n", (unsigned)n_inside,
+                  max_err);
+    assert_true(n_inside > 100000u);
+}
+
 /* REQ-SVPWM-007, REQ-SVPWM-010, REQ-SVPWM-011: period extremes 100 and 32767 */
 static void test_req_svpwm_011_periods(void **state)
 {
@@ -643,6 +733,7 @@ int main(void)
         cmocka_unit_test(test_req_svpwm_008_dead_time),
         cmocka_unit_test(test_req_svpwm_010_random),
         cmocka_unit_test(test_req_svpwm_011_periods),
+        cmocka_unit_test(test_req_svpwm_012_linear_step),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

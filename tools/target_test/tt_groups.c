@@ -393,7 +393,8 @@ static void tt_replay_inv_clarke(tt_ctx_t *c)
 /* ------------------------------------------------------------------ svpwm.h, ramp.h, fault.h */
 
 /* svpwm: [period, dt_comp, i_deadband, vdc_min, v_alpha, v_beta, vdc, i_u, i_v, i_w]
-   -> cfg_is_valid, cmp[3], sector, utilisation, limited, vdc_low (hash). */
+   -> cfg_is_valid, cmp[3], sector, utilisation, limited, vdc_low (hash) of
+   qfoc_svpwm_step, then the same of qfoc_svpwm_step_lin. */
 static void tt_replay_svpwm(tt_ctx_t *c)
 {
     uint32_t k;
@@ -415,6 +416,15 @@ static void tt_replay_svpwm(tt_ctx_t *c)
         qfoc_svpwm_step(&cfg, &v, tt_in_i16(c, k, 6u), &i, &out);
         tt_d_init(&d);
         tt_d_bool(&d, qfoc_svpwm_cfg_is_valid(&cfg));
+        tt_d_u16(&d, out.cmp[0]);
+        tt_d_u16(&d, out.cmp[1]);
+        tt_d_u16(&d, out.cmp[2]);
+        tt_d_u8(&d, out.sector);
+        tt_d_i16(&d, out.utilisation);
+        tt_d_bool(&d, out.limited);
+        tt_d_bool(&d, out.vdc_low);
+        (void)memset(&out, 0, sizeof out);
+        qfoc_svpwm_step_lin(&cfg, &v, tt_in_i16(c, k, 6u), &i, &out);
         tt_d_u16(&d, out.cmp[0]);
         tt_d_u16(&d, out.cmp[1]);
         tt_d_u16(&d, out.cmp[2]);
@@ -1289,7 +1299,7 @@ uint32_t tt_drive_fast_digest(const qfoc_drive_t *d, const qfoc_pwm_t *out)
     tt_d_i16(&g, d->f.speed);
     tt_d_i16(&g, d->f.speed_f);
     tt_d_i16(&g, d->f.psi_mag);
-    tt_d_i16(&g, d->f.utilisation);
+    tt_d_u16(&g, (uint16_t)d->f.phase_k);
     tt_d_i16(&g, d->f.id_fw);
     tt_d_i16(&g, d->f.vdc);
     tt_d_dq(&g, &d->f.i_dq);
@@ -1331,6 +1341,8 @@ uint32_t tt_drive_tick_digest(const qfoc_drive_t *d, const qfoc_tick_out_t *out)
     tt_d_i16(&g, d->s.ol_speed);
     tt_d_i16(&g, d->s.id_ref);
     tt_d_i16(&g, d->s.iq_ref);
+    tt_d_u16(&g, d->s.lead);
+    tt_d_i16(&g, d->s.util);
     tt_d_i32(&g, d->s.pi_speed.integ);
     for (h = 0u; h < QFOC_TRQCOMP_HARMONICS; h++) {
         tt_d_i32(&g, d->s.tc.a[h]);
