@@ -489,6 +489,23 @@ static void test_req_drv_006_utilisation_tick(void **state)
     }
     print_message("utilisation of the tick: max error / bound (0.5 + sqrt 3 x 32768 / V_dc) = %.3f\n",
                   max_err);
+    {
+        /* a refused table whose bus minimum is 0 and a bus of 0: the bus is taken as 1 */
+        rig_t z;
+        memset(&z, 0, sizeof z);
+        z.table = qfoc_params_reference;
+        z.table.svpwm.vdc_min = 0;
+        assert_int_not_equal(qfoc_drive_init(&z.d, &z.table), QFOC_PARAMS_OK);
+        z.d.f.u_last.alpha = 0;
+        z.d.f.u_last.beta = 0;
+        z.d.f.vdc = 0;
+        rig_tick_rx(&z, NULL, 0u);
+        assert_int_equal(z.d.s.util, 0);
+        z.d.f.u_last.alpha = 1;
+        z.d.f.vdc = -7;
+        rig_tick_rx(&z, NULL, 0u);
+        assert_int_equal(z.d.s.util, 32767);   /* 1 x 56756 / 1, saturated */
+    }
 }
 
 /* REQ-DRV-001, REQ-DRV-002, REQ-DRV-005: random ADC samples, temperatures and frames: the PWM is

@@ -227,7 +227,7 @@ static inline qfoc_q15_t qfoc_q15_from_q30(int32_t x)
         /* rounds into range */
     }
     /* ties away from zero: a negative value rounds as c - 1 would round up */
-    tie = (c < 0) ? 1 : 0;
+    tie = (c < 0) ? (int32_t)1 : (int32_t)0;
     /* |c| < 2^30: c + 2^30 + 2^14 - tie lies in [32768, 2^31 - 1] */
     biased = (c + 1073758208) - tie;
     u = (uint32_t)biased / 32768u;
@@ -315,7 +315,7 @@ static inline qfoc_q31_t qfoc_q31_mac(qfoc_q31_t acc, qfoc_q15_t a, qfoc_q15_t b
 static inline qfoc_q15_t qfoc_q15_round_q31(int32_t x)
 {
     /* ties away from zero: a negative value rounds as x - 1 would round up */
-    const int64_t tie = (x < 0) ? 1 : 0;
+    const int64_t tie = (x < 0) ? (int64_t)1 : (int64_t)0;
     const int64_t biased = (((int64_t)x + 2147483648LL) + 32768LL) - tie;
     const uint32_t u = (uint32_t)biased / 65536u;
     return (qfoc_q15_t)((int32_t)u - 32768);
