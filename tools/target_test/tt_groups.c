@@ -392,6 +392,18 @@ static void tt_replay_inv_clarke(tt_ctx_t *c)
 
 /* ------------------------------------------------------------------ svpwm.h, ramp.h, fault.h */
 
+/* the outputs of an SVPWM step into a digest */
+static void tt_d_svpwm(tt_digest_t *d, const qfoc_svpwm_out_t *out)
+{
+    tt_d_u16(d, out->cmp[0]);
+    tt_d_u16(d, out->cmp[1]);
+    tt_d_u16(d, out->cmp[2]);
+    tt_d_u8(d, out->sector);
+    tt_d_i16(d, out->utilisation);
+    tt_d_bool(d, out->limited);
+    tt_d_bool(d, out->vdc_low);
+}
+
 /* svpwm: [period, dt_comp, i_deadband, vdc_min, v_alpha, v_beta, vdc, i_u, i_v, i_w]
    -> cfg_is_valid, cmp[3], sector, utilisation, limited, vdc_low (hash) of
    qfoc_svpwm_step, then the same of qfoc_svpwm_step_lin. */
@@ -416,22 +428,10 @@ static void tt_replay_svpwm(tt_ctx_t *c)
         qfoc_svpwm_step(&cfg, &v, tt_in_i16(c, k, 6u), &i, &out);
         tt_d_init(&d);
         tt_d_bool(&d, qfoc_svpwm_cfg_is_valid(&cfg));
-        tt_d_u16(&d, out.cmp[0]);
-        tt_d_u16(&d, out.cmp[1]);
-        tt_d_u16(&d, out.cmp[2]);
-        tt_d_u8(&d, out.sector);
-        tt_d_i16(&d, out.utilisation);
-        tt_d_bool(&d, out.limited);
-        tt_d_bool(&d, out.vdc_low);
+        tt_d_svpwm(&d, &out);
         (void)memset(&out, 0, sizeof out);
         qfoc_svpwm_step_lin(&cfg, &v, tt_in_i16(c, k, 6u), &i, &out);
-        tt_d_u16(&d, out.cmp[0]);
-        tt_d_u16(&d, out.cmp[1]);
-        tt_d_u16(&d, out.cmp[2]);
-        tt_d_u8(&d, out.sector);
-        tt_d_i16(&d, out.utilisation);
-        tt_d_bool(&d, out.limited);
-        tt_d_bool(&d, out.vdc_low);
+        tt_d_svpwm(&d, &out);
         tt_emit(c, &d);
     }
 }
