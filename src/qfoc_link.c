@@ -3,7 +3,7 @@
  * @brief Command link: LIN-style frames over a UART, 1 ms link service, CAN status
  *        frame (see include/qfoc/link.h and specs/link-frames.md).
  *
- * Requirements: REQ-LINK-001 .. REQ-LINK-010 (specs/requirements/link.md).
+ * Requirements: REQ-LINK-001 .. REQ-LINK-011 (specs/requirements/link.md).
  */
 #include "qfoc/link.h"
 
@@ -486,29 +486,46 @@ static void qfoc_link_idle(qfoc_link_t *l)
     l->lost = (!l->cfg_ok) || (l->seen && (l->silent_ms > l->cfg.timeout_ms));
 }
 
-bool qfoc_link_service(qfoc_link_t *l, const uint8_t *rx, uint8_t rx_len)
+int32_t qfoc_link_accept(qfoc_link_t *l, const qfoc_cmd_t *cmd)
 {
-    bool accepted = false;
-    int32_t status = QFOC_LINK_OK;
-    if (rx_len > 0u) {
-        /* the decoder writes the stored command only for a well-formed frame */
-        status = qfoc_link_decode(&l->cfg, rx, rx_len, &l->cmd);
-        accepted = (status == QFOC_LINK_OK);
-    } else {
-        /* no frame this millisecond */
-    }
-    if (accepted) {
+    int32_t status = QFOC_LINK_ERR_RANGE;
+    if (cmd->target_rpm <= l->cfg.rpm_max) {
+        l->cmd.power_on = cmd->power_on;
+        l->cmd.fault_clear = cmd->fault_clear;
+        l->cmd.target_rpm = cmd->target_rpm;
         /* a valid command: restart the silent time */
         l->seen = true;
         l->silent_ms = 0u;
         l->lost = !l->cfg_ok;
+        l->n_ok = qfoc_link_sat_inc(l->n_ok);
+        status = QFOC_LINK_OK;
     } else {
-        qfoc_link_idle(l);
+        /* above rpm_max: refused and counted like a frame out of range */
+        l->n_range = qfoc_link_sat_inc(l->n_range);
     }
+    return status;
+}
+
+bool qfoc_link_service(qfoc_link_t *l, const uint8_t *rx, uint8_t rx_len)
+{
+    bool accepted = false;
     if (rx_len > 0u) {
-        qfoc_link_count(l, status);
+        /* the decoder writes the command only for a well-formed frame, whose target is
+           within rpm_max: qfoc_link_accept() then takes it */
+        qfoc_cmd_t cmd = l->cmd;
+        const int32_t status = qfoc_link_decode(&l->cfg, rx, rx_len, &cmd);
+        if (status == QFOC_LINK_OK) {
+            accepted = (qfoc_link_accept(l, &cmd) == QFOC_LINK_OK);
+        } else {
+            qfoc_link_count(l, status);
+        }
     } else {
-        /* nothing to count */
+        /* no frame this millisecond */
+    }
+    if (!accepted) {
+        qfoc_link_idle(l);
+    } else {
+        /* the silent time restarted */
     }
     return accepted;
 }

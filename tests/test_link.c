@@ -882,6 +882,115 @@ static void test_link_010_can_alternation(void **state)
     assert_int_equal(f.id, c.can_id_a);
 }
 
+/* ---- REQ-LINK-011 decoded commands ------------------------------------------- */
+
+/* REQ-LINK-011: a decoded command is taken like the same command in a frame (twin links
+   fed the frame and the command give the same link state), refused above rpm_max with
+   only n_range counted; the silent time and the loss follow the frame's rule. */
+static void test_link_011_accept(void **state)
+{
+    const qfoc_link_cfg_t c = make_cfg();
+    qfoc_link_t a;
+    qfoc_link_t b;
+    qfoc_link_t before;
+    qfoc_cmd_t cmd;
+    qfoc_cmd_t eff;
+    uint8_t f[QFOC_LIN_FRAME_MAX];
+    uint32_t k;
+    uint32_t n;
+    (void)state;
+    assert_int_equal(qfoc_link_init(&a, &c), QFOC_LINK_OK);
+    assert_int_equal(qfoc_link_init(&b, &c), QFOC_LINK_OK);
+    for (k = 0u; k < 5000u; k++) {
+        const int power = (int)rnd(2u);
+        const int clear = (int)rnd(2u);
+        /* targets around rpm_max and anywhere in 0 .. 65535 */
+        const uint16_t rpm = (uint16_t)((rnd(2u) == 0u) ? (c.rpm_max - 3u + rnd(7u)) : rnd(65536u));
+        const bool in_range = rpm <= c.rpm_max;
+        cmd.power_on = (power != 0);
+        cmd.fault_clear = (clear != 0);
+        cmd.target_rpm = rpm;
+        /* a: the frame, then idle ticks; b: the command between the same ticks */
+        make_cmd_frame(f, c.id_cmd, power, clear, rpm);
+        before = b;
+        assert_int_equal(qfoc_link_service(&a, f, QFOC_LIN_CMD_LEN), in_range);
+        assert_int_equal(qfoc_link_accept(&b, &cmd), in_range ? QFOC_LINK_OK : QFOC_LINK_ERR_RANGE);
+        if (in_range) {
+            assert_true(cmd_eq(&b.cmd, &cmd));
+            assert_true(b.seen);
+            assert_int_equal(b.silent_ms, 0u);
+            assert_false(b.lost);
+            assert_int_equal(b.n_ok, (before.n_ok < 65535u) ? before.n_ok + 1u : 65535u);
+            assert_int_equal(b.n_range, before.n_range);
+            /* the frame's silent time was restarted in its own service call */
+            assert_int_equal(a.silent_ms, 0u);
+        } else {
+            /* refused: nothing but n_range moved (the frame's service call advanced its
+               own timer; the command's timer advances in the next service call) */
+            assert_true(cmd_eq(&b.cmd, &before.cmd));
+            assert_int_equal(b.seen, before.seen);
+            assert_int_equal(b.silent_ms, before.silent_ms);
+            assert_int_equal(b.lost, before.lost);
+            assert_int_equal(b.n_ok, before.n_ok);
+            assert_int_equal(b.n_range, before.n_range + 1u);
+        }
+        assert_true(qfoc_link_is_valid(&b));
+        assert_true(cmd_eq(&a.cmd, &b.cmd));
+        assert_int_equal(a.n_ok, b.n_ok);
+        assert_int_equal(a.n_range, b.n_range);
+        /* one idle service call on b stands for the call a made with its frame */
+        if (!in_range) {
+            (void)qfoc_link_service(&b, f, 0u);
+        }
+        n = rnd(4u);
+        while (n > 0u) {
+            (void)qfoc_link_service(&a, f, 0u);
+            (void)qfoc_link_service(&b, f, 0u);
+            n--;
+        }
+        qfoc_link_command(&a, &eff);
+        qfoc_link_command(&b, &cmd);
+        assert_true(cmd_eq(&eff, &cmd));
+        assert_int_equal(a.lost, b.lost);
+    }
+    /* the loss after the last command: at the (timeout_ms + 1)-th service call after the
+       one that took the frame, and after the command taken between two calls (it counts
+       as received at the call before it) */
+    cmd.power_on = true;
+    cmd.fault_clear = false;
+    cmd.target_rpm = 3000u;
+    make_cmd_frame(f, c.id_cmd, 1, 0, 3000u);
+    assert_true(qfoc_link_service(&a, f, QFOC_LIN_CMD_LEN));
+    assert_int_equal(qfoc_link_accept(&b, &cmd), QFOC_LINK_OK);
+    for (k = 1u; k <= (uint32_t)c.timeout_ms + 1u; k++) {
+        (void)qfoc_link_service(&a, f, 0u);
+        (void)qfoc_link_service(&b, f, 0u);
+        assert_int_equal(a.lost, k > c.timeout_ms);
+        assert_int_equal(b.lost, k > c.timeout_ms);
+    }
+    /* a rejected configuration: a taken command never makes the link usable */
+    {
+        qfoc_link_cfg_t bad = c;
+        bad.id_status = bad.id_cmd;
+        assert_int_equal(qfoc_link_init(&b, &bad), QFOC_LINK_ERR_CFG);
+        cmd.target_rpm = 0u;
+        assert_int_equal(qfoc_link_accept(&b, &cmd), QFOC_LINK_OK);
+        assert_true(b.lost);
+        qfoc_link_command(&b, &eff);
+        assert_false(eff.power_on);
+    }
+    /* n_ok and n_range saturate */
+    assert_int_equal(qfoc_link_init(&b, &c), QFOC_LINK_OK);
+    b.n_ok = 65535u;
+    b.n_range = 65535u;
+    cmd.target_rpm = c.rpm_max;
+    assert_int_equal(qfoc_link_accept(&b, &cmd), QFOC_LINK_OK);
+    assert_int_equal(b.n_ok, 65535u);
+    cmd.target_rpm = (uint16_t)(c.rpm_max + 1u);
+    assert_int_equal(qfoc_link_accept(&b, &cmd), QFOC_LINK_ERR_RANGE);
+    assert_int_equal(b.n_range, 65535u);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -903,6 +1012,7 @@ int main(void)
         cmocka_unit_test(test_link_008_not_lost_before_first_frame),
         cmocka_unit_test(test_link_009_counters_saturate),
         cmocka_unit_test(test_link_010_can_alternation),
+        cmocka_unit_test(test_link_011_accept),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

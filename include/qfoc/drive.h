@@ -101,7 +101,8 @@
  * REQ-DRV-005 one writer per field, REQ-DRV-006 start-up and control, REQ-DRV-007
  * offsets, REQ-DRV-008 faults, REQ-DRV-009 commands, REQ-DRV-010 table re-check,
  * REQ-DRV-011 status and CAN, REQ-DRV-012 motorParaChange, REQ-DRV-013 field weakening
- * and torque compensation, REQ-DRV-014 start on the plant, REQ-DRV-015 malformed frames.
+ * and torque compensation, REQ-DRV-014 start on the plant, REQ-DRV-015 malformed frames,
+ * REQ-DRV-016 command without frames, REQ-DRV-017 status readers.
  *
  * Behaviour on the plant, end to end (specs/requirements/scenarios.md, targets in
  * specs/scenarios.toml, shown by make demo): REQ-SCN-001 cold start, REQ-SCN-002 speed
@@ -338,5 +339,213 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
       \old(d->s.sm.state) == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN;
 */
 qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
+
+/* ---------------------------------------------------------- command and status
+ *
+ * Commands and status without the LIN frames, for an ECU commanded over CAN, AUTOSAR
+ * COM or its own logic.  Call every function below from the tick's context (the task
+ * or interrupt that calls qfoc_drive_tick(), between two ticks), never from the fast
+ * step's interrupt: the command writes the tick's half of the drive, and the readers
+ * read values the tick writes.
+ *
+ * When status goes out on its own: the tick fills qfoc_tick_out_t.tx (tx_len 11) only in
+ * a tick whose received frame was an accepted command frame (the answer of a LIN slave;
+ * a command given through qfoc_drive_command() is not answered on LIN), and the CAN
+ * frame (can_send true) on every 100th tick.  The status the readers return is updated
+ * by every tick.
+ *
+ * Typical use (1 ms task):
+ *
+ *     qfoc_cmd_t cmd = { .power_on = true, .fault_clear = false, .target_rpm = 3000u };
+ *     (void)qfoc_drive_command(&drive, &cmd);      repeat within timeout_ms
+ *     out = qfoc_drive_tick(&drive, &in);
+ *     if (qfoc_drive_state(&drive) == QFOC_STATE_ERROR) { report qfoc_drive_faults() }
+ */
+
+/**
+ * @brief Give the drive a decoded command: run (power_on), target speed in mechanical
+ *        rpm, fault clear.
+ * @param[in,out] d   the motor object (valid)
+ * @param[in]     cmd the command (any field values)
+ * @return QFOC_LINK_OK: taken, it acts from the next tick on; QFOC_LINK_ERR_RANGE:
+ *         target_rpm above the table's rpm_max, refused, nothing changes but the link's
+ *         n_range counter (as for a command frame out of range).
+ * A taken command is the link's command exactly as a valid LIN command frame would be:
+ * it restarts the link timeout (the command must be repeated within timeout_ms ticks,
+ * else the link is lost: the drive ramps down, then reports LINK), and it replaces the
+ * last frame's command.  power_on starts the motor only with target_rpm >= rpm_min;
+ * fault_clear acts as described for ERROR above.
+ * Requirements: REQ-DRV-016.
+ */
+/*@
+  requires valid: \valid(d) && \valid_read(cmd);
+  requires sep: \separated(d, cmd);
+  requires inv: DRV_VALID(d);
+  assigns d->s.link.cmd, d->s.link.seen, d->s.link.silent_ms, d->s.link.lost, d->s.link.n_ok,
+          d->s.link.n_range;
+  ensures inv: DRV_VALID(d);
+  behavior taken:
+    assumes cmd->target_rpm <= d->s.link.cfg.rpm_max;
+    ensures result: \result == QFOC_LINK_OK;
+    ensures cmd: d->s.link.cmd.power_on == cmd->power_on &&
+                 d->s.link.cmd.fault_clear == cmd->fault_clear &&
+                 d->s.link.cmd.target_rpm == cmd->target_rpm;
+    ensures timer: d->s.link.seen == \true && d->s.link.silent_ms == 0;
+  behavior refused:
+    assumes cmd->target_rpm > d->s.link.cfg.rpm_max;
+    ensures result: \result == QFOC_LINK_ERR_RANGE;
+    ensures unchanged: LinCmdSame{Pre, Post}(&d->s.link.cmd) &&
+                       d->s.link.seen == \old(d->s.link.seen) &&
+                       d->s.link.silent_ms == \old(d->s.link.silent_ms) &&
+                       d->s.link.lost == \old(d->s.link.lost);
+    ensures count: d->s.link.n_range == LinSatInc(\old(d->s.link.n_range));
+  complete behaviors;
+  disjoint behaviors;
+*/
+int32_t qfoc_drive_command(qfoc_drive_t *d, const qfoc_cmd_t *cmd);
+
+/**
+ * @brief State of the state machine: QFOC_STATE_INIT .. QFOC_STATE_ERROR (sm.h).
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->s.sm.state;
+*/
+uint8_t qfoc_drive_state(const qfoc_drive_t *d);
+
+/**
+ * @brief Sub-state (sm.h): QFOC_SUB_ALIGN, QFOC_SUB_OPEN_LOOP, QFOC_SUB_CLOSED_LOOP or
+ *        QFOC_SUB_STOPPING in RUN; QFOC_SUB_CALIB in PRECHARGE's calibration.
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->s.sm.sub;
+*/
+uint8_t qfoc_drive_substate(const qfoc_drive_t *d);
+
+/**
+ * @brief Fault word: the QFOC_FAULT_* bits (fault.h) of the tick that entered ERROR,
+ *        latched until the fault clear (0 outside ERROR).
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->s.sm.faults;
+*/
+uint16_t qfoc_drive_faults(const qfoc_drive_t *d);
+
+/**
+ * @brief First fault: the QFOC_FAULT_* bits of the tick that entered ERROR (0 outside
+ *        ERROR), for the diagnostic record of the root cause.  The fault word latches at
+ *        the same value when ERROR is entered (a later fault changes neither), so the two
+ *        are equal in this release; read this one for the root cause.
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->s.sm.first_fault;
+*/
+uint16_t qfoc_drive_first_fault(const qfoc_drive_t *d);
+
+/**
+ * @brief Status in physical units, as the last tick computed it (the values of the LIN
+ *        status frame and of the CAN frame, before their coarser encoding): state,
+ *        sub-state, fault word, |estimated speed| in mechanical rpm, DC bus in 0.1 V,
+ *        current-vector amplitude in 0.01 A, the hotter of IPM and PCB in 0.1 degC.
+ * @param[in]  d  the motor object
+ * @param[out] st the copy
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d) && \valid(st);
+  requires sep: \separated(d, st);
+  assigns *st;
+  ensures copy: st->state == d->s.status.state && st->substate == d->s.status.substate &&
+                st->faults == d->s.status.faults && st->speed_rpm == d->s.status.speed_rpm &&
+                st->vdc_dv == d->s.status.vdc_dv && st->current_ca == d->s.status.current_ca &&
+                st->temp_dc == d->s.status.temp_dc;
+*/
+void qfoc_drive_status(const qfoc_drive_t *d, qfoc_status_t *st);
+
+/**
+ * @brief |Estimated speed|, mechanical rpm (the filtered estimate, as of the last tick).
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->s.status.speed_rpm;
+*/
+uint16_t qfoc_drive_speed_rpm(const qfoc_drive_t *d);
+
+/**
+ * @brief Commanded speed in effect, mechanical rpm: the target of the last command
+ *        taken (frame or qfoc_drive_command()), 0 before the first.
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->s.cmd.target_rpm;
+*/
+uint16_t qfoc_drive_target_rpm(const qfoc_drive_t *d);
+
+/**
+ * @brief Run request in effect: the last command's power_on while the link is alive
+ *        (false before the first command and while the link is lost).
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->s.cmd.power_on;
+*/
+bool qfoc_drive_run_requested(const qfoc_drive_t *d);
+
+/**
+ * @brief Estimated electrical rotor angle, 65536 per electrical turn (the fast step's
+ *        last estimate; 0 = the d axis on phase u).
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->f.theta_est;
+*/
+qfoc_angle_t qfoc_drive_angle_est(const qfoc_drive_t *d);
+
+/**
+ * @brief Measured d and q currents of the last controlled period, Q15 of I_base
+ *        (the table's i_base_ma: 32767 = I_base); 0 while the PWM is off.  The two
+ *        values are read one after the other and may come from consecutive periods.
+ * @param[in]  d    the motor object
+ * @param[out] i_dq the currents
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d) && \valid(i_dq);
+  requires sep: \separated(d, i_dq);
+  assigns *i_dq;
+  ensures copy: i_dq->d == d->f.i_dq.d && i_dq->q == d->f.i_dq.q;
+*/
+void qfoc_drive_currents_q15(const qfoc_drive_t *d, qfoc_dq_t *i_dq);
+
+/**
+ * @brief Filtered DC-bus voltage, Q15 of V_base (the table's v_base_mv: 32767 = V_base);
+ *        qfoc_drive_status() gives it in 0.1 V.
+ * Requirements: REQ-DRV-017.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->f.vdc;
+*/
+qfoc_q15_t qfoc_drive_vdc_q15(const qfoc_drive_t *d);
 
 #endif /* QFOC_DRIVE_H */

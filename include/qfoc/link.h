@@ -25,13 +25,16 @@
  * the port received during that millisecond (length 0 for none); when it returns
  * true, send the frame of qfoc_lin_encode_status(); read the effective command
  * with qfoc_link_command() and the timeout with qfoc_link_lost(); call
- * qfoc_can_status() from the 100 ms job and send the frame it fills.
+ * qfoc_can_status() from the 100 ms job and send the frame it fills.  A command
+ * that arrives decoded (CAN, AUTOSAR COM, a test) goes in through qfoc_link_accept(),
+ * which takes it by the same rule as a well-formed command frame: qfoc_link_service()
+ * decodes the frame and hands the command to qfoc_link_accept().
  *
  * All functions are total: every byte content and every length 0..255 of a
  * received buffer is handled (a buffer is read only within its length), every
  * counter saturates.  Pointers must be valid (contracts).
  *
- * Requirements: REQ-LINK-001 .. REQ-LINK-010 (specs/requirements/link.md).
+ * Requirements: REQ-LINK-001 .. REQ-LINK-011 (specs/requirements/link.md).
  */
 #ifndef QFOC_LINK_H
 #define QFOC_LINK_H
@@ -401,6 +404,50 @@ uint8_t qfoc_lin_encode_status(const qfoc_link_cfg_t *c, const qfoc_status_t *st
   disjoint behaviors;
 */
 bool qfoc_link_service(qfoc_link_t *l, const uint8_t *rx, uint8_t rx_len);
+
+/**
+ * @brief Take a decoded command (from CAN, AUTOSAR COM or any source other than the
+ *        LIN command frame) by the rule of a well-formed command frame.
+ * @param[in,out] l   valid link (qfoc_link_is_valid())
+ * @param[in]     cmd the command (any field values)
+ * @return QFOC_LINK_OK when the command was taken; QFOC_LINK_ERR_RANGE when its
+ *         target_rpm is above the configured rpm_max (refused).
+ *
+ * Taken: it becomes the stored command, n_ok counts it, the silent time restarts at
+ * 0 and the link is not lost (unless the configuration was rejected at init), exactly
+ * as for a frame accepted by qfoc_link_service().  Refused: n_range counts it and
+ * nothing else changes, like a frame rejected for its range.  The silent time advances
+ * only in qfoc_link_service(), once a millisecond: a command taken between two
+ * service calls counts as received at the earlier one.
+ *
+ * Scaling and overflow: copies, one compare, saturating counters.
+ *
+ * Requirements: REQ-LINK-011.
+ */
+/*@
+  requires valid_l: \valid(l);
+  requires link_valid: LinkValid(l);
+  requires valid_cmd: \valid_read(cmd);
+  requires sep: \separated(l, cmd);
+  assigns l->cmd, l->seen, l->silent_ms, l->lost, l->n_ok, l->n_range;
+  ensures still_valid: LinkValid(l);
+  behavior taken:
+    assumes cmd->target_rpm <= l->cfg.rpm_max;
+    ensures result: \result == QFOC_LINK_OK;
+    ensures cmd: l->cmd.power_on == cmd->power_on && l->cmd.fault_clear == cmd->fault_clear &&
+                 l->cmd.target_rpm == cmd->target_rpm;
+    ensures timer: l->seen == \true && l->silent_ms == 0 && (l->lost == \true <==> l->cfg_ok == \false);
+    ensures count: l->n_ok == LinSatInc(\old(l->n_ok)) && l->n_range == \old(l->n_range);
+  behavior refused:
+    assumes cmd->target_rpm > l->cfg.rpm_max;
+    ensures result: \result == QFOC_LINK_ERR_RANGE;
+    ensures unchanged: LinCmdSame{Pre, Post}(&l->cmd) && l->seen == \old(l->seen) &&
+                       l->silent_ms == \old(l->silent_ms) && l->lost == \old(l->lost);
+    ensures count: l->n_range == LinSatInc(\old(l->n_range)) && l->n_ok == \old(l->n_ok);
+  complete behaviors;
+  disjoint behaviors;
+*/
+int32_t qfoc_link_accept(qfoc_link_t *l, const qfoc_cmd_t *cmd);
 
 /**
  * @brief Effective command of the link.
