@@ -69,9 +69,25 @@ $(BUILD)/host/tests/%: tests/%.c $(wildcard tests/*.h) $(BUILD)/host/libqfoc.a $
 	$(CC) $(TEST_CFLAGS) -Isim -Itables $< $(SIM_SRCS) $(TABLE_SRCS) $(BUILD)/host/libqfoc.a \
 	    -lcmocka -lm -o $@
 
-## test: CMocka unit tests against double-precision references
-test: deps $(TEST_BINS)
+# The integration examples of README's quick start (examples/), built with the library's
+# warning flags and run: each exits 0 only when the drive did what it shows.
+EXAMPLE_BINS := $(BUILD)/host/examples/host_minimal $(BUILD)/host/examples/host_plant
+
+$(BUILD)/host/examples/host_minimal: examples/host_minimal.c $(HDRS) $(TABLE_SRCS) $(TABLE_HDRS) \
+                                     $(BUILD)/host/libqfoc.a
+	@mkdir -p $(@D)
+	$(CC) $(WARN) -O2 -Iinclude -Itables $< tables/reference_params.c $(BUILD)/host/libqfoc.a -o $@
+
+$(BUILD)/host/examples/host_plant: examples/host_plant.c $(HDRS) $(SIM_SRCS) $(SIM_HDRS) \
+                                   $(TABLE_SRCS) $(TABLE_HDRS) $(BUILD)/host/libqfoc.a
+	@mkdir -p $(@D)
+	$(CC) $(TEST_CFLAGS) -O2 -Isim -Itables $< $(SIM_SRCS) tables/reference_params.c \
+	    $(BUILD)/host/libqfoc.a -lm -o $@
+
+## test: CMocka unit tests against double-precision references, then the examples
+test: deps $(TEST_BINS) $(EXAMPLE_BINS)
 	@sh tools/run_tests.sh $(TEST_BINS)
+	@for e in $(EXAMPLE_BINS); do echo "==== $$e"; $$e || { echo "example $$e failed"; exit 1; }; done
 
 # ---------------------------------------------------------------- coverage
 # Library objects built with --coverage (one -c per file, so gcc names the notes

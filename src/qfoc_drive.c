@@ -995,7 +995,8 @@ static void drv_status(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     st->state = d->s.sm.state;
     st->substate = d->s.sm.sub;
     st->faults = d->s.sm.faults;
-    st->speed_rpm = drv_speed_to_rpm(d->f.speed_f, p->drive.k_speed_rpm);
+    /* the estimate has no input while the PWM is off: 0 unless the control ran */
+    st->speed_rpm = d->f.active ? drv_speed_to_rpm(d->f.speed_f, p->drive.k_speed_rpm) : 0u;
     st->vdc_dv = drv_scale(vdc, vk);
     st->current_ca = drv_scale(imag, ik);
     st->temp_dc = (in->t_ipm > in->t_pcb) ? in->t_ipm : in->t_pcb;

@@ -82,6 +82,7 @@ static void test_drv_016_command_like_frame(void **state)
     bool seen_run = false;
     bool seen_error = false;
     bool seen_clear = false;
+    bool was_run = false;
     (void)state;
     rig_init_table(&fr, &qfoc_params_reference, 3000u);
     rig_init_table(&api, &qfoc_params_reference, 3000u);
@@ -93,6 +94,11 @@ static void test_drv_016_command_like_frame(void **state)
         fr.rpm = (k < 15000) ? 3000u : 2000u;
         twin_ms(&fr, &api, k < 20000);
         twin_same(&fr, &api);
+        /* no speed is reported once the PWM has been off for a whole millisecond */
+        if (!was_run && (qfoc_drive_state(&api.d) != QFOC_STATE_RUN)) {
+            assert_int_equal(qfoc_drive_speed_rpm(&api.d), 0u);
+        }
+        was_run = qfoc_drive_state(&api.d) == QFOC_STATE_RUN;
         seen_run = seen_run || (qfoc_drive_state(&api.d) == QFOC_STATE_RUN);
         seen_error = seen_error || (qfoc_drive_state(&api.d) == QFOC_STATE_ERROR);
         seen_clear = seen_clear || (seen_error && (qfoc_drive_state(&api.d) == QFOC_STATE_STOP));

@@ -456,7 +456,8 @@ uint16_t qfoc_drive_first_fault(const qfoc_drive_t *d);
 /**
  * @brief Status in physical units, as the last tick computed it (the values of the LIN
  *        status frame and of the CAN frame, before their coarser encoding): state,
- *        sub-state, fault word, |estimated speed| in mechanical rpm, DC bus in 0.1 V,
+ *        sub-state, fault word, |estimated speed| in mechanical rpm (0 while the PWM is
+ *        off), DC bus in 0.1 V,
  *        current-vector amplitude in 0.01 A, the hotter of IPM and PCB in 0.1 degC.
  * @param[in]  d  the motor object
  * @param[out] st the copy
@@ -474,7 +475,8 @@ uint16_t qfoc_drive_first_fault(const qfoc_drive_t *d);
 void qfoc_drive_status(const qfoc_drive_t *d, qfoc_status_t *st);
 
 /**
- * @brief |Estimated speed|, mechanical rpm (the filtered estimate, as of the last tick).
+ * @brief |Estimated speed|, mechanical rpm (the filtered estimate, as of the last tick;
+ *        0 while the PWM is off, when the estimator has no input).
  * Requirements: REQ-DRV-017.
  */
 /*@

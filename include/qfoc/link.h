@@ -101,7 +101,8 @@ typedef struct {
     uint8_t  state;        /**< drive state code (sent saturated to 0..15) */
     uint8_t  substate;     /**< RUN sub-state code (sent saturated to 0..15) */
     uint16_t faults;       /**< fault word (sent exactly) */
-    uint16_t speed_rpm;    /**< |estimated speed|, rpm mechanical (sent exactly) */
+    uint16_t speed_rpm;    /**< |estimated speed|, rpm mechanical (sent exactly); the drive
+                                reports 0 while its PWM is off */
     uint16_t vdc_dv;       /**< DC-bus voltage, 0.1 V (sent in 4 V steps, 0..1020 V) */
     uint16_t current_ca;   /**< current-vector amplitude, 0.01 A (sent in 0.25 A steps, 0..63.75 A) */
     int16_t  temp_dc;      /**< hottest of IPM and PCB, 0.1 degC (sent in 1 degC, -40..215 degC) */
