@@ -412,7 +412,7 @@ static uint32_t drv_ol_increment(qfoc_q15_t w_ol, uint16_t k_theta)
     return w * k;
 }
 
-/* The rest of a controlled period: field weakening from the utilisation (document
+/* The rest of a controlled period: field weakening from the utilisation (formerly
    FireldWeakeningControl), the open-loop angle, the mechanical angle and the phase
    monitor. */
 /*@
@@ -618,7 +618,7 @@ static uint16_t drv_speed_to_rpm(qfoc_q15_t speed, uint16_t k_speed_rpm)
     return drv_scale((uint32_t)qfoc_q15_abs(speed), (uint32_t)k_speed_rpm);
 }
 
-/* Offset calibration in PRECHARGE / CALIB (document Int_AD_GetPhaseCurrent, REQ-DRV-007):
+/* Offset calibration in PRECHARGE / CALIB (formerly Int_AD_GetPhaseCurrent, REQ-DRV-007):
    one sample of each channel per tick, 2^offset_shift samples averaged, each offset
    within offset_window of 2048.  Returns the OFFSET fault bit or 0. */
 /*@
@@ -959,7 +959,7 @@ static void drv_run(qfoc_drive_t *d)
         } else if (s->sm.t_state >= c->cl_hold_ms) {
             target = s->speed_target;
         } else {
-            /* the document's 2 s: hold the handover speed */
+            /* the 2 s of specs/equations.md section 8.3: hold the handover speed */
         }
         s->speed_ref = qfoc_ramp_toward(s->speed_ref, target, c->speed_ramp);
         const uint8_t clamps = d->f.clamp_count;
@@ -1027,7 +1027,7 @@ static void drv_table_scan(qfoc_drive_t *d)
     }
 }
 
-/* The 100 ms job (document Ms_100_job, REQ-DRV-011, REQ-DRV-012): CAN status frame with
+/* The 100 ms job (formerly Ms_100_job, REQ-DRV-011, REQ-DRV-012): CAN status frame with
    the alternating identifier, motorParaChange. */
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
@@ -1219,7 +1219,7 @@ static bool drv_tick_in(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_s
 
     s->out.tx_len = 0u;
     s->out.can_send = false;
-    /* command link (document Communication_service) */
+    /* command link (formerly Communication_service) */
     accepted = drv_link_in(s, rx, in->rx_len);
     s->speed_target = drv_rpm_to_speed(s->cmd.target_rpm, c->k_rpm, p->speed_max);
     /* faults and the offset calibration */

@@ -488,7 +488,7 @@ static qfoc_ab_t qfoc_emf_update(qfoc_emf_t *e, qfoc_q15_t ua, qfoc_q15_t ub,
     } else {
         /* rejected parameters: the EMF input stays 0, so the output stays 0 */
     }
-    /* low-pass (2-34) per axis, Q31 state */
+    /* low-pass (E2-34) per axis, Q31 state */
     emf.alpha = qfoc_lpf_step(&e->lpf_alpha, raw_alpha);
     /*@ assert lpf_alpha: e->lpf_alpha.state ==
           LpfNext(\at(e->lpf_alpha.state, Pre), raw_alpha, \at(e->lpf_alpha.alpha, Pre)); */

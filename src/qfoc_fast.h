@@ -24,7 +24,7 @@
 #include "qfoc/transforms.h"
 
 /**
- * @brief Park transform (2-7), (2-8) of factors already in [-32767, 32767].
+ * @brief Park transform (E2-7), (E2-8) of factors already in [-32767, 32767].
  * @param[in]  in   i_alpha, i_beta, Q15, each in [-32767, 32767]
  * @param[in]  sc   sine and cosine, Q15, each in [-32767, 32767]
  * @param[out] out  i_d, i_q as qfoc_park() gives them

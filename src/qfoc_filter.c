@@ -1,6 +1,6 @@
 /**
  * @file qfoc_filter.c
- * @brief First-order low-pass filter (2-34) and leaky integrator (2-17)
+ * @brief First-order low-pass filter (E2-34) and leaky integrator (E2-17) of specs/equations.md
  *        (see include/qfoc/filter.h).
  *
  * Requirements: REQ-FLT-001 .. REQ-FLT-008 (specs/requirements/filter.md).

@@ -1,6 +1,6 @@
 /**
  * @file qfoc_flux.c
- * @brief Rotor (active) flux observer, document 2-13 .. 2-26
+ * @brief Rotor (active) flux observer, specs/equations.md E2-13 .. E2-26
  *        (see include/qfoc/flux.h).
  *
  * Requirements: REQ-FLUX-001 .. REQ-FLUX-008 (specs/requirements/flux.md).

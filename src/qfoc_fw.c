@@ -137,7 +137,7 @@ qfoc_q15_t qfoc_fw_step(qfoc_fw_t *fw, qfoc_q15_t utilisation, bool enable)
         /* i_d reference, limited to [out_min, 0] by the PI */
         fw->id_ref = qfoc_pi_step(&fw->pi, err);
     } else {
-        /* release (document: i_d reference 0, filter output 0) and integrator 0 */
+        /* release (E2-46: i_d reference 0, filter output 0) and integrator 0 */
         qfoc_fw_release(fw);
     }
     return fw->id_ref;

@@ -555,7 +555,7 @@ void qfoc_can_status(qfoc_link_t *l, const qfoc_status_t *st, qfoc_can_frame_t *
     } else {
         f->id = l->cfg.can_id_a;
     }
-    /* the document's Can_send_id_change_count: the next frame uses the other id */
+    /* formerly Can_send_id_change_count: the next frame uses the other id */
     l->can_b = !l->can_b;
     f->dlc = QFOC_LIN_STATUS_DATA;
     qfoc_link_payload(st, &f->data[0]);

@@ -1,7 +1,7 @@
 /**
  * @file qfoc_pll.c
  * @brief PLL on the rotor flux and angle-tracking observer on the back-EMF
- *        (document 2-27, 2-28, 2-34; see include/qfoc/pll.h).
+ *        (specs/equations.md E2-27, E2-28, E2-34; see include/qfoc/pll.h).
  *
  * Requirements: REQ-PLL-001 .. REQ-PLL-012 (specs/requirements/pll.md).
  */
@@ -51,7 +51,7 @@ static qfoc_angle_t qfoc_pll_angle(uint32_t acc)
 }
 
 /**
- * @brief Accumulator update (acc + speed x k) mod 2^32 (2-28), without any
+ * @brief Accumulator update (acc + speed x k) mod 2^32 (E2-28), without any
  *        wrap-around in a C type.
  */
 /*@
@@ -229,11 +229,11 @@ static void qfoc_pll_loop(qfoc_pll_t *pll, qfoc_q15_t x, qfoc_q15_t y, qfoc_pll_
     /*@ assert below: PllCoast(x, y, pll->mag_min) <==> mag < pll->mag_min; */
     /* 3. normalised phase detector; coasting below mag_min */
     error = qfoc_pll_error(x, y, sine, cosine, mag, pll->mag_min, pll->err_clamp);
-    /* 4. speed = Delta theta (kp + ki / s) (2-27) */
+    /* 4. speed = Delta theta (kp + ki / s) (E2-27) */
     speed = qfoc_pi_step(&pll->pi, error);
-    /* 5. theta = theta + omega / f_pwm (2-28), modulo one turn */
+    /* 5. theta = theta + omega / f_pwm (E2-28), modulo one turn */
     acc_next = qfoc_pll_acc_add(acc, speed, pll->k_theta);
-    /* 6. speed low-pass (2-34) */
+    /* 6. speed low-pass (E2-34) */
     speed_f = qfoc_lpf_step(&pll->speed_lpf, speed);
     pll->theta_acc = acc_next;
     pll->speed = speed;

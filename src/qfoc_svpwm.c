@@ -262,7 +262,7 @@ static inline void svpwm_modulate(int32_t ta, int32_t tb, int32_t tc, int32_t p,
     int32_t cb;
     int32_t cc;
 
-    /* (6) sector from the document's table (first row that holds), and with it
+    /* (6) sector from the table E2-43 (first row that holds), and with it
      * the largest and smallest time: two or three compares */
     if (ta >= tb) {
         if (tb >= tc) {

@@ -13,7 +13,7 @@
 #define QFOC_INV_SQRT3_Q16 ((int32_t)37837)
 
 /**
- * Largest |i_u + 2 i_v| inside the document's Clarke bound:
+ * Largest |i_u + 2 i_v| inside the Clarke bound E2-6 (specs/equations.md):
  * floor(sqrt(3) * 32767) = floor(56754.11) = 56754 (56754^2 <= 3 * 32767^2).
  * 56754 * 37837 = 2147401098 < 2^31 - 1, so the Q31 product cannot overflow.
  */
@@ -27,11 +27,11 @@
 
 void qfoc_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out)
 {
-    /* (2-4) numerator, 3.15: |iu + 2 iv| <= 98304 */
+    /* (E2-4) numerator, 3.15: |iu + 2 iv| <= 98304 */
     int32_t sum = (int32_t)iu + ((int32_t)iv * 2);
     int32_t beta_q31;
 
-    /* beyond the document's bound the result saturates: clamp the numerator */
+    /* beyond the bound E2-6 the result saturates: clamp the numerator */
     if (sum > QFOC_CLARKE_SUM_MAX) {
         sum = QFOC_CLARKE_SUM_MAX;
     } else if (sum < -QFOC_CLARKE_SUM_MAX) {
@@ -42,8 +42,8 @@ void qfoc_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out)
     /* 3.15 x 0.16 = Q31, |beta_q31| <= 2147401098 */
     beta_q31 = sum * QFOC_INV_SQRT3_Q16;
 
-    out->alpha = qfoc_q15_sat((int32_t)iu);           /* (2-3) */
-    out->beta = qfoc_q15_round_q31(beta_q31);         /* (2-4), rounded (in range) */
+    out->alpha = qfoc_q15_sat((int32_t)iu);           /* (E2-3) */
+    out->beta = qfoc_q15_round_q31(beta_q31);         /* (E2-4), rounded (in range) */
 }
 
 void qfoc_park_sym(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
@@ -63,8 +63,8 @@ void qfoc_park_sym(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out)
     /*@ assert prod_bc: -1073676289 <= beta * c <= 1073676289; */
     /*@ assert prod_as: -1073676289 <= alpha * s <= 1073676289; */
     /* 2.30 sums, |sum| <= 2 * 32767^2 = 2147352578 < 2^31 */
-    d_q30 = (alpha * c) + (beta * s);                 /* (2-7) */
-    q_q30 = (beta * c) - (alpha * s);                 /* (2-8) */
+    d_q30 = (alpha * c) + (beta * s);                 /* (E2-7) */
+    q_q30 = (beta * c) - (alpha * s);                 /* (E2-8) */
     /*@ assert d_sum: d_q30 == QfocParkD(in->alpha, in->beta, sc->sine, sc->cosine); */
     /*@ assert q_sum: q_q30 == QfocParkQ(in->alpha, in->beta, sc->sine, sc->cosine); */
 

@@ -2,17 +2,17 @@
  * @file drive.h
  * @brief The compressor drive: one motor object, two entry points.
  *
- * This is the header an ECU integrator reads.  The drive is the document's chapter 3
+ * This is the header an ECU integrator reads.  The drive is specs/equations.md section 8's
  * application and interface layers turned into a library: it owns the motor's
  * controllers, estimator, state machine, fault detection and command link, and is
  * called from exactly two places:
  *
  *   qfoc_drive_fast_step()  once per PWM period, from the ADC-complete interrupt:
  *                           raw ADC samples in, three compare values and the PWM
- *                           enable out (the document's adc1isr / ftmTimerISR);
+ *                           enable out (formerly adc1isr / ftmTimerISR);
  *   qfoc_drive_tick()       every 1 ms, from a lower-priority interrupt or task:
  *                           temperatures and a received command frame in, a status
- *                           frame and the 100 ms CAN frame out (the document's
+ *                           frame and the 100 ms CAN frame out (formerly
  *                           Ms_1_job, Ms_100_job, Communication_service).
  *
  * There are no globals: one qfoc_drive_t per motor (two compressors, or a test, run
@@ -45,7 +45,7 @@
  *     frame and the estimated rotor lies in (-(90 deg + ho_angle), ho_angle): a rotor
  *     following the frame settles at K i cos(delta) = T_load with delta in [-90, 0] deg,
  *     a slipping one sweeps through +180 deg; and not before cl_hold_ms after the start
- *     (the document's 2 s).  The speed PI is preset to the q current that gives, with
+ *     (2 s, specs/equations.md section 8.3).  The speed PI is preset to the q current that gives, with
  *     i_d = 0, the torque the rotor carries, for a bumpless transfer.
  *   - CLOSED_LOOP: speed reference ramps at speed_ramp to the target; speed PI every
  *     1 ms on the filtered estimate; torque compensation (trqcomp.h) adds its
@@ -56,7 +56,7 @@
  *     then PWM off and STOP.  Power-off in ALIGN or OPEN_LOOP: PWM off at once.
  *   - ERROR: PWM off at once; the fault word and the first-fault record latch; left
  *     to STOP only after clear_ms (5 s) in ERROR on a fault-clear request with no
- *     fault present and the table intact (the document's Faultclear).
+ *     fault present and the table intact (formerly Faultclear).
  *
  * Faults and reaction times (fault.h bits; specs/requirements/drive.md):
  *   OC     |i_u|, |i_v| or |i_w| > i_trip: PWM off in the SAME fast step, ERROR at the
@@ -132,7 +132,7 @@
 /** ADC code of zero current (mid-scale). */
 #define QFOC_ADC_MID ((uint16_t)2048u)
 
-/** Raw samples of one PWM period (the document's adcRawValue_n). */
+/** Raw samples of one PWM period (formerly adcRawValue_n). */
 typedef struct {
     uint16_t iu;   /**< phase u current, 0..4095 (2048 nominal zero) */
     uint16_t iv;   /**< phase v current, 0..4095 */
@@ -163,8 +163,8 @@ typedef struct {
 
 /** Data written by the fast step only. */
 typedef struct {
-    qfoc_flux_t flux;         /**< flux observer (2-19 .. 2-24) */
-    qfoc_pll_t pll;           /**< PLL (2-27, 2-28, 2-34) */
+    qfoc_flux_t flux;         /**< flux observer (specs/equations.md E2-19 .. E2-24) */
+    qfoc_pll_t pll;           /**< PLL (specs/equations.md E2-27, E2-28, E2-34) */
     qfoc_pi_t pi_id;          /**< d-current PI */
     qfoc_pi_t pi_iq;          /**< q-current PI */
     qfoc_fw_t fw;             /**< field weakening */
@@ -181,7 +181,7 @@ typedef struct {
     qfoc_angle_t theta_est;   /**< estimated rotor angle (lead-corrected) */
     qfoc_angle_t theta_m;     /**< mechanical angle (torque compensation) */
     qfoc_q15_t speed;         /**< PLL speed, unfiltered */
-    qfoc_q15_t speed_f;       /**< PLL speed after the 2-34 low-pass */
+    qfoc_q15_t speed_f;       /**< PLL speed after the low-pass (specs/equations.md E2-34) */
     qfoc_q15_t psi_mag;       /**< observer flux magnitude */
     qfoc_q15_t id_fw;         /**< field-weakening d-current reference */
     uint8_t trip_count;       /**< over-current events (mod 256) */

@@ -92,7 +92,7 @@ typedef struct {
         1 .. 60000. */
     uint16_t ol_timeout_ms;
     /** The speed reference is not ramped to the target before this long after RUN entry
-        (the document's 2 s), ms, 0 .. 60000. */
+        (2 s, specs/equations.md section 8.3), ms, 0 .. 60000. */
     uint16_t cl_hold_ms;
     /** IPM over-temperature threshold, 0.1 degC, -400 .. 2000. */
     int16_t t_ipm_max;
@@ -120,7 +120,7 @@ typedef struct {
     /** Command link lost after this long without a valid command, ms, 1 .. 60000. */
     uint16_t link_timeout_ms;
     /** A fault clear is accepted only after the drive has been stopped this long (the
-        document's 5 s), ms, 1 .. 60000. */
+        5 s of specs/equations.md section 8.3), ms, 1 .. 60000. */
     uint16_t clear_ms;
     /** Field weakening: utilisation target FWK_LVL, Q15, 1 .. 32767. */
     qfoc_q15_t fw_level;

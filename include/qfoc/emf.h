@@ -3,31 +3,30 @@
  * @brief Back-EMF estimator (open loop) and disturbance observer (closed loop):
  *        rotor angle of a PMSM from the stationary-frame voltage and current.
  *
- * Two blocks, one method family (document chapter 1, "Model-based methods"):
- *  - qfoc_emf_*: the back-EMF method ("Open Loop Calculation, Back EMF-based
- *    Methods"): the EMF is computed from the voltage equation and low-pass
- *    filtered (2-33, 2-34);
- *  - qfoc_dob_*: the disturbance observer ("Closed Loop Observers, Linear State
- *    Observers"): a current model driven by the voltage, whose current error is
- *    turned into the EMF estimate.
+ * Two blocks, one method family, the model-based estimators of specs/equations.md
+ * section 2 (equation tags E1-n, E2-n of that file):
+ *  - qfoc_emf_*: the open-loop back-EMF method (E1-11): the EMF is computed
+ *    from the voltage equation and low-pass filtered (E2-33, E2-34);
+ *  - qfoc_dob_*: the closed-loop disturbance observer (E1-13, E1-14): a current
+ *    model driven by the voltage, whose current error is turned into the EMF
+ *    estimate.
  * Both give the EMF vector and its angle theta = atan2(-e_alpha, e_beta); the
  * angle lags the rotor by a known amount that qfoc_emf_lag() / qfoc_dob_lag()
  * return for compensation.  Instead of the arctangent, the EMF can drive the
  * angle-tracking observer qfoc_pll_step_emf() of pll.h (speed and angle from a
- * PLL, less noise, no division), which the document names as the alternative
- * ("Besides the arctangent algorithm, the phase-locked loop and the angle
- * tracking observer are effective methods").
+ * PLL, less noise, no division), the alternative to the arctangent named with
+ * E1-15.
  *
  * Requirements: REQ-EMF-001 .. REQ-EMF-014 (specs/requirements/emf.md); each
  * function below names the ones it meets.
  *
- * @par Machine model (chapter 1) and the choice L = L_q
+ * @par Machine model (E1-6 .. E1-10) and the choice L = L_q
  * Stationary frame, per unit, p = d/dt:
  *
  *     u = R i + p psi_s,   psi_s = rotor-frame (L_d i_d + psi_f, L_q i_q) rotated by theta
  *
- * The document writes the salient machine as u = R i + L_d p i + (cross term)
- * + E (-sin theta, cos theta) with the extended EMF
+ * The extended-EMF form of the salient machine (E1-9) is
+ * u = R i + L_d p i + (cross term) + E (-sin theta, cos theta) with the extended EMF
  * E = omega ((L_d - L_q) i_d + psi_f) - (L_d - L_q) p i_q.  qfoc uses L = L_q
  * instead ("active flux"): the active flux
  *
@@ -40,9 +39,9 @@
  *
  * In steady state (|psi_a| constant) e points exactly along
  * (-sin theta, cos theta), so atan2(-e_alpha, e_beta) = theta for omega > 0,
- * for salient and non-salient machines alike: this is the document's extended
- * EMF with the saliency term (L_d - L_q) i_d absorbed into |psi_a| and no
- * speed-dependent cross term.  The document's mean inductance (L_d + L_q)/2 is
+ * for salient and non-salient machines alike: this is the extended EMF of E1-9
+ * with the saliency term (L_d - L_q) i_d absorbed into |psi_a| and no
+ * speed-dependent cross term (E1-10).  The mean inductance (L_d + L_q)/2 is
  * exact only for L_d = L_q (on the reference motor below, with i_q = 20 A it
  * puts the angle 14 degrees off).  For omega < 0, e points along
  * (sin theta, -cos theta): the arctangent gives theta + 180 degrees, which the
@@ -74,14 +73,14 @@
  * @par Back-EMF block
  *
  *     e_raw(k) = u - R (i(k) + i(k-1))/2 - l (i(k) - i(k-1)),   l = L_q / (T w_base)
- *     e(k)     = e(k-1) + alpha (e_raw(k) - e(k-1))              (2-34, qfoc_lpf_step)
+ *     e(k)     = e(k-1) + alpha (e_raw(k) - e(k-1))              (E2-34, qfoc_lpf_step)
  *     theta    = atan2(-e_alpha, e_beta)
  *
- * @par Disturbance observer (document's equations, sign slip fixed)
- * The document writes the current model as d i/dt = +(R/L) i + (u - e)/L and the
- * observer as d i_hat/dt = +(R/L) i + (u - e_hat)/L, d e_hat/dt = G d(i_hat - i)/dt.
- * The resistive term has the wrong sign: from u = R i + L di/dt + e,
- * d i/dt = -(R/L) i + (u - e)/L.  qfoc implements the corrected observer
+ * @par Disturbance observer (E1-13, E1-14, with the sign of the resistive term)
+ * An earlier statement of the current model, d i/dt = +(R/L) i + (u - e)/L, and of
+ * the observer, d i_hat/dt = +(R/L) i + (u - e_hat)/L, d e_hat/dt = G d(i_hat - i)/dt,
+ * had the resistive term with the wrong sign: from u = R i + L di/dt + e,
+ * d i/dt = -(R/L) i + (u - e)/L (E1-13).  qfoc implements the corrected observer
  *
  *     d i_hat/dt = -(R/L) i + (u - e_hat)/L,     e_hat = G (i_hat - i)
  *
@@ -199,8 +198,8 @@ typedef struct {
 typedef struct {
     qfoc_emf_params_t params;  /**< parameters (copied by qfoc_emf_init()) */
     qfoc_ab_t i_prev;          /**< current of the previous call, Q15, symmetric */
-    qfoc_lpf_t lpf_alpha;      /**< EMF low-pass, alpha axis (2-34) */
-    qfoc_lpf_t lpf_beta;       /**< EMF low-pass, beta axis (2-34) */
+    qfoc_lpf_t lpf_alpha;      /**< EMF low-pass, alpha axis (E2-34) */
+    qfoc_lpf_t lpf_beta;       /**< EMF low-pass, beta axis (E2-34) */
     bool active;               /**< false after a rejected init: output held at 0 */
 } qfoc_emf_t;
 

@@ -3,8 +3,9 @@
  * @brief Fault-detection primitives: the fault word, a debounce counter, the
  *        phase-loss monitor and threshold compares.
  *
- * The document's Fault_Warning_Detect() checks the phase currents, the DC bus and
- * the temperatures and stops the motor when a fault is present.  This module holds
+ * The drive's fault detection (formerly Fault_Warning_Detect(); specs/equations.md
+ * section 8.4) checks the phase currents, the DC bus and the temperatures and
+ * stops the motor when a fault is present.  This module holds
  * the pure building blocks; the drive (include/qfoc/drive.h) owns the reactions:
  *
  *  - Over-current (QFOC_FAULT_OC) is decided in the fast step, in the same PWM
@@ -210,7 +211,7 @@ int32_t qfoc_phase_mon_init(qfoc_phase_mon_t *m, qfoc_q15_t alpha);
 void qfoc_phase_mon_reset(qfoc_phase_mon_t *m);
 
 /**
- * @brief One fast-step update: low-pass |i_u|, |i_v|, |i_w| (document 2-34).
+ * @brief One fast-step update: low-pass |i_u|, |i_v|, |i_w| (specs/equations.md E2-34).
  * @param[in,out] m valid monitor
  * @param[in]     i phase currents, Q15 of I_base, any int16_t (|-32768| is
  *                  saturated to 32767)

@@ -1,7 +1,9 @@
 /**
  * @file filter.h
- * @brief First-order filters: low-pass (document 2-33/2-34) and leaky
- *        (high-pass-filtered) integrator (document 2-14 .. 2-18).
+ * @brief First-order filters: low-pass (E2-33/E2-34) and leaky
+ *        (high-pass-filtered) integrator (E2-14 .. E2-18).
+ *
+ * Equation tags E2-n: specs/equations.md (sections 4 and 6).
  *
  * Both blocks keep their state in Q31 so that small coefficients do not lose the
  * signal in the rounding of a 16-bit state, and return a Q15 output rounded to
@@ -9,7 +11,7 @@
  *
  * Requirements: REQ-FLT-001 .. REQ-FLT-008 (specs/requirements/filter.md).
  *
- * @par Low-pass filter (2-33, 2-34)
+ * @par Low-pass filter (E2-33, E2-34)
  * G(s) = 1 / (tau s + 1), discretised with the forward difference s = (z - 1) / T:
  *
  *     y(k+1) = alpha u(k) + (1 - alpha) y(k) = y(k) + alpha (u(k) - y(k))
@@ -18,15 +20,15 @@
  * Q15 coefficient: alpha_raw = round(2 pi fc / fs x 32768), e.g. fc = 50 Hz,
  * fs = 10 kHz: 2 pi 50 / 10000 x 32768 = 1029.4 -> 1029.  The forward
  * difference is stable and free of overshoot only for alpha in [0, 1]
- * (document: "alpha in [0, 1]"), i.e. fc <= fs / (2 pi); the library admits
+ * (E2-34: alpha in [0, 1]), i.e. fc <= fs / (2 pi); the library admits
  * alpha_raw in [1, 32767].  The discrete pole is 1 - alpha: after n samples a
  * step has reached 1 - (1 - alpha)^n, 63 % after about 1 / alpha samples
  * (exactly ln(0.37) / ln(1 - alpha)).  DC gain is 1.
  *
- * @par Leaky integrator (2-14 .. 2-18)
+ * @par Leaky integrator (E2-14 .. E2-18)
  * An integrator followed by a high-pass filter, (1/s) (tau s / (1 + tau s)) =
  * tau / (1 + tau s), used by the flux observer on each axis (x = u - R i).
- * Forward difference gives (2-17):
+ * Forward difference gives (E2-17):
  *
  *     y(k+1) = y(k) + T x(k) - (T / tau) y(k)
  *
@@ -43,7 +45,7 @@
  *
  * Steady state (discrete transfer function H(z) = g / (z - (1 - l))):
  *  - DC: y = x g / l (= x tau (input base / output base)); this is the form of
- *    the document's flux bounds 2-25/2-26, psi = (1 / k_g)(V_max u - R i / 64),
+ *    the flux bounds E2-25/E2-26, psi = (1 / k_g)(V_max u - R i / 64),
  *    with 1/k_g = g / l.
  *  - sine input x(k) = A sin(W k), W = 2 pi f_in / fs (rad per sample):
  *        y(k) = A |H| sin(W k + phi)
@@ -74,14 +76,14 @@
 /** Largest admissible leaky-integrator gain_shift (gain factor 2^-15). */
 #define QFOC_LEAKY_SHIFT_MAX ((uint8_t)15u)
 
-/** First-order low-pass filter (2-34). */
+/** First-order low-pass filter (E2-34). */
 typedef struct {
     qfoc_q15_t alpha;   /**< omega_c / f, Q15, 1..32767 */
     qfoc_q31_t state;   /**< y(k), Q31, symmetric Q31 range; within
                              [-32767, 32767] x 65536 after init/reset/step */
 } qfoc_lpf_t;
 
-/** Leaky (high-pass-filtered) integrator (2-17). */
+/** Leaky (high-pass-filtered) integrator (E2-17). */
 typedef struct {
     qfoc_q15_t gain;     /**< T x (input base / output base) mantissa, Q15, >= 0 */
     uint8_t gain_shift;  /**< g = gain / 32768 / 2^gain_shift, 0..15 */
@@ -166,7 +168,7 @@ int32_t qfoc_lpf_init(qfoc_lpf_t *f, qfoc_q15_t alpha);
 void qfoc_lpf_reset(qfoc_lpf_t *f, qfoc_q15_t value);
 
 /**
- * @brief One low-pass sample (2-34): y(k+1) = y(k) + alpha (u(k) - y(k)).
+ * @brief One low-pass sample (E2-34): y(k+1) = y(k) + alpha (u(k) - y(k)).
  * @param[in,out] f valid instance (qfoc_lpf_is_valid())
  * @param[in]     u input u(k), Q15, any int16_t (-32768 is saturated to -32767)
  * @return the new output y(k+1), Q15 (state rounded to nearest).
@@ -186,7 +188,7 @@ void qfoc_lpf_reset(qfoc_lpf_t *f, qfoc_q15_t value);
  * range by the caller reaches the saturation).  The increment's
  * rounding (<= 1/2 Q31 LSB) makes the state settle within 16384 / alpha Q31 LSB
  * (<= 1/4 Q15 LSB) of a constant input, so the Q15 DC gain is exactly 1.
- * Error against the real-valued recursion (2-34): the increment roundings
+ * Error against the real-valued recursion (E2-34): the increment roundings
  * accumulate to at most 1/2 Q31 LSB / (alpha / 32768) = 1/4 Q15 LSB / alpha_raw
  * in the state (<= 0.25 LSB), hence <= 0.75 LSB at the Q15 output.
  *
@@ -285,7 +287,7 @@ int32_t qfoc_leaky_init(qfoc_leaky_int_t *f, qfoc_q15_t gain, uint8_t gain_shift
 void qfoc_leaky_reset(qfoc_leaky_int_t *f, qfoc_q15_t value);
 
 /**
- * @brief One leaky-integrator sample (2-17): y(k+1) = y(k) + T x(k) - (T/tau) y(k).
+ * @brief One leaky-integrator sample (E2-17): y(k+1) = y(k) + T x(k) - (T/tau) y(k).
  * @param[in,out] f valid instance (qfoc_leaky_is_valid())
  * @param[in]     x input x(k), Q15, any int16_t (-32768 included, used as -1.0)
  * @return the new output y(k+1), Q15 (state rounded to nearest, saturated to

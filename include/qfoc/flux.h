@@ -1,7 +1,9 @@
 /**
  * @file flux.h
  * @brief Rotor (active) flux observer: voltage-model integrator with a
- *        high-pass correction (document 2-13 .. 2-26), per stationary axis.
+ *        high-pass correction (E2-13 .. E2-26), per stationary axis.
+ *
+ * Equation tags E1-n, E2-n: specs/equations.md (sections 2 and 4).
  *
  * The observer estimates the rotor flux vector psi_r = psi_s - L i in the
  * stationary frame from the applied voltage and the measured current; its angle
@@ -12,11 +14,11 @@
  * REQ-FLUX-001, REQ-FLUX-002, REQ-FLUX-003, REQ-FLUX-004, REQ-FLUX-005,
  * REQ-FLUX-006, REQ-FLUX-007, REQ-FLUX-008.
  *
- * @par Document equations
- * Continuous model (2-13, 2-14): d psi_s = u - R i, integrated through
+ * @par Equations (specs/equations.md section 4)
+ * Continuous model (E2-13, E2-14): d psi_s = u - R i, integrated through
  * (1/s)(tau s / (1 + tau s)), i.e. an integrator whose drift is removed by a
- * high-pass filter.  Discretised with s = (z - 1)/T (2-16, 2-17) and applied per
- * axis with the inductance term (2-19 .. 2-24, the document's units):
+ * high-pass filter.  Discretised with s = (z - 1)/T (E2-16, E2-17) and applied per
+ * axis with the inductance term (E2-19 .. E2-24, in their integer units):
  *
  *     psi_temp(k+1) = psi_temp(k) + (V_max u(k) - R_s i(k)/64 - K_gain psi(k)) / f_pwm
  *     psi(k+1)      = psi_temp(k+1) - i(k) (L_D + L_Q) / 8192
@@ -29,9 +31,9 @@
  *     g  = T w_base            integration gain per sample (T = 1 / f_pwm)
  *     kg = K_gain / w_base     high-pass corner in per unit of w_base
  *
- * How the document's constants map onto the parameters:
+ * How the constants of E2-19 .. E2-24 map onto the parameters:
  *  - 630 = V_max: the integration scale V_base / psi_base = w_base of the
- *    document's bases (630 rad/s, close to 2 pi 100 Hz); divided by f_pwm it is
+ *    bases of E2-19 (630 rad/s, close to 2 pi 100 Hz); divided by f_pwm it is
  *    the gain g = w_base T (gain, gain_shift);
  *  - R_s / 64: the resistance stored with 6 extra fraction bits so that the term
  *    has the units of 630 u; qfoc stores r = R / Z_base in Q15 and applies the
@@ -46,11 +48,11 @@
  * With L = L_q, psi_s - L_q i = (psi_f + (L_d - L_q) i_d) e^{j theta}: the
  * "active flux" is exactly aligned with the rotor d axis for every load, so the
  * estimated angle is the rotor angle; only its magnitude changes with i_d.  The
- * document's mean (L_d + L_q)/2 is exact only for L_d = L_q: on the reference
+ * mean (L_d + L_q)/2 of E2-24 is exact only for L_d = L_q: on the reference
  * motor (L_d = 2.6 mH, L_q = 4.2 mH) it puts the angle 14 degrees off at
  * i_q = 20 A.  Equivalently u - R i - L_q di/dt = d/dt(active flux) =
- * w psi_a (-sin theta, cos theta) in steady state: the extended back-EMF of
- * document chapter 1 with the saliency term absorbed.
+ * w psi_a (-sin theta, cos theta) in steady state: the extended back-EMF
+ * (E1-8, E1-9) with the saliency term absorbed (E1-10).
  *
  * @par Step semantics
  * A call at sample k receives u = the stationary-frame voltage APPLIED DURING THE
@@ -98,16 +100,16 @@
  * w = 0.6 pu: lead 3.04 deg, |H| 0.9986.  The exact discrete lead differs from
  * atan(kg / |w|) by at most 0.11 deg for |w| >= 0.1 pu (0.005 deg at 0.6 pu).
  *
- * R i term: the document's recursion uses R i(k) (sampled at the end of the
+ * R i term: the recursion E2-23 uses R i(k) (sampled at the end of the
  * period) where the period average of R i belongs; this shifts the estimate by
  * about -g R I / 2 (I the current vector), an angle error of about
  * g R i_q / (2 |psi_a|) rad: 0.19 deg at i = (-0.1, 0.25) pu on the reference
  * motor, 0.39 deg at i_q = 0.5 pu.  Both effects are checked against the exact
  * discrete steady state in tests/test_flux.c.
  *
- * @par Steady-state bound (2-25, 2-26) and saturation
- * For a constant input (i = i_prev) the state settles at (2-26)
- * psi = (u - R i) / kg, and the document's psi_temp = psi + L i (2-25).  In
+ * @par Steady-state bound (E2-25, E2-26) and saturation
+ * For a constant input (i = i_prev) the state settles at (E2-26)
+ * psi = (u - R i) / kg, and psi_temp = psi + L i (E2-25).  In
  * general the state obeys a one-step invariance (lemma FluxBoundInvariant in
  * specs/flux.acsl, proved; it is stated on FluxRaw, the unsaturated new state
  * that the contract of qfoc_flux_step() names in `state_alpha` / `state_beta`
@@ -122,7 +124,7 @@
  * saturated, and the Q15 output is the exact rounded state (`out_exact_alpha`,
  * lemma FluxOutExact).
  * Hence an input whose drive stays below g kg B keeps the estimate within B for
- * ever; for i = i_prev this is 2-26: |u - R i| <= kg B.  A real machine's drive
+ * ever; for i = i_prev this is E2-26: |u - R i| <= kg B.  A real machine's drive
  * is the flux change per sample (about W |psi_a|), which the invariance bounds
  * only for W <= g kg; at speed the estimate's magnitude is |H| |psi_a|
  * (|H| <= 1.006 for the reference values), so the output saturates only when
@@ -154,7 +156,7 @@
 /** Q27 state per Q15 output LSB: 2^27 / 2^15 = 4096 (also the Q12 scale of l). */
 #define QFOC_FLUX_Q27_PER_Q15 ((int32_t)4096)
 
-/** Flux observer parameters (document 2-19 .. 2-24; see the file comment). */
+/** Flux observer parameters (E2-19 .. E2-24; see the file comment). */
 typedef struct {
     qfoc_q15_t gain;     /**< g = T w_base mantissa: g = gain / 2^(15 + gain_shift),
                               0..32767 */
@@ -285,7 +287,7 @@ int32_t qfoc_flux_init(qfoc_flux_t *o, const qfoc_flux_params_t *p);
 void qfoc_flux_reset(qfoc_flux_t *o, const qfoc_ab_t *psi0, const qfoc_ab_t *i0);
 
 /**
- * @brief One observer sample (2-19 .. 2-24 as a rotor-flux recursion):
+ * @brief One observer sample (E2-19 .. E2-24 as a rotor-flux recursion):
  *        psi(k) = psi(k-1) + g (u - R i - kg psi(k-1)) - L (i(k) - i(k-1)).
  * @param[in,out] o     valid instance (qfoc_flux_is_valid())
  * @param[in]     u     voltage applied during the last PWM period [k-1, k],
@@ -325,7 +327,7 @@ void qfoc_flux_reset(qfoc_flux_t *o, const qfoc_ab_t *psi0, const qfoc_ab_t *i0)
  * the symmetric Q31 range.  No 64-bit division by a variable, no shift of a
  * negative value.
  *
- * Flux bound (2-25, 2-26): if |psi(k-1)| <= B <= 32767 x 4096 and the drive
+ * Flux bound (E2-25, E2-26): if |psi(k-1)| <= B <= 32767 x 4096 and the drive
  * meets FluxDriveBounded (file comment), lemma FluxBoundInvariant applied to
  * `state_alpha` gives |psi(k)| <= B (behaviour `alpha_exact`), and
  * `out_exact_alpha` makes the output the exact rounded state; the same per beta.

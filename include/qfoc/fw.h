@@ -1,26 +1,27 @@
 /**
  * @file fw.h
  * @brief Field weakening: voltage-utilisation loop producing a negative d-axis
- *        current reference (document chapter 3, FireldWeakeningControl, Init_MtrFwc).
+ *        current reference (specs/equations.md E2-46; formerly
+ *        FireldWeakeningControl, Init_MtrFwc).
  *
  * When the back-EMF approaches the largest voltage the inverter can apply, the
  * current loops lose their margin.  The loop measures the SVPWM voltage
- * utilisation (qfoc_svpwm_out_t.utilisation = |v| / (V_dc / sqrt 3), the
- * document's t_all), low-passes it, and drives i_d negative until the filtered
+ * utilisation (qfoc_svpwm_out_t.utilisation = |v| / (V_dc / sqrt 3), t_all of
+ * E2-45), low-passes it, and drives i_d negative until the filtered
  * utilisation equals the level FWK_LVL:
  *
- *     util_f(k) = util_f(k-1) + alpha (utilisation(k) - util_f(k-1))   (lpf, 2-34)
+ *     util_f(k) = util_f(k-1) + alpha (utilisation(k) - util_f(k-1))   (lpf, E2-34)
  *     e(k)      = FWK_LVL - util_f(k)
  *     i_d_ref(k) = PI(e(k)),  limited to [out_min, 0]                   (qfoc_pi)
  *
- * The document adds the PI output to the previous i_d reference (incremental
+ * The earlier code added the PI output to the previous i_d reference (incremental
  * form); here the PI integrator is that accumulated reference and the
  * proportional part acts on top of it, with the clamping anti-windup of
  * qfoc_pi.  Above the level (e < 0) the reference falls toward out_min (the
  * largest field-weakening current, FWK_MAX of Init_MtrFwc); below it (e > 0) it
  * rises back to 0 and stays there: the loop never produces a positive i_d.
- * Disabling the loop is the document's release: i_d reference 0, filter output 0,
- * integrator 0.  (The document's start-up counter, which lets the filter run
+ * Disabling the loop is the release of E2-46: i_d reference 0, filter output 0,
+ * integrator 0.  (The earlier start-up counter, which let the filter run
  * only after 1000 calls, belongs to the caller: the drive enables the loop only
  * in closed-loop operation.)
  *

@@ -6,9 +6,9 @@
  * The library (src/) never touches a register.  A port (port_s32k/ for the NXP S32K144)
  * implements every function below and calls the drive from two interrupts:
  *
- *   ADC-complete interrupt, once per PWM period (the document's adc1isr / ftmTimerISR):
+ *   ADC-complete interrupt, once per PWM period (formerly adc1isr / ftmTimerISR):
  *       qfoc_hal_adc_read()  ->  qfoc_drive_fast_step()  ->  qfoc_hal_pwm_write()
- *   1 ms interrupt (the document's Ms_1_job, Ms_100_job, Communication_service):
+ *   1 ms interrupt (formerly Ms_1_job, Ms_100_job, Communication_service):
  *       qfoc_hal_ms_tick(), qfoc_hal_temps_read(), qfoc_hal_lin_receive()
  *         ->  qfoc_drive_tick()  ->  qfoc_hal_lin_transmit(), qfoc_hal_can_send(),
  *       qfoc_hal_watchdog_refresh()
@@ -190,7 +190,7 @@ uint32_t qfoc_hal_ms_count(void);
 bool qfoc_hal_ms_flag_take(void);
 
 /**
- * @brief PWM periods counted by the timer's period interrupt (the document's
+ * @brief PWM periods counted by the timer's period interrupt (formerly
  *        ftmTimerISR, overflow or reload as configured).
  * @return periods since the PWM started, modulo 2^32
  *

@@ -4,11 +4,11 @@
  *        link service with timeout and rejection counters, and the CAN status
  *        frame with the alternating identifier.
  *
- * Source: document chapter 3, `Communication_service()` / `Double_communication()`
- * (receive the power-on bit, the fault-clearing bit and the target speed, transmit
- * the motor state via UART), `Inner_time1ms_mission()` (check that LIN is
- * connected, every 1 ms) and `Can_send_id_change_count()` (interchange the CAN
- * identifier of the status frame every 0.1 s).
+ * Source: specs/equations.md section 8.2; formerly `Communication_service()` /
+ * `Double_communication()` (receive the power-on bit, the fault-clearing bit and
+ * the target speed, transmit the motor state via UART), `Inner_time1ms_mission()`
+ * (check that LIN is connected, every 1 ms) and `Can_send_id_change_count()`
+ * (interchange the CAN identifier of the status frame every 0.1 s).
  *
  * The byte layouts are specified in specs/link-frames.md:
  *  - command frame (master -> drive), 7 bytes on the UART:
@@ -93,7 +93,7 @@ typedef struct {
     uint16_t rpm_max;     /**< largest target speed accepted, rpm, >= 1 */
     uint16_t timeout_ms;  /**< link lost after this long without a valid command, 1..60000 */
     uint16_t can_id_a;    /**< CAN status identifiers (11-bit, 0..0x7FF), alternated */
-    uint16_t can_id_b;    /**< every frame (the document's Can_send_id_change_count) */
+    uint16_t can_id_b;    /**< every frame (formerly Can_send_id_change_count) */
 } qfoc_link_cfg_t;
 
 /** Drive status reported on LIN and CAN (encoding: specs/link-frames.md). */

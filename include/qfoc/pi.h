@@ -4,7 +4,7 @@
  *
  * One block serves the current loops (d and q), the speed loop, the
  * field-weakening loop and the PLL of the position observer.  It implements the
- * discrete PI of document chapter 2 (speed loop and current loop):
+ * discrete PI of specs/equations.md E2-35 (speed loop E2-36, current loops E2-37):
  *
  *     u(k) = kp e(k) + I(k)
  *     I(k) = I(k-1) + ki T e(k)
@@ -53,7 +53,7 @@
 /** Largest admissible kp_shift / ki_shift (gain factor 2^15 = 32768). */
 #define QFOC_PI_SHIFT_MAX ((uint8_t)15u)
 
-/** PI parameters (document chapter 2: kp, ki T, output limits). */
+/** PI parameters (specs/equations.md E2-35: kp, ki T, output limits). */
 typedef struct {
     qfoc_q15_t kp;       /**< proportional gain mantissa, Q15, >= 0 */
     uint8_t kp_shift;    /**< kp_real = kp / 32768 * 2^kp_shift, 0..15 */

@@ -1,28 +1,29 @@
 /**
  * @file pll.h
- * @brief Phase-locked loop on the estimated rotor flux (document 2-27, 2-28,
+ * @brief Phase-locked loop on the estimated rotor flux (E2-27, E2-28, formerly
  *        PhaseLockedLoop) and angle-tracking observer on the back-EMF.
+ *
+ * Equation tags E2-n, E3-n: specs/equations.md (sections 5 to 7).
  *
  * @par What it does
  * The PLL turns the stationary-frame rotor flux estimated by the flux observer
  * (psi_alpha, psi_beta; include/qfoc/flux.h) into the electrical rotor angle
- * theta and speed omega.  It is a type-2 loop (document chapter 2, "speed and
- * position estimation"):
+ * theta and speed omega.  It is a type-2 loop (specs/equations.md section 5):
  *
  *     Delta theta = psi_beta cos(theta) - psi_alpha sin(theta)
- *                 = |psi| sin(theta_r - theta)                     (phase detector)
- *     omega       = Delta theta (kp + ki / s)                       (2-27)
- *     theta       = theta + omega / f_pwm                           (2-28)
- *     omega_f     = low-pass of omega, y(k+1) = y(k) + alpha (omega - y(k))  (2-34)
+ *                 = |psi| sin(theta_r - theta)                     (E2-28a)
+ *     omega       = Delta theta (kp + ki / s)                       (E2-27)
+ *     theta       = theta + omega / f_pwm                           (E2-28)
+ *     omega_f     = low-pass of omega, y(k+1) = y(k) + alpha (omega - y(k))  (E2-34)
  *
- * discretised with the forward difference as in the document
+ * discretised with the forward difference (E2-16, E2-35)
  * (omega_2(k) = omega_2(k-1) + Delta theta(k) ki T, theta(k+1) = theta(k) +
  * omega(k) T).  qfoc_pi_step() (pi.h) is the PI, qfoc_lpf_step() (filter.h) the
  * speed low-pass, qfoc_sincos() (trig.h) the sine and cosine of the estimate and
  * qfoc_vec_mag() (vector.h) the input magnitude.
  *
  * @par Normalisation by the flux magnitude (why)
- * The document's phase detector has the gain |psi|: its loop gain, hence the
+ * The phase detector E2-28a has the gain |psi|: its loop gain, hence the
  * natural frequency (proportional to sqrt |psi|) and the damping, would change
  * with the magnet temperature, with the load (active flux
  * psi_f + (L_d - L_q) i_d), with the high-pass attenuation of the flux
@@ -37,7 +38,7 @@
  * so the loop gain is exactly 1 per radian whatever the amplitude: the PI gains
  * below give the designed natural frequency and damping at every speed and
  * load, the lock time does not depend on |psi| (tested for |psi| = 2000 and
- * 20000), and err_clamp is an angle (the document's clamp 5000 acts on an
+ * 20000), and err_clamp is an angle (the earlier clamp 5000 of E2-28a acts on an
  * unnormalised product and so depends on its flux scaling).
  *
  * @par Parameters from base values and f_pwm (reference numbers)
@@ -51,9 +52,9 @@
  *    Admissible 1..32767, i.e. f_base < f_pwm / 4.  The increment speed x k_theta
  *    is exact, so the speed estimate carries no bias from the conversion other
  *    than the rounding of k_theta itself (<= 0.5 / k_theta relative, 0 for the
- *    reference); the document's 16-bit u16_theta += 600 x 2 w / f_pwm truncates
- *    the increment every sample instead.
- *  - PI gains from a natural frequency w_n (rad/s) and a damping ratio zeta:
+ *    reference); the earlier 16-bit u16_theta += 600 x 2 w / f_pwm (E2-28)
+ *    truncates the increment every sample instead.
+ *  - PI gains (E3-8) from a natural frequency w_n (rad/s) and a damping ratio zeta:
  *    with the normalised detector (gain 1 per rad) the loop is
  *    s^2 + kp_c s + ki_c = s^2 + 2 zeta w_n s + w_n^2, and the speed is in pu of
  *    w_base, hence
@@ -75,7 +76,7 @@
  *    without steady-state angle error (two integrators in the loop); a constant
  *    acceleration a (rad/s^2) leaves an angle error a / w_n^2 rad.
  *  - err_clamp (Q15 1..32767): clamp of the normalised error, i.e. of
- *    sin(theta_r - theta).  The document uses 5000 (= 0.153, 8.8 deg).  It bounds
+ *    sin(theta_r - theta).  The earlier code used 5000 (= 0.153, 8.8 deg).  It bounds
  *    the speed correction per sample: |P| <= kp_real x err_clamp / 32768 pu
  *    (reference, zeta = 1: 0.031 pu) and the integrator slope
  *    <= w_n^2 x err_clamp / 32768 rad/s^2 (reference: 15061 rad/s^2 = 4.8 pu/s),
@@ -92,7 +93,7 @@
  *    the error is forced to 0 and the loop coasts (see "Coasting").  E.g. 10 %
  *    of the rated flux: psi_f = 0.40841 pu = 13383 -> mag_min = 1338; for EMF
  *    inputs the magnitude is w psi_f, e.g. 400 (coasting below about 0.03 pu).
- *  - speed_alpha (Q15 1..32767): 2-34 low-pass of the speed,
+ *  - speed_alpha (Q15 1..32767): E2-34 low-pass of the speed,
  *    alpha = 2 pi f_c / f_pwm x 32768, e.g. f_c = 50 Hz: 1286.8 -> 1287.
  *
  * @par Coasting (mag_min rule)
@@ -148,11 +149,11 @@
  * undefined; starting with the wrong speed sign the loop first tracks the
  * opposite direction until the integrator changes sign, then locks (tested).
  *
- * @par Bias from mismatched flux components (document 2-29 .. 2-32)
+ * @par Bias from mismatched flux components (E2-29 .. E2-32)
  * Let the estimated components carry amplitude and phase errors
  * psi_alpha = psi1 cos(theta_r + phi_a), psi_beta = psi2 sin(theta_r + phi_b)
- * (2-29, 2-30) and write theta = theta_r + b.  With cos phi ~ 1, sin phi ~ phi
- * (2-32) and theta ~ theta_r in the small terms,
+ * (E2-29, E2-30) and write theta = theta_r + b.  With cos phi ~ 1, sin phi ~ phi
+ * (E2-32) and theta ~ theta_r in the small terms,
  *
  *     psi_beta cos(theta) - psi_alpha sin(theta)
  *       = psi2 sin(theta_r) cos(theta) - psi1 cos(theta_r) sin(theta)
@@ -180,10 +181,10 @@
  * the mean within 0.0003 deg of the formula and the ripple within 1 % for
  * |psi2 - psi1| / (psi1 + psi2) = 0.08 (psi1 < psi2 and psi1 > psi2); at 0.23
  * the neglected second-order terms reach 0.4 deg and 25 %.
- * Note on the document's 2-31: its first case (psi1 <= psi2) is the
+ * Note on an earlier statement of E2-31: its first case (psi1 <= psi2) is the
  * unnormalised error above at b = 0; its second case (psi1 > psi2) does not
  * follow from its own previous line: psi2 sin(th_r) cos(th) - psi1 cos(th_r)
- * sin(th) = psi2 sin(th_r - th) + (psi2 - psi1) cos(th_r) sin(th) (the document
+ * sin(th) = psi2 sin(th_r - th) + (psi2 - psi1) cos(th_r) sin(th) (that statement
  * writes +(psi1 - psi2)), and with th_r = th the term (psi1 - psi2) cos(th)
  * sin(th) is (psi1 - psi2) sin(2 th) / 2, of zero mean, not
  * (psi1 - psi2)(1 + cos(2 th)) / 2.  The constant (psi2 - psi1)/2 of that case is
@@ -204,7 +205,7 @@
  * motor, quantised ADC samples, tests/test_estimation.c and `make
  * estimator-report`), specs/requirements/estimation.md: REQ-EST-001 (angle
  * accuracy), REQ-EST-002 (speed accuracy), REQ-EST-003 (convergence from a
- * 90-degree error), REQ-EST-004 (bias against the document's 2-31),
+ * 90-degree error), REQ-EST-004 (bias against E2-31),
  * REQ-EST-005 (noise and parameter robustness).
  */
 #ifndef QFOC_PLL_H
@@ -228,7 +229,7 @@ typedef struct {
                                   ki T = w_n^2 T / w_base; out_min / out_max =
                                   speed limits, Q15 of w_base */
     qfoc_q15_t err_clamp;    /**< clamp of the normalised error, Q15, 1..32767
-                                  (document's PhaseLockedLoop: 5000 = 0.153,
+                                  (formerly PhaseLockedLoop: 5000 = 0.153,
                                   8.8 deg) */
     qfoc_q15_t mag_min;      /**< smallest trusted input magnitude, Q15, 1..32767 */
     uint16_t k_theta;        /**< round(f_base / f_pwm x 131072), 1..32767
@@ -238,8 +239,8 @@ typedef struct {
 
 /** PLL instance. */
 typedef struct {
-    qfoc_pi_t pi;            /**< PI of 2-27, integrator = speed without the P term */
-    qfoc_lpf_t speed_lpf;    /**< 2-34 low-pass of the speed */
+    qfoc_pi_t pi;            /**< PI of E2-27, integrator = speed without the P term */
+    qfoc_lpf_t speed_lpf;    /**< E2-34 low-pass of the speed */
     uint32_t theta_acc;      /**< angle, 2^32 counts per electrical turn (mod 2^32) */
     qfoc_q15_t speed;        /**< last speed output, Q15 of w_base */
     qfoc_q15_t err_clamp;    /**< copy of the parameter */
@@ -254,7 +255,7 @@ typedef struct {
     qfoc_angle_t theta_next; /**< prediction for the next sample */
     qfoc_sincos_t sc;        /**< qfoc_sincos(theta) */
     qfoc_q15_t speed;        /**< electrical speed, Q15 of w_base (PI output) */
-    qfoc_q15_t speed_f;      /**< speed after the 2-34 low-pass */
+    qfoc_q15_t speed_f;      /**< speed after the E2-34 low-pass */
     qfoc_q15_t error;        /**< normalised, clamped error ~ sin(theta_r - theta) */
     qfoc_q15_t mag;          /**< input magnitude |psi| (floor, saturated at 32767);
                                   the PLL coasts while mag < mag_min */
@@ -387,7 +388,7 @@ int32_t qfoc_pll_init(qfoc_pll_t *pll, const qfoc_pll_params_t *p);
 void qfoc_pll_reset(qfoc_pll_t *pll, qfoc_angle_t theta, qfoc_q15_t speed);
 
 /**
- * @brief One PLL sample on a stationary-frame flux vector (2-27, 2-28, 2-34).
+ * @brief One PLL sample on a stationary-frame flux vector (E2-27, E2-28, E2-34).
  * @param[in,out] pll valid instance (qfoc_pll_is_valid())
  * @param[in]     psi rotor flux (psi_alpha, psi_beta) at this sample, Q15 of
  *                    psi_base, any int16_t values (-32768 saturated to -32767)
@@ -399,10 +400,10 @@ void qfoc_pll_reset(qfoc_pll_t *pll, qfoc_angle_t theta, qfoc_q15_t speed);
  *   3. error = 0 if mag < mag_min (coast), else
  *      clamp(round(e30 / mag), -err_clamp, err_clamp) (nearest, ties away from
  *      zero): 32768 sin(theta_r - theta);
- *   4. speed = qfoc_pi_step(pi, error)                                  (2-27);
- *   5. theta_acc = (theta_acc + speed x k_theta) mod 2^32                (2-28);
+ *   4. speed = qfoc_pi_step(pi, error)                                  (E2-27);
+ *   5. theta_acc = (theta_acc + speed x k_theta) mod 2^32                (E2-28);
  *      theta_next = round(theta_acc / 65536) mod 2^16;
- *   6. speed_f = qfoc_lpf_step(speed_lpf, speed)                         (2-34).
+ *   6. speed_f = qfoc_lpf_step(speed_lpf, speed)                         (E2-34).
  * The angle and error of the step are exact integer functions of the inputs
  * (contract).  Against the real-valued detector 32768 sin(theta_r - theta)
  * the error differs by at most 3 + 32768 / mag LSB while mag < 32767 (sine and

@@ -1,7 +1,8 @@
 /**
  * @file sm.h
- * @brief The compressor drive's state machine (the document's PRECHARGE, RUN, STOP,
- *        ERROR), as a pure transition function evaluated once per 1 ms tick.
+ * @brief The compressor drive's state machine (PRECHARGE, RUN, STOP,
+ *        ERROR; specs/equations.md section 8.3), as a pure transition function
+ *        evaluated once per 1 ms tick.
  *
  * The drive (drive.h) measures, detects faults and evaluates the handover and stop
  * conditions; this unit decides the state from them, and owns the state times.  Keeping
@@ -17,8 +18,8 @@
  *                                       to PRECHARGE when the bus drops or the offsets
  *                                       are not calibrated (after an OFFSET fault)
  *   RUN        ALIGN -> OPEN_LOOP -> CLOSED_LOOP <-> STOPPING
- *                                       ALIGN: fixed angle, d-current ramp (the
- *                                       document's park); OPEN_LOOP: I/f start;
+ *                                       ALIGN: fixed angle, d-current ramp
+ *                                       (formerly park); OPEN_LOOP: I/f start;
  *                                       CLOSED_LOOP: sensorless speed control;
  *                                       STOPPING: speed ramp down, then STOP
  *   ERROR      NONE                     PWM off; faults latched; left only after
@@ -35,7 +36,7 @@
  *     refuses the clear, it is not added); the state is left, to STOP, only when
  *     the state time has reached clear_ms, the fault-clear request is present, no fault
  *     was detected in this tick, and the parameter table is intact; the fault word and
- *     the first-fault record are then cleared (the document's Faultclear, REQ-SM-003).
+ *     the first-fault record are then cleared (formerly Faultclear, REQ-SM-003).
  *  4. Otherwise the state's own rule applies (REQ-SM-004 .. REQ-SM-008).
  * A transition sets both times to 0.
  *
@@ -47,7 +48,7 @@
 #include "qfoc/types.h"
 #include "qfoc/fault.h"
 
-/** States (the document's four). */
+/** States (the four of specs/equations.md section 8.3). */
 #define QFOC_STATE_PRECHARGE ((uint8_t)0u)
 #define QFOC_STATE_STOP      ((uint8_t)1u)
 #define QFOC_STATE_RUN       ((uint8_t)2u)

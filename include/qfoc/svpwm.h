@@ -3,18 +3,18 @@
  * @brief Space-vector PWM: stationary-frame voltage command to three compare
  *        values of a centre-aligned (up-down) PWM counter.
  *
- * Signal chain of one call (document chapter 2, "vector control calculation"):
+ * Signal chain of one call (specs/equations.md section 6, E2-40 .. E2-45):
  *  1. DC-bus voltage clamped to [vdc_min, 32767] (no division by zero, ever).
  *  2. Overmodulation limit: |v_ab| is limited to the inscribed circle of the
  *     voltage hexagon, radius Vdc / sqrt(3), by proportional scaling of alpha
  *     and beta (the angle is kept).
- *  3. Inverse Clarke transform (qfoc_inv_clarke()) to the phase voltages Uu, Uv, Uw.
- *  4. Phase times Tx = Ux / Vdc * Tpwm (ticks), one division per call.
- *  5. Dead-time compensation Tx += sign(ix) * dt_comp, faded linearly inside the
+ *  3. Inverse Clarke transform (qfoc_inv_clarke(), E2-40) to the phase voltages Uu, Uv, Uw.
+ *  4. Phase times Tx = Ux / Vdc * Tpwm (ticks, E2-41), one division per call.
+ *  5. Dead-time compensation Tx += sign(ix) * dt_comp (E2-42), faded linearly inside the
  *     current dead band.
- *  6. Sector 1..6 from the document's table.
+ *  6. Sector 1..6 from the sector table E2-43.
  *  7. Min-max zero-sequence injection Tx += Tpwm/2 - (Tmax + Tmin)/2, which
- *     centres the three pulses in the period (equivalent to the document's
+ *     centres the three pulses in the period (E2-44, equivalent to the
  *     sector-wise T_mid).
  *  8. Compare values clamped to [0, period].
  *
@@ -32,15 +32,15 @@
  *    band the compensation fades linearly, ix * dt_comp / i_deadband (truncated
  *    towards zero), and is exactly zero for ix == 0.  i_deadband == 0 gives
  *    a pure sign() compensation.
- *  - Sector numbering of the document's table (Ta, Tb, Tc the compensated
+ *  - Sector numbering of the table E2-43 (Ta, Tb, Tc the compensated
  *    phase times of u, v, w; electrical angle of the voltage vector, alpha on
  *    phase u): 1: Ta>=Tb>=Tc (0..60 deg), 4: Tb>=Ta>=Tc (60..120), 3: Tb>=Tc>=Ta
  *    (120..180), 6: Tc>=Tb>=Ta (180..240), 5: Tc>=Ta>=Tb (240..300),
  *    2: Ta>=Tc>=Tb (300..360).  Tie rule: the first row of the table, in the
  *    order 1, 2, 3, 4, 5, 6, whose ordering holds is taken (so on a boundary the
  *    lower sector number wins; the zero vector is sector 1).
- *  - utilisation is |v_ab| / (Vdc / sqrt(3)) in Q15 (the document's t_all that
- *    field weakening regulates), of the COMMANDED vector before the limit,
+ *  - utilisation is |v_ab| / (Vdc / sqrt(3)) in Q15 (t_all of E2-45, which
+ *    field weakening regulates, E2-46), of the COMMANDED vector before the limit,
  *    saturated to 32767 (= 1.0, reached whenever the limit is active).
  *
  * Error bound (REQ-SVPWM-010), Vdc the clamped bus voltage, P the period,
@@ -96,7 +96,7 @@ typedef struct {
 /** Result of one SVPWM step. */
 typedef struct {
     uint16_t cmp[3];           /**< compare values u, v, w in [0, period]; duty = cmp / period */
-    uint8_t sector;            /**< 1 .. 6, document's table, see the file comment */
+    uint8_t sector;            /**< 1 .. 6, table E2-43, see the file comment */
     qfoc_q15_t utilisation;    /**< |v| / (Vdc / sqrt 3), Q15, 0 .. 32767 */
     bool limited;              /**< the vector was scaled onto the inscribed circle,
                                     or the configuration was invalid */

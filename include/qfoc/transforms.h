@@ -2,21 +2,22 @@
  * @file transforms.h
  * @brief Reference-frame transforms in Q15: Clarke, Park, inverse Park, inverse Clarke.
  *
- * Equations (source document, chapter 2):
- *  - Clarke, equal-amplitude two-current form (2-3), (2-4):
+ * Equations (tags E2-n of specs/equations.md, sections 3 and 6):
+ *  - Clarke, equal-amplitude two-current form (E2-3), (E2-4):
  *      i_alpha = i_u,  i_beta = (i_u + 2 i_v) / sqrt(3).
- *  - Park (2-7), (2-8):
+ *  - Park (E2-7), (E2-8):
  *      i_d = i_alpha cos + i_beta sin,  i_q = -i_alpha sin + i_beta cos.
- *  - Inverse Park (voltage path):
+ *  - Inverse Park (voltage path) (E2-38):
  *      U_alpha = U_d cos - U_q sin,  U_beta = U_d sin + U_q cos.
- *  - Inverse Clarke, the exact inverse of (2-3), (2-4) for a balanced set:
+ *  - Inverse Clarke (E2-40), the exact inverse of (E2-3), (E2-4) for a balanced set:
  *      U_u = U_alpha,  U_v = (-U_alpha + sqrt(3) U_beta) / 2,
  *      U_w = (-U_alpha - sqrt(3) U_beta) / 2.
  *
  * All functions are total: every int16_t input, -32768 included, gives a result in
- * the symmetric range [-32767, 32767].  Inside the document's bounds the result is
- * the exact integer expression rounded to nearest (ties away from zero); outside,
- * each output saturates independently to +-32767.
+ * the symmetric range [-32767, 32767].  Inside the bounds E2-6, E2-9 .. E2-12 and
+ * E2-39 of specs/equations.md the result is the exact integer expression rounded
+ * to nearest (ties away from zero); outside, each output saturates independently
+ * to +-32767.
  *
  * Aliasing: input and output structs must not overlap (\separated in the contracts).
  * The implementation reads every input into a local before writing any output.
@@ -33,14 +34,14 @@
 #endif
 
 /**
- * @brief Clarke transform, equal-amplitude two-current form (2-3), (2-4).
+ * @brief Clarke transform, equal-amplitude two-current form (E2-3), (E2-4).
  *
  * @param[in]  iu   phase-u current, Q15, any int16_t
  * @param[in]  iv   phase-v current, Q15, any int16_t
  * @param[out] out  alpha = i_u, beta = (i_u + 2 i_v) / sqrt(3), Q15, each in
  *                  [-32767, 32767]
  *
- * Input range: the document's bound A sqrt(m^2 + n^2) / sqrt(3) <= 32767, i.e. at
+ * Input range: the bound E2-6, A sqrt(m^2 + n^2) / sqrt(3) <= 32767, i.e. at
  * each instant (i_u + 2 i_v)^2 <= 3 * 32767^2 with i_u != -32768 (ClarkeDocBound).
  * Bad input: i_u = -32768 gives alpha = -32767; |i_u + 2 i_v| > 56754 gives
  * beta = +-32767 (saturated).
@@ -51,7 +52,7 @@
  * (37837): 3.15 x 0.16 = Q31 with |product| <= 56754 * 37837 = 2147401098 < 2^31.
  * qfoc_q15_from_q31 rounds to nearest (ties away from zero) to 1.15; the rounded
  * value is at most 32767, so inside the bound beta is never saturated.
- * Accuracy against the real (2-4) inside the bound: |error| <= 0.70 LSB (0.5 LSB
+ * Accuracy against the real (E2-4) inside the bound: |error| <= 0.70 LSB (0.5 LSB
  * rounding + 0.2 LSB constant); alpha is exact.
  *
  * Requirements: REQ-TRF-001, REQ-TRF-002, REQ-TRF-009.
@@ -78,7 +79,7 @@
 void qfoc_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out);
 
 /**
- * @brief Park transform (2-7), (2-8): stationary alpha/beta to rotating d/q.
+ * @brief Park transform (E2-7), (E2-8): stationary alpha/beta to rotating d/q.
  *
  * @param[in]  in   i_alpha, i_beta, Q15, any int16_t
  * @param[in]  sc   sine and cosine of the electrical angle, Q15, any int16_t
@@ -86,7 +87,7 @@ void qfoc_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out);
  * @param[out] out  i_d = alpha cos + beta sin, i_q = -alpha sin + beta cos, Q15,
  *                  each in [-32767, 32767]
  *
- * Input range: the document's bound A1 (sqrt(m1^2 + n1^2) + |P|) <= 32767 (and
+ * Input range: the bounds E2-9 .. E2-12, A1 (sqrt(m1^2 + n1^2) + |P|) <= 32767 (and
  * with |Q|), i.e. |i_d|, |i_q| <= 32767 (ParkDocBound on the Q30 sums).  It holds
  * whenever the current vector is at most full scale (alpha^2 + beta^2 <= 32767^2)
  * and sin^2 + cos^2 <= 32768^2 (behaviour vector_bound, lemma park_doc_bound).
@@ -96,8 +97,8 @@ void qfoc_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out);
  * Scaling and overflow: each input is clamped to [-32767, 32767]; the two
  * 1.15 x 1.15 = 2.30 products are summed in 32 bits (|sum| <= 2 * 32767^2 =
  * 2147352578 < 2^31, for any input values); qfoc_q15_from_q30 rounds to nearest
- * (ties away from zero) and saturates to 1.15.  Accuracy against the real (2-7),
- * (2-8) with the same Q15 sin/cos: |error| <= 0.5 LSB when not saturated.
+ * (ties away from zero) and saturates to 1.15.  Accuracy against the real (E2-7),
+ * (E2-8) with the same Q15 sin/cos: |error| <= 0.5 LSB when not saturated.
  *
  * Requirements: REQ-TRF-003, REQ-TRF-004, REQ-TRF-009, REQ-TRF-010.
  */
@@ -133,14 +134,14 @@ void qfoc_clarke(qfoc_q15_t iu, qfoc_q15_t iv, qfoc_ab_t *out);
 void qfoc_park(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out);
 
 /**
- * @brief Inverse Park transform: rotating d/q to stationary alpha/beta.
+ * @brief Inverse Park transform (E2-38): rotating d/q to stationary alpha/beta.
  *
  * @param[in]  in   U_d, U_q, Q15, any int16_t
  * @param[in]  sc   sine and cosine of the electrical angle, Q15, any int16_t
  * @param[out] out  alpha = d cos - q sin, beta = d sin + q cos, Q15, each in
  *                  [-32767, 32767]
  *
- * Input range: the document's bound on the result, Z + A_dq + C <= 32767 for
+ * Input range: the bound E2-39 on the result, Z + A_dq + C <= 32767 for
  * U_alpha and U_beta with harmonics on U_d, U_q (InvParkDocBound on the Q30 sums).
  * It holds whenever d^2 + q^2 <= 32767^2 and sin^2 + cos^2 <= 32768^2 (behaviour
  * vector_bound, lemma inv_park_doc_bound).
@@ -185,13 +186,13 @@ void qfoc_park(const qfoc_ab_t *in, const qfoc_sincos_t *sc, qfoc_dq_t *out);
 void qfoc_inv_park(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *out);
 
 /**
- * @brief Inverse Clarke transform: alpha/beta to three phase quantities.
+ * @brief Inverse Clarke transform (E2-40): alpha/beta to three phase quantities.
  *
  * @param[in]  in   U_alpha, U_beta, Q15, any int16_t
  * @param[out] out  u = alpha, v = (-alpha + sqrt(3) beta) / 2,
  *                  w = (-alpha - sqrt(3) beta) / 2, Q15, each in [-32767, 32767]
  *
- * This is the exact inverse of the Clarke transform (2-3), (2-4) for a balanced
+ * This is the exact inverse of the Clarke transform (E2-3), (E2-4) for a balanced
  * set (u + v + w = 0): qfoc_clarke(u, v) returns (alpha, beta) again.
  * Input range: |v|, |w| <= 32767 in real terms; the Q30 sums then fit
  * (QfocQ30Fits) and v, w are exact.  This holds for every vector inside the

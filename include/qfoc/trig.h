@@ -5,7 +5,7 @@
  * Angles are qfoc_angle_t: 65536 counts per electrical turn, 0 = +alpha (+x)
  * axis, 0x4000 = 90 degrees (+y axis); arithmetic on angles is modulo 2^16.
  * Sine and cosine are Q15 in the symmetric range [-32767, 32767]: 32767 stands
- * for 1.0 (the document's csin_calculation() scaling, so that the product of a
+ * for 1.0 (the scaling of the former csin_calculation(), so that the product of a
  * Q15 value with a sine never needs saturation beyond the operand).
  *
  * Method (no floating point, no division in the sine):
@@ -82,7 +82,7 @@ extern const uint16_t qfoc_trig_atan_tab[QFOC_TRIG_ATAN_TAB_LEN];
 */
 
 /**
- * @brief Sine of an electrical angle (document: csin_calculation(u16_theta)).
+ * @brief Sine of an electrical angle (formerly csin_calculation(u16_theta)).
  *
  * @param[in] theta angle, any value (65536 counts per turn, modulo 2^16)
  * @return 32767 * sin(2 pi theta / 65536), rounded, in [-32767, 32767]
@@ -126,7 +126,7 @@ qfoc_q15_t qfoc_sin(qfoc_angle_t theta);
  * @param[in]  theta angle, any value (modulo 2^16)
  * @param[out] out   out->sine = qfoc_sin(theta),
  *                   out->cosine = qfoc_sin(theta + 0x4000) (90 degrees ahead,
- *                   the sum taken modulo 2^16 as in the document's
+ *                   the sum taken modulo 2^16 as in the former
  *                   csin_calculation((uint16_t)(u16_theta + 0x4000u)))
  *
  * Accuracy: as qfoc_sin, <= 1 LSB each.

@@ -1,9 +1,9 @@
 /**
  * @file trqcomp.h
- * @brief Torque compensation of the compressor's pulsating load (document
- *        chapter 3, TrqComp()): a feed-forward q-current at 1x and 2x the
- *        mechanical frequency, learned online from the speed ripple, and the
- *        mechanical-angle tracker it is synchronised with.
+ * @brief Torque compensation of the compressor's pulsating load (formerly
+ *        TrqComp(), specs/equations.md section 8.4): a feed-forward q-current at
+ *        1x and 2x the mechanical frequency, learned online from the speed
+ *        ripple, and the mechanical-angle tracker it is synchronised with.
  *
  * A rotary compressor's load torque pulsates once (and, with its harmonics,
  * twice) per mechanical revolution.  The speed loop alone cannot follow it: its

@@ -32,7 +32,7 @@ typedef uint16_t qfoc_angle_t; /**< electrical angle, 65536 counts per turn */
 #define QFOC_Q31_MAX ((qfoc_q31_t)2147483647)
 #define QFOC_Q31_MIN ((qfoc_q31_t)-2147483647)  /**< symmetric range */
 
-/** Three phase quantities (document: u, v, w). */
+/** Three phase quantities u, v, w (specs/equations.md section 1). */
 typedef struct {
     qfoc_q15_t u;
     qfoc_q15_t v;
