@@ -440,7 +440,9 @@ def known_keys(section: str) -> set:
 def unknown_key_error(where: str, section: str, key: str) -> Refusal:
     """The refusal of a key or section the tool does not use, with a close match."""
     if section not in SECTIONS:
-        return Refusal(f"{where}unknown section [{section}]{suggest(section, SECTIONS)}: the "
+        hint = suggest(section, SECTIONS)
+        hint = hint.replace("mean ", "mean [").replace("?)", "]?)") if hint else ""
+        return Refusal(f"{where}unknown section [{section}]{hint}: the "
                        f"motor file has the sections {', '.join(f'[{s}]' for s in SECTIONS)} "
                        "(docs/motor-file.md)")
     hint = suggest(key, known_keys(section)).replace("mean ", f"mean {section}.")
