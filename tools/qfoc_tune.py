@@ -4,13 +4,17 @@
 Usage:
     python3 tools/qfoc_tune.py MOTOR.toml [--out-dir DIR] [--table-dir DIR]
                                [--set section.key=value ...] [--no-plots]
+    python3 tools/qfoc_tune.py --motor-file-doc      (prints docs/motor-file.md)
 
 What it does (every equation number is the source document's, chapter 2 unless named):
 
 1. Reads the motor-and-inverter file (sections [motor], [inverter], [sensing],
-   [scaling]; optional [design], [limits] and [drive] with the defaults of DESIGN_KEYS,
-   LIMIT_KEYS and DRIVE_KEYS; optional [motor] ld_hs_h, lq_hs_h) and validates presence,
-   type and sign of every field.
+   [scaling]; optional [design], [limits], [drive] and [demo]; SCHEMA lists every key
+   with its unit, range, default and rule, docs/motor-file.md is generated from it) and
+   validates presence, type, sign and range of every key; refuses unknown keys, and the
+   files that break a rule between keys (check_rules(): the f_base rule of
+   specs/scaling.md section 2, protection thresholds their sensors cannot read, [drive]
+   speeds and currents outside the motor's range), naming the key as section.key.
 2. Derives the per-unit bases and every scale factor of specs/scaling.md.
 3. Designs the loops:
    - current loops d and q (pole cancellation tau_c = L / R, K T = 0.5, so
@@ -36,8 +40,10 @@ What it does (every equation number is the source document's, chapter 2 unless n
 7. Writes <table-dir>/<name>_params.c/.h (qfoc_param_table_t of include/qfoc/params.h,
    CRC-32/ISO-HDLC over the little-endian serialisation) and <out-dir>/report.md.
 
-Exit codes: 0 = table and report written; 1 = a bound or a loop check failed (the
-report is written and marked FAILED, no table is written); 2 = bad input.
+Exit codes: 0 = table and report written; 1 = refused: the input breaks a range or rule of
+the schema or has an unknown key (nothing is written), or a bound or a loop check failed
+(the report is written and marked FAILED, no table is written); 2 = malformed input (file
+unreadable, TOML syntax, missing key, wrong type or sign).
 
 Requirements: REQ-TUNE-001 (input), REQ-TUNE-002 (bases and scale factors),
 REQ-TUNE-003 (gains), REQ-TUNE-004 (bound check), REQ-TUNE-005 (loop analysis),
@@ -68,7 +74,7 @@ SQRT3 = math.sqrt(3.0)
 
 
 class InputError(Exception):
-    """Bad input: missing or malformed field (exit code 2)."""
+    """Malformed input: unreadable file, syntax, missing key, wrong type or sign (exit code 2)."""
 
 
 # --------------------------------------------------------------------------------------

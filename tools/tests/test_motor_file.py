@@ -199,6 +199,7 @@ def test_motor_file_doc_matches_schema(capsys):
     assert "| `start_load_nm` | number | N m | >= 0 | motor.nominal_torque_nm |" in out
 
 
+# REQ-TUNE-001: --help points to the motor-file format.
 def test_help_points_to_motor_file_doc(capsys):
     with pytest.raises(SystemExit):
         qt.main(["--help"])
