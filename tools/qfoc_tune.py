@@ -57,6 +57,7 @@ import math
 import os
 import sys
 import tomllib
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -1825,6 +1826,8 @@ def analyse(model: LoopModel, w_top: float) -> LoopResult:
         line = -180.0 + 360.0 * k
         idx = np.nonzero((ph[:-1] > line) & (ph[1:] <= line + 1e-6))[0]
         for i in idx:
+            if not (mag[i] > 0.0 and mag[i + 1] > 0.0):
+                continue                    # |L| = 0 there: no gain-margin limit
             f = min(1.0, (ph[i] - line) / (ph[i] - ph[i + 1]))
             mg = math.exp(math.log(mag[i]) + f * (math.log(mag[i + 1]) - math.log(mag[i])))
             gm = min(gm, -20.0 * math.log10(mg))
@@ -1923,6 +1926,11 @@ def build_loops(cfg: dict, ds: Design) -> dict[str, tuple[LoopModel, LoopModel]]
     disc = LoopModel(pmul(cn, [b.w_base * t]), pmul(cd, [1.0, -1.0]), one, one, t)
     loops["PLL"] = (cont, disc)
     return loops
+
+
+# The motor-file keys the loop models are made from (the [design] keys as well).
+LOOP_KEYS = ("motor.rs_ohm", "motor.ld_h", "motor.lq_h", "motor.psi_f_wb", "motor.j_kgm2",
+             "motor.b_nms", "motor.pole_pairs", "inverter.f_pwm_hz", "scaling.f_base_hz")
 
 
 def run_analysis(cfg: dict, ds: Design) -> dict[str, tuple[LoopResult, LoopResult]]:
@@ -2193,7 +2201,20 @@ def main(argv: list[str] | None = None) -> int:
         elif not bd.ok:
             failures.append(f"bound violated: {bd.name} ({bd.equation}): {fmt(bd.value)} > "
                             f"{fmt(bd.limit)} for {bd.worst_input}{src}")
-    results = run_analysis(cfg, ds)
+    # The loop models of extreme (if in-range) values can leave the floating-point range
+    # (a plant pole far beyond the sample rate, a gain that rounds to zero): such a design
+    # fails the loop check, named with the keys the loops are designed from, instead of a
+    # numpy or scipy warning.
+    try:
+        with np.errstate(divide="raise", over="raise", invalid="raise"), \
+                warnings.catch_warnings():
+            warnings.simplefilter("error")
+            results = run_analysis(cfg, ds)
+    except (ArithmeticError, ValueError, Warning, np.linalg.LinAlgError) as exc:
+        results = {}
+        failures.append("loop check failed: the loop models leave the floating-point range "
+                        f"({type(exc).__name__}: {exc}) for " + ", ".join(
+                            typed(cfg, k) for k in LOOP_KEYS))
     for lname, (_rc, rd) in results.items():
         if not rd.stable:
             failures.append(f"loop check failed: {lname} loop: discrete closed loop unstable")

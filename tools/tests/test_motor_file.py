@@ -165,16 +165,24 @@ def test_tc_speed_max_default_rated(tmp_path, capsys):
             "(motor.max_speed_rpm)") in err
 
 
-# REQ-TUNE-001: a value the per-key range refuses (pole_pairs 1 .. 16, drive_cfg.h) is named
-# as typed, before any computation: no Python warning reaches the terminal.
-def test_refused_pole_pairs_no_warning(tmp_path):
+# REQ-TUNE-001: no Python warning or traceback reaches the terminal: a value the per-key range
+# refuses (pole_pairs 1 .. 16, drive_cfg.h) is named as typed before any computation; loop
+# models that leave the floating-point range (a plant pole far beyond the sample rate, a
+# vanishing inertia) fail the loop check, naming the keys the loops are made from.
+@pytest.mark.parametrize("override, message", [
+    ("motor.pole_pairs=500", "refused: " + str(REFERENCE) + ": motor.pole_pairs = 500: "
+                             "outside 1 .. 16"),
+    ("motor.rs_ohm=1e6", "loop check failed: the loop models leave the floating-point range"),
+    ("motor.j_kgm2=1e-12", "motor.j_kgm2 = 1e-12 kg m^2"),
+])
+def test_no_python_warning(tmp_path, override, message):
     proc = subprocess.run([sys.executable, str(TOOLS / "qfoc_tune.py"), str(REFERENCE),
                            "--no-plots", "--out-dir", str(tmp_path / "out"), "--table-dir",
-                           str(tmp_path / "tables"), "--set", "motor.pole_pairs=500"],
+                           str(tmp_path / "tables"), "--set", override],
                           capture_output=True, text=True, cwd=REPO, check=False)
     assert proc.returncode == 1
-    assert "motor.pole_pairs = 500: outside 1 .. 16" in proc.stderr
-    assert "Warning" not in proc.stderr and "warning" not in proc.stderr
+    assert message in proc.stderr
+    assert "Warning" not in proc.stderr and "Traceback" not in proc.stderr
     assert not (tmp_path / "tables").exists()
 
 
