@@ -146,6 +146,9 @@ RULE_I_READ = (f"the over-current trip must be below the current sensor's larges
                f"{ADC_BITS}-bit ADC with I_base = 2048 codes (the offset is calibrated within "
                f"2048 +- offset_window; the trip fires when |i| is above i_trip)")
 RULE_SPEED = "every [drive] speed lies within 0 .. the motor's largest speed"
+RULE_VDC_OPERATING = ("the DC-bus protection thresholds lie outside the operating bus: "
+                      "limits.vdc_uv_v <= inverter.vdc_min_v and limits.vdc_ov_v >= "
+                      "inverter.vdc_max_v, else the drive trips in normal operation")
 RULE_CURRENT = "params.h: drive.i_align, i_start, tc_amp_max <= i_max"
 
 SCHEMA: tuple = (
@@ -258,11 +261,11 @@ SCHEMA: tuple = (
     _k("limits", "speed_max_rpm", "num", "rpm", POS, "motor.max_speed_rpm",
        "largest speed (mechanical)", "speed_max; " + RULE_FBASE),
     _k("limits", "vdc_uv_v", "num", "V", POS, "0.9 x inverter.vdc_min_v", "DC-bus under-voltage",
-       "vdc_uv, < limits.vdc_ov_v; " + RULE_VDC_READ),
+       "vdc_uv, < limits.vdc_ov_v, <= inverter.vdc_min_v; " + RULE_VDC_READ),
     _k("limits", "vdc_ov_v", "num", "V", POS, "1.05 x inverter.vdc_max_v", "DC-bus over-voltage",
-       "vdc_ov, > limits.vdc_uv_v; " + RULE_VDC_READ),
+       "vdc_ov, > limits.vdc_uv_v, >= inverter.vdc_max_v; " + RULE_VDC_READ),
     _k("limits", "vdc_svpwm_min_v", "num", "V", POS, "0.4 x inverter.vdc_min_v",
-       "smallest DC bus used by SVPWM", "svpwm.vdc_min"),
+       "smallest DC bus used by SVPWM", "svpwm.vdc_min, <= inverter.vdc_min_v"),
     # [drive]: drive configuration (include/qfoc/drive_cfg.h); speeds mechanical
     _k("drive", "rpm_min", "num", "rpm", POS, 1000.0, "smallest running target",
        "drive.rpm_min, <= drive.rpm_max"),
@@ -313,7 +316,7 @@ SCHEMA: tuple = (
     _k("drive", "temp_ms", "int", "ms", (1, 10, "[]"), 10, "over-temperature debounce",
        "drive.temp_ms"),
     _k("drive", "stall_err_rpm", "num", "rpm", POS, "0.3 x motor.rated_speed_rpm",
-       "stall: |speed ref - estimate| above this", "drive.stall_err"),
+       "stall: |speed ref - estimate| above this", "drive.stall_err, <= limits.speed_max_rpm"),
     _k("drive", "flux_tol_frac", "num", "", POS, 0.5,
        "stall: flux-magnitude error above this fraction of psi_f", "drive.flux_tol"),
     _k("drive", "stall_ms", "int", "ms", (1, 60000, "[]"), 500, "stall condition held this long",
@@ -321,7 +324,7 @@ SCHEMA: tuple = (
     _k("drive", "phase_fc_hz", "num", "Hz", POS, 5.0, "phase-loss monitor low-pass corner",
        "drive.phase_alpha (2-34)"),
     _k("drive", "phase_i_min_a", "num", "A", POS, "0.1 x motor.rated_current_a",
-       "phase loss checked above this filtered |i|", "drive.phase_i_min"),
+       "phase loss checked above this filtered |i|", "drive.phase_i_min, < limits.i_max_a"),
     _k("drive", "phase_ratio", "num", "", (0, 1, "[]"), 0.25,
        "phase loss: smallest / largest filtered |i| below this", "drive.phase_ratio"),
     _k("drive", "phase_ms", "int", "ms", (1, 60000, "[]"), 100,
@@ -512,6 +515,9 @@ def load_config(path: Path, overrides: list[str]) -> dict:
             raise InputError(f"{path}: [{section}] must be a table")
         sec[key] = value
     for section, sec in raw.items():
+        if section not in SECTIONS and not isinstance(sec, dict):
+            raise Refusal(f"{path}: unknown key {section} outside any section: every key "
+                          "belongs to a section (docs/motor-file.md)")
         if section not in SECTIONS:
             raise unknown_key_error(f"{path}: ", section, "")
         if not isinstance(sec, dict):
@@ -725,6 +731,17 @@ def check_rules(cfg: dict) -> list[str]:
     if not lim["vdc_ov_v"] > lim["vdc_uv_v"]:
         out.append(f"{typed(cfg, 'limits.vdc_ov_v')} is not above "
                    f"{typed(cfg, 'limits.vdc_uv_v')} (rule: vdc_ov > vdc_uv)")
+    if lim["vdc_ov_v"] < inv["vdc_max_v"]:
+        out.append(f"{typed(cfg, 'limits.vdc_ov_v')} is below {typed(cfg, 'inverter.vdc_max_v')} "
+                   f"(rule: {RULE_VDC_OPERATING})")
+    if lim["vdc_uv_v"] > inv["vdc_min_v"]:
+        out.append(f"{typed(cfg, 'limits.vdc_uv_v')} is above {typed(cfg, 'inverter.vdc_min_v')} "
+                   f"(rule: {RULE_VDC_OPERATING})")
+    if lim["vdc_svpwm_min_v"] > inv["vdc_min_v"]:
+        out.append(f"{typed(cfg, 'limits.vdc_svpwm_min_v')} is above "
+                   f"{typed(cfg, 'inverter.vdc_min_v')} (rule: the SVPWM uses the measured bus "
+                   "down to this floor, svpwm.h; a floor above the lowest bus would compute the "
+                   "phase times from a wrong bus voltage in operation)")
     side = 2047 - dr["offset_window_counts"]
     i_read = side * i_base / 2048.0
     if q15(lim["i_trip_a"] / i_base) >= side * 16:
@@ -740,6 +757,10 @@ def check_rules(cfg: dict) -> list[str]:
         if dr[key] > lim["i_max_a"]:
             out.append(f"{typed(cfg, 'drive.' + key)} is above {typed(cfg, 'limits.i_max_a')} "
                        f"(rule: {RULE_CURRENT})")
+    if dr["phase_i_min_a"] >= lim["i_max_a"]:
+        out.append(f"{typed(cfg, 'drive.phase_i_min_a')} is not below "
+                   f"{typed(cfg, 'limits.i_max_a')} (rule: the phase-loss monitor works above "
+                   "phase_i_min; at or above i_max it never checks)")
 
     # Speeds of [drive] within the motor's speed range.
     rpm_max = dr["rpm_max"] if dr["rpm_max"] is not None else \
@@ -753,6 +774,7 @@ def check_rules(cfg: dict) -> list[str]:
     for key, top, src in (("rpm_min", rpm_max, rpm_src),
                           ("tc_speed_max_rpm", rpm_max, rpm_src),
                           ("of_speed_rpm", lim["speed_max_rpm"], "limits.speed_max_rpm"),
+                          ("stall_err_rpm", lim["speed_max_rpm"], "limits.speed_max_rpm"),
                           ("para_speed_rpm", lim["speed_max_rpm"], "limits.speed_max_rpm")):
         if dr[key] > top:
             out.append(f"{typed(cfg, 'drive.' + key)}: outside the motor's speed range 0 .. "
@@ -793,12 +815,13 @@ def motor_file_doc() -> str:
         f"- f_base: {RULE_FBASE}: scaling.f_base_hz >= 1.25 x max(motor.max_speed_rpm, "
         "limits.speed_max_rpm) x motor.pole_pairs / 60.",
         f"- DC-bus thresholds (limits.vdc_ov_v, limits.vdc_uv_v): {RULE_VDC_READ}; and "
-        "vdc_ov_v > vdc_uv_v.",
+        f"vdc_ov_v > vdc_uv_v; {RULE_VDC_OPERATING}; limits.vdc_svpwm_min_v <= "
+        "inverter.vdc_min_v.",
         f"- Over-current trip (limits.i_trip_a): {RULE_I_READ}; and i_trip_a >= i_max_a.",
-        f"- Currents: {RULE_CURRENT} (limits.i_max_a).",
+        f"- Currents: {RULE_CURRENT} (limits.i_max_a); drive.phase_i_min_a < limits.i_max_a.",
         f"- Speeds: {RULE_SPEED}: drive.rpm_min and drive.tc_speed_max_rpm <= drive.rpm_max "
         "(or the smaller of motor.max_speed_rpm and limits.speed_max_rpm when drive.rpm_max is "
-        "not set); drive.rpm_max, drive.of_speed_rpm and drive.para_speed_rpm <= "
+        "not set); drive.rpm_max, drive.of_speed_rpm, drive.stall_err_rpm and drive.para_speed_rpm <= "
         "limits.speed_max_rpm; drive.tc_speed_min_rpm <= drive.tc_speed_max_rpm.",
         "- inverter.vdc_min_v <= inverter.vdc_nominal_v <= inverter.vdc_max_v; "
         "motor.max_speed_rpm >= motor.rated_speed_rpm; drive.lin_id_status != drive.lin_id_cmd.",

@@ -77,6 +77,25 @@ def test_refused_threshold_sensor_cannot_read(tmp_path, capsys, overrides, messa
     assert f"refused: {REFERENCE}: {message}" in err
 
 
+# REQ-TUNE-001: a threshold or setting inside the operating range, which would trip or
+# mislead the drive in normal operation (or never act), is refused.
+@pytest.mark.parametrize("override, message", [
+    ("limits.vdc_ov_v=400", "limits.vdc_ov_v = 400 V is below inverter.vdc_max_v = 420 V "
+                            "(rule: the DC-bus protection thresholds lie outside the operating "
+                            "bus"),
+    ("limits.vdc_uv_v=260", "limits.vdc_uv_v = 260 V is above inverter.vdc_min_v = 250 V"),
+    ("limits.vdc_svpwm_min_v=300", "limits.vdc_svpwm_min_v = 300 V is above "
+                                   "inverter.vdc_min_v = 250 V"),
+    ("drive.stall_err_rpm=9000", "drive.stall_err_rpm = 9000 rpm: outside the motor's speed "
+                                 "range 0 .. 8000 rpm (limits.speed_max_rpm)"),
+    ("drive.phase_i_min_a=20", "drive.phase_i_min_a = 20 A is not below limits.i_max_a = 20 A "
+                               "(default motor.rated_current_a)"),
+])
+def test_refused_operating_range(tmp_path, capsys, override, message):
+    err = refused(tmp_path, capsys, REFERENCE, "--set", override)
+    assert f"refused: {REFERENCE}: {message}" in err
+
+
 # REQ-TUNE-001: the rule of specs/scaling.md section 2 is enforced, naming scaling.f_base_hz,
 # the speed that needs more and the f_base the motor needs.
 @pytest.mark.parametrize("overrides, message", [
