@@ -156,7 +156,7 @@ SCHEMA: tuple = (
     _k("motor", "name", "str", "", ANY, REQUIRED, "motor name",
        "table comments and report title"),
     _k("motor", "pole_pairs", "int", "", (1, 16, "[]"), REQUIRED, "pole pairs n_p",
-       "drive_cfg.h pole_pairs 1 .. 16; rpm to electrical speed (n_p / 60); " + RULE_FBASE),
+       "drive_cfg.h pole_pairs 1 .. 16; rpm to electrical speed (n_p / 60); rule 'f_base'"),
     _k("motor", "rs_ohm", "num", "ohm", POS, REQUIRED, "stator resistance per phase",
        "current-loop zero tau_c = L / R; flux.r = R / Z_base"),
     _k("motor", "ld_h", "num", "H", POS, REQUIRED, "d-axis inductance",
@@ -174,7 +174,7 @@ SCHEMA: tuple = (
        "design.observer_min_speed_rpm"),
     _k("motor", "max_speed_rpm", "num", "rpm", POS, REQUIRED,
        "maximum speed (mechanical), field weakening included",
-       RULE_FBASE + "; defaults of limits.speed_max_rpm, drive.rpm_max, drive.para_speed_rpm"),
+       "rule 'f_base'; defaults of limits.speed_max_rpm, drive.rpm_max, drive.para_speed_rpm"),
     _k("motor", "rated_current_a", "num", "A", POS, REQUIRED, "rated phase current (peak)",
        "defaults of limits.i_max_a and the [drive] currents"),
     _k("motor", "nominal_torque_nm", "num", "N m", NONNEG, REQUIRED, "nominal load torque",
@@ -202,10 +202,10 @@ SCHEMA: tuple = (
     # [sensing]
     _k("sensing", "i_full_scale_a", "num", "A", POS, REQUIRED,
        "phase-current sensing full scale = I_base (2048 ADC codes from the offset)",
-       "specs/scaling.md section 2 (I_base); " + RULE_I_READ),
+       "specs/scaling.md section 2 (I_base); rule 'over-current trip'"),
     _k("sensing", "vdc_full_scale_v", "num", "V", POS, REQUIRED,
        "DC-bus sensing full scale = V_base (4096 ADC codes)",
-       "specs/scaling.md section 2 (V_base); " + RULE_VDC_READ),
+       "specs/scaling.md section 2 (V_base); rule 'DC-bus thresholds'"),
     _k("sensing", "adc_bits", "int", "bits", (ADC_BITS, ADC_BITS, "[]"), REQUIRED,
        "ADC resolution",
        f"the library reads {ADC_BITS}-bit codes (include/qfoc/drive.h, src/qfoc_drive.c "
@@ -213,7 +213,7 @@ SCHEMA: tuple = (
        f"{ADC_BITS} bits by the port"),
     # [scaling]
     _k("scaling", "f_base_hz", "num", "Hz", POS, REQUIRED, "electrical frequency of speed 1.0",
-       RULE_FBASE),
+       "specs/scaling.md section 2 (f_base); rule 'f_base'"),
     # [design]: loop-design choices
     _k("design", "t_filter_current_s", "num", "s", NONNEG, 0.0,
        "current-sensing filter time constant T_filter of T_sigma", "current and speed loops"),
@@ -255,24 +255,24 @@ SCHEMA: tuple = (
        "flux bound: lowest observer speed", "flux bounds 2-25, 2-26"),
     # [limits]: protection limits
     _k("limits", "i_max_a", "num", "A", POS, "motor.rated_current_a", "current-vector limit",
-       "i_max; speed-PI and FW-PI output limits; " + RULE_CURRENT),
+       "i_max; speed-PI and FW-PI output limits; rules 'currents', 'over-current trip'"),
     _k("limits", "i_trip_a", "num", "A", POS, "1.5 x limits.i_max_a", "phase over-current trip",
-       "i_trip, >= limits.i_max_a; Clarke and Park bounds; " + RULE_I_READ),
+       "i_trip; Clarke and Park bounds; rule 'over-current trip'"),
     _k("limits", "speed_max_rpm", "num", "rpm", POS, "motor.max_speed_rpm",
-       "largest speed (mechanical)", "speed_max; " + RULE_FBASE),
+       "largest speed (mechanical)", "speed_max; rules 'f_base', 'speeds'"),
     _k("limits", "vdc_uv_v", "num", "V", POS, "0.9 x inverter.vdc_min_v", "DC-bus under-voltage",
-       "vdc_uv, < limits.vdc_ov_v, <= inverter.vdc_min_v; " + RULE_VDC_READ),
+       "vdc_uv; rule 'DC-bus thresholds'"),
     _k("limits", "vdc_ov_v", "num", "V", POS, "1.05 x inverter.vdc_max_v", "DC-bus over-voltage",
-       "vdc_ov, > limits.vdc_uv_v, >= inverter.vdc_max_v; " + RULE_VDC_READ),
+       "vdc_ov; rule 'DC-bus thresholds'"),
     _k("limits", "vdc_svpwm_min_v", "num", "V", POS, "0.4 x inverter.vdc_min_v",
-       "smallest DC bus used by SVPWM", "svpwm.vdc_min, <= inverter.vdc_min_v"),
+       "smallest DC bus used by SVPWM", "svpwm.vdc_min; rule 'DC-bus thresholds'"),
     # [drive]: drive configuration (include/qfoc/drive_cfg.h); speeds mechanical
     _k("drive", "rpm_min", "num", "rpm", POS, 1000.0, "smallest running target",
-       "drive.rpm_min, <= drive.rpm_max"),
+       "drive.rpm_min; rule 'speeds'"),
     _k("drive", "rpm_max", "num", "rpm", (1, 65535, "[]"),
        "motor.max_speed_rpm, lowered to the largest rpm whose Q15 speed (rpm k_rpm + 2048) "
        ">> 12 is within speed_max", "largest target",
-       "drive.rpm_max, <= limits.speed_max_rpm; params.h (rpm_max k_rpm + 2048) >> 12 <= "
+       "drive.rpm_max; rule 'speeds'; params.h (rpm_max k_rpm + 2048) >> 12 <= "
        "speed_max"),
     _k("drive", "accel_rpm_s", "num", "rpm/s", POS, 3000.0, "closed-loop speed ramp",
        "drive.speed_ramp"),
@@ -282,17 +282,17 @@ SCHEMA: tuple = (
        "2^offset_shift current samples averaged per offset", "drive.offset_shift"),
     _k("drive", "offset_window_counts", "int", "ADC codes", (0, 2047, "[]"), 100,
        "largest |offset - 2048| (100 = 4.9 % of the 2048-code half scale)",
-       "drive.offset_window; " + RULE_I_READ),
+       "drive.offset_window; rule 'over-current trip'"),
     _k("drive", "i_align_a", "num", "A", POS, "0.5 x motor.rated_current_a",
-       "ALIGN d current", "drive.i_align; " + RULE_CURRENT),
+       "ALIGN d current", "drive.i_align; rule 'currents'"),
     _k("drive", "align_ms", "int", "ms", (2, 60000, "[]"), 300,
        "ALIGN time (ramp over the first half, hold)", "drive.align_ms"),
     _k("drive", "i_start_a", "num", "A", POS, "motor.rated_current_a",
-       "OPEN_LOOP (I/f) current amplitude", "drive.i_start; " + RULE_CURRENT),
+       "OPEN_LOOP (I/f) current amplitude", "drive.i_start; rule 'currents'"),
     _k("drive", "of_accel_rpm_s", "num", "rpm/s", POS, 1000.0, "OPEN_LOOP speed ramp",
        "drive.of_accel"),
     _k("drive", "of_speed_rpm", "num", "rpm", POS, 1000.0, "OPEN_LOOP end speed",
-       "drive.of_speed, <= limits.speed_max_rpm"),
+       "drive.of_speed; rule 'speeds'"),
     _k("drive", "ho_angle_deg", "num", "deg", (0, 90, "(]"), 15.0,
        "handover: |theta_est - theta_ol| below this, electrical", "drive.ho_angle"),
     _k("drive", "ho_dwell_ms", "int", "ms", (1, 60000, "[]"), 50,
@@ -316,7 +316,7 @@ SCHEMA: tuple = (
     _k("drive", "temp_ms", "int", "ms", (1, 10, "[]"), 10, "over-temperature debounce",
        "drive.temp_ms"),
     _k("drive", "stall_err_rpm", "num", "rpm", POS, "0.3 x motor.rated_speed_rpm",
-       "stall: |speed ref - estimate| above this", "drive.stall_err, <= limits.speed_max_rpm"),
+       "stall: |speed ref - estimate| above this", "drive.stall_err; rule 'speeds'"),
     _k("drive", "flux_tol_frac", "num", "", POS, 0.5,
        "stall: flux-magnitude error above this fraction of psi_f", "drive.flux_tol"),
     _k("drive", "stall_ms", "int", "ms", (1, 60000, "[]"), 500, "stall condition held this long",
@@ -324,7 +324,7 @@ SCHEMA: tuple = (
     _k("drive", "phase_fc_hz", "num", "Hz", POS, 5.0, "phase-loss monitor low-pass corner",
        "drive.phase_alpha (2-34)"),
     _k("drive", "phase_i_min_a", "num", "A", POS, "0.1 x motor.rated_current_a",
-       "phase loss checked above this filtered |i|", "drive.phase_i_min, < limits.i_max_a"),
+       "phase loss checked above this filtered |i|", "drive.phase_i_min; rule 'currents'"),
     _k("drive", "phase_ratio", "num", "", (0, 1, "[]"), 0.25,
        "phase loss: smallest / largest filtered |i| below this", "drive.phase_ratio"),
     _k("drive", "phase_ms", "int", "ms", (1, 60000, "[]"), 100,
@@ -341,16 +341,16 @@ SCHEMA: tuple = (
        "torque-compensation learning gain mu; 492 = 0.015, learning time constant 0.6 s at "
        "1x, 1500 rpm (specs/requirements/trqcomp.md)", "drive.tc_gain"),
     _k("drive", "tc_amp_max_a", "num", "A", NONNEG, "0.5 x motor.rated_current_a",
-       "torque-compensation amplitude limit per coefficient", "drive.tc_amp_max; " + RULE_CURRENT),
+       "torque-compensation amplitude limit per coefficient", "drive.tc_amp_max; rule 'currents'"),
     _k("drive", "tc_speed_min_rpm", "num", "rpm", NONNEG, 600.0,
        "torque compensation from this speed (the learning law's phase error stays below "
-       "44 deg above it)", "drive.tc_speed_min, <= drive.tc_speed_max_rpm"),
+       "44 deg above it)", "drive.tc_speed_min; rule 'speeds'"),
     _k("drive", "tc_speed_max_rpm", "num", "rpm", NONNEG, "motor.rated_speed_rpm",
        "torque compensation up to this speed (above the rated speed field weakening needs the "
-       "current headroom)", "drive.tc_speed_max, <= drive.rpm_max"),
+       "current headroom)", "drive.tc_speed_max; rule 'speeds'"),
     _k("drive", "para_speed_rpm", "num", "rpm", POS, "0.7 x motor.max_speed_rpm",
        "high-speed inductances (motor.ld_hs_h, lq_hs_h) above this speed",
-       "drive.para_speed, <= limits.speed_max_rpm"),
+       "drive.para_speed; rule 'speeds'"),
     _k("drive", "lin_id_cmd", "int", "", (0, 0x3B, "[]"), 0x10,
        "LIN identifier of the command frame", "drive.lin_id_cmd"),
     _k("drive", "lin_id_status", "int", "", (0, 0x3B, "[]"), 0x11,
@@ -810,16 +810,20 @@ def motor_file_doc() -> str:
         "ends with exit code 2.  Every message names the key as `section.key`, its value "
         "and the rule.",
         "",
-        "Rules between keys:",
+        "`specs/motors/reference.toml` is a complete example.",
         "",
-        f"- f_base: {RULE_FBASE}: scaling.f_base_hz >= 1.25 x max(motor.max_speed_rpm, "
-        "limits.speed_max_rpm) x motor.pole_pairs / 60.",
-        f"- DC-bus thresholds (limits.vdc_ov_v, limits.vdc_uv_v): {RULE_VDC_READ}; and "
+        "Rules between keys (the column \"used by / rule\" of the tables refers to them):",
+        "",
+        f"- 'f_base': {RULE_FBASE}: scaling.f_base_hz >= 1.25 x max(motor.max_speed_rpm, "
+        "limits.speed_max_rpm) x motor.pole_pairs / 60; and the drive's rpm conversions "
+        "k_rpm = n_p 32768 x 4096 / (60 f_base) and k_speed_rpm = 60 f_base / n_p within "
+        "1 .. 65535 (drive_cfg.h).",
+        f"- 'DC-bus thresholds' (limits.vdc_ov_v, limits.vdc_uv_v): {RULE_VDC_READ}; and "
         f"vdc_ov_v > vdc_uv_v; {RULE_VDC_OPERATING}; limits.vdc_svpwm_min_v <= "
         "inverter.vdc_min_v.",
-        f"- Over-current trip (limits.i_trip_a): {RULE_I_READ}; and i_trip_a >= i_max_a.",
-        f"- Currents: {RULE_CURRENT} (limits.i_max_a); drive.phase_i_min_a < limits.i_max_a.",
-        f"- Speeds: {RULE_SPEED}: drive.rpm_min and drive.tc_speed_max_rpm <= drive.rpm_max "
+        f"- 'over-current trip' (limits.i_trip_a): {RULE_I_READ}; and i_trip_a >= i_max_a.",
+        f"- 'currents': {RULE_CURRENT} (limits.i_max_a); drive.phase_i_min_a < limits.i_max_a.",
+        f"- 'speeds': {RULE_SPEED}: drive.rpm_min and drive.tc_speed_max_rpm <= drive.rpm_max "
         "(or the smaller of motor.max_speed_rpm and limits.speed_max_rpm when drive.rpm_max is "
         "not set); drive.rpm_max, drive.of_speed_rpm, drive.stall_err_rpm and drive.para_speed_rpm <= "
         "limits.speed_max_rpm; drive.tc_speed_min_rpm <= drive.tc_speed_max_rpm.",
