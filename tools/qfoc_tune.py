@@ -2280,8 +2280,11 @@ def main(argv: list[str] | None = None) -> int:
         crc = crc32_iso_hdlc(serialise(items))
         c_text, h_text = c_sources(name, toml_rel, args.overrides, cfg, items, crc)
         args.table_dir.mkdir(parents=True, exist_ok=True)
-        (args.table_dir / f"{name}_params.c").write_text(c_text, encoding="utf-8")
-        (args.table_dir / f"{name}_params.h").write_text(h_text, encoding="utf-8")
+        # each file appears whole or not at all (written aside, then renamed)
+        for ext, text in (("c", c_text), ("h", h_text)):
+            tmp = args.table_dir / f".{name}_params.{ext}.tmp"
+            tmp.write_text(text, encoding="utf-8")
+            os.replace(tmp, args.table_dir / f"{name}_params.{ext}")
     write_report(out_dir / "report.md", cfg, toml_rel, args.overrides, ds, bounds,
                  results, pngs, failures, crc)
     for gn in ds.gains.values():
