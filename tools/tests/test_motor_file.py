@@ -150,6 +150,7 @@ def test_refused_unknown_key(tmp_path, capsys, old, new, message):
     assert f"refused: {path}: {message}" in err
 
 
+# REQ-TUNE-001: the same refusal for a key given with --set.
 @pytest.mark.parametrize("override, message", [
     ("design.no_such_key=1", "unknown key design.no_such_key"),
     ("drive.tc_speed_max=7000", "unknown key drive.tc_speed_max (did you mean "
