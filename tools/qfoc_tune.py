@@ -194,7 +194,8 @@ SCHEMA: tuple = (
        "current-PI output limit V_dc,max / sqrt 3; inverse-transform bounds; default of "
        "limits.vdc_ov_v"),
     _k("inverter", "f_pwm_hz", "num", "Hz", (1000, 40000, "[]"), REQUIRED,
-       "PWM and control frequency (an integer)", "params.h f_pwm_hz 1000 .. 40000; T_s = 1 / f_pwm"),
+       "PWM and control frequency (an integer)",
+       "params.h f_pwm_hz 1000 .. 40000; T_s = 1 / f_pwm"),
     _k("inverter", "f_timer_hz", "num", "Hz", POS, REQUIRED, "PWM counter clock",
        "svpwm.period = f_timer / (2 f_pwm), params.h 100 .. 32767"),
     _k("inverter", "dead_time_s", "num", "s", NONNEG, REQUIRED, "dead time",
@@ -678,8 +679,9 @@ def check_rules(cfg: dict) -> list[str]:
                    f"inverter.vdc_max_v = {fmt(inv['vdc_min_v'])} .. {fmt(inv['vdc_max_v'])} V "
                    "(rule: vdc_min_v <= vdc_nominal_v <= vdc_max_v)")
     if m["max_speed_rpm"] < m["rated_speed_rpm"]:
-        out.append(f"{typed(cfg, 'motor.max_speed_rpm')} is below {typed(cfg, 'motor.rated_speed_rpm')} "
-                   "(rule: max_speed_rpm >= rated_speed_rpm)")
+        out.append(f"{typed(cfg, 'motor.max_speed_rpm')} is below "
+                   f"{typed(cfg, 'motor.rated_speed_rpm')} (rule: max_speed_rpm >= "
+                   "rated_speed_rpm)")
     if not float(inv["f_pwm_hz"]).is_integer():
         out.append(f"{typed(cfg, 'inverter.f_pwm_hz')}: not an integer (params.h f_pwm_hz is "
                    "an integer number of Hz)")
@@ -703,7 +705,8 @@ def check_rules(cfg: dict) -> list[str]:
         out.append(f"{typed(cfg, 'scaling.f_base_hz')} is too low for motor.pole_pairs {n_p}: "
                    f"the drive's rpm conversion k_rpm = n_p 32768 x 4096 / (60 f_base) = "
                    f"{fmt(k_rpm)} exceeds 65535 (rule: drive_cfg.h k_rpm 1 .. 65535); this "
-                   f"motor needs scaling.f_base_hz >= {fmt(n_p * 32768.0 * 4096.0 / (60.0 * 65535.0))} Hz")
+                   "motor needs scaling.f_base_hz >= "
+                   f"{fmt(n_p * 32768.0 * 4096.0 / (60.0 * 65535.0))} Hz")
     if 60.0 * f_base / n_p >= 65535.5:
         out.append(f"{typed(cfg, 'scaling.f_base_hz')} is too high for motor.pole_pairs {n_p}: "
                    f"k_speed_rpm = 60 f_base / n_p = {fmt(60.0 * f_base / n_p)} exceeds 65535 "
