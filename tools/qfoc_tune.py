@@ -541,6 +541,7 @@ def load_config(path: Path, overrides: list[str]) -> dict:
             want = f"must be {fmt(k.rng[0])}" if k.rng[0] == k.rng[1] else \
                 f"outside {range_text(k.rng)}"
             rule = k.rule if k.section != "drive" else "include/qfoc/drive_cfg.h " + k.rule
+            rule = rule.replace("rule '", "docs/motor-file.md rule '")
             raise Refusal(f"{path}: {k.name} = {fmt(val)}{unit_text(k)}: {want} (rule: {rule})")
         cfg[k.section][k.key] = val
     resolve_defaults(cfg)
