@@ -163,14 +163,19 @@ estimator-report: deps $(BUILD)/host/estimator_report
 # ---------------------------------------------------------------- tuning tool
 # tables/manifest.txt lists the committed tables (name, motor file, overrides).
 # MOTOR=specs/motors/<name>.toml tunes one motor file alone (TUNE_ARGS passes options,
-# e.g. TUNE_ARGS="--set sensing.i_full_scale_a=15").
+# e.g. TUNE_ARGS="--set inverter.f_pwm_hz=16000").
+## deps-tune: only the tuning tool's packages (python3 with numpy, scipy, matplotlib, pytest).
+.PHONY: deps-tune
+deps-tune:
+	@sh tools/deps.sh --tune
+
 ## tune: every table of tables/manifest.txt from its motor file, reports in build/tune/<name>/
-tune: deps
+tune: deps-tune
 	@if [ -n "$(MOTOR)" ]; then $(PYTHON) tools/qfoc_tune.py "$(MOTOR)" $(TUNE_ARGS); \
 	 else PYTHON=$(PYTHON) sh tools/tables.sh write; fi
 
 ## tune-check: the tool's pytest suite; every committed table regenerates byte for byte
-tune-check: deps
+tune-check: deps-tune
 	@mkdir -p $(BUILD)/junit
 	@$(PYTHON) -m pytest -q --junitxml=$(BUILD)/junit/pytest.xml -o junit_suite_name=pytest tools/tests
 	@PYTHON=$(PYTHON) sh tools/tables.sh check

@@ -3,6 +3,9 @@
 #
 #   sh tools/deps.sh            install (as root) or print the sudo command (not root)
 #   sh tools/deps.sh --check    exit 0 when everything is already there, 1 otherwise
+#   sh tools/deps.sh --tune     only what the tuning tool needs (make tune, make tune-check):
+#                               make and Debian's python3 with numpy, scipy, matplotlib, pytest
+#   sh tools/deps.sh --tune --check   the same, check only
 #
 # Idempotent: when every tool is present it returns within a second.
 # CBMC 6.x is not in bookworm; tools/install-cbmc.sh puts trixie's build into
@@ -36,6 +39,38 @@ need_cmds() {
     [ -f "$HOME/.why3.conf" ] || { echo "missing: why3 prover configuration"; return 1; }
     return 0
 }
+
+# The tuning tool alone (tools/qfoc_tune.py and its pytest suite).
+TUNE_PKGS="make python3 python3-numpy python3-scipy python3-matplotlib python3-pytest"
+
+need_tune() {
+    command -v make >/dev/null 2>&1 || { echo "missing: make"; return 1; }
+    "$PY" -c "import numpy, scipy.signal, matplotlib, pytest" >/dev/null 2>&1 ||
+        { echo "missing: python3-numpy, python3-scipy, python3-matplotlib or python3-pytest"; return 1; }
+    return 0
+}
+
+if [ "${1:-}" = "--tune" ]; then
+    if [ "${2:-}" = "--check" ]; then
+        need_tune >/dev/null
+        exit $?
+    fi
+    if need_tune >/dev/null 2>&1; then
+        echo "deps: tuning tool's packages present"
+        exit 0
+    fi
+    if [ "$(id -u)" != 0 ]; then
+        echo "deps: $(need_tune) and this is not root. Run:" >&2
+        echo "  sudo apt-get update && sudo apt-get install -y --no-install-recommends $TUNE_PKGS" >&2
+        exit 1
+    fi
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -q
+    # shellcheck disable=SC2086
+    apt-get install -y -q --no-install-recommends $TUNE_PKGS
+    need_tune
+    exit $?
+fi
 
 if [ "${1:-}" = "--check" ]; then
     need_cmds >/dev/null

@@ -4,13 +4,17 @@
 Usage:
     python3 tools/qfoc_tune.py MOTOR.toml [--out-dir DIR] [--table-dir DIR]
                                [--set section.key=value ...] [--no-plots]
+    python3 tools/qfoc_tune.py --motor-file-doc      (prints docs/motor-file.md)
 
 What it does (every equation number is the source document's, chapter 2 unless named):
 
 1. Reads the motor-and-inverter file (sections [motor], [inverter], [sensing],
-   [scaling]; optional [design], [limits] and [drive] with the defaults of DESIGN_KEYS,
-   LIMIT_KEYS and DRIVE_KEYS; optional [motor] ld_hs_h, lq_hs_h) and validates presence,
-   type and sign of every field.
+   [scaling]; optional [design], [limits], [drive] and [demo]; SCHEMA lists every key
+   with its unit, range, default and rule, docs/motor-file.md is generated from it) and
+   validates presence, type, sign and range of every key; refuses unknown keys, and the
+   files that break a rule between keys (check_rules(): the f_base rule of
+   specs/scaling.md section 2, protection thresholds their sensors cannot read, [drive]
+   speeds and currents outside the motor's range), naming the key as section.key.
 2. Derives the per-unit bases and every scale factor of specs/scaling.md.
 3. Designs the loops:
    - current loops d and q (pole cancellation tau_c = L / R, K T = 0.5, so
@@ -36,8 +40,10 @@ What it does (every equation number is the source document's, chapter 2 unless n
 7. Writes <table-dir>/<name>_params.c/.h (qfoc_param_table_t of include/qfoc/params.h,
    CRC-32/ISO-HDLC over the little-endian serialisation) and <out-dir>/report.md.
 
-Exit codes: 0 = table and report written; 1 = a bound or a loop check failed (the
-report is written and marked FAILED, no table is written); 2 = bad input.
+Exit codes: 0 = table and report written; 1 = refused: the input breaks a range or rule of
+the schema or has an unknown key (nothing is written), or a bound or a loop check failed
+(the report is written and marked FAILED, no table is written); 2 = malformed input (file
+unreadable, TOML syntax, missing key, wrong type or sign).
 
 Requirements: REQ-TUNE-001 (input), REQ-TUNE-002 (bases and scale factors),
 REQ-TUNE-003 (gains), REQ-TUNE-004 (bound check), REQ-TUNE-005 (loop analysis),
@@ -46,10 +52,12 @@ REQ-TUNE-006 (table and CRC), REQ-TUNE-007 (report) in specs/requirements/tune.m
 from __future__ import annotations
 
 import argparse
+import difflib
 import math
 import os
 import sys
 import tomllib
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -67,144 +75,391 @@ SQRT3 = math.sqrt(3.0)
 
 
 class InputError(Exception):
-    """Bad input: missing or malformed field (exit code 2)."""
+    """Malformed input: unreadable file, syntax, missing key, wrong type or sign (exit code 2)."""
 
 
 # --------------------------------------------------------------------------------------
 # Input schema
 # --------------------------------------------------------------------------------------
 
-# (section, key): (kind, constraint, description); kind "str" | "int" | "num";
-# constraint "pos" (> 0), "nonneg" (>= 0) or None.
-REQUIRED_KEYS = {
-    ("motor", "name"): ("str", None, "motor name"),
-    ("motor", "pole_pairs"): ("int", "pos", "pole pairs n_p"),
-    ("motor", "rs_ohm"): ("num", "pos", "stator resistance per phase, ohm"),
-    ("motor", "ld_h"): ("num", "pos", "d-axis inductance, H"),
-    ("motor", "lq_h"): ("num", "pos", "q-axis inductance, H"),
-    ("motor", "psi_f_wb"): ("num", "pos", "magnet flux linkage (peak), Wb"),
-    ("motor", "j_kgm2"): ("num", "pos", "inertia, kg m^2"),
-    ("motor", "b_nms"): ("num", "pos", "viscous friction, N m s"),
-    ("motor", "rated_speed_rpm"): ("num", "pos", "rated speed, rpm"),
-    ("motor", "max_speed_rpm"): ("num", "pos", "maximum speed, rpm"),
-    ("motor", "rated_current_a"): ("num", "pos", "rated phase current (peak), A"),
-    ("motor", "nominal_torque_nm"): ("num", "nonneg", "nominal load torque, N m"),
-    ("inverter", "vdc_nominal_v"): ("num", "pos", "nominal DC bus, V"),
-    ("inverter", "vdc_min_v"): ("num", "pos", "lowest DC bus, V"),
-    ("inverter", "vdc_max_v"): ("num", "pos", "highest DC bus, V"),
-    ("inverter", "f_pwm_hz"): ("num", "pos", "PWM and control frequency, Hz"),
-    ("inverter", "f_timer_hz"): ("num", "pos", "PWM counter clock, Hz"),
-    ("inverter", "dead_time_s"): ("num", "nonneg", "dead time, s"),
-    ("sensing", "i_full_scale_a"): ("num", "pos", "current sensing full scale = I_base, A"),
-    ("sensing", "vdc_full_scale_v"): ("num", "pos", "DC-bus sensing full scale = V_base, V"),
-    ("sensing", "adc_bits"): ("int", "pos", "ADC resolution, bits"),
-    ("scaling", "f_base_hz"): ("num", "pos", "electrical frequency of speed 1.0, Hz"),
-}
+class Refusal(InputError):
+    """Input the tool refuses: it would make an unsafe or wrong table (exit code 1)."""
 
-# Loop-design choices ([design]); None = derived default, resolved in resolve_design().
-DESIGN_KEYS = {
-    "t_filter_current_s": (0.0, "nonneg", "current-sensing filter time constant T_filter of T_sigma"),
-    "speed_tau_s": (None, "pos", "speed PI time constant tau_s; default J / B (document: tau_s = 1/a)"),
-    "speed_t_sam_s": (1.0e-3, "pos", "speed-loop sample time T_sam; default 1 ms (the speed PI runs "
-                                     "in the drive's 1 ms tick)"),
-    "pll_wn_hz": (100.0, "pos", "PLL natural frequency (est_design_default)"),
-    "pll_zeta": (0.9, "pos", "PLL damping"),
-    "pll_clamp": (0.75, "pos", "PLL normalised-error clamp"),
-    "pll_mag_min": (0.05, "pos", "PLL coasting threshold, fraction of psi_f"),
-    "speed_fc_hz": (20.0, "pos", "PLL speed low-pass corner (speed_alpha)"),
-    "kg_rad_s": (100.0, "pos", "flux observer high-pass corner K_gain, rad/s"),
-    "vdc_fc_hz": (100.0, "pos", "DC-bus low-pass corner (alpha_vdc)"),
-    "fw_v_max": (0.92, "pos", "field-weakening reference: |v| / (V_dc / sqrt 3)"),
-    "fw_crossover_ratio": (0.1, "pos", "FW crossover / current-loop crossover"),
-    "fw_zero_ratio": (4.0, "pos", "FW PI zero / FW crossover (integral-dominant)"),
-    "deadband_a": (None, "nonneg", "dead-time compensation current dead band, A; default I_base / 80"),
-    "clarke_phase_dev_deg": (10.0, "nonneg", "Clarke bound: phase of i_v within 120 deg +- this"),
-    "park_angle_err_deg": (180.0, "nonneg", "Park bound: largest angle error considered"),
-    "v_harmonic_fraction": (0.10, "nonneg", "inverse Park bound: A_d = A_q = fraction x |v|"),
-    "i_offset_a": (None, "nonneg", "flux bound: DC current offset, A; default I_base / 100"),
-    "observer_min_speed_rpm": (None, "pos", "flux bound: lowest observer speed; default 0.1 x rated"),
-}
 
-# Protection limits ([limits]); None = derived default.
-LIMIT_KEYS = {
-    "i_max_a": (None, "pos", "current-vector limit; default rated_current_a"),
-    "i_trip_a": (None, "pos", "phase over-current trip; default 1.5 x i_max_a"),
-    "speed_max_rpm": (None, "pos", "largest speed command; default max_speed_rpm"),
-    "vdc_uv_v": (None, "pos", "DC-bus under-voltage; default 0.9 x vdc_min_v"),
-    "vdc_ov_v": (None, "pos", "DC-bus over-voltage; default 1.05 x vdc_max_v"),
-    "vdc_svpwm_min_v": (None, "pos", "smallest DC bus used by SVPWM; default 0.4 x vdc_min_v"),
-}
+class _Required:
+    """Marker of a key without a default."""
 
-# Optional [motor] keys: the inductances used above drive.para_speed (the document's
-# motorParaChange); default: the L_d, L_q of the motor file.
-OPTIONAL_MOTOR_KEYS = {
-    "ld_hs_h": ("pos", "d-axis inductance at high speed, H; default ld_h"),
-    "lq_hs_h": ("pos", "q-axis inductance at high speed, H; default lq_h"),
-}
+    def __repr__(self) -> str:
+        return "required"
 
-# Drive configuration ([drive], include/qfoc/drive_cfg.h); None = derived default.
-# Speeds in mechanical rpm, currents in A (peak), times in ms, temperatures in degC.
-DRIVE_KEYS = {
-    "rpm_min": (1000.0, "pos", "smallest running target, rpm (drive.rpm_min)"),
-    "rpm_max": (None, "pos", "largest target, rpm; default motor.max_speed_rpm, lowered to "
-                             "the largest rpm whose Q15 speed (rpm k_rpm + 2048) >> 12 is "
-                             "within speed_max"),
-    "accel_rpm_s": (3000.0, "pos", "closed-loop speed ramp, rpm/s (drive.speed_ramp)"),
-    "precharge_ms": (200, "pos", "DC bus above vdc_uv this long before offset calibration"),
-    "offset_shift": (6, "pos", "2^offset_shift current samples averaged per offset"),
-    "offset_window_counts": (100, "nonneg", "largest |offset - 2048|, ADC counts (100 = "
-                                            "4.9 % of the 2048-count half scale)"),
-    "i_align_a": (None, "pos", "ALIGN d current, A; default 0.5 x rated_current_a"),
-    "align_ms": (300, "pos", "ALIGN time (ramp over the first half, hold)"),
-    "i_start_a": (None, "pos", "OPEN_LOOP (I/f) current amplitude, A; default rated_current_a"),
-    "of_accel_rpm_s": (1000.0, "pos", "OPEN_LOOP speed ramp, rpm/s"),
-    "of_speed_rpm": (1000.0, "pos", "OPEN_LOOP end speed, rpm"),
-    "ho_angle_deg": (15.0, "pos", "handover: |theta_est - theta_ol| below this, electrical deg"),
-    "ho_dwell_ms": (50, "pos", "handover: angle condition held this long"),
-    "ol_timeout_ms": (4000, "pos", "no handover this long after OPEN_LOOP entry: stall (the "
-                                      "handover waits for cl_hold_ms after RUN entry)"),
-    "cl_hold_ms": (2000, "nonneg", "no ramp to the target before this long after RUN entry "
-                                   "(the document's 2 s)"),
-    "t_ipm_max_degc": (110.0, None, "IPM over-temperature, degC"),
-    "t_pcb_max_degc": (100.0, None, "PCB over-temperature, degC"),
-    "vdc_ms": (2, "pos", "DC-bus OV/UV debounce, ms"),
-    "temp_ms": (10, "pos", "over-temperature debounce, ms"),
-    "stall_err_rpm": (None, "pos", "stall: |speed ref - estimate| above this, rpm; default "
-                                   "0.3 x rated_speed_rpm"),
-    "flux_tol_frac": (0.5, "pos", "stall: flux-magnitude error above this fraction of psi_f"),
-    "stall_ms": (500, "pos", "stall condition held this long"),
-    "phase_fc_hz": (5.0, "pos", "phase-loss monitor low-pass corner, Hz"),
-    "phase_i_min_a": (None, "pos", "phase loss checked above this filtered |i|, A; default "
-                                   "0.1 x rated_current_a"),
-    "phase_ratio": (0.25, "nonneg", "phase loss: smallest / largest filtered |i| below this"),
-    "phase_ms": (100, "pos", "phase-loss condition held this long"),
-    "link_timeout_ms": (500, "pos", "command link lost after this long without a valid command"),
-    "clear_ms": (5000, "pos", "stopped this long before a fault clear is accepted"),
-    "fw_level": (None, "pos", "field-weakening utilisation target FWK_LVL; default "
-                              "design.fw_v_max"),
-    "fw_fc_hz": (50.0, "pos", "field-weakening utilisation low-pass corner, Hz"),
-    "tc_gain_q15": (492, "nonneg", "torque-compensation learning gain mu in Q15 counts; "
-                                   "492 = 0.015, learning time constant 0.6 s at 1x, 1500 rpm "
-                                   "(specs/requirements/trqcomp.md)"),
-    "tc_amp_max_a": (None, "nonneg", "torque-compensation amplitude limit per coefficient, A; "
-                                     "default 0.5 x rated_current_a"),
-    "tc_speed_min_rpm": (600.0, "nonneg", "torque compensation from this speed, rpm (the "
-                                          "learning law's phase error stays below 44 deg above it)"),
-    "tc_speed_max_rpm": (6000.0, "nonneg", "torque compensation up to this speed, rpm"),
-    "para_speed_rpm": (None, "pos", "high-speed inductances above this speed, rpm; default "
-                                    "0.7 x max_speed_rpm"),
-    "lin_id_cmd": (0x10, "nonneg", "LIN identifier of the command frame"),
-    "lin_id_status": (0x11, "nonneg", "LIN identifier of the status frame"),
-    "can_id_a": (0x310, "nonneg", "CAN status identifier, even frames"),
-    "can_id_b": (0x311, "nonneg", "CAN status identifier, odd frames"),
+
+REQUIRED = _Required()
+# The library reads 12-bit ADC codes (include/qfoc/drive.h; src/qfoc_drive.c drv_adc12
+# saturates larger codes to 4095; 4096 codes = V_base, 2048 codes = I_base).
+ADC_BITS = 12
+ADC_CODES = 1 << ADC_BITS
+# Ranges: (low, high, ends); None = unbounded; ends "[]", "(]", "[)" or "()" say which ends
+# are included.
+POS = (0, None, "(]")
+NONNEG = (0, None, "[]")
+ANY = (None, None, "[]")
+
+
+@dataclass(frozen=True)
+class Key:
+    """One key of the motor file: the single description the validation, the defaults,
+    the report and docs/motor-file.md (--motor-file-doc) are made from."""
+    section: str
+    key: str
+    kind: str           # "str" | "int" | "num"
+    unit: str
+    rng: tuple          # (low, high, ends), see POS
+    default: object     # REQUIRED, a value, or a str: the text of a derived default
+    desc: str
+    rule: str           # where the value goes, and the rule that checks it
+
+    @property
+    def name(self) -> str:
+        """section.key, as the messages name it."""
+        return f"{self.section}.{self.key}"
+
+    @property
+    def value_default(self) -> object:
+        """The default value; None when derived (resolve_defaults) or required."""
+        return None if self.default is REQUIRED or isinstance(self.default, str) else self.default
+
+
+def _k(section: str, key: str, kind: str, unit: str, rng: tuple, default: object, desc: str,
+       rule: str) -> Key:
+    return Key(section, key, kind, unit, rng, default, desc, rule)
+
+
+RULE_FBASE = ("specs/scaling.md section 2: f_base >= 1.25 x the highest electrical frequency "
+              "(field weakening included)")
+RULE_VDC_READ = (f"a DC-bus threshold must lie within what the bus sensor reads: at least one "
+                 f"code and below the largest reading, {ADC_CODES - 1} codes of the "
+                 f"{ADC_BITS}-bit ADC with V_base = {ADC_CODES} codes (the Q15 reading is "
+                 f"code x 8, at most {(ADC_CODES - 1) * 8}; over-voltage trips when the reading "
+                 f"is above vdc_ov, under-voltage when it is below vdc_uv)")
+RULE_I_READ = (f"the over-current trip must be below the current sensor's largest reading on "
+               f"both sides of the offset: (2047 - drive.offset_window_counts) codes of the "
+               f"{ADC_BITS}-bit ADC with I_base = 2048 codes (the offset is calibrated within "
+               f"2048 +- offset_window; the trip fires when |i| is above i_trip)")
+RULE_SPEED = "every [drive] speed lies within 0 .. the motor's largest speed"
+RULE_VDC_OPERATING = ("the DC-bus protection thresholds lie outside the operating bus: "
+                      "limits.vdc_uv_v <= inverter.vdc_min_v and limits.vdc_ov_v >= "
+                      "inverter.vdc_max_v, else the drive trips in normal operation")
+RULE_CURRENT = "params.h: drive.i_align, i_start, tc_amp_max <= i_max"
+
+SCHEMA: tuple = (
+    # [motor]
+    _k("motor", "name", "str", "", ANY, REQUIRED, "motor name",
+       "table comments and report title"),
+    _k("motor", "pole_pairs", "int", "", (1, 16, "[]"), REQUIRED, "pole pairs n_p",
+       "drive_cfg.h pole_pairs 1 .. 16; rpm to electrical speed (n_p / 60); rule 'f_base'"),
+    _k("motor", "rs_ohm", "num", "ohm", POS, REQUIRED, "stator resistance per phase",
+       "current-loop zero tau_c = L / R; flux.r = R / Z_base"),
+    _k("motor", "ld_h", "num", "H", POS, REQUIRED, "d-axis inductance",
+       "d current loop k_cp = L_d / (2 T_sigma); ld; field-weakening plant gain"),
+    _k("motor", "lq_h", "num", "H", POS, REQUIRED, "q-axis inductance",
+       "q current loop k_cp = L_q / (2 T_sigma); lq; flux.l"),
+    _k("motor", "psi_f_wb", "num", "Wb", POS, REQUIRED, "magnet flux linkage (peak)",
+       "K_t = 3/2 n_p psi_f (speed loop); psi_f; flux bounds 2-25, 2-26"),
+    _k("motor", "j_kgm2", "num", "kg m^2", POS, REQUIRED, "inertia (rotor and load)",
+       "speed loop b = 1 / J; default of design.speed_tau_s"),
+    _k("motor", "b_nms", "num", "N m s", POS, REQUIRED, "viscous friction",
+       "speed loop a = B / J; default of design.speed_tau_s"),
+    _k("motor", "rated_speed_rpm", "num", "rpm", POS, REQUIRED, "rated speed (mechanical)",
+       "<= motor.max_speed_rpm; defaults of drive.tc_speed_max_rpm, drive.stall_err_rpm, "
+       "design.observer_min_speed_rpm"),
+    _k("motor", "max_speed_rpm", "num", "rpm", POS, REQUIRED,
+       "maximum speed (mechanical), field weakening included",
+       "rule 'f_base'; defaults of limits.speed_max_rpm, drive.rpm_max, drive.para_speed_rpm"),
+    _k("motor", "rated_current_a", "num", "A", POS, REQUIRED, "rated phase current (peak)",
+       "defaults of limits.i_max_a and the [drive] currents"),
+    _k("motor", "nominal_torque_nm", "num", "N m", NONNEG, REQUIRED, "nominal load torque",
+       "the simulator's load (sim/motor.c); default of demo.start_load_nm; not in the table"),
+    _k("motor", "ld_hs_h", "num", "H", POS, "motor.ld_h",
+       "d-axis inductance at high speed (the document's motorParaChange)",
+       "drive.ld_hs, used above drive.para_speed_rpm"),
+    _k("motor", "lq_hs_h", "num", "H", POS, "motor.lq_h",
+       "q-axis inductance at high speed (the document's motorParaChange)",
+       "drive.lq_hs, used above drive.para_speed_rpm"),
+    # [inverter]
+    _k("inverter", "vdc_nominal_v", "num", "V", POS, REQUIRED, "nominal DC bus",
+       "inverter.vdc_min_v <= vdc_nominal_v <= inverter.vdc_max_v"),
+    _k("inverter", "vdc_min_v", "num", "V", POS, REQUIRED, "lowest DC bus",
+       "field-weakening plant gain; defaults of limits.vdc_uv_v, limits.vdc_svpwm_min_v"),
+    _k("inverter", "vdc_max_v", "num", "V", POS, REQUIRED, "highest DC bus",
+       "current-PI output limit V_dc,max / sqrt 3; inverse-transform bounds; default of "
+       "limits.vdc_ov_v"),
+    _k("inverter", "f_pwm_hz", "num", "Hz", (1000, 40000, "[]"), REQUIRED,
+       "PWM and control frequency (an integer)",
+       "params.h f_pwm_hz 1000 .. 40000; T_s = 1 / f_pwm"),
+    _k("inverter", "f_timer_hz", "num", "Hz", POS, REQUIRED, "PWM counter clock",
+       "svpwm.period = f_timer / (2 f_pwm), params.h 100 .. 32767"),
+    _k("inverter", "dead_time_s", "num", "s", NONNEG, REQUIRED, "dead time",
+       "svpwm.dt_comp = t_d f_timer / 2, params.h <= period / 4"),
+    # [sensing]
+    _k("sensing", "i_full_scale_a", "num", "A", POS, REQUIRED,
+       "phase-current sensing full scale = I_base (2048 ADC codes from the offset)",
+       "specs/scaling.md section 2 (I_base); rule 'over-current trip'"),
+    _k("sensing", "vdc_full_scale_v", "num", "V", POS, REQUIRED,
+       "DC-bus sensing full scale = V_base (4096 ADC codes)",
+       "specs/scaling.md section 2 (V_base); rule 'DC-bus thresholds'"),
+    _k("sensing", "adc_bits", "int", "bits", (ADC_BITS, ADC_BITS, "[]"), REQUIRED,
+       "ADC resolution",
+       f"the library reads {ADC_BITS}-bit codes (include/qfoc/drive.h, src/qfoc_drive.c "
+       f"drv_adc12): only {ADC_BITS} is accepted; a wider converter's result is shifted to "
+       f"{ADC_BITS} bits by the port"),
+    # [scaling]
+    _k("scaling", "f_base_hz", "num", "Hz", POS, REQUIRED, "electrical frequency of speed 1.0",
+       "specs/scaling.md section 2 (f_base); rule 'f_base'"),
+    # [design]: loop-design choices
+    _k("design", "t_filter_current_s", "num", "s", NONNEG, 0.0,
+       "current-sensing filter time constant T_filter of T_sigma", "current and speed loops"),
+    _k("design", "speed_tau_s", "num", "s", POS, "motor.j_kgm2 / motor.b_nms",
+       "speed PI time constant tau_s (document: tau_s = 1/a)", "pi_speed.ki"),
+    _k("design", "speed_t_sam_s", "num", "s", POS, 1.0e-3,
+       "speed-loop sample time T_sam (the speed PI runs in the drive's 1 ms tick)",
+       "speed loop T_ssigma and pi_speed.ki"),
+    _k("design", "pll_wn_hz", "num", "Hz", POS, 100.0, "PLL natural frequency",
+       "pll.pi (2-27, 2-28; est_design_default)"),
+    _k("design", "pll_zeta", "num", "", POS, 0.9, "PLL damping", "pll.pi.kp"),
+    _k("design", "pll_clamp", "num", "", (0, 1, "(]"), 0.75, "PLL normalised-error clamp",
+       "pll.err_clamp (Q15)"),
+    _k("design", "pll_mag_min", "num", "", POS, 0.05,
+       "PLL coasting threshold, fraction of psi_f", "pll.mag_min"),
+    _k("design", "speed_fc_hz", "num", "Hz", POS, 20.0,
+       "PLL speed low-pass corner", "pll.speed_alpha (2-34); speed-loop T_filter"),
+    _k("design", "kg_rad_s", "num", "rad/s", POS, 100.0,
+       "flux observer high-pass corner K_gain", "flux.kg; flux bounds 2-25, 2-26"),
+    _k("design", "vdc_fc_hz", "num", "Hz", POS, 100.0, "DC-bus low-pass corner",
+       "alpha_vdc (2-34)"),
+    _k("design", "fw_v_max", "num", "", (0, 1, "(]"), 0.92,
+       "field-weakening reference: |v| / (V_dc / sqrt 3)", "v_max; default of drive.fw_level"),
+    _k("design", "fw_crossover_ratio", "num", "", POS, 0.1,
+       "FW crossover / current-loop crossover", "pi_fw"),
+    _k("design", "fw_zero_ratio", "num", "", POS, 4.0,
+       "FW PI zero / FW crossover (integral-dominant)", "pi_fw.kp"),
+    _k("design", "deadband_a", "num", "A", NONNEG, "sensing.i_full_scale_a / 80",
+       "dead-time compensation current dead band", "svpwm.i_deadband"),
+    _k("design", "clarke_phase_dev_deg", "num", "deg", NONNEG, 10.0,
+       "Clarke bound: phase of i_v within 120 deg +- this", "bounds 2-5 .. 2-12"),
+    _k("design", "park_angle_err_deg", "num", "deg", NONNEG, 180.0,
+       "Park bound: largest angle error considered", "bounds 2-11, 2-12"),
+    _k("design", "v_harmonic_fraction", "num", "", NONNEG, 0.10,
+       "inverse Park bound: A_d = A_q = fraction x |v|", "inverse-transform bounds"),
+    _k("design", "i_offset_a", "num", "A", NONNEG, "sensing.i_full_scale_a / 100",
+       "flux bound: DC current offset", "flux bound 2-26"),
+    _k("design", "observer_min_speed_rpm", "num", "rpm", POS, "0.1 x motor.rated_speed_rpm",
+       "flux bound: lowest observer speed", "flux bounds 2-25, 2-26"),
+    # [limits]: protection limits
+    _k("limits", "i_max_a", "num", "A", POS, "motor.rated_current_a", "current-vector limit",
+       "i_max; speed-PI and FW-PI output limits; rules 'currents', 'over-current trip'"),
+    _k("limits", "i_trip_a", "num", "A", POS, "1.5 x limits.i_max_a", "phase over-current trip",
+       "i_trip; Clarke and Park bounds; rule 'over-current trip'"),
+    _k("limits", "speed_max_rpm", "num", "rpm", POS, "motor.max_speed_rpm",
+       "largest speed (mechanical)", "speed_max; rules 'f_base', 'speeds'"),
+    _k("limits", "vdc_uv_v", "num", "V", POS, "0.9 x inverter.vdc_min_v", "DC-bus under-voltage",
+       "vdc_uv; rule 'DC-bus thresholds'"),
+    _k("limits", "vdc_ov_v", "num", "V", POS, "1.05 x inverter.vdc_max_v", "DC-bus over-voltage",
+       "vdc_ov; rule 'DC-bus thresholds'"),
+    _k("limits", "vdc_svpwm_min_v", "num", "V", POS, "0.4 x inverter.vdc_min_v",
+       "smallest DC bus used by SVPWM", "svpwm.vdc_min; rule 'DC-bus thresholds'"),
+    # [drive]: drive configuration (include/qfoc/drive_cfg.h); speeds mechanical
+    _k("drive", "rpm_min", "num", "rpm", POS, 1000.0, "smallest running target",
+       "drive.rpm_min; rule 'speeds'"),
+    _k("drive", "rpm_max", "num", "rpm", (1, 65535, "[]"),
+       "motor.max_speed_rpm, lowered to the largest rpm whose Q15 speed (rpm k_rpm + 2048) "
+       ">> 12 is within speed_max", "largest target",
+       "drive.rpm_max; rule 'speeds'; params.h (rpm_max k_rpm + 2048) >> 12 <= "
+       "speed_max"),
+    _k("drive", "accel_rpm_s", "num", "rpm/s", POS, 3000.0, "closed-loop speed ramp",
+       "drive.speed_ramp"),
+    _k("drive", "precharge_ms", "int", "ms", (1, 60000, "[]"), 200,
+       "DC bus above vdc_uv this long before offset calibration", "drive.precharge_ms"),
+    _k("drive", "offset_shift", "int", "", (4, 10, "[]"), 6,
+       "2^offset_shift current samples averaged per offset", "drive.offset_shift"),
+    _k("drive", "offset_window_counts", "int", "ADC codes", (0, 2047, "[]"), 100,
+       "largest |offset - 2048| (100 = 4.9 % of the 2048-code half scale)",
+       "drive.offset_window; rule 'over-current trip'"),
+    _k("drive", "i_align_a", "num", "A", POS, "0.5 x motor.rated_current_a",
+       "ALIGN d current", "drive.i_align; rule 'currents'"),
+    _k("drive", "align_ms", "int", "ms", (2, 60000, "[]"), 300,
+       "ALIGN time (ramp over the first half, hold)", "drive.align_ms"),
+    _k("drive", "i_start_a", "num", "A", POS, "motor.rated_current_a",
+       "OPEN_LOOP (I/f) current amplitude", "drive.i_start; rule 'currents'"),
+    _k("drive", "of_accel_rpm_s", "num", "rpm/s", POS, 1000.0, "OPEN_LOOP speed ramp",
+       "drive.of_accel"),
+    _k("drive", "of_speed_rpm", "num", "rpm", POS, 1000.0, "OPEN_LOOP end speed",
+       "drive.of_speed; rule 'speeds'"),
+    _k("drive", "ho_angle_deg", "num", "deg", (0, 90, "(]"), 15.0,
+       "handover: |theta_est - theta_ol| below this, electrical", "drive.ho_angle"),
+    _k("drive", "ho_dwell_ms", "int", "ms", (1, 60000, "[]"), 50,
+       "handover: angle condition held this long", "drive.ho_dwell_ms"),
+    _k("drive", "ol_timeout_ms", "int", "ms", (1, 60000, "[]"), 4000,
+       "no handover this long after OPEN_LOOP entry: stall (the handover waits for cl_hold_ms "
+       "after RUN entry)", "drive.ol_timeout_ms"),
+    _k("drive", "cl_hold_ms", "int", "ms", (0, 60000, "[]"), 2000,
+       "no ramp to the target before this long after RUN entry (the document's 2 s)",
+       "drive.cl_hold_ms"),
+    _k("drive", "t_ipm_max_degc", "num", "degC", (-40, 200, "[)"), 110.0,
+       "IPM over-temperature",
+       "drive.t_ipm_max; the temperature input reads -40.0 .. 200.0 degC (drive_cfg.h; the "
+       "reference port saturates its NTC there): a threshold of 200 degC or more never trips"),
+    _k("drive", "t_pcb_max_degc", "num", "degC", (-40, 200, "[)"), 100.0,
+       "PCB over-temperature",
+       "drive.t_pcb_max; the temperature input reads -40.0 .. 200.0 degC (drive_cfg.h; the "
+       "reference port saturates its NTC there): a threshold of 200 degC or more never trips"),
+    _k("drive", "vdc_ms", "int", "ms", (1, 10, "[]"), 2, "DC-bus OV/UV debounce",
+       "drive.vdc_ms"),
+    _k("drive", "temp_ms", "int", "ms", (1, 10, "[]"), 10, "over-temperature debounce",
+       "drive.temp_ms"),
+    _k("drive", "stall_err_rpm", "num", "rpm", POS, "0.3 x motor.rated_speed_rpm",
+       "stall: |speed ref - estimate| above this", "drive.stall_err; rule 'speeds'"),
+    _k("drive", "flux_tol_frac", "num", "", POS, 0.5,
+       "stall: flux-magnitude error above this fraction of psi_f", "drive.flux_tol"),
+    _k("drive", "stall_ms", "int", "ms", (1, 60000, "[]"), 500, "stall condition held this long",
+       "drive.stall_ms"),
+    _k("drive", "phase_fc_hz", "num", "Hz", POS, 5.0, "phase-loss monitor low-pass corner",
+       "drive.phase_alpha (2-34)"),
+    _k("drive", "phase_i_min_a", "num", "A", POS, "0.1 x motor.rated_current_a",
+       "phase loss checked above this filtered |i|", "drive.phase_i_min; rule 'currents'"),
+    _k("drive", "phase_ratio", "num", "", (0, 1, "[]"), 0.25,
+       "phase loss: smallest / largest filtered |i| below this", "drive.phase_ratio"),
+    _k("drive", "phase_ms", "int", "ms", (1, 60000, "[]"), 100,
+       "phase-loss condition held this long", "drive.phase_ms"),
+    _k("drive", "link_timeout_ms", "int", "ms", (1, 60000, "[]"), 500,
+       "command link lost after this long without a valid command", "drive.link_timeout_ms"),
+    _k("drive", "clear_ms", "int", "ms", (1, 60000, "[]"), 5000,
+       "stopped this long before a fault clear is accepted", "drive.clear_ms"),
+    _k("drive", "fw_level", "num", "", (0, 1, "(]"), "design.fw_v_max",
+       "field-weakening utilisation target FWK_LVL", "drive.fw_level"),
+    _k("drive", "fw_fc_hz", "num", "Hz", POS, 50.0,
+       "field-weakening utilisation low-pass corner", "drive.fw_alpha (2-34)"),
+    _k("drive", "tc_gain_q15", "int", "Q15 counts", (0, 32767, "[]"), 492,
+       "torque-compensation learning gain mu; 492 = 0.015, learning time constant 0.6 s at "
+       "1x, 1500 rpm (specs/requirements/trqcomp.md)", "drive.tc_gain"),
+    _k("drive", "tc_amp_max_a", "num", "A", NONNEG, "0.5 x motor.rated_current_a",
+       "torque-compensation amplitude limit per coefficient", "drive.tc_amp_max; rule 'currents'"),
+    _k("drive", "tc_speed_min_rpm", "num", "rpm", NONNEG, 600.0,
+       "torque compensation from this speed (the learning law's phase error stays below "
+       "44 deg above it)", "drive.tc_speed_min; rule 'speeds'"),
+    _k("drive", "tc_speed_max_rpm", "num", "rpm", NONNEG, "motor.rated_speed_rpm",
+       "torque compensation up to this speed (above the rated speed field weakening needs the "
+       "current headroom)", "drive.tc_speed_max; rule 'speeds'"),
+    _k("drive", "para_speed_rpm", "num", "rpm", POS, "0.7 x motor.max_speed_rpm",
+       "high-speed inductances (motor.ld_hs_h, lq_hs_h) above this speed",
+       "drive.para_speed; rule 'speeds'"),
+    _k("drive", "lin_id_cmd", "int", "", (0, 0x3B, "[]"), 0x10,
+       "LIN identifier of the command frame", "drive.lin_id_cmd"),
+    _k("drive", "lin_id_status", "int", "", (0, 0x3B, "[]"), 0x11,
+       "LIN identifier of the status frame", "drive.lin_id_status, != drive.lin_id_cmd"),
+    _k("drive", "can_id_a", "int", "", (0, 0x7FF, "[]"), 0x310,
+       "CAN status identifier, even frames", "drive.can_id_a"),
+    _k("drive", "can_id_b", "int", "", (0, 0x7FF, "[]"), 0x311,
+       "CAN status identifier, odd frames", "drive.can_id_b"),
+    # [demo]: read by the simulator only (sim/scenario.c scn_start_point)
+    _k("demo", "start_rpm", "num", "rpm", POS, "motor.rated_speed_rpm / 2, rounded to 10 rpm",
+       "target speed of the demonstration's cold start",
+       "sim/scenario.c (make demo); not in the table"),
+    _k("demo", "start_load_nm", "num", "N m", NONNEG, "motor.nominal_torque_nm",
+       "load torque of the demonstration's cold start",
+       "sim/scenario.c (make demo); not in the table"),
+)
+
+SECTIONS = ("motor", "inverter", "sensing", "scaling", "design", "limits", "drive", "demo")
+SECTION_TEXT = {
+    "motor": "the machine (required)",
+    "inverter": "the power stage (required)",
+    "sensing": "the current and DC-bus measurement: the per-unit bases (required)",
+    "scaling": "the frequency base (required)",
+    "design": "loop-design choices (optional, every key has a default)",
+    "limits": "protection limits (optional, every key has a default)",
+    "drive": "drive configuration, include/qfoc/drive_cfg.h (optional, every key has a default)",
+    "demo": "the demonstration's cold start, read by the simulator only (optional)",
 }
+SCHEMA_BY_NAME = {k.name: k for k in SCHEMA}
+
+
+def _constraint(rng: tuple) -> str | None:
+    """The sign part of a range as check_value() knows it: "pos", "nonneg" or None."""
+    if rng[0] == 0:
+        return "pos" if rng[2][0] == "(" else "nonneg"
+    return None
+
+
+# Views of SCHEMA in the form the design code reads them.
+# (section, key): (kind, constraint, description) of the required keys.
+REQUIRED_KEYS = {(k.section, k.key): (k.kind, _constraint(k.rng), k.desc)
+                 for k in SCHEMA if k.default is REQUIRED}
+# key: (default, constraint, description); default None = derived (resolve_defaults()).
+DESIGN_KEYS = {k.key: (k.value_default, _constraint(k.rng), k.desc)
+               for k in SCHEMA if k.section == "design"}
+LIMIT_KEYS = {k.key: (k.value_default, _constraint(k.rng), k.desc)
+              for k in SCHEMA if k.section == "limits"}
+DRIVE_KEYS = {k.key: (k.value_default, _constraint(k.rng), k.desc)
+              for k in SCHEMA if k.section == "drive"}
+DEMO_KEYS = {k.key: (k.value_default, _constraint(k.rng), k.desc)
+             for k in SCHEMA if k.section == "demo"}
+# Optional [motor] keys: the inductances used above drive.para_speed (motorParaChange).
+OPTIONAL_MOTOR_KEYS = {k.key: (_constraint(k.rng), k.desc) for k in SCHEMA
+                       if k.section == "motor" and k.default is not REQUIRED}
 # [drive] keys that must be integers (times, counts, identifiers, the gain in counts).
-DRIVE_INT_KEYS = {"precharge_ms", "offset_shift", "offset_window_counts", "align_ms",
-                  "ho_dwell_ms", "ol_timeout_ms", "cl_hold_ms", "vdc_ms", "temp_ms", "stall_ms",
-                  "phase_ms", "link_timeout_ms", "clear_ms", "tc_gain_q15", "lin_id_cmd",
-                  "lin_id_status", "can_id_a", "can_id_b"}
+DRIVE_INT_KEYS = {k.key for k in SCHEMA if k.section == "drive" and k.kind == "int"}
 
 OPTIONAL_SECTIONS = {"design": DESIGN_KEYS, "limits": LIMIT_KEYS, "drive": DRIVE_KEYS}
+
+
+def range_text(rng: tuple) -> str:
+    """A range as the messages and docs/motor-file.md write it."""
+    lo, hi, ends = rng
+    if lo is None and hi is None:
+        return "any"
+    if hi is None:
+        return ("> " if ends[0] == "(" else ">= ") + fmt(lo)
+    if lo == hi:
+        return f"= {fmt(lo)}"
+    if ends == "[]":
+        return f"{fmt(lo)} .. {fmt(hi)}"
+    return (f"{fmt(lo)} {'<' if ends[0] == '(' else '<='} x "
+            f"{'<' if ends[1] == ')' else '<='} {fmt(hi)}")
+
+
+def in_range(value: float, rng: tuple) -> bool:
+    """True when value lies within rng."""
+    lo, hi, ends = rng
+    if lo is not None and (value < lo or (ends[0] == "(" and value == lo)):
+        return False
+    if hi is not None and (value > hi or (ends[1] == ")" and value == hi)):
+        return False
+    return True
+
+
+def suggest(word: str, choices) -> str:
+    """' (did you mean X?)' for the closest known name, or ''."""
+    close = difflib.get_close_matches(word, sorted(choices), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
+def known_keys(section: str) -> set:
+    """The keys of one section of the motor file."""
+    return {k.key for k in SCHEMA if k.section == section}
+
+
+def unknown_key_error(where: str, section: str, key: str) -> Refusal:
+    """The refusal of a key or section the tool does not use, with a close match."""
+    if section not in SECTIONS:
+        hint = suggest(section, SECTIONS)
+        hint = hint.replace("mean ", "mean [").replace("?)", "]?)") if hint else ""
+        return Refusal(f"{where}unknown section [{section}]{hint}: the "
+                       f"motor file has the sections {', '.join(f'[{s}]' for s in SECTIONS)} "
+                       "(docs/motor-file.md)")
+    hint = suggest(key, known_keys(section)).replace("mean ", f"mean {section}.")
+    return Refusal(f"{where}unknown key {section}.{key}{hint}: "
+                   f"not a key of [{section}] (docs/motor-file.md lists every key); a key the "
+                   "tool does not use would be silently ignored")
 
 
 def parse_override(text: str) -> tuple[str, str, object]:
@@ -217,14 +472,8 @@ def parse_override(text: str) -> tuple[str, str, object]:
         value = tomllib.loads(f"v = {rhs.strip()}")["v"]
     except tomllib.TOMLDecodeError:
         value = rhs.strip()
-    known = {k for (s, k) in REQUIRED_KEYS if s == section}
-    known |= set(OPTIONAL_SECTIONS.get(section, {}))
-    if section == "motor":
-        known |= set(OPTIONAL_MOTOR_KEYS)
-    if not known:
-        raise InputError(f"--set {text!r}: unknown section [{section}]")
-    if key not in known:
-        raise InputError(f"--set {text!r}: unknown key {key!r} in [{section}]")
+    if section not in SECTIONS or key not in known_keys(section):
+        raise unknown_key_error(f"--set {text!r}: ", section, key)
     return section, key, value
 
 
@@ -248,7 +497,11 @@ def check_value(where: str, value: object, kind: str, constraint: str | None) ->
 
 
 def load_config(path: Path, overrides: list[str]) -> dict:
-    """Read and validate the motor file with its --set overrides; return section dicts."""
+    """Read and validate the motor file with its --set overrides; return section dicts.
+
+    Raises InputError (exit code 2) for a file that cannot be read as a motor file
+    (syntax, missing key, type, sign) and Refusal (exit code 1) for one the tool will not
+    make a table of (unknown key, a range or rule of the schema broken)."""
     try:
         with open(path, "rb") as fh:
             raw = tomllib.load(fh)
@@ -258,50 +511,53 @@ def load_config(path: Path, overrides: list[str]) -> dict:
         raise InputError(f"{path}: TOML syntax error: {exc}") from exc
     for text in overrides:
         section, key, value = parse_override(text)
-        raw.setdefault(section, {})[key] = value
-    cfg: dict = {}
-    for (section, key), (kind, constraint, desc) in REQUIRED_KEYS.items():
-        sec = raw.get(section)
+        sec = raw.setdefault(section, {})
         if not isinstance(sec, dict):
-            raise InputError(f"{path}: missing section [{section}]")
-        if key not in sec:
-            raise InputError(f"{path}: missing [{section}] {key} ({desc})")
-        cfg.setdefault(section, {})[key] = check_value(
-            f"{path}: [{section}] {key}", sec[key], kind, constraint)
-    for section, keys in OPTIONAL_SECTIONS.items():
-        sec = raw.get(section, {})
+            raise InputError(f"{path}: [{section}] must be a table")
+        sec[key] = value
+    for section, sec in raw.items():
+        if section not in SECTIONS and not isinstance(sec, dict):
+            raise Refusal(f"{path}: unknown key {section} outside any section: every key "
+                          "belongs to a section (docs/motor-file.md)")
+        if section not in SECTIONS:
+            raise unknown_key_error(f"{path}: ", section, "")
         if not isinstance(sec, dict):
             raise InputError(f"{path}: [{section}] must be a table")
         for key in sec:
-            if key not in keys:
-                raise InputError(f"{path}: unknown key {key!r} in [{section}]")
-        cfg[section] = {}
-        for key, (default, constraint, _desc) in keys.items():
-            kind = "int" if section == "drive" and key in DRIVE_INT_KEYS else "num"
-            if key in sec:
-                cfg[section][key] = check_value(
-                    f"{path}: [{section}] {key}", sec[key], kind, constraint)
-            else:
-                cfg[section][key] = default
-    for key, (constraint, _desc) in OPTIONAL_MOTOR_KEYS.items():
-        val = raw["motor"].get(key)
-        cfg["motor"][key] = None if val is None else check_value(
-            f"{path}: [motor] {key}", val, "num", constraint)
-    for section in ("motor", "inverter", "sensing", "scaling"):
-        known = {k for (s, k) in REQUIRED_KEYS if s == section}
-        if section == "motor":
-            known |= set(OPTIONAL_MOTOR_KEYS)
-        for key in raw.get(section, {}):
-            if key not in known:
-                print(f"warning: {path}: [{section}] {key} is not used by the tuning tool",
-                      file=sys.stderr)
+            if key not in known_keys(section):
+                raise unknown_key_error(f"{path}: ", section, key)
+    cfg: dict = {s: {} for s in SECTIONS}
+    for k in SCHEMA:
+        sec = raw.get(k.section, {})
+        if k.key not in sec:
+            if k.default is REQUIRED:
+                if k.section not in raw:
+                    raise InputError(f"{path}: missing section [{k.section}]")
+                raise InputError(f"{path}: missing [{k.section}] {k.key} ({k.desc})")
+            cfg[k.section][k.key] = k.value_default
+            continue
+        val = check_value(f"{path}: {k.name}", sec[k.key], k.kind, _constraint(k.rng))
+        if k.kind != "str" and not in_range(val, k.rng):
+            want = f"must be {fmt(k.rng[0])}" if k.rng[0] == k.rng[1] else \
+                f"outside {range_text(k.rng)}"
+            rule = k.rule if k.section != "drive" else "include/qfoc/drive_cfg.h " + k.rule
+            rule = rule.replace("rule '", "docs/motor-file.md rule '")
+            raise Refusal(f"{path}: {k.name} = {fmt(val)}{unit_text(k)}: {want} (rule: {rule})")
+        cfg[k.section][k.key] = val
     resolve_defaults(cfg)
-    check_consistency(cfg, path)
+    refusals = check_rules(cfg)
+    if refusals:
+        raise Refusal("\n".join(f"{path}: {r}" for r in refusals))
     return cfg
 
 
+def unit_text(k: Key) -> str:
+    """' V', ' rpm', ... after a value; '' for a quantity without a unit."""
+    return f" {k.unit}" if k.unit and k.unit not in ("bits", "ADC codes", "Q15 counts") else ""
+
+
 def resolve_defaults(cfg: dict) -> None:
-    """Fill the derived defaults of [design] and [limits] (documented in DESIGN_KEYS/LIMIT_KEYS)."""
+    """Fill the derived defaults of [design], [limits] and [drive] (the str defaults of SCHEMA)."""
     m, inv, d, lim = cfg["motor"], cfg["inverter"], cfg["design"], cfg["limits"]
     i_base = cfg["sensing"]["i_full_scale_a"]
     cfg["defaulted"] = {f"design.{k}" for k, v in d.items() if v is None}
@@ -345,27 +601,265 @@ def resolve_defaults(cfg: dict) -> None:
         dr["fw_level"] = d["fw_v_max"]
     if dr["tc_amp_max_a"] is None:
         dr["tc_amp_max_a"] = 0.5 * m["rated_current_a"]
+    if dr["tc_speed_max_rpm"] is None:
+        dr["tc_speed_max_rpm"] = m["rated_speed_rpm"]
     if dr["para_speed_rpm"] is None:
         dr["para_speed_rpm"] = 0.7 * m["max_speed_rpm"]
 
 
-def check_consistency(cfg: dict, path: Path) -> None:
-    """Relations between fields that the per-field checks cannot see."""
-    m, inv, lim, d = cfg["motor"], cfg["inverter"], cfg["limits"], cfg["design"]
+def typed(cfg: dict, name: str) -> str:
+    """'section.key = value unit', with the default's derivation when the file did not set it."""
+    k = SCHEMA_BY_NAME[name]
+    section, key = name.split(".")
+    if cfg[section][key] is None:
+        return f"{name} (not set: {k.default})"
+    text = f"{name} = {fmt(cfg[section][key])}{unit_text(k)}"
+    if name in cfg["defaulted"]:
+        text += " (default" + (f" {k.default}" if isinstance(k.default, str) else "") + ")"
+    return text
+
+
+# The motor-file keys a table field is computed from (the [drive] fields: from the rule text
+# of SCHEMA, which starts with the field's name), for the messages of range_checks().
+FIELD_KEYS = {
+    "f_pwm_hz": ("inverter.f_pwm_hz",),
+    "svpwm.period": ("inverter.f_timer_hz", "inverter.f_pwm_hz"),
+    "svpwm.dt_comp": ("inverter.dead_time_s", "inverter.f_timer_hz"),
+    "svpwm.i_deadband": ("design.deadband_a", "sensing.i_full_scale_a"),
+    "svpwm.vdc_min": ("limits.vdc_svpwm_min_v", "sensing.vdc_full_scale_v"),
+    "i_max": ("limits.i_max_a", "sensing.i_full_scale_a"),
+    "i_trip": ("limits.i_trip_a", "sensing.i_full_scale_a"),
+    "speed_max": ("limits.speed_max_rpm", "motor.pole_pairs", "scaling.f_base_hz"),
+    "vdc_uv": ("limits.vdc_uv_v", "sensing.vdc_full_scale_v"),
+    "vdc_ov": ("limits.vdc_ov_v", "sensing.vdc_full_scale_v"),
+    "v_max": ("design.fw_v_max",),
+    "pll.err_clamp": ("design.pll_clamp",),
+    "pll.mag_min": ("design.pll_mag_min", "motor.psi_f_wb"),
+    "pll.k_theta": ("scaling.f_base_hz", "inverter.f_pwm_hz"),
+    "pll.speed_alpha": ("design.speed_fc_hz", "inverter.f_pwm_hz"),
+    "alpha_vdc": ("design.vdc_fc_hz", "inverter.f_pwm_hz"),
+    "flux.r": ("motor.rs_ohm", "sensing.vdc_full_scale_v", "sensing.i_full_scale_a"),
+    "flux.l": ("motor.lq_h", "scaling.f_base_hz"),
+    "flux.kg": ("design.kg_rad_s", "scaling.f_base_hz"),
+    "ld": ("motor.ld_h", "scaling.f_base_hz"),
+    "lq": ("motor.lq_h", "scaling.f_base_hz"),
+    "psi_f": ("motor.psi_f_wb", "sensing.vdc_full_scale_v", "scaling.f_base_hz"),
+    "drive.pole_pairs": ("motor.pole_pairs",),
+    "drive.k_rpm": ("motor.pole_pairs", "scaling.f_base_hz"),
+    "drive.k_speed_rpm": ("motor.pole_pairs", "scaling.f_base_hz"),
+    "drive.rpm_max": ("drive.rpm_max", "motor.max_speed_rpm", "limits.speed_max_rpm"),
+    "drive.ld_hs": ("motor.ld_hs_h", "motor.ld_h", "scaling.f_base_hz"),
+    "drive.lq_hs": ("motor.lq_hs_h", "motor.lq_h", "scaling.f_base_hz"),
+}
+for _k_ in SCHEMA:
+    if _k_.section == "drive" and _k_.key != "rpm_max":
+        FIELD_KEYS.setdefault(_k_.rule.replace(",", " ").replace(";", " ").split()[0],
+                              (_k_.name,))
+del _k_
+
+
+def field_source(cfg: dict, name: str) -> str:
+    """' (from key = value, ...)' for a table field, or ''."""
+    keys = FIELD_KEYS.get(name)
+    if keys is None:
+        for pi in ("pi_id", "pi_iq", "pi_speed", "pi_fw", "pll.pi"):
+            if name.startswith(pi + "."):
+                return " (from the loop design: motor, inverter, scaling and [design] keys)"
+        return ""
+    return " (from " + ", ".join(typed(cfg, k) for k in keys) + ")"
+
+
+def check_rules(cfg: dict) -> list[str]:
+    """The rules between keys (and against the sensors) that the per-key ranges cannot
+    see; every message names the key of the motor file, its value and the rule."""
+    m, inv, lim, dr = cfg["motor"], cfg["inverter"], cfg["limits"], cfg["drive"]
+    sen = cfg["sensing"]
+    out: list[str] = []
     if not inv["vdc_min_v"] <= inv["vdc_nominal_v"] <= inv["vdc_max_v"]:
-        raise InputError(f"{path}: [inverter] needs vdc_min_v <= vdc_nominal_v <= vdc_max_v")
+        out.append(f"{typed(cfg, 'inverter.vdc_nominal_v')}: outside inverter.vdc_min_v .. "
+                   f"inverter.vdc_max_v = {fmt(inv['vdc_min_v'])} .. {fmt(inv['vdc_max_v'])} V "
+                   "(rule: vdc_min_v <= vdc_nominal_v <= vdc_max_v)")
     if m["max_speed_rpm"] < m["rated_speed_rpm"]:
-        raise InputError(f"{path}: [motor] max_speed_rpm < rated_speed_rpm")
-    f_pwm = inv["f_pwm_hz"]
-    if not (float(f_pwm).is_integer() and 1000 <= f_pwm <= 40000):
-        raise InputError(f"{path}: [inverter] f_pwm_hz must be an integer in 1000 .. 40000 "
-                         f"(params.h f_pwm_hz), got {f_pwm!r}")
+        out.append(f"{typed(cfg, 'motor.max_speed_rpm')} is below "
+                   f"{typed(cfg, 'motor.rated_speed_rpm')} (rule: max_speed_rpm >= "
+                   "rated_speed_rpm)")
+    if not float(inv["f_pwm_hz"]).is_integer():
+        out.append(f"{typed(cfg, 'inverter.f_pwm_hz')}: not an integer (params.h f_pwm_hz is "
+                   "an integer number of Hz)")
+
+    # f_base (specs/scaling.md section 2): the highest electrical frequency is that of the
+    # largest speed the table allows, motor.max_speed_rpm or limits.speed_max_rpm.
+    n_p, f_base = m["pole_pairs"], cfg["scaling"]["f_base_hz"]
+    top_key = "limits.speed_max_rpm" if lim["speed_max_rpm"] > m["max_speed_rpm"] \
+        else "motor.max_speed_rpm"
+    top_rpm = max(lim["speed_max_rpm"], m["max_speed_rpm"])
+    f_e = top_rpm * n_p / 60.0
+    if f_base < 1.25 * f_e * (1.0 - 1e-12):
+        out.append(f"{typed(cfg, 'scaling.f_base_hz')} breaks the rule of {RULE_FBASE}: "
+                   f"{top_key} {fmt(top_rpm)} rpm x motor.pole_pairs {n_p} / 60 = {fmt(f_e)} Hz, "
+                   f"so this motor needs scaling.f_base_hz >= 1.25 x {fmt(f_e)} = "
+                   f"{fmt(1.25 * f_e)} Hz")
+
+    # The rpm conversions of the drive (drive_cfg.h k_rpm, k_speed_rpm: 1 .. 65535).
+    k_rpm = n_p * 32768.0 / (60.0 * f_base) * 4096.0
+    if k_rpm >= 65536.0:
+        out.append(f"{typed(cfg, 'scaling.f_base_hz')} is too low for motor.pole_pairs {n_p}: "
+                   f"the drive's rpm conversion k_rpm = n_p 32768 x 4096 / (60 f_base) = "
+                   f"{fmt(k_rpm)} exceeds 65535 (rule: drive_cfg.h k_rpm 1 .. 65535); this "
+                   "motor needs scaling.f_base_hz >= "
+                   f"{fmt(n_p * 32768.0 * 4096.0 / (60.0 * 65535.0))} Hz")
+    if 60.0 * f_base / n_p >= 65535.5:
+        out.append(f"{typed(cfg, 'scaling.f_base_hz')} is too high for motor.pole_pairs {n_p}: "
+                   f"k_speed_rpm = 60 f_base / n_p = {fmt(60.0 * f_base / n_p)} exceeds 65535 "
+                   f"(rule: drive_cfg.h k_speed_rpm 1 .. 65535)")
+
+    # Protection thresholds against their sensors.
+    v_base, i_base = sen["vdc_full_scale_v"], sen["i_full_scale_a"]
+    code_v = v_base / ADC_CODES
+    for key, what, off in (("vdc_ov_v", "over-voltage", "never trips: over-voltage protection "
+                            "disabled"),
+                           ("vdc_uv_v", "under-voltage", "trips at every reading: the drive "
+                            "never runs")):
+        raw = q15(lim[key] / v_base)
+        if raw >= (ADC_CODES - 1) * 8:
+            out.append(f"{typed(cfg, 'limits.' + key)}: the DC-bus sensor cannot read this "
+                       f"{what} threshold: it is not below the largest reading "
+                       f"{ADC_CODES - 1} codes x sensing.vdc_full_scale_v {fmt(v_base)} V / "
+                       f"{ADC_CODES} = {fmt((ADC_CODES - 1) * code_v)} V (rule: {RULE_VDC_READ}); "
+                       f"the table value would be {raw}, which the reading (at most "
+                       f"{(ADC_CODES - 1) * 8}) never exceeds: the {what} check {off}")
+        elif raw < 8:
+            out.append(f"{typed(cfg, 'limits.' + key)}: below one code of the DC-bus sensor, "
+                       f"sensing.vdc_full_scale_v {fmt(v_base)} V / {ADC_CODES} = "
+                       f"{fmt(code_v)} V (rule: {RULE_VDC_READ})")
+    if not lim["vdc_ov_v"] > lim["vdc_uv_v"]:
+        out.append(f"{typed(cfg, 'limits.vdc_ov_v')} is not above "
+                   f"{typed(cfg, 'limits.vdc_uv_v')} (rule: vdc_ov > vdc_uv)")
+    if lim["vdc_ov_v"] < inv["vdc_max_v"]:
+        out.append(f"{typed(cfg, 'limits.vdc_ov_v')} is below {typed(cfg, 'inverter.vdc_max_v')} "
+                   f"(rule: {RULE_VDC_OPERATING})")
+    if lim["vdc_uv_v"] > inv["vdc_min_v"]:
+        out.append(f"{typed(cfg, 'limits.vdc_uv_v')} is above {typed(cfg, 'inverter.vdc_min_v')} "
+                   f"(rule: {RULE_VDC_OPERATING})")
+    if lim["vdc_svpwm_min_v"] > inv["vdc_min_v"]:
+        out.append(f"{typed(cfg, 'limits.vdc_svpwm_min_v')} is above "
+                   f"{typed(cfg, 'inverter.vdc_min_v')} (rule: the SVPWM uses the measured bus "
+                   "down to this floor, svpwm.h; a floor above the lowest bus would compute the "
+                   "phase times from a wrong bus voltage in operation)")
+    side = 2047 - dr["offset_window_counts"]
+    i_read = side * i_base / 2048.0
+    if q15(lim["i_trip_a"] / i_base) >= side * 16:
+        out.append(f"{typed(cfg, 'limits.i_trip_a')}: the current sensor cannot read this "
+                   f"over-current trip: it is not below the largest reading (2047 - "
+                   f"drive.offset_window_counts {dr['offset_window_counts']}) codes x "
+                   f"sensing.i_full_scale_a {fmt(i_base)} A / 2048 = {fmt(i_read)} A "
+                   f"(rule: {RULE_I_READ})")
     if lim["i_trip_a"] < lim["i_max_a"]:
-        raise InputError(f"{path}: [limits] i_trip_a < i_max_a")
-    if lim["vdc_ov_v"] <= lim["vdc_uv_v"]:
-        raise InputError(f"{path}: [limits] vdc_ov_v <= vdc_uv_v")
-    if d["pll_clamp"] > 1.0 or d["fw_v_max"] > 1.0:
-        raise InputError(f"{path}: [design] pll_clamp and fw_v_max must be <= 1")
+        out.append(f"{typed(cfg, 'limits.i_trip_a')} is below {typed(cfg, 'limits.i_max_a')} "
+                   "(rule: i_trip >= i_max)")
+    for key in ("i_align_a", "i_start_a", "tc_amp_max_a"):
+        if dr[key] > lim["i_max_a"]:
+            out.append(f"{typed(cfg, 'drive.' + key)} is above {typed(cfg, 'limits.i_max_a')} "
+                       f"(rule: {RULE_CURRENT})")
+    if dr["phase_i_min_a"] >= lim["i_max_a"]:
+        out.append(f"{typed(cfg, 'drive.phase_i_min_a')} is not below "
+                   f"{typed(cfg, 'limits.i_max_a')} (rule: the phase-loss monitor works above "
+                   "phase_i_min; at or above i_max it never checks)")
+
+    # Speeds of [drive] within the motor's speed range.
+    rpm_max = dr["rpm_max"] if dr["rpm_max"] is not None else \
+        min(m["max_speed_rpm"], lim["speed_max_rpm"])
+    rpm_src = "drive.rpm_max" if dr["rpm_max"] is not None else \
+        ("motor.max_speed_rpm" if m["max_speed_rpm"] <= lim["speed_max_rpm"]
+         else "limits.speed_max_rpm")
+    if dr["rpm_max"] is not None and dr["rpm_max"] > lim["speed_max_rpm"]:
+        out.append(f"{typed(cfg, 'drive.rpm_max')} is above {typed(cfg, 'limits.speed_max_rpm')} "
+                   "(rule: the largest target is within the speed limit)")
+    for key, top, src in (("rpm_min", rpm_max, rpm_src),
+                          ("tc_speed_max_rpm", rpm_max, rpm_src),
+                          ("of_speed_rpm", lim["speed_max_rpm"], "limits.speed_max_rpm"),
+                          ("stall_err_rpm", lim["speed_max_rpm"], "limits.speed_max_rpm"),
+                          ("para_speed_rpm", lim["speed_max_rpm"], "limits.speed_max_rpm")):
+        if dr[key] > top:
+            out.append(f"{typed(cfg, 'drive.' + key)}: outside the motor's speed range 0 .. "
+                       f"{fmt(top)} rpm ({src}) (rule: {RULE_SPEED})")
+    if dr["tc_speed_min_rpm"] > dr["tc_speed_max_rpm"]:
+        out.append(f"{typed(cfg, 'drive.tc_speed_min_rpm')} is above "
+                   f"{typed(cfg, 'drive.tc_speed_max_rpm')} (rule: tc_speed_min <= tc_speed_max)")
+    if dr["lin_id_status"] == dr["lin_id_cmd"]:
+        out.append(f"{typed(cfg, 'drive.lin_id_status')} equals "
+                   f"{typed(cfg, 'drive.lin_id_cmd')} (rule: the two LIN frames need different "
+                   "identifiers)")
+    return out
+
+
+def motor_file_doc() -> str:
+    """docs/motor-file.md: every section and key of SCHEMA with unit, range, default and rule."""
+    lines = [
+        "# The motor file",
+        "",
+        "Generated by `python3 tools/qfoc_tune.py --motor-file-doc` from the tool's schema "
+        "(`SCHEMA` in tools/qfoc_tune.py); do not edit: a pytest test compares this file with "
+        "the tool's output.",
+        "",
+        "One TOML file per motor and inverter (`specs/motors/*.toml`) is the input of "
+        "`tools/qfoc_tune.py` (the parameter table), of the simulator (`sim/motor.c`) and of "
+        "the demonstration (`sim/scenario.c`, section [demo]).  Units are SI; speeds are "
+        "mechanical rpm, currents peak phase amperes, angles electrical unless named.  "
+        "`--set section.key=value` overrides one key on the command line.",
+        "",
+        "The tool refuses (exit code 1, no table written) a key it does not know, a value "
+        "outside its range, and a file that breaks one of the rules below; a file it cannot "
+        "read as a motor file (TOML syntax, a missing required key, a wrong type or sign) "
+        "ends with exit code 2.  Every message names the key as `section.key`, its value "
+        "and the rule.",
+        "",
+        "`specs/motors/reference.toml` is a complete example.",
+        "",
+        "Rules between keys (the column \"used by / rule\" of the tables refers to them):",
+        "",
+        f"- 'f_base': {RULE_FBASE}: scaling.f_base_hz >= 1.25 x max(motor.max_speed_rpm, "
+        "limits.speed_max_rpm) x motor.pole_pairs / 60; and the drive's rpm conversions "
+        "k_rpm = n_p 32768 x 4096 / (60 f_base) and k_speed_rpm = 60 f_base / n_p within "
+        "1 .. 65535 (drive_cfg.h).",
+        f"- 'DC-bus thresholds' (limits.vdc_ov_v, limits.vdc_uv_v): {RULE_VDC_READ}; and "
+        f"vdc_ov_v > vdc_uv_v; {RULE_VDC_OPERATING}; limits.vdc_svpwm_min_v <= "
+        "inverter.vdc_min_v.",
+        f"- 'over-current trip' (limits.i_trip_a): {RULE_I_READ}; and i_trip_a >= i_max_a.",
+        f"- 'currents': {RULE_CURRENT} (limits.i_max_a); drive.phase_i_min_a < limits.i_max_a.",
+        f"- 'speeds': {RULE_SPEED}: drive.rpm_min and drive.tc_speed_max_rpm <= drive.rpm_max "
+        "(or the smaller of motor.max_speed_rpm and limits.speed_max_rpm when drive.rpm_max is "
+        "not set); drive.rpm_max, drive.of_speed_rpm, drive.stall_err_rpm and drive.para_speed_rpm <= "
+        "limits.speed_max_rpm; drive.tc_speed_min_rpm <= drive.tc_speed_max_rpm.",
+        "- inverter.vdc_min_v <= inverter.vdc_nominal_v <= inverter.vdc_max_v; "
+        "motor.max_speed_rpm >= motor.rated_speed_rpm; drive.lin_id_status != drive.lin_id_cmd.",
+        "- Then the table itself: the fixed-point bounds of chapter 2, the loop margins of "
+        "chapter 4 and the field ranges of params.h and drive_cfg.h (exit code 1, report "
+        "marked FAILED).",
+        "",
+    ]
+    for section in SECTIONS:
+        lines += [f"## [{section}]", "", f"{SECTION_TEXT[section][0].upper()}"
+                  f"{SECTION_TEXT[section][1:]}.", ""]
+        rows = []
+        for k in SCHEMA:
+            if k.section != section:
+                continue
+            if k.default is REQUIRED:
+                dflt = "required"
+            elif isinstance(k.default, str):
+                dflt = k.default
+            elif k.kind == "int" and k.key.startswith(("lin_id", "can_id")):
+                dflt = f"0x{k.default:X}"
+            else:
+                dflt = fmt(k.default)
+            kind = {"str": "string", "int": "integer", "num": "number"}[k.kind]
+            rows.append([f"`{k.key}`", kind, k.unit, range_text(k.rng) if k.kind != "str"
+                         else "non-empty", dflt, k.desc, k.rule])
+        lines += md_table(["key", "type", "unit", "range", "default", "meaning", "used by / rule"],
+                          rows)
+        lines.append("")
+    return "\n".join(lines)
 
 
 # --------------------------------------------------------------------------------------
@@ -1363,13 +1857,18 @@ def analyse(model: LoopModel, w_top: float) -> LoopResult:
         line = -180.0 + 360.0 * k
         idx = np.nonzero((ph[:-1] > line) & (ph[1:] <= line + 1e-6))[0]
         for i in idx:
+            if not (mag[i] > 0.0 and mag[i + 1] > 0.0):
+                continue                    # |L| = 0 there: no gain-margin limit
             f = min(1.0, (ph[i] - line) / (ph[i] - ph[i + 1]))
             mg = math.exp(math.log(mag[i]) + f * (math.log(mag[i + 1]) - math.log(mag[i])))
             gm = min(gm, -20.0 * math.log10(mg))
     cn, cd = model.closed_loop()
     tr = np.abs(model.freq(cn, cd, w))
-    dc = abs(np.polyval(cn, 1.0 if model.dt else 0.0) / np.polyval(cd, 1.0 if model.dt else 0.0))
-    below = np.nonzero(tr < dc / math.sqrt(2.0))[0]
+    dc_num = abs(np.polyval(cn, 1.0 if model.dt else 0.0))
+    dc_den = abs(np.polyval(cd, 1.0 if model.dt else 0.0))
+    # a closed loop with a pole at DC (dc_den = 0) has no finite DC gain: no -3 dB point
+    below = np.nonzero(tr < dc_num / dc_den / math.sqrt(2.0))[0] if dc_den > 0 \
+        else np.array([], dtype=int)
     bw = w[below[0]] / (2.0 * math.pi) if below.size else math.inf
     stable = model.stable()
     t_end = min(20.0 / max(wc if math.isfinite(wc) else 1.0, 1e-3), 2.0)
@@ -1458,6 +1957,11 @@ def build_loops(cfg: dict, ds: Design) -> dict[str, tuple[LoopModel, LoopModel]]
     disc = LoopModel(pmul(cn, [b.w_base * t]), pmul(cd, [1.0, -1.0]), one, one, t)
     loops["PLL"] = (cont, disc)
     return loops
+
+
+# The motor-file keys the loop models are made from (the [design] keys as well).
+LOOP_KEYS = ("motor.rs_ohm", "motor.ld_h", "motor.lq_h", "motor.psi_f_wb", "motor.j_kgm2",
+             "motor.b_nms", "motor.pole_pairs", "inverter.f_pwm_hz", "scaling.f_base_hz")
 
 
 def run_analysis(cfg: dict, ds: Design) -> dict[str, tuple[LoopResult, LoopResult]]:
@@ -1675,10 +2179,17 @@ def main(argv: list[str] | None = None) -> int:
                     "(document chapter 2), checks the fixed-point bounds (2-5 .. 2-12, 2-25, "
                     "2-26, inverse transforms), analyses the loops (chapter 4) and writes the "
                     "parameter table (include/qfoc/params.h) and a report.",
-        epilog="Exit codes: 0 ok; 1 bound or loop check failed (report marked FAILED, no "
-               "table written); 2 bad input.")
-    ap.add_argument("motor", type=Path, help="motor and inverter file, e.g. "
-                                             "specs/motors/reference.toml")
+        epilog="The motor file's sections and keys, with units, ranges, defaults and the rules "
+               "the tool checks: docs/motor-file.md (--motor-file-doc prints it).  Exit codes: "
+               "0 ok; 1 refused (a key the tool does not know, a value outside its range or a "
+               "broken rule: no file written; or a bound or loop check failed: report marked "
+               "FAILED, no table written); 2 malformed input (syntax, missing key, type, sign).")
+    ap.add_argument("motor", type=Path, nargs="?",
+                    help="motor and inverter file, e.g. specs/motors/reference.toml "
+                         "(format: docs/motor-file.md)")
+    ap.add_argument("--motor-file-doc", action="store_true",
+                    help="print docs/motor-file.md (the motor-file format, from the tool's "
+                         "schema) and exit")
     ap.add_argument("--out-dir", type=Path, help="report directory (default build/tune/<name>/)")
     ap.add_argument("--table-dir", type=Path, default=Path("tables"),
                     help="directory of <name>_params.c/.h (default tables/)")
@@ -1688,9 +2199,19 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--name", help="table name: tables/<name>_params.c, symbol qfoc_params_<name> "
                                    "(default: from the motor file's name)")
     args = ap.parse_args(argv)
+    if args.motor_file_doc:
+        sys.stdout.write(motor_file_doc())
+        return 0
+    if args.motor is None:
+        ap.error("the motor file is required")
 
     try:
         cfg = load_config(args.motor, args.overrides)
+    except Refusal as exc:
+        for line in str(exc).split("\n"):
+            print(f"refused: {line}", file=sys.stderr)
+        print("qfoc_tune: refused, no table written (docs/motor-file.md)", file=sys.stderr)
+        return 1
     except InputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
@@ -1704,12 +2225,27 @@ def main(argv: list[str] | None = None) -> int:
     bounds = check_bounds(cfg, ds) + range_checks(items)
     failures = []
     for bd in bounds:
+        src = field_source(cfg, bd.name[len("table field "):]) \
+            if bd.name.startswith("table field ") else ""
         if bd.violated:
-            failures.append(f"bound violated: {bd.name} ({bd.equation}): {bd.worst_input}")
+            failures.append(f"bound violated: {bd.name} ({bd.equation}): {bd.worst_input}{src}")
         elif not bd.ok:
             failures.append(f"bound violated: {bd.name} ({bd.equation}): {fmt(bd.value)} > "
-                            f"{fmt(bd.limit)} for {bd.worst_input}")
-    results = run_analysis(cfg, ds)
+                            f"{fmt(bd.limit)} for {bd.worst_input}{src}")
+    # The loop models of extreme (if in-range) values can leave the floating-point range
+    # (a plant pole far beyond the sample rate, a gain that rounds to zero): such a design
+    # fails the loop check, named with the keys the loops are designed from, instead of a
+    # numpy or scipy warning.
+    try:
+        with np.errstate(divide="raise", over="raise", invalid="raise"), \
+                warnings.catch_warnings():
+            warnings.simplefilter("error")
+            results = run_analysis(cfg, ds)
+    except (ArithmeticError, ValueError, Warning, np.linalg.LinAlgError) as exc:
+        results = {}
+        failures.append("loop check failed: the loop models leave the floating-point range "
+                        f"({type(exc).__name__}: {exc}) for " + ", ".join(
+                            typed(cfg, k) for k in LOOP_KEYS))
     for lname, (_rc, rd) in results.items():
         if not rd.stable:
             failures.append(f"loop check failed: {lname} loop: discrete closed loop unstable")
@@ -1748,8 +2284,11 @@ def main(argv: list[str] | None = None) -> int:
         crc = crc32_iso_hdlc(serialise(items))
         c_text, h_text = c_sources(name, toml_rel, args.overrides, cfg, items, crc)
         args.table_dir.mkdir(parents=True, exist_ok=True)
-        (args.table_dir / f"{name}_params.c").write_text(c_text, encoding="utf-8")
-        (args.table_dir / f"{name}_params.h").write_text(h_text, encoding="utf-8")
+        # each file appears whole or not at all (written aside, then renamed)
+        for ext, text in (("c", c_text), ("h", h_text)):
+            tmp = args.table_dir / f".{name}_params.{ext}.tmp"
+            tmp.write_text(text, encoding="utf-8")
+            os.replace(tmp, args.table_dir / f"{name}_params.{ext}")
     write_report(out_dir / "report.md", cfg, toml_rel, args.overrides, ds, bounds,
                  results, pngs, failures, crc)
     for gn in ds.gains.values():
