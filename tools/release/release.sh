@@ -17,7 +17,8 @@
 #   tools/qfoc_tune.py                      the tuning tool (Python 3 with numpy, scipy and
 #                                           matplotlib; it imports nothing of its own)
 #   lib/cortex-m4f/libqfoc.a                the library for Cortex-M4F, and BUILDINFO.txt with
-#                                           its compiler, flags and SHA-256
+#                                           its compiler, flags and SHA-256 (checked against
+#                                           build/repro/repro.json when make repro has run)
 #   evidence/                               the verification evidence bundle
 #   docs/ examples/                         when the repository has them
 #   SHA256SUMS                              sha256sum of every other file of the package
@@ -35,6 +36,8 @@ ARM_LIB=${1:?usage: release.sh ARM_LIB EVIDENCE_DIR}
 EVIDENCE=${2:?usage: release.sh ARM_LIB EVIDENCE_DIR}
 DIST=${DIST:-dist}
 STAGE_ROOT=${RELEASE_STAGE:-build/release}
+PY=/usr/bin/python3
+[ -x "$PY" ] || PY=python3
 
 VERSION=$(sed -n 's/^#define QFOC_VERSION_STRING "\([0-9]*\.[0-9]*\.[0-9]*\)".*/\1/p' include/qfoc/version.h)
 [ -n "$VERSION" ] || { echo "release: no QFOC_VERSION_STRING in include/qfoc/version.h"; exit 1; }
@@ -98,8 +101,24 @@ LIB_SHA=$(sha256sum "$PKG/lib/cortex-m4f/libqfoc.a" | cut -d' ' -f1)
     echo "compiler: $(arm-none-eabi-gcc --version | head -n 1)"
     echo "flags: ${ARM_CFLAGS:-}"
     echo "built from: src/*.c of this package, one object per source, arm-none-eabi-ar rcs"
-    echo "reproducible: make repro builds it twice and compares the bytes"
+    echo "reproducible: make repro builds it twice from the same sources and compares the bytes"
 } > "$PKG/lib/cortex-m4f/BUILDINFO.txt"
+
+# the same bytes as both builds of make repro (when it ran: make check runs it first)
+REPRO_JSON=${REPRO_JSON:-build/repro/repro.json}
+repro_note="make repro not run"
+if [ -f "$REPRO_JSON" ]; then
+    repro_sha=$("$PY" -c 'import json, sys
+d = json.load(open(sys.argv[1]))
+print(next((a["sha256"] for a in d["artefacts"] if a["file"] == "target/libqfoc.a" and a["identical"]), ""))' "$REPRO_JSON")
+    if [ "$repro_sha" = "$LIB_SHA" ]; then
+        repro_note="identical to both builds of make repro"
+        echo "make repro: $repro_note ($REPRO_JSON)" >> "$PKG/lib/cortex-m4f/BUILDINFO.txt"
+    else
+        echo "release: libqfoc.a sha256 $LIB_SHA is not the one make repro built twice (${repro_sha:-none}): rebuild or run make repro again"
+        exit 1
+    fi
+fi
 
 # the evidence bundle, as make evidence wrote it
 mkdir -p "$PKG/evidence"
@@ -124,4 +143,4 @@ sha256sum "$TAR" | sed 's|  .*/|  |' > "$TAR.sha256"
 files=$(wc -l < "$PKG/SHA256SUMS")
 size=$(wc -c < "$TAR")
 echo "release: $TAR ($size B, $((files + 1)) files, version $VERSION, mtime $(date -u -d "@$EPOCH" '+%Y-%m-%d %H:%M:%S UTC'))"
-echo "release: sha256 $(cut -d' ' -f1 "$TAR.sha256"); libqfoc.a (Cortex-M4F) sha256 $LIB_SHA"
+echo "release: sha256 $(cut -d' ' -f1 "$TAR.sha256"); libqfoc.a (Cortex-M4F) sha256 $LIB_SHA ($repro_note)"
