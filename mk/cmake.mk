@@ -19,3 +19,10 @@ print-cflags:
 
 print-arm-cflags:
 	@echo $(ARM_CFLAGS)
+
+# make clean also removes the CMake build trees
+clean: cmake-clean
+.PHONY: cmake-clean
+cmake-clean:
+	rm -rf $(BUILD)/cmake-host $(BUILD)/cmake-consumer $(BUILD)/cmake-stage $(BUILD)/cmake-consumer-pkg \
+	    $(BUILD)/cmake-arm

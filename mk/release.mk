@@ -32,3 +32,9 @@ release: deps $(BUILD)/target/libqfoc.a
 release-check: deps
 	@CC="$(CC)" CFLAGS="$(CFLAGS)" ARM_CC="$(ARM_CC)" ARM_CFLAGS="$(ARM_CFLAGS)" \
 	    EXAMPLE=tools/release/release_example.c sh tools/release/release_check.sh $(RELEASE_TAR)
+
+# make clean also removes the staging tree and the packages
+clean: release-clean
+.PHONY: release-clean
+release-clean:
+	rm -rf $(BUILD)/release $(RELEASE_DIST)

@@ -14,7 +14,8 @@
 # $CFLAGS, builds the example (examples/host_minimal.c of the package, else $EXAMPLE) with
 # the package's tables/reference_params.c against it and runs it; compiles the example
 # with $ARM_CC $ARM_CFLAGS and links it with the package's Cortex-M4F libqfoc.a into an ELF
-# whose entry points are checked with nm.  Exit 1 on the first failure.
+# whose entry points are checked with nm; configures, builds and installs the library with
+# the package's CMakeLists.txt.  Exit 1 on the first failure.
 set -eu
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
 TAR=${1:?usage: release_check.sh TARBALL}
@@ -92,4 +93,17 @@ arm-none-eabi-readelf -A "$TMP/arm/example.elf" | grep -q 'Tag_ABI_VFP_args: VFP
     fail "Cortex-M4F ELF: not the hard-float ABI"
 text=$(arm-none-eabi-size "$TMP/arm/example.elf" | awk 'NR == 2 {print $1}')
 echo "release-check: Cortex-M4F: $(basename "$arm_ex") linked with lib/cortex-m4f/libqfoc.a ($ARM_CC, hard float): text $text B"
+# 4. the package's own CMake build: the library configured, built and installed from the
+#    unpacked tree (the CMake files refer only to what the package holds)
+if command -v cmake > /dev/null 2>&1; then
+    ( unset CFLAGS CC CMAKE_PREFIX_PATH CMAKE_GENERATOR CMAKE_BUILD_TYPE
+      cmake -S . -B "$TMP/cmake" > "$TMP/cmake.log" 2>&1 &&
+      cmake --build "$TMP/cmake" -j 2 >> "$TMP/cmake.log" 2>&1 &&
+      cmake --install "$TMP/cmake" --prefix "$TMP/cmake-prefix" >> "$TMP/cmake.log" 2>&1 ) || {
+        cat "$TMP/cmake.log"; fail "the package's CMake build failed"; }
+    [ -f "$TMP/cmake-prefix/lib/cmake/qfoc/qfocConfigVersion.cmake" ] || fail "CMake install without qfocConfigVersion.cmake"
+    echo "release-check: CMake: the package's CMakeLists.txt builds and installs qfoc $version"
+else
+    fail "cmake missing (make deps installs it)"
+fi
 echo "release-check: $NAME passes"
