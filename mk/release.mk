@@ -26,6 +26,7 @@ release: deps $(BUILD)/target/libqfoc.a
 	        { cat $(BUILD)/release-evidence.log; exit 1; }; \
 	    tail -n 1 $(BUILD)/release-evidence.log; fi
 	@DIST=$(RELEASE_DIST) ARM_CFLAGS="$(ARM_CFLAGS)" RELEASE_STAGE=$(BUILD)/release \
+	    REPRO_JSON=$(BUILD)/repro/repro.json \
 	    sh tools/release/release.sh $(BUILD)/target/libqfoc.a $(EVIDENCE_DIR)
 
 ## release-check: the release package unpacked, sums verified, an example built (host and Cortex-M4F) and run

@@ -120,7 +120,10 @@ print(next((a["sha256"] for a in d["artefacts"] if a["file"] == "target/libqfoc.
     fi
 fi
 
-# the evidence bundle, as make evidence wrote it
+# the evidence bundle, as make evidence wrote it (its red rows said here, packaged as they are)
+red=$("$PY" -c 'import json, sys
+print(json.load(open(sys.argv[1])).get("red", "?"))' "$EVIDENCE/evidence.json" 2>/dev/null || echo "?")
+[ "$red" = 0 ] || echo "release: warning: the evidence bundle has $red red summary rows (run the gates, then make evidence)"
 mkdir -p "$PKG/evidence"
 cp -R "$EVIDENCE/." "$PKG/evidence/"
 
