@@ -2,7 +2,8 @@
 # tools/cmake_check.sh -- the CMake build of qfoc checked against the Makefile (make cmake-check).
 #
 # Environment (set by mk/cmake.mk): MAKE_CFLAGS, MAKE_ARM_CFLAGS (the Makefile's CFLAGS and
-# ARM_CFLAGS), CMAKE_OUT (the build directory's prefix, default build/cmake).
+# ARM_CFLAGS), MAKE_ARM_LIB (the Makefile's Cortex-M4F libqfoc.a, optional), CMAKE_OUT (the
+# build directory's prefix, default build/cmake).
 #
 #   1. the host library configured and built by CMake (CMAKE_OUT-host); the consumer project
 #      tests/cmake/consumer built through add_subdirectory and run; the host compile flags
@@ -10,7 +11,8 @@
 #   2. cmake --install to a staging prefix (CMAKE_OUT-stage); the consumer built through
 #      find_package(qfoc 0.2 CONFIG REQUIRED) against that prefix alone and run;
 #   3. the Cortex-M4F library configured with cmake/arm-none-eabi-cortex-m4f.cmake and built;
-#      its compile flags (compile_commands.json) equal the Makefile's ARM_CFLAGS.
+#      its compile flags (compile_commands.json) equal the Makefile's ARM_CFLAGS, and each of
+#      its objects has the same sections, byte for byte, as the Makefile's build.
 # Exit 1 on the first failure.
 set -eu
 TOP=$(cd "$(dirname "$0")/.." && pwd)
@@ -90,4 +92,27 @@ arm-none-eabi-readelf -A "$OUT-arm/libqfoc.a" | grep -q 'Tag_ABI_VFP_args: VFP r
     echo "cmake-check: $OUT-arm/libqfoc.a is not built for the hard-float ABI"; exit 1; }
 "$PY" tools/cmake_flags.py "$OUT-arm/compile_commands.json" . "Cortex-M4F (arm-none-eabi-gcc)" \
     "$MAKE_ARM_CFLAGS"
+# ... and the same code: every object's sections (contents and disassembly) equal those of
+# the Makefile's Cortex-M4F build, when it is given
+if [ -n "${MAKE_ARM_LIB:-}" ]; then
+    [ -f "$MAKE_ARM_LIB" ] || { echo "cmake-check: $MAKE_ARM_LIB missing"; exit 1; }
+    mkdir -p "$OUT-arm/cmp/make" "$OUT-arm/cmp/cmake"
+    ( cd "$OUT-arm/cmp/make" && arm-none-eabi-ar x "$TOP/$MAKE_ARM_LIB" )
+    ( cd "$OUT-arm/cmp/cmake" && arm-none-eabi-ar x "$TOP/$OUT-arm/libqfoc.a" )
+    n=0
+    for c in src/*.c; do
+        u=$(basename "$c" .c)
+        a=$OUT-arm/cmp/make/$u.o
+        b=$OUT-arm/cmp/cmake/$u.c.obj
+        [ -f "$a" ] && [ -f "$b" ] || { echo "cmake-check: no object of $c in one of the two libraries"; exit 1; }
+        # the dumps without their first lines (the file name)
+        arm-none-eabi-objdump -s -d "$a" | tail -n +3 > "$a.dump"
+        arm-none-eabi-objdump -s -d "$b" | tail -n +3 > "$b.dump"
+        cmp -s "$a.dump" "$b.dump" || {
+            diff "$a.dump" "$b.dump" | head -n 20
+            echo "cmake-check: $c: the CMake object differs from the Makefile's"; exit 1; }
+        n=$((n + 1))
+    done
+    echo "cmake-check: Cortex-M4F: the $n objects of the CMake build have the sections of the Makefile's build ($MAKE_ARM_LIB), byte for byte"
+fi
 echo "cmake-check: qfoc $version: host and Cortex-M4F libraries, add_subdirectory and find_package consumers pass ($(( $(date +%s) - start )) s)"
