@@ -62,11 +62,14 @@ gate tune     make --no-print-directory tune-check
 gate demo     make --no-print-directory demo
 gate robust   make --no-print-directory robustness ROBUST_COUNT=24
 gate repro    make --no-print-directory repro
+gate cmake    make --no-print-directory cmake-check
 gate_wait eva
 
 # The evidence bundle last: it collects what the gates above wrote, and fails when one of
 # its summary rows is red (a gate's result missing or failed).
 gate evidence make --no-print-directory evidence EVIDENCE_STRICT=1
+# The release package after it: it packages that bundle, then is unpacked and checked.
+gate release  sh -c 'make --no-print-directory release && make --no-print-directory release-check'
 
 echo
 echo "==================== summary ($(( $(date +%s) - start_all )) s)"

@@ -76,6 +76,7 @@ line gcov gcov --version
 line lcov lcov --version
 line gcovr gcovr --version
 line make make --version
+line cmake cmake --version
 
 # ---------------------------------------------------------------- Cortex-M4F toolchain
 line arm-none-eabi-gcc arm-none-eabi-gcc --version
