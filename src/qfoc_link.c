@@ -428,15 +428,15 @@ static uint16_t qfoc_link_sat_inc(uint16_t v)
 }
 
 /**
- * @brief Count a decoded frame by its status (OK or the rejection cause).
+ * @brief Count a rejected frame by its cause (an accepted one is counted by
+ *        qfoc_link_accept()).
  */
 /*@
   requires valid_l: \valid(l);
   requires link_valid: LinkValid(l);
-  requires status_range: -6 <= status <= 0;
-  assigns l->n_ok, l->n_len, l->n_sync, l->n_id, l->n_checksum, l->n_reserved, l->n_range;
+  requires status_range: -6 <= status <= -1;
+  assigns l->n_len, l->n_sync, l->n_id, l->n_checksum, l->n_reserved, l->n_range;
   ensures still_valid: LinkValid(l);
-  ensures ok_count: l->n_ok == ((status == 0) ? LinSatInc(\old(l->n_ok)) : \old(l->n_ok));
   ensures len_count: l->n_len == ((status == -1) ? LinSatInc(\old(l->n_len)) : \old(l->n_len));
   ensures sync_count: l->n_sync == ((status == -2) ? LinSatInc(\old(l->n_sync)) : \old(l->n_sync));
   ensures id_count: l->n_id == ((status == -3) ? LinSatInc(\old(l->n_id)) : \old(l->n_id));
@@ -449,9 +449,7 @@ static uint16_t qfoc_link_sat_inc(uint16_t v)
 */
 static void qfoc_link_count(qfoc_link_t *l, int32_t status)
 {
-    if (status == QFOC_LINK_OK) {
-        l->n_ok = qfoc_link_sat_inc(l->n_ok);
-    } else if (status == QFOC_LINK_ERR_LEN) {
+    if (status == QFOC_LINK_ERR_LEN) {
         l->n_len = qfoc_link_sat_inc(l->n_len);
     } else if (status == QFOC_LINK_ERR_SYNC) {
         l->n_sync = qfoc_link_sat_inc(l->n_sync);
