@@ -4,7 +4,7 @@
  *        interrupt and the 1 ms interrupt, through the functions of include/qfoc/hal.h
  *        only (this file touches no register), and the supervision of the ADC chain.
  *
- * The document's adc1isr / ftmTimerISR / Ms_1_job become:
+ * The former adc1isr / ftmTimerISR / Ms_1_job (specs/equations.md section 8) become:
  *   qfoc_s32k_adc_isr()  (ADC1, priority 1): samples -> qfoc_drive_fast_step -> PWM;
  *   qfoc_s32k_ftm_isr()  (FTM3, priority 2): counts PWM periods;
  *   qfoc_s32k_tick_isr() (LPIT0, priority 3): temperatures and the received frame ->

@@ -1,6 +1,6 @@
 /**
  * @file main.c
- * @brief The compressor drive on the S32K144: set-up in the order of the document's
+ * @brief The compressor drive on the S32K144: set-up in the order of specs/equations.md section 8's
  *        chapter 3 (clock, power, pins, trigger chain, PDB, ADC, UART, CAN, PWM), the
  *        drive initialised from the reference parameter table, interrupts on, idle loop.
  *

@@ -1,7 +1,7 @@
 /**
  * @file mcu.c
  * @brief S32K144 set-up: clocks, power mode, pins, trigger chain, PDB, ADC, UART, PWM,
- *        CAN, time base, watchdog and interrupt priorities (the document's McuXxxConfig
+ *        CAN, time base, watchdog and interrupt priorities (formerly McuXxxConfig, specs/equations.md section 8
  *        functions and intenable).  Register facts: s32k144_regs.h (S32K1xx RM Rev. 13).
  *
  * Every register is reached through s32k_read/s32k_write/s32k_modify (one accessor).

@@ -1,10 +1,10 @@
 /**
  * @file s32k144_port.h
  * @brief The qfoc port to the NXP S32K144 (Cortex-M4F, 80 MHz RUN mode): chip set-up
- *        (the document's chapter 3 HAL functions), interrupt handlers, and the board
+ *        (the HAL functions of specs/equations.md section 8), interrupt handlers, and the board
  *        choices (pins, clocks, priorities) in one place.
  *
- * Mapping to the document's chapter 3 (HAL / IL):
+ * Mapping to the former names (specs/equations.md section 8, HAL / IL):
  *   McuclockConfig    -> qfoc_s32k_clock_init()   SOSC 8 MHz -> SPLL -> 80 MHz core
  *   McuPowerConfig    -> qfoc_s32k_power_init()   RUN mode only (HSRUN, VLPR refused)
  *   McuPinsConfig     -> qfoc_s32k_pins_init()    FTM3 CH0..5, FTM3_FLT0, LPUART1, CAN0, ADC
@@ -20,7 +20,7 @@
  *   intenable         -> qfoc_s32k_irq_init()     NVIC priorities and enables
  *   adc1isr           -> qfoc_s32k_adc_isr()      the drive's fast step
  *   ftmTimerISR       -> qfoc_s32k_ftm_isr()      PWM period count (overflow or reload,
- *                                                 the document's ftm_INT_option_t)
+ *                                                 formerly ftm_INT_option_t)
  *   Ms_1_job ...      -> qfoc_s32k_tick_isr()     the drive's tick, status, CAN, watchdog
  *   InCom_Uart_Drive  -> qfoc_s32k_uart_isr()     LIN-style frames in and out
  *
@@ -77,7 +77,7 @@
 /** The six PWM outputs (FTM3 CH0..CH5) in FTM_OUTMASK / FTM_SC[PWMENn]. */
 #define QFOC_S32K_PWM_CH_MASK   ((uint32_t)0x3Fu)
 
-/** Which FTM3 interrupt marks the PWM period (the document's ftm_INT_option_t). */
+/** Which FTM3 interrupt marks the PWM period (formerly ftm_INT_option_t). */
 typedef enum {
     QFOC_S32K_FTM_INT_OVF = 0,     /**< counter overflow (TOF, FTM_SC[TOIE]) */
     QFOC_S32K_FTM_INT_RELOAD = 1   /**< reload point at MOD (RF, FTM_SC[RIE]) */

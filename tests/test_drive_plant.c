@@ -85,7 +85,7 @@ static void test_drv_014_start_3000rpm_nominal_load(void **state)
     print_message("start to 3000 rpm at 4.5 N m: closed loop at %.3f s, within 2 %% at %.3f s, "
                   "peak %.0f rpm, |speed error| in the last second %.1f rpm, max angle error "
                   "in closed loop %.1f deg\n", t_cl, t_reach, peak, err_max, ang_max);
-    assert_true(t_cl >= 2.0);                /* not before the document's 2 s */
+    assert_true(t_cl >= 2.0);                /* not before cl_hold_ms (2 s, section 8.3) */
     assert_true(t_cl < 3.5);
     assert_true(t_reach > 0.0 && t_reach < 5.0);
     assert_true(err_max < 30.0);             /* 1 % */

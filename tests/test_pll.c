@@ -2,7 +2,7 @@
  * test_pll.c -- unit tests of the PLL / angle-tracking observer (include/qfoc/pll.h).
  *
  * References (all independent of the implementation):
- *  - one step: the document's loop 2-27, 2-28, 2-34 re-computed in 64-bit
+ *  - one step: the loop of specs/equations.md E2-27, E2-28, E2-34 re-computed in 64-bit
  *    integers (phase detector y cos - x sin, floor magnitude, rounding to
  *    nearest with ties away from zero, PI with clamping anti-windup, angle
  *    accumulator modulo 2^32 by masking a 64-bit sum, low-pass) and the sine,
@@ -128,7 +128,7 @@ static qfoc_pll_params_t ref_params(double zeta, double wn)
     gain_to_q15(wn * wn * T_S / W_BASE, &p.pi.ki, &p.pi.ki_shift);
     p.pi.out_min = -32767;
     p.pi.out_max = 32767;
-    p.err_clamp = 5000;   /* the document's PhaseLockedLoop clamp */
+    p.err_clamp = 5000;   /* the clamp of the former PhaseLockedLoop */
     p.mag_min = 100;
     p.k_theta = (uint16_t)lround(F_BASE / F_PWM * 131072.0);
     p.speed_alpha = (int16_t)lround(2.0 * M_PI * 50.0 / F_PWM * 32768.0);
@@ -566,7 +566,7 @@ static double loop_gain_abs(const qfoc_pll_params_t *p, double w)
    measured mean angle bias against (psi1 phi_a + psi2 phi_b) / (psi1 + psi2) and
    measured 2 theta ripple against |T(e^{j2W})| x the first-order amplitude
    sqrt(((psi2 - psi1)^2 + (psi2 phi_b - psi1 phi_a)^2)) / (psi1 + psi2), for
-   psi1 < psi2 and psi1 > psi2 (the document's second case of 2-31 would add a
+   psi1 < psi2 and psi1 > psi2 (the second case of specs/equations.md E2-31 would add a
    constant (psi2 - psi1) / (psi1 + psi2) rad; it is absent). */
 static void test_pll_req012_bias_of_mismatched_flux(void **state)
 {
@@ -639,7 +639,7 @@ static void test_pll_req012_bias_of_mismatched_flux(void **state)
                         <= ((0.05 * fabs(mean_ref))
                             + (doc_const * doc_const * (ripple_qs + fabs(pa) + fabs(pb)))
                             + (0.01 * M_PI / 180.0)));
-            /* the document's constant of its second case is not there */
+            /* the constant of E2-31's second case is not there */
             if (fabs(doc_const) > 0.01) {
                 assert_true(fabs(mean - mean_ref) < (0.25 * fabs(doc_const)));
             }

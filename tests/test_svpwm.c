@@ -1,7 +1,7 @@
 /**
  * @file test_svpwm.c
  * @brief Tests of the SVPWM stage against an independent double-precision
- *        reference written from the document's equations (chapter 2: inverse
+ *        reference written from specs/equations.md section 6 (inverse
  *        Clarke, Tx = Ux / Vdc * Tpwm, Tx += Txd, sector table, T_mid injection).
  *
  * Requirements: REQ-SVPWM-001 .. REQ-SVPWM-011 (specs/requirements/svpwm.md).
@@ -609,7 +609,7 @@ static void test_req_svpwm_010_random(void **state)
 /* REQ-SVPWM-012: without the overmodulation limit.  Inside the circle (|v| <= Vdc /
    sqrt 3 of the bus used) the compare values, sector and bus flag equal those of
    qfoc_svpwm_step() (which the double reference checks above), and the double
-   reference of the document's equations holds as well; outside, the compare values stay
+   reference of specs/equations.md section 6 holds as well; outside, the compare values stay
    in [0, P]; an invalid configuration gives the safe pattern; utilisation 0, limited
    false. */
 static void test_req_svpwm_012_linear_step(void **state)

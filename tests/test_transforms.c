@@ -1,8 +1,8 @@
 /**
  * @file test_transforms.c
  * @brief Tests of the Clarke, Park, inverse Park and inverse Clarke transforms
- *        against independent double-precision references of the document's
- *        equations (2-3), (2-4), (2-7), (2-8) and the inverse transforms.
+ *        against independent double-precision references of the equations
+ *        E2-3, E2-4, E2-7, E2-8 (specs/equations.md section 3) and the inverse transforms.
  *
  * Requirements: REQ-TRF-001 .. REQ-TRF-010 (specs/requirements/transforms.md).
  * Sine and cosine inputs are computed here as round(32767 sin x), independent of
@@ -323,7 +323,7 @@ static void test_req_trf_003_004_park(void **state)
                   park_max_err_ideal);
 }
 
-/* REQ-TRF-004: inside the document's bound (|i| <= 32767, unit sin/cos) no saturation */
+/* REQ-TRF-004: inside the Park bound of specs/equations.md E2-9, E2-10 (|i| <= 32767, unit sin/cos) no saturation */
 static void test_req_trf_004_park_doc_bound(void **state)
 {
     uint32_t i;
@@ -515,7 +515,7 @@ static void test_req_trf_005_006_inv_park(void **state)
     inv_park_max_err = 0.0;
     inv_park_max_err_ideal = 0.0;
     sweep_rotation(check_inv_park, 0x5EED1234u);
-    /* harmonics on U_d, U_q as in the document: M + A_d sin(wt + phi_d), ... */
+    /* harmonics on U_d, U_q as in specs/equations.md E2-39: M + A_d sin(wt + phi_d), ... */
     for (i = 0u; i < 3600u; i++) {
         double x = (2.0 * PI_D * (double)i) / 3600.0;
         int16_t d = (int16_t)lround(12000.0 + (3000.0 * sin(x + 0.3)));

@@ -105,6 +105,10 @@ else
     line goto-instrument goto-instrument --version
 fi
 
+# CBMC's SAT back end (tools/cbmc.sh: --external-sat-solver)
+line cadical cadical --version
+pkg cadical-package cadical
+
 # ---------------------------------------------------------------- MISRA and static analysis
 line cppcheck cppcheck --version
 addon=$(dpkg -L cppcheck 2>/dev/null | grep '/addons/misra\.py$' | head -n 1)

@@ -158,7 +158,7 @@ static int param_sweep(const sim_motor_t *m, const est_design_t *d, const char *
     return 0;
 }
 
-/* 3. the document's bias analysis (2-29 .. 2-31) on the PLL alone: synthetic
+/* 3. the bias analysis of specs/equations.md E2-29 .. E2-31 on the PLL alone: synthetic
    psi_alpha = psi1 cos(th + phi_a), psi_beta = psi2 sin(th + phi_b) */
 static void bias_synthetic(const sim_motor_t *m, const est_design_t *d, FILE *md)
 {

@@ -33,7 +33,7 @@ int main(void)
     __CPROVER_assert((out.alpha >= -32767) && (out.alpha <= 32767), "alpha range");
     __CPROVER_assert((out.beta >= -32767) && (out.beta <= 32767), "beta range");
     __CPROVER_assert(out.alpha == ((iu == -32768) ? -32767 : iu), "alpha = sat(iu)");
-    /* The document's bound (iu + 2 iv)^2 <= 3 * 32767^2 is, for integers,
+    /* The Clarke bound of specs/equations.md E2-6, (iu + 2 iv)^2 <= 3 * 32767^2 is, for integers,
        |iu + 2 iv| <= 56754 (56754^2 = 3221016516 <= 3221028867 < 56755^2);
        the constant facts are checked here, the nondet square is not formed. */
     __CPROVER_assert(((int64_t)56754 * 56754) <= (3 * (int64_t)32767 * 32767), "56754 inside");

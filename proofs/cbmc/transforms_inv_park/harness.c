@@ -89,7 +89,7 @@ int main(void)
         __CPROVER_assert((int64_t)out.alpha == a_ref, "alpha = round/sat of exact sum");
         __CPROVER_assert((int64_t)out.beta == b_ref, "beta = round/sat of exact sum");
     }
-    /* Inside the document's bound (|exact result| <= 32767, ParkDocBound /
+    /* Inside the bound of specs/equations.md E2-39 (|exact result| <= 32767, ParkDocBound /
        InvParkDocBound: |Q30 sum| <= 32767 * 32768) the result is the exact sum
        rounded, without saturation.  The vector form of the bound is proved to
        imply it by WP (lemmas park_doc_bound, inv_park_doc_bound); a SAT solver

@@ -88,7 +88,7 @@ int main(void)
         __CPROVER_assert((int64_t)out.d == d_ref, "d = round/sat of exact sum");
         __CPROVER_assert((int64_t)out.q == q_ref, "q = round/sat of exact sum");
     }
-    /* Inside the document's bound (|exact result| <= 32767, ParkDocBound /
+    /* Inside the Park bound of specs/equations.md E2-9, E2-10 (|exact result| <= 32767, ParkDocBound /
        InvParkDocBound: |Q30 sum| <= 32767 * 32768) the result is the exact sum
        rounded, without saturation.  The vector form of the bound is proved to
        imply it by WP (lemmas park_doc_bound, inv_park_doc_bound); a SAT solver
