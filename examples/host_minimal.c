@@ -12,7 +12,7 @@
  */
 #include <stdio.h>
 #include "qfoc/drive.h"
-#include "reference_params.h"   /* the table tools/qfoc_tune.py generated for the motor */
+#include "reference_params.h"   /* the table tools/tune/qfoc_tune.py generated for the motor */
 
 static qfoc_drive_t drive;      /* one per motor; no other state in the library */
 

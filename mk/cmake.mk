@@ -4,7 +4,7 @@
 #                          through add_subdirectory and through the installed package
 #                          (find_package), compile flags compared with CFLAGS / ARM_CFLAGS,
 #                          the Cortex-M4F objects compared with the Makefile's
-#                          (tools/cmake_check.sh)
+#                          (tools/gates/cmake_check.sh)
 #   make print-cflags      the host library's compile flags (CFLAGS)
 #   make print-arm-cflags  the Cortex-M4F library's compile flags (ARM_CFLAGS)
 
@@ -14,7 +14,7 @@
 cmake-check: deps $(BUILD)/target/libqfoc.a
 	@MAKE_CFLAGS="$(CFLAGS)" MAKE_ARM_CFLAGS="$(ARM_CFLAGS)" MAKE_ARM_LIB=$(BUILD)/target/libqfoc.a \
 	    CMAKE_OUT=$(BUILD)/cmake \
-	    sh tools/cmake_check.sh
+	    sh tools/gates/cmake_check.sh
 
 print-cflags:
 	@echo $(CFLAGS)

@@ -1,4 +1,4 @@
-# mk/evidence.mk -- the verification evidence bundle for an assessor (tools/evidence.py).
+# mk/evidence.mk -- the verification evidence bundle for an assessor (tools/evidence/evidence.py).
 # Collects what the gates wrote (build/ and the committed proofs/, misra/, specs/ results)
 # into build/evidence/: index.html (one self-contained page: the one-screen summary, then
 # traceability, formal verification, MISRA, coverage, tests, resource usage, static
@@ -19,8 +19,8 @@ EVIDENCE_ARGS = --build $(BUILD) --out $(EVIDENCE_DIR) \
 
 ## evidence: the evidence bundle from the gates' results (build/evidence/index.html, evidence.json, artefacts/); runs no gate
 evidence:
-	@$(PYTHON) tools/evidence.py $(EVIDENCE_ARGS)
+	@$(PYTHON) tools/evidence/evidence.py $(EVIDENCE_ARGS)
 
 ## evidence-strict: as evidence, and exits 1 when a summary row is red
 evidence-strict:
-	@$(PYTHON) tools/evidence.py $(EVIDENCE_ARGS) --strict
+	@$(PYTHON) tools/evidence/evidence.py $(EVIDENCE_ARGS) --strict

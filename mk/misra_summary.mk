@@ -1,5 +1,5 @@
 # mk/misra_summary.mk -- the MISRA Compliance:2020 guideline compliance summary
-# (tools/misra_summary.py): every guideline of MISRA C:2012 with Amendments 1 and 2, its
+# (tools/gates/misra_summary.py): every guideline of MISRA C:2012 with Amendments 1 and 2, its
 # category, its verification methods (misra/enforcement-plan.csv) and its status
 # (compliant, deviations with their records and sites, disapplied, violations) from the
 # cppcheck result of `make misra`, misra/deviations.md and the review records of
@@ -10,9 +10,9 @@
 
 $(BUILD)/misra/cppcheck.xml: $(SRCS) $(HDRS) $(TABLE_SRCS) $(TABLE_HDRS) \
                              $(wildcard port_s32k/*.c port_s32k/*.h) \
-                             misra/guidelines.txt misra/deviations.md tools/misra.sh tools/misra_report.py
-	-@sh tools/misra.sh
+                             misra/guidelines.txt misra/deviations.md tools/gates/misra.sh tools/gates/misra_report.py
+	-@sh tools/gates/misra.sh
 
 ## misra-summary: MISRA Compliance:2020 summary of every guideline (build/misra/compliance-summary.md, .json); fails on a violation
 misra-summary: deps $(BUILD)/misra/cppcheck.xml
-	@$(PYTHON) tools/misra_summary.py
+	@$(PYTHON) tools/gates/misra_summary.py

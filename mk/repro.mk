@@ -1,5 +1,5 @@
-# Reproducible builds (tools/repro.sh).
+# Reproducible builds (tools/gates/repro.sh).
 .PHONY: repro
 ## repro: the library and the firmware image built twice: identical bytes, SHA-256 recorded
 repro: deps
-	@sh tools/repro.sh
+	@sh tools/gates/repro.sh

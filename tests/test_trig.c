@@ -332,7 +332,7 @@ static void test_req_trig_004_atan2_axes(void **state)
 }
 
 /* REQ-TRIG-005: the committed tables equal their defining formulas
- * (recomputed here from math.h, independent of tools/gen_trig_tables.py). */
+ * (recomputed here from math.h, independent of tools/codegen/gen_trig_tables.py). */
 static void test_req_trig_005_tables(void **state)
 {
     uint32_t i;

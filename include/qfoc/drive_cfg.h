@@ -4,7 +4,7 @@
  *        feature settings of the drive layer, stored in the parameter table (params.h,
  *        field `drive`, layout version 2).
  *
- * Every number is an integer the tuning tool (tools/qfoc_tune.py) derives from the
+ * Every number is an integer the tuning tool (tools/tune/qfoc_tune.py) derives from the
  * motor file (section [drive] overrides the documented defaults).  Unless a field says
  * otherwise the scalings are those of specs/scaling.md: currents Q15 of I_base, speeds
  * Q15 of the electrical base speed w_base = 2 pi f_base, fluxes Q15 of

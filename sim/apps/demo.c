@@ -3,7 +3,7 @@
  * @brief The demonstration's simulation runner (make demo): every scenario of
  *        scenario.h on the reference motor's table, the cold start on every other table
  *        of tables/manifest.txt, each into its own directory with metrics.json,
- *        trace.csv and zoom.csv; then summary.json.  tools/demo_report.py makes the
+ *        trace.csv and zoom.csv; then summary.json.  tools/demo/demo_report.py makes the
  *        report from them.
  *
  * usage: qfoc_demo [--out DIR] [--targets FILE] [--only NAME] [--quiet]

@@ -14,7 +14,7 @@
 #                                           specifications (the safety manual is
 #                                           specs/safety-manual.md)
 #   tables/                                 the generated parameter tables and their manifest
-#   tools/qfoc_tune.py                      the tuning tool (Python 3 with numpy, scipy and
+#   tools/tune/qfoc_tune.py                 the tuning tool (Python 3 with numpy, scipy and
 #                                           matplotlib; it imports nothing of its own)
 #   lib/cortex-m4f/libqfoc.a                the library for Cortex-M4F, and BUILDINFO.txt with
 #                                           its compiler, flags and SHA-256 (checked against
@@ -85,9 +85,9 @@ copy_files() {
 }
 
 copy_files README.md CHANGELOG.md LICENSE NOTICE CMakeLists.txt cmake include src specs tables \
-           tools/qfoc_tune.py docs examples
+           tools/tune/qfoc_tune.py docs examples
 for f in README.md CHANGELOG.md LICENSE NOTICE CMakeLists.txt include/qfoc/version.h \
-         specs/safety-manual.md tools/qfoc_tune.py tables/reference_params.c; do
+         specs/safety-manual.md tools/tune/qfoc_tune.py tables/reference_params.c; do
     [ -f "$PKG/$f" ] || { echo "release: $f is not in the package (not tracked by git?)"; exit 1; }
 done
 

@@ -68,7 +68,7 @@ timeout 120 $QEMU $SEMI,arg=tt_runner -kernel "$ELF" > "$OUT/target.txt" 2>&1
 rc=$?
 cat "$OUT/target.txt"
 # JUnit XML of the run, one test case per group, beside the unit tests' (build/junit/)
-/usr/bin/python3 "$(dirname "$0")/../junit.py" "$(dirname "$OUT")/junit" target_equivalence=vectors:"$OUT/target.txt" >/dev/null ||
+/usr/bin/python3 "$(dirname "$0")/../gates/junit.py" "$(dirname "$OUT")/junit" target_equivalence=vectors:"$OUT/target.txt" >/dev/null ||
     fail "could not write the JUnit file of the run"
 [ $rc -eq 0 ] || fail "the Cortex-M4F runner exited with status $rc (1: a difference, 3: a fault, 124: timeout)"
 nid=$(grep -c ', identical$' "$OUT/target.txt")

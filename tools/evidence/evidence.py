@@ -1,0 +1,1787 @@
+#!/usr/bin/env python3
+"""The ISO 26262 evidence bundle of qfoc: what the gates produced, in one place.
+
+usage: evidence.py [--root DIR] [--build DIR] [--out DIR] [--strict]
+
+Reads the results the gates wrote (build/ and the committed results under proofs/, misra/
+and specs/; it runs no gate itself) and writes into OUT (default build/evidence/):
+
+  index.html      one self-contained page (inline CSS, no script, no external resource):
+                  the one-screen summary, then one section per kind of evidence
+  evidence.json   the summary rows and every section's figures, machine-readable
+  artefacts/      a copy of every underlying file, under its path in the repository
+                  (artefacts/proofs/wp/results.md, artefacts/build/eva/eva.json, ...);
+                  the page links them relatively, so OUT can be archived and handed over
+  tool-versions.txt  the output of `sh tools/evidence/tool_versions.sh` for this run
+
+Every summary row is green or red with its figure; an input that is missing makes its
+row red with "not run", never green.  Prints the summary as plain text, one line per row,
+and 'evidence: OUT/index.html (N green, M red)'.  Exit status 0 when the page was
+written; with --strict, 1 when a summary row is red.  The requirements are
+specs/requirements/evidence.md (REQ-EVD-001 .. REQ-EVD-013).
+"""
+import argparse
+import datetime
+import glob
+import hashlib
+import html
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+# --------------------------------------------------------------------------- helpers
+
+
+def esc(value) -> str:
+    return html.escape("" if value is None else str(value), quote=True)
+
+
+def read_text(path):
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            return f.read()
+    except OSError:
+        return None
+
+
+def read_json(path):
+    """The parsed JSON of a file, or None when it is missing or malformed."""
+    text = read_text(path)
+    if text is None:
+        return None
+    try:
+        return json.loads(text)
+    except ValueError:
+        return None
+
+
+def mtime_iso(path):
+    try:
+        t = os.path.getmtime(path)
+    except OSError:
+        return None
+    return datetime.datetime.fromtimestamp(t, datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+
+
+def as_int(value, default=0):
+    try:
+        return int(value)
+    except (TypeError, ValueError):
+        try:
+            return int(float(value))
+        except (TypeError, ValueError):
+            return default
+
+
+def as_float(value, default=None):
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return default
+
+
+def pct(num, den):
+    return 100.0 * num / den if den else None
+
+
+def fmt_pct(value, digits=1):
+    return "-" if value is None else f"{value:.{digits}f} %"
+
+
+def as_list(value):
+    """A list of the value (None: empty; a string or number: one element; a dict: its items)."""
+    if value is None or value == "" or value == "-":
+        return []
+    if isinstance(value, list):
+        return value
+    if isinstance(value, dict):
+        return [value]
+    if isinstance(value, str) and "<br>" in value:
+        return [v.strip() for v in value.split("<br>") if v.strip()]
+    return [value]
+
+
+def truthy(value):
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, (int, float)):
+        return value != 0
+    if isinstance(value, str):
+        return value.strip().lower() in ("yes", "true", "pass", "passed", "ok", "verified", "1")
+    return False
+
+
+def split_md_row(line):
+    """The cells of a markdown table row ('\\|' is a literal bar)."""
+    s = line.strip()
+    if s.startswith("|"):
+        s = s[1:]
+    if s.endswith("|") and not s.endswith("\\|"):
+        s = s[:-1]
+    return [c.strip().replace("\\|", "|") for c in re.split(r"(?<!\\)\|", s)]
+
+
+def md_tables(text):
+    """Every markdown table of a text: a list of (header cells, list of row cells)."""
+    tables = []
+    lines = (text or "").splitlines()
+    i = 0
+    while i < len(lines) - 1:
+        if lines[i].strip().startswith("|") and re.match(r"^\s*\|?\s*:?-{2,}", lines[i + 1]):
+            head = split_md_row(lines[i])
+            rows = []
+            i += 2
+            while i < len(lines) and lines[i].strip().startswith("|"):
+                rows.append(split_md_row(lines[i]))
+                i += 1
+            tables.append((head, rows))
+        else:
+            i += 1
+    return tables
+
+
+def table_with(text, *columns):
+    """The first markdown table whose header has all the columns, as a list of dicts."""
+    for head, rows in md_tables(text):
+        low = [h.lower() for h in head]
+        if all(c in low for c in columns):
+            return [dict(zip(low, r)) for r in rows]
+    return None
+
+
+# --------------------------------------------------------------------------- markdown
+
+
+LIST_RE = re.compile(r"^(\s*)([-*+]|\d+[.)])\s+")
+
+
+def md_inline(text):
+    """Inline markdown (code spans, bold, emphasis, links) of one line, escaped."""
+    parts = re.split(r"(`+[^`]*?`+)", text)
+    out = []
+    for part in parts:
+        if part.startswith("`") and part.endswith("`") and len(part) >= 2:
+            out.append("<code>" + esc(part.strip("`")) + "</code>")
+            continue
+        s = esc(part)
+        s = re.sub(r"\*\*(.+?)\*\*", r"<strong>\1</strong>", s)
+        s = re.sub(r"(?<![\w*])\*(?![\s*])(.+?)(?<![\s*])\*(?![\w*])", r"<em>\1</em>", s)
+
+        def link(m):
+            label, url = m.group(1), m.group(2)
+            if re.match(r"^https?://", html.unescape(url)):
+                return f'<a href="{url}">{label}</a>'
+            return f"{label} (<code>{url}</code>)"
+
+        s = re.sub(r"\[([^\]]+)\]\(([^)\s]+)\)", link, s)
+        out.append(s)
+    return "".join(out)
+
+
+def md_list(block):
+    """A (possibly nested) markdown list from its lines."""
+    base = len(LIST_RE.match(block[0]).group(1))
+    ordered = LIST_RE.match(block[0]).group(2)[0].isdigit()
+    items = []
+    for line in block:
+        m = LIST_RE.match(line)
+        if m and len(m.group(1)) <= base:
+            items.append([line[m.end():]])
+        elif items:
+            items[-1].append(line)
+    out = ["<ol>" if ordered else "<ul>"]
+    for item in items:
+        text, j = [item[0]], 1
+        while j < len(item) and not LIST_RE.match(item[j]):
+            if item[j].strip():
+                text.append(item[j].strip())
+            j += 1
+        body = md_inline(" ".join(t.strip() for t in text))
+        nested, para = [], []
+        for ln in item[j:] + [None]:
+            if ln is not None and not ln.strip():
+                continue
+            indent = None if ln is None else len(ln) - len(ln.lstrip())
+            if ln is not None and (LIST_RE.match(ln) or (nested and indent > len(LIST_RE.match(nested[0]).group(1)))):
+                if para:
+                    body += "<p>" + md_inline(" ".join(para)) + "</p>"
+                    para = []
+                nested.append(ln)
+                continue
+            if nested:
+                body += md_list(nested)
+                nested = []
+            if ln is not None:
+                para.append(ln.strip())
+        if para:
+            body += "<p>" + md_inline(" ".join(para)) + "</p>"
+        out.append(f"<li>{body}</li>")
+    out.append("</ol>" if ordered else "</ul>")
+    return "".join(out)
+
+
+def md_to_html(text, shift=2):
+    """Markdown of the project's documents to HTML: headings (shifted down by SHIFT levels),
+    paragraphs, lists, tables, fenced and indented code, inline code, bold, emphasis."""
+    lines = (text or "").splitlines()
+    out, para = [], []
+
+    def flush():
+        if para:
+            out.append("<p>" + md_inline(" ".join(p.strip() for p in para)) + "</p>")
+            para.clear()
+
+    i, n = 0, len(lines)
+    while i < n:
+        line = lines[i]
+        if line.strip().startswith("```"):
+            flush()
+            j = i + 1
+            while j < n and not lines[j].strip().startswith("```"):
+                j += 1
+            out.append("<pre>" + esc("\n".join(lines[i + 1:j])) + "</pre>")
+            i = j + 1
+            continue
+        m = re.match(r"^(#{1,6})\s+(.*)$", line)
+        if m:
+            flush()
+            level = min(6, len(m.group(1)) + shift)
+            out.append(f"<h{level}>{md_inline(m.group(2).strip())}</h{level}>")
+            i += 1
+            continue
+        if line.strip().startswith("|") and i + 1 < n and re.match(r"^\s*\|?\s*:?-{2,}", lines[i + 1]):
+            flush()
+            head = split_md_row(line)
+            rows = []
+            i += 2
+            while i < n and lines[i].strip().startswith("|"):
+                rows.append(split_md_row(lines[i]))
+                i += 1
+            out.append("<table><tr>" + "".join(f"<th>{md_inline(h)}</th>" for h in head) + "</tr>")
+            for r in rows:
+                out.append("<tr>" + "".join(f"<td>{md_inline(c)}</td>" for c in r) + "</tr>")
+            out.append("</table>")
+            continue
+        if LIST_RE.match(line) and (not para or not line.startswith(" ")):
+            flush()
+            block = []
+            while i < n:
+                cur = lines[i]
+                if not cur.strip():
+                    k = i + 1
+                    while k < n and not lines[k].strip():
+                        k += 1
+                    if k < n and (LIST_RE.match(lines[k]) or lines[k].startswith("  ")):
+                        i = k
+                        continue
+                    break
+                if block and not LIST_RE.match(cur) and not cur.startswith(" "):
+                    break
+                block.append(cur)
+                i += 1
+            out.append(md_list(block))
+            continue
+        if line.startswith("    ") and not para:
+            j = i
+            code = []
+            while j < n and (lines[j].startswith("    ") or not lines[j].strip()):
+                code.append(lines[j][4:])
+                j += 1
+            while code and not code[-1].strip():
+                code.pop()
+            out.append("<pre>" + esc("\n".join(code)) + "</pre>")
+            i = j
+            continue
+        if not line.strip():
+            flush()
+        else:
+            para.append(line)
+        i += 1
+    flush()
+    return "\n".join(out)
+
+
+# --------------------------------------------------------------------------- the bundle
+
+
+class Bundle:
+    """Paths of one run and the artefacts copied so far."""
+
+    def __init__(self, root, build, out):
+        self.root = os.path.abspath(root)
+        self.build = build if os.path.isabs(build) else os.path.join(self.root, build)
+        self.out = out if os.path.isabs(out) else os.path.join(self.root, out)
+        self.copied = {}
+
+    def path(self, rel):
+        return rel if os.path.isabs(rel) else os.path.join(self.root, rel)
+
+    def rel(self, path):
+        """A path relative to the repository root (for display and for the artefacts tree)."""
+        p = os.path.abspath(self.path(path))
+        r = os.path.relpath(p, self.root)
+        return p if r.startswith("..") else r
+
+    def b(self, *parts):
+        """A path under the build directory, relative to the root when it can be."""
+        return self.rel(os.path.join(self.build, *parts))
+
+    def exists(self, rel):
+        return os.path.exists(self.path(rel))
+
+    def art(self, rel):
+        """Copy a file or directory into artefacts/ (once); its link relative to OUT, or None."""
+        src = self.path(rel)
+        if not os.path.exists(src):
+            return None
+        r = self.rel(rel)
+        if os.path.isabs(r):
+            r = os.path.join("external", os.path.basename(r))
+        if r in self.copied:
+            return self.copied[r]
+        dst = os.path.join(self.out, "artefacts", r)
+        os.makedirs(os.path.dirname(dst), exist_ok=True)
+        if os.path.isdir(src):
+            shutil.copytree(src, dst, dirs_exist_ok=True)
+            link = "artefacts/" + r.replace(os.sep, "/") + "/"
+            if os.path.exists(os.path.join(src, "index.html")):
+                link += "index.html"
+        else:
+            shutil.copy2(src, dst)
+            link = "artefacts/" + r.replace(os.sep, "/")
+        self.copied[r] = link
+        return link
+
+    def inputs(self, *rels):
+        """The record of the inputs of a section: path, present, modified; copies them."""
+        recs = []
+        for rel in rels:
+            present = self.exists(rel)
+            recs.append({"path": self.rel(rel), "present": present,
+                         "modified": mtime_iso(self.path(rel)) if present else None,
+                         "link": self.art(rel) if present else None})
+        return recs
+
+
+def row(key, label, ok, figure, section, missing=False, note=""):
+    return {"key": key, "label": label, "status": "PASS" if ok and not missing else "FAIL",
+            "figure": "not run" if missing and not figure else figure,
+            "missing": missing, "section": section, "note": note}
+
+
+def missing_row(key, label, section, what, bundle=None):
+    """The red row of a result that is not there ("not run"), or there but unreadable."""
+    if bundle is not None and bundle.exists(what):
+        return row(key, label, False, f"unreadable: {what}", section, missing=True,
+                   note=f"{what} is not in the expected form")
+    return row(key, label, False, "not run", section, missing=True, note=f"{what} not found")
+
+
+# --------------------------------------------------------------------------- 1 traceability
+
+
+def module_of(rid):
+    m = re.match(r"^REQ-([A-Z0-9]+)-\d+", rid or "")
+    return m.group(1) if m else "?"
+
+
+def names(values, key_order=("name", "id", "harness", "function", "file", "scenario", "title")):
+    """Display names of a list of strings or records."""
+    out = []
+    for v in as_list(values):
+        if isinstance(v, dict):
+            for k in key_order:
+                if v.get(k):
+                    name = str(v[k])
+                    if k == "name" and v.get("file"):
+                        name += f" ({v['file']})"
+                    out.append(name)
+                    break
+            else:
+                out.append(json.dumps(v, sort_keys=True))
+        else:
+            out.append(str(v))
+    return out
+
+
+def wp_cell(value):
+    """The WP figure of a requirement, whatever the form trace.json gives it."""
+    if value is None or value == "" or value == []:
+        return "-", []
+    if isinstance(value, dict):
+        total = value.get("goals", value.get("total"))
+        proved = value.get("proved", value.get("valid"))
+        fns = names(value.get("functions") or value.get("contracts") or [])
+        if total is not None and proved is not None:
+            if not as_int(total) and not fns:
+                return "-", []
+            return f"{proved}/{total}", fns
+        return (", ".join(fns) or json.dumps(value, sort_keys=True)), fns
+    if isinstance(value, (int, float)):
+        return str(value), []
+    items = names(value)
+    return (str(len(items)) if len(items) > 1 else (items[0] if items else "-")), items
+
+
+def normalise_requirement(rid, rec):
+    rec = rec if isinstance(rec, dict) else {}
+    rid = rid or rec.get("id") or rec.get("requirement") or "?"
+    contracts = names(rec.get("contracts", rec.get("contract", rec.get("header"))))
+    named_in = [os.path.basename(n) for n in names(rec.get("named_in"))]
+    cbmc = names(rec.get("cbmc"))
+    tests = names(rec.get("tests", rec.get("test")))
+    scenarios = names(rec.get("scenarios", rec.get("scenario")))
+    wp_text, wp_items = wp_cell(rec.get("wp"))
+    if "verified" in rec:
+        verified = truthy(rec.get("verified"))
+    else:
+        verified = bool(contracts) and bool(tests or cbmc or wp_items)
+    return {"id": rid, "title": str(rec.get("title", "")), "module": rec.get("module") or module_of(rid),
+            "contracts": contracts, "named_in": named_in, "wp": wp_text, "wp_items": wp_items, "cbmc": cbmc,
+            "tests": tests, "scenarios": scenarios, "verified": verified}
+
+
+def demo_scenarios(bundle):
+    """Requirement ID -> scenarios of the demonstration that name it (with their result)."""
+    found = {}
+    for mpath in sorted(glob.glob(os.path.join(bundle.build, "demo", "*", "metrics.json"))):
+        m = read_json(mpath)
+        if not isinstance(m, dict):
+            continue
+        name = m.get("scenario") or os.path.basename(os.path.dirname(mpath))
+        label = name + ("" if m.get("pass") is None else (" (pass)" if m.get("pass") else " (FAIL)"))
+        for rid in as_list(m.get("requirements")):
+            found.setdefault(str(rid), []).append(label)
+    return found
+
+
+def collect_trace(bundle):
+    sec = {"title": "Requirements and traceability", "rows": []}
+    jpath, mpath = bundle.b("trace", "trace.json"), bundle.b("trace", "trace.md")
+    data = read_json(bundle.path(jpath))
+    reqs = []
+    if data is not None:
+        sec["inputs"] = bundle.inputs(jpath, mpath) if bundle.exists(mpath) else bundle.inputs(jpath)
+        sec["source"] = jpath
+        body = data.get("requirements", data) if isinstance(data, dict) else data
+        if isinstance(data, dict):
+            sec["totals"] = data.get("totals") if isinstance(data.get("totals"), dict) else {}
+            sec["gate_failures"] = [str(g) for g in as_list(data.get("gate_failures"))]
+        if isinstance(body, dict):
+            for rid, rec in body.items():
+                if isinstance(rec, dict) and re.match(r"^REQ-", str(rid)):
+                    reqs.append(normalise_requirement(rid, rec))
+        elif isinstance(body, list):
+            for rec in body:
+                if isinstance(rec, dict):
+                    reqs.append(normalise_requirement(None, rec))
+    elif bundle.exists(mpath):
+        sec["inputs"] = bundle.inputs(mpath)
+        sec["source"] = mpath
+        rows = table_with(read_text(bundle.path(mpath)), "requirement") or []
+        for r in rows:
+            rec = {"title": r.get("title", ""),
+                   "contracts": as_list(r.get("header", r.get("contract"))),
+                   "cbmc": as_list(r.get("cbmc")), "tests": as_list(r.get("tests"))}
+            if "wp" in r:
+                rec["wp"] = as_list(r.get("wp"))
+            if "scenarios" in r:
+                rec["scenarios"] = as_list(r.get("scenarios"))
+            if "verified" in r:
+                rec["verified"] = r["verified"]
+            reqs.append(normalise_requirement(r.get("requirement"), rec))
+    else:
+        sec["inputs"] = bundle.inputs(jpath)
+        sec["present"] = False
+        sec["summary"] = [missing_row("requirements", "requirements traced", "sec1",
+                                      f"{jpath} and {mpath}")]
+        return sec
+    demo = demo_scenarios(bundle)
+    for r in reqs:
+        if not r["scenarios"] and r["id"] in demo:
+            r["scenarios"] = demo[r["id"]]
+            r["scenarios_from"] = "demo"
+    reqs.sort(key=lambda r: r["id"])
+    n = len(reqs)
+    v = sum(1 for r in reqs if r["verified"])
+    sec.update({"present": True, "requirements": reqs, "total": n, "verified": v,
+                "with_tests": sum(1 for r in reqs if r["tests"]),
+                "with_cbmc": sum(1 for r in reqs if r["cbmc"]),
+                "with_scenarios": sum(1 for r in reqs if r["scenarios"])})
+    failures = sec.get("gate_failures") or []
+    if n == 0:
+        sec["summary"] = [row("requirements", "requirements traced", False, "0 requirements found", "sec1")]
+    else:
+        fig = f"{v}/{n} verified"
+        if failures:
+            fig += f"; {len(failures)} trace gate failures"
+        sec["summary"] = [row("requirements", "requirements traced", v == n and not failures, fig, "sec1")]
+    return sec
+
+
+# --------------------------------------------------------------------------- 2 formal
+
+
+def wp_rows_from_md(text):
+    rows = table_with(text, "unit", "function", "goals", "proved") or []
+    out = []
+    for r in rows:
+        out.append({"unit": r.get("unit", ""), "function": r.get("function", ""),
+                    "goals": as_int(r.get("goals")), "proved": as_int(r.get("proved")),
+                    "provers": r.get("provers", ""), "time_ms": as_float(r.get("time (ms)"), None)})
+    return out
+
+
+def defined_functions(bundle, unit):
+    """Functions a WP unit defines (tools/gates/c_functions.py), or None when unknown."""
+    if unit == "lemmas_unit" or unit.startswith("lemmas"):
+        return None
+    src = "include/qfoc/q15.h" if unit == "q15_unit" else f"src/{unit}.c"
+    script = bundle.path("tools/gates/c_functions.py")
+    if not bundle.exists(src) or not os.path.exists(script):
+        return None
+    try:
+        res = subprocess.run([sys.executable, script, bundle.path(src)], capture_output=True,
+                             text=True, timeout=30, check=False)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return [f for f in res.stdout.strip().split(",") if f] if res.returncode == 0 else None
+
+
+def collect_wp(bundle):
+    sec = {"title": "Frama-C WP"}
+    jpath = bundle.b("wp", "wp-summary.json")
+    mpath = "proofs/wp/results.md"
+    data = read_json(bundle.path(jpath))
+    use_json = False
+    if isinstance(data, dict) and isinstance(data.get("functions"), list):
+        jm = os.path.getmtime(bundle.path(jpath))
+        mm = os.path.getmtime(bundle.path(mpath)) if bundle.exists(mpath) else 0
+        use_json = jm + 5 >= mm
+    clean = None
+    if use_json:
+        sec["source"] = jpath
+        sec["inputs"] = bundle.inputs(jpath, mpath)
+        rows = [{"unit": f.get("unit", ""), "function": f.get("function", ""),
+                 "goals": as_int(f.get("goals")), "proved": as_int(f.get("proved")),
+                 "provers": f.get("provers", ""), "time_ms": as_float(f.get("time_ms"))}
+                for f in data["functions"] if isinstance(f, dict)]
+        clean = data.get("clean")
+    elif bundle.exists(mpath):
+        sec["source"] = mpath
+        sec["inputs"] = bundle.inputs(mpath)
+        rows = wp_rows_from_md(read_text(bundle.path(mpath)))
+    else:
+        sec["inputs"] = bundle.inputs(mpath)
+        sec["present"] = False
+        sec["summary"] = [missing_row("wp", "WP goals proved", "sec2", f"{jpath} and {mpath}")]
+        return sec
+    # a prove run newer than the results it fell back to (interrupted, or running)
+    logs = sorted(glob.glob(os.path.join(bundle.build, "wp", "*.log")))
+    if not use_json and logs and bundle.exists(mpath):
+        newest = max(os.path.getmtime(p) for p in logs)
+        if newest > os.path.getmtime(bundle.path(mpath)) + 5:
+            sec["note"] = (f"{bundle.b('wp')} holds the logs of a later, incomplete `make prove` run "
+                           f"({len(logs)} units, no wp-summary.json); the committed {mpath} is shown.")
+    total = sum(r["goals"] for r in rows)
+    proved = sum(r["proved"] for r in rows)
+    units = sorted({r["unit"] for r in rows})
+    missing_fns = []
+    for unit in units:
+        fns = defined_functions(bundle, unit)
+        if fns is None:
+            continue
+        have = {r["function"] for r in rows if r["unit"] == unit}
+        missing_fns += [f"{unit}:{f}" for f in fns if f not in have]
+    expected_units = [os.path.basename(p)[:-2] for p in sorted(glob.glob(bundle.path("src/*.c")))]
+    missing_units = [u for u in expected_units if u not in units and defined_functions(bundle, u)]
+    sec.update({"present": True, "functions": rows, "goals": total, "proved": proved,
+                "units": units, "clean": clean, "functions_without_result": missing_fns,
+                "units_without_result": missing_units})
+    ok = total > 0 and proved == total and clean is not False and not missing_fns and not missing_units
+    fig = f"{proved}/{total} goals, {len(rows)} functions"
+    if missing_units or missing_fns:
+        fig += f"; {len(missing_units)} units, {len(missing_fns)} functions without a result"
+    sec["summary"] = [row("wp", "WP goals proved", ok, fig, "sec2")]
+    return sec
+
+
+def collect_cbmc(bundle):
+    sec = {"title": "CBMC"}
+    mpath = "proofs/cbmc/results.md"
+    dirs = sorted(os.path.basename(os.path.dirname(p))
+                  for p in glob.glob(bundle.path("proofs/cbmc/*/harness.c")))
+    res_files = sorted(glob.glob(os.path.join(bundle.build, "cbmc", "*.res")))
+    res_rows = []
+    for p in res_files:
+        parts = (read_text(p) or "").strip().split("|")
+        if len(parts) >= 6:
+            res_rows.append({"harness": parts[0], "result": parts[1], "properties": as_int(parts[2]),
+                             "failed": as_int(parts[3]), "unwind": parts[4], "time_s": as_int(parts[5])})
+    md_rows = None
+    if bundle.exists(mpath):
+        t = table_with(read_text(bundle.path(mpath)), "harness", "result") or []
+        md_rows = [{"harness": r.get("harness", ""), "result": r.get("result", ""),
+                    "properties": as_int(r.get("properties proved", r.get("properties"))),
+                    "failed": as_int(r.get("failed")), "unwind": r.get("unwind", ""),
+                    "time_s": as_int(r.get("time (s)"))} for r in t]
+    use_res = bool(res_rows) and (not dirs or {r["harness"] for r in res_rows} >= set(dirs)) and \
+        (md_rows is None or max(os.path.getmtime(p) for p in res_files) > os.path.getmtime(bundle.path(mpath)))
+    if use_res:
+        rows, sec["source"] = res_rows, bundle.b("cbmc")
+        sec["inputs"] = bundle.inputs(mpath) if md_rows is not None else []
+    elif md_rows is not None:
+        rows, sec["source"] = md_rows, mpath
+        sec["inputs"] = bundle.inputs(mpath)
+    else:
+        sec["inputs"] = bundle.inputs(mpath)
+        sec["present"] = False
+        sec["summary"] = [missing_row("cbmc", "CBMC properties", "sec2", mpath)]
+        return sec
+    rows.sort(key=lambda r: r["harness"])
+    have = {r["harness"] for r in rows}
+    missing = [d for d in dirs if d not in have]
+    failed_h = [r["harness"] for r in rows if r["result"].upper() != "PASS" or r["failed"]]
+    props = sum(r["properties"] for r in rows)
+    failed = sum(r["failed"] for r in rows)
+    sec.update({"present": True, "harnesses": rows, "count": len(rows), "properties": props,
+                "failed_properties": failed, "failed_harnesses": failed_h,
+                "harnesses_without_result": missing})
+    ok = bool(rows) and not failed_h and not missing
+    fig = f"{len(rows)} harnesses, {props} properties, {failed} failed"
+    if failed_h:
+        fig += f" ({len(failed_h)} harnesses fail)"
+    if missing:
+        fig += f"; {len(missing)} harnesses without a result"
+    sec["summary"] = [row("cbmc", "CBMC properties", ok, fig, "sec2")]
+    return sec
+
+
+def collect_eva(bundle):
+    sec = {"title": "Frama-C EVA"}
+    jpath = bundle.b("eva", "eva.json")
+    data = read_json(bundle.path(jpath))
+    sec["inputs"] = bundle.inputs(*[p for p in (jpath, bundle.b("eva", "eva.md"), bundle.b("eva", "eva.log"))
+                                   if bundle.exists(p)] or [jpath])
+    if not isinstance(data, dict):
+        sec["present"] = False
+        sec["summary"] = [missing_row("eva", "EVA runtime-error alarms", "sec2", jpath, bundle)]
+        return sec
+    alarms = [a for a in as_list(data.get("rte_alarms")) if isinstance(a, dict)]
+    rc = data.get("frama_c_exit")
+    sec.update({"present": True, "alarms": alarms, "seconds": data.get("seconds"),
+                "frama_c_exit": rc, "unknown_properties": data.get("unknown_properties")})
+    ok = len(alarms) == 0 and rc in (0, None)
+    fig = f"{len(alarms)} alarm{'s' if len(alarms) != 1 else ''} (target 0)"
+    if rc not in (0, None):
+        fig += f", Frama-C exit {rc}"
+    if data.get("seconds") is not None:
+        fig += f", {data.get('seconds')} s"
+    sec["summary"] = [row("eva", "EVA runtime-error alarms", ok, fig, "sec2")]
+    return sec
+
+
+# --------------------------------------------------------------------------- 3 MISRA
+
+
+def collect_misra(bundle):
+    sec = {"title": "MISRA Compliance:2020"}
+    jpath = bundle.b("misra", "compliance-summary.json")
+    others = [bundle.b("misra", "compliance-summary.md"), bundle.b("misra", "report.md"),
+              "misra/enforcement-plan.csv", "misra/deviations.md", "misra/reviews.md"]
+    sec["inputs"] = bundle.inputs(jpath, *[p for p in others if bundle.exists(p)])
+    sec["deviations_md"] = read_text(bundle.path("misra/deviations.md"))
+    report = read_text(bundle.path(bundle.b("misra", "report.md")))
+    if report:
+        m = re.search(r"Unrecorded findings:\s*(\d+)", report)
+        sec["cppcheck_unrecorded"] = as_int(m.group(1)) if m else None
+        m = re.search(r"Suppressed findings with deviation records:\s*(\d+)", report)
+        sec["cppcheck_suppressed"] = as_int(m.group(1)) if m else None
+    data = read_json(bundle.path(jpath))
+    if not isinstance(data, dict):
+        sec["present"] = False
+        sec["summary"] = [missing_row("misra", "MISRA C:2012", "sec3", jpath, bundle)]
+        return sec
+    counts = data.get("counts") or {}
+    status = [g for g in as_list(data.get("guideline_status")) if isinstance(g, dict)]
+    if not counts and status:
+        for g in status:
+            k = str(g.get("status", "")).lower()
+            counts[k] = counts.get(k, 0) + 1
+    violations = as_int(counts.get("violations"))
+    deviations = as_int(counts.get("deviations"))
+    disapplied = as_int(counts.get("disapplied"))
+    records = [d for d in as_list(data.get("deviation_records")) if isinstance(d, dict)]
+    plan_errors = as_list(data.get("plan_errors"))
+    unattributed = as_list(data.get("unattributed_findings"))
+    sec.update({"present": True, "counts": counts, "guidelines": status,
+                "deviation_records": records, "recategorisation": as_list(data.get("recategorisation_plan")),
+                "tools": data.get("tools") or {}, "framework": data.get("framework"),
+                "guideline_set": data.get("guidelines"), "scope": data.get("scope"),
+                "plan_errors": plan_errors, "unattributed_findings": unattributed,
+                "per_method": data.get("per_method") or {}, "compliant": data.get("compliant")})
+    sites = sum(as_int(d.get("sites")) for d in records)
+    ok = violations == 0 and not plan_errors and not unattributed and data.get("compliant") is not False
+    fig = (f"{violations} violations, {len(records)} deviation records ({sites} sites, "
+           f"{deviations} guidelines), {disapplied} disapplied; {as_int(counts.get('guidelines'), len(status))} guidelines")
+    if plan_errors:
+        fig += f"; {len(plan_errors)} plan errors"
+    if unattributed:
+        fig += f"; {len(unattributed)} unattributed findings"
+    sec["summary"] = [row("misra", "MISRA C:2012", ok, fig, "sec3")]
+    return sec
+
+
+# --------------------------------------------------------------------------- 4 coverage
+
+
+def cobertura(path):
+    """Per-file lines and branches of a Cobertura file: {file: {...}} and the totals."""
+    try:
+        tree = ET.parse(path)
+    except (ET.ParseError, OSError):
+        return None, None
+    root = tree.getroot()
+    files = {}
+    for cls in root.iter("class"):
+        fname = cls.get("filename") or cls.get("name") or "?"
+        f = files.setdefault(fname, {"lines": 0, "lines_covered": 0, "branches": 0, "branches_covered": 0})
+        for line in cls.iter("line"):
+            f["lines"] += 1
+            if as_int(line.get("hits")) > 0:
+                f["lines_covered"] += 1
+            if line.get("branch") == "true":
+                m = re.search(r"\((\d+)/(\d+)\)", line.get("condition-coverage", ""))
+                if m:
+                    f["branches_covered"] += as_int(m.group(1))
+                    f["branches"] += as_int(m.group(2))
+    total = {"lines": as_int(root.get("lines-valid"), sum(f["lines"] for f in files.values())),
+             "lines_covered": as_int(root.get("lines-covered"), sum(f["lines_covered"] for f in files.values())),
+             "branches": as_int(root.get("branches-valid"), sum(f["branches"] for f in files.values())),
+             "branches_covered": as_int(root.get("branches-covered"),
+                                        sum(f["branches_covered"] for f in files.values()))}
+    if root.get("lines-valid") is None:
+        total = {k: sum(f[k] for f in files.values()) for k in total}
+    return files, total
+
+
+def collect_coverage(bundle):
+    sec = {"title": "Statement and branch coverage"}
+    xml_path = bundle.b("coverage", "coverage.xml")
+    summ = bundle.b("coverage", "summary.txt")
+    txt = bundle.b("coverage", "coverage.txt")
+    sec["inputs"] = bundle.inputs(*[p for p in (xml_path, summ, txt) if bundle.exists(p)] or [xml_path])
+    if bundle.exists(bundle.b("coverage", "index.html")):
+        sec["html"] = bundle.art(bundle.b("coverage"))
+    files, total = (None, None)
+    if bundle.exists(xml_path):
+        files, total = cobertura(bundle.path(xml_path))
+    if total is None and bundle.exists(summ):
+        text = read_text(bundle.path(summ)) or ""
+        lm = re.search(r"lines:\s*[\d.]+%\s*\((\d+) out of (\d+)\)", text)
+        bm = re.search(r"branches:\s*[\d.]+%\s*\((\d+) out of (\d+)\)", text)
+        if lm and bm:
+            total = {"lines_covered": as_int(lm.group(1)), "lines": as_int(lm.group(2)),
+                     "branches_covered": as_int(bm.group(1)), "branches": as_int(bm.group(2))}
+            files = {}
+    if total is None:
+        sec["present"] = False
+        sec["summary"] = [missing_row("statement", "statement coverage", "sec4", xml_path, bundle),
+                          missing_row("branch", "branch coverage", "sec4", xml_path, bundle)]
+        return sec
+    lp = pct(total["lines_covered"], total["lines"])
+    bp = pct(total["branches_covered"], total["branches"])
+    sec.update({"present": True, "files": files, "total": total, "statement_percent": lp,
+                "branch_percent": bp, "target_percent": 100.0})
+    sec["summary"] = [
+        row("statement", "statement coverage", total["lines"] > 0 and total["lines_covered"] == total["lines"],
+            f"{fmt_pct(lp)} ({total['lines_covered']}/{total['lines']} lines, target 100 %)", "sec4"),
+        row("branch", "branch coverage", total["branches"] > 0 and total["branches_covered"] == total["branches"],
+            f"{fmt_pct(bp)} ({total['branches_covered']}/{total['branches']} branches, target 100 %)", "sec4")]
+    return sec
+
+
+def collect_mcdc(bundle):
+    sec = {"title": "MC/DC"}
+    jpath = bundle.b("mcdc", "mcdc.json")
+    justif = "specs/mcdc-justifications.md"
+    sec["inputs"] = bundle.inputs(*[p for p in (jpath, bundle.b("mcdc", "mcdc.md"), bundle.b("mcdc", "toolchain.txt"),
+                                                justif) if bundle.exists(p)] or [jpath])
+    data = read_json(bundle.path(jpath))
+    if not isinstance(data, dict):
+        sec["present"] = False
+        sec["summary"] = [missing_row("mcdc", "MC/DC coverage", "sec4", jpath, bundle)]
+        return sec
+    s = data.get("summary") or {}
+    scopes = {k: s.get(k) for k in ("src", "include") if isinstance(s.get(k), dict)}
+    outcomes = sum(as_int(v.get("outcomes")) for v in scopes.values())
+    covered = sum(as_int(v.get("covered")) for v in scopes.values())
+    justified = sum(as_int(v.get("justified")) for v in scopes.values())
+    files = data.get("files") if isinstance(data.get("files"), dict) else {}
+    if not scopes and files:
+        outcomes = sum(as_int(f.get("outcomes")) for f in files.values())
+        covered = sum(as_int(f.get("covered")) for f in files.values())
+        justified = sum(as_int(f.get("justified")) for f in files.values())
+    uncovered = []
+    for d in as_list(data.get("decisions")):
+        if not isinstance(d, dict):
+            continue
+        for o in as_list(d.get("outcomes")):
+            if isinstance(o, dict) and not o.get("covered"):
+                uncovered.append({"file": d.get("file"), "line": d.get("line"), "function": d.get("function"),
+                                  "decision": d.get("decision"), "condition": o.get("text"),
+                                  "outcome": o.get("outcome"), "justification": o.get("justification")})
+    unjustified = as_int(s.get("unjustified"), sum(1 for u in uncovered if not u["justification"]))
+    unused = as_list(s.get("unused_justifications"))
+    p = pct(covered, outcomes)
+    sec.update({"present": True, "scopes": scopes, "outcomes": outcomes, "covered": covered,
+                "justified": justified, "percent": p, "percent_with_justified": pct(covered + justified, outcomes),
+                "files": files, "uncovered": uncovered, "unjustified": unjustified,
+                "unused_justifications": unused, "not_instrumented": as_list(data.get("not_instrumented")),
+                "tool": s.get("tool"), "criterion": s.get("criterion"), "min_percent": s.get("min_percent")})
+    ok = outcomes > 0 and covered + justified == outcomes and unjustified == 0 and not unused
+    fig = f"{fmt_pct(p, 2)} ({covered}/{outcomes} condition outcomes, target 100 %), {justified} justified exclusions"
+    if unjustified:
+        fig += f", {unjustified} not justified"
+    if unused:
+        fig += f", {len(unused)} stale justifications"
+    sec["summary"] = [row("mcdc", "MC/DC coverage", ok, fig, "sec4")]
+    return sec
+
+
+# --------------------------------------------------------------------------- 5 tests
+
+
+def junit_file(path):
+    """Counts and test records of one JUnit XML file (any of the usual dialects)."""
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError) as e:
+        return {"error": f"unreadable: {e}"}
+    suites = [root] if root.tag == "testsuite" else list(root.iter("testsuite"))
+    rec = {"suites": [], "tests": 0, "failures": 0, "errors": 0, "skipped": 0, "time": None,
+           "failed_tests": [], "test_names": []}
+    for s in suites:
+        cases = [c for c in s if c.tag == "testcase"]
+        c_fail = c_err = c_skip = 0
+        t_sum = None
+        for c in cases:
+            name = (c.get("classname") + "." if c.get("classname") else "") + (c.get("name") or "?")
+            rec["test_names"].append(name)
+            if c.find("failure") is not None:
+                c_fail += 1
+                rec["failed_tests"].append(name)
+            elif c.find("error") is not None:
+                c_err += 1
+                rec["failed_tests"].append(name + " (error)")
+            elif c.find("skipped") is not None:
+                c_skip += 1
+            if c.get("time") is not None:
+                t_sum = (t_sum or 0.0) + (as_float(c.get("time"), 0.0) or 0.0)
+        tests = max(as_int(s.get("tests"), len(cases)), len(cases))
+        fails = max(as_int(s.get("failures")), c_fail)
+        errs = max(as_int(s.get("errors")), c_err)
+        skips = max(as_int(s.get("skipped", s.get("skip"))), c_skip)
+        t = as_float(s.get("time"), t_sum)
+        rec["suites"].append(s.get("name") or "?")
+        rec["tests"] += tests
+        rec["failures"] += fails
+        rec["errors"] += errs
+        rec["skipped"] += skips
+        if t is not None:
+            rec["time"] = (rec["time"] or 0.0) + t
+    if not suites and root.tag == "testsuites":
+        rec["tests"] = as_int(root.get("tests"))
+        rec["failures"] = as_int(root.get("failures"))
+        rec["errors"] = as_int(root.get("errors"))
+    return rec
+
+
+def collect_tests(bundle):
+    sec = {"title": "Tests"}
+    jdir = os.path.join(bundle.build, "junit")
+    paths = sorted(glob.glob(os.path.join(jdir, "**", "*.xml"), recursive=True))
+    files = []
+    for p in paths:
+        rec = junit_file(p)
+        rec["file"] = bundle.rel(p)
+        rec["link"] = bundle.art(p)
+        files.append(rec)
+    newest = max(paths, key=os.path.getmtime) if paths else None
+    sec["inputs"] = [{"path": bundle.b("junit") + "/**/*.xml", "present": bool(paths),
+                      "modified": mtime_iso(newest) if newest else None, "link": None}]
+    sec["files"] = files
+    # the demonstration (build/demo): linked, with each scenario's result
+    demo_index = bundle.b("demo", "index.html")
+    if bundle.exists(demo_index):
+        sec["demo_link"] = bundle.art(bundle.b("demo"))
+        scen = []
+        order = (read_json(bundle.path(bundle.b("demo", "summary.json"))) or {}).get("scenarios") or []
+        for mpath in sorted(glob.glob(os.path.join(bundle.build, "demo", "*", "metrics.json"))):
+            m = read_json(mpath) or {}
+            scen.append({"scenario": m.get("scenario") or os.path.basename(os.path.dirname(mpath)),
+                         "title": m.get("title", ""), "pass": m.get("pass"),
+                         "requirements": as_list(m.get("requirements"))})
+        scen.sort(key=lambda s: order.index(s["scenario"]) if s["scenario"] in order else len(order))
+        sec["demo"] = scen
+    camp = read_json(bundle.path(bundle.b("robustness", "campaign.json")))
+    if isinstance(camp, dict) and bundle.exists(bundle.b("robustness", "index.html")):
+        sec["robustness"] = {k: camp.get(k) for k in ("count", "successes", "rate_pct", "table", "criteria")}
+        sec["robustness_link"] = bundle.art(bundle.b("robustness"))
+    if not paths:
+        sec["present"] = False
+        sec["summary"] = [missing_row("tests", "tests passed", "sec5", f"{bundle.b('junit')}/*.xml")]
+        return sec
+    total = sum(f.get("tests", 0) for f in files)
+    fails = sum(f.get("failures", 0) for f in files)
+    errs = sum(f.get("errors", 0) for f in files)
+    skips = sum(f.get("skipped", 0) for f in files)
+    bad_files = [f["file"] for f in files if f.get("error")]
+    passed = total - fails - errs - skips
+    sec.update({"present": True, "tests": total, "passed": passed, "failures": fails, "errors": errs,
+                "skipped": skips, "unreadable": bad_files})
+    ok = total > 0 and fails == 0 and errs == 0 and not bad_files
+    fig = f"{passed}/{total} passed, {fails} failures, {errs} errors"
+    if skips:
+        fig += f", {skips} skipped"
+    fig += f" ({len(files)} JUnit files)"
+    if bad_files:
+        fig += f"; {len(bad_files)} unreadable"
+    sec["summary"] = [row("tests", "tests passed", ok, fig, "sec5")]
+    return sec
+
+
+def collect_target_test(bundle):
+    sec = {"title": "Target equivalence"}
+    tpath = bundle.b("target_test", "target.txt")
+    extra = [bundle.b("target_test", n) for n in ("host.txt", "host_ubsan.txt", "vectors.txt", "target_selftest.txt")]
+    sec["inputs"] = bundle.inputs(tpath, *[p for p in extra if bundle.exists(p)])
+    text = read_text(bundle.path(tpath))
+    if text is None:
+        sec["present"] = False
+        sec["summary"] = [missing_row("target_equivalence", "target equivalence", "sec5", tpath, bundle)]
+        return sec
+    groups = []
+    for line in text.splitlines():
+        m = re.match(r"^(\w+): (\d+) vectors, (identical)$", line.strip())
+        if m:
+            groups.append({"group": m.group(1), "vectors": as_int(m.group(2)), "result": "identical"})
+            continue
+        m = re.match(r"^(\w+): DIFFERENT: (.*)$", line.strip())
+        if m and m.group(1) != "result":
+            groups.append({"group": m.group(1), "vectors": None, "result": "DIFFERENT: " + m.group(2)})
+    result = next((ln for ln in text.splitlines() if ln.startswith("result:")), "")
+    header = text.splitlines()[0] if text.strip() else ""
+    same = [g for g in groups if g["result"] == "identical"]
+    vectors = sum(g["vectors"] or 0 for g in same)
+    sec.update({"present": True, "groups": groups, "result": result, "header": header})
+    ok = bool(groups) and len(same) == len(groups) and "all identical" in result
+    sec["summary"] = [row("target_equivalence", "target equivalence", ok,
+                          f"{len(same)}/{len(groups)} groups, {vectors} vectors bit-identical on the Cortex-M4F",
+                          "sec5")]
+    return sec
+
+
+# --------------------------------------------------------------------------- 6 bench
+
+
+def collect_bench(bundle):
+    sec = {"title": "Resource usage"}
+    jpath = bundle.b("bench", "bench.json")
+    sec["inputs"] = bundle.inputs(*[p for p in (jpath, bundle.b("bench", "bench.md")) if bundle.exists(p)] or [jpath])
+    data = read_json(bundle.path(jpath))
+    if not isinstance(data, dict):
+        sec["present"] = False
+        sec["summary"] = [missing_row("bench", "resource usage (bench)", "sec6", jpath, bundle)]
+        return sec
+    table = [r for r in as_list(data.get("table")) if isinstance(r, dict)]
+    limited = [r for r in table if r.get("limit") is not None]
+    met = [r for r in limited if str(r.get("result", "")).upper() in ("OK", "PASS")]
+
+    def rows_max(pred, unit=None):
+        vals = [as_int(r.get("max"), None) for r in table if pred(str(r.get("item", "")))
+                and (unit is None or r.get("unit") == unit)]
+        vals = [v for v in vals if v is not None]
+        return max(vals) if vals else None
+
+    sizes = data.get("sizes") if isinstance(data.get("sizes"), dict) else {}
+    stack = data.get("stack") if isinstance(data.get("stack"), dict) else {}
+    fast = rows_max(lambda s: "qfoc_drive_fast_step" in s and not s.startswith("stack"), "instructions")
+    flash = sizes.get("lib_text_rodata", rows_max(lambda s: s.startswith("library flash, all")))
+    flash_linked = sizes.get("drive_linked")
+    ram = sizes.get("sizeof_drive", rows_max(lambda s: s.startswith("RAM per motor")))
+    st = (stack.get("qfoc_drive_fast_step") or {}).get("bytes") if isinstance(stack.get("qfoc_drive_fast_step"), dict) \
+        else rows_max(lambda s: s.startswith("stack, `qfoc_drive_fast_step`"))
+    goals = [r for r in table if r.get("goal") is not None]
+    goals_met = [r for r in goals if str(r.get("goal_result", "")).upper() in ("OK", "PASS", "MET")]
+    sec.update({"present": True, "table": table, "limits": len(limited), "limits_met": len(met),
+                "goals": len(goals), "goals_met": len(goals_met),
+                "over": [r.get("item") for r in limited if r not in met],
+                "fast_step_instructions": fast, "flash_bytes": flash, "flash_linked_bytes": flash_linked,
+                "ram_per_motor_bytes": ram, "fast_step_stack_bytes": st, "compiler": data.get("cc"),
+                "has_goal": any("goal" in r for r in table)})
+    ok = len(limited) > 0 and len(met) == len(limited)
+
+    def val(v, unit):
+        return "-" if v is None else f"{v} {unit}"
+
+    fig = (f"limits met {len(met)}/{len(limited)}"
+           + (f" (goals met {len(goals_met)}/{len(goals)}, reported only)" if goals else "")
+           + f"; fast step {val(fast, 'instructions')}, "
+           f"flash {val(flash, 'B')}, RAM {val(ram, 'B')} per motor, stack {val(st, 'B')}")
+    sec["summary"] = [row("bench", "resource usage (bench)", ok, fig, "sec6")]
+    return sec
+
+
+# --------------------------------------------------------------------------- 7 static
+
+
+def accepted_reason(result):
+    for s in as_list(result.get("suppressions")):
+        if isinstance(s, dict) and s.get("status", "accepted") == "accepted" and s.get("kind") != "inSource":
+            just = str(s.get("justification", ""))
+            m = re.match(r"^[^,]*,\s*(.*?):\s", just)
+            return (m.group(1) if m else just[:120]) or "accepted", just
+    return None, None
+
+
+def collect_static(bundle):
+    sec = {"title": "Static analysis"}
+    spath = bundle.b("static", "qfoc.sarif")
+    extra = [bundle.b("static", "static.md"), "specs/static-accepted.md"]
+    sec["inputs"] = bundle.inputs(spath, *[p for p in extra if bundle.exists(p)])
+    data = read_json(bundle.path(spath))
+    if not isinstance(data, dict) or not isinstance(data.get("runs"), list):
+        sec["present"] = False
+        sec["summary"] = [missing_row("static", "static analysis", "sec7", spath, bundle)]
+        return sec
+    tools, rules, unaccepted = [], {}, []
+    for run in data["runs"]:
+        drv = ((run.get("tool") or {}).get("driver") or {})
+        name = drv.get("name", "?")
+        invs = as_list(run.get("invocations"))
+        ran = all(truthy(i.get("executionSuccessful", True)) for i in invs if isinstance(i, dict)) if invs else None
+        results = [r for r in as_list(run.get("results")) if isinstance(r, dict)]
+        acc = 0
+        for r in results:
+            rid = r.get("ruleId", "?")
+            reason, just = accepted_reason(r)
+            key = (name, rid)
+            rr = rules.setdefault(key, {"tool": name, "rule": rid, "findings": 0, "accepted": 0, "reasons": {}})
+            rr["findings"] += 1
+            if reason:
+                acc += 1
+                rr["accepted"] += 1
+                rr["reasons"][reason] = just
+            else:
+                loc = ((as_list(r.get("locations")) or [{}])[0].get("physicalLocation") or {})
+                uri = (loc.get("artifactLocation") or {}).get("uri", "?")
+                line = (loc.get("region") or {}).get("startLine", "")
+                unaccepted.append({"tool": name, "rule": rid, "where": f"{uri}:{line}",
+                                   "message": (r.get("message") or {}).get("text", "")})
+        tools.append({"tool": name, "version": drv.get("version", ""), "ran": ran,
+                      "findings": len(results), "accepted": acc, "unaccepted": len(results) - acc})
+    total = sum(t["findings"] for t in tools)
+    acc = sum(t["accepted"] for t in tools)
+    not_ran = [t["tool"] for t in tools if t["ran"] is False]
+    rule_list = []
+    for (_tool, _rid), r in sorted(rules.items()):
+        r = dict(r)
+        r["reasons"] = [{"reason": k, "justification": v} for k, v in r["reasons"].items()]
+        rule_list.append(r)
+    sec.update({"present": True, "tools": tools, "rules": rule_list, "findings": total, "accepted": acc,
+                "unaccepted": unaccepted, "tools_failed": not_ran})
+    ok = bool(tools) and not unaccepted and not not_ran
+    per_tool = ", ".join("%s %d" % (t["tool"], t["findings"]) for t in tools)
+    fig = f"{total} findings ({per_tool}), {acc} accepted, {len(unaccepted)} unaccepted"
+    if not_ran:
+        fig += f"; did not run: {', '.join(not_ran)}"
+    sec["summary"] = [row("static", "static analysis", ok, fig, "sec7")]
+    return sec
+
+
+# --------------------------------------------------------------------------- 8 .. 11
+
+
+def collect_tools(bundle):
+    sec = {"title": "Tool confidence"}
+    jpath, mpath = "specs/tool-confidence.json", "specs/tool-confidence.md"
+    sec["inputs"] = bundle.inputs(*[p for p in (jpath, mpath) if bundle.exists(p)] or [jpath])
+    data = read_json(bundle.path(jpath))
+    if isinstance(data, dict):
+        data = data.get("tools", [])
+    sec["tools"] = [t for t in as_list(data) if isinstance(t, dict)]
+    sec["present"] = bool(sec["tools"])
+    script = bundle.path("tools/evidence/tool_versions.sh")
+    sec["versions"] = None
+    if os.path.exists(script):
+        try:
+            res = subprocess.run(["sh", script], cwd=bundle.root, capture_output=True, text=True,
+                                 timeout=300, check=False)
+            sec["versions"] = res.stdout
+            sec["versions_exit"] = res.returncode
+        except (OSError, subprocess.SubprocessError) as e:
+            sec["versions_error"] = str(e)
+    if sec["versions"] is not None:
+        os.makedirs(bundle.out, exist_ok=True)
+        with open(os.path.join(bundle.out, "tool-versions.txt"), "w", encoding="utf-8") as f:
+            f.write(sec["versions"])
+        sec["versions_link"] = "tool-versions.txt"
+    return sec
+
+
+def collect_manual(bundle):
+    path = "specs/safety-manual.md"
+    sec = {"title": "Safety manual", "inputs": bundle.inputs(path)}
+    sec["text"] = read_text(bundle.path(path))
+    sec["present"] = sec["text"] is not None
+    return sec
+
+
+def collect_repro(bundle):
+    sec = {"title": "Reproducibility"}
+    jpath = bundle.b("repro", "repro.json")
+    sec["inputs"] = bundle.inputs(*[p for p in (jpath, bundle.b("repro", "a.log"), bundle.b("repro", "b.log"))
+                                   if bundle.exists(p)] or [jpath])
+    data = read_json(bundle.path(jpath))
+    if not isinstance(data, dict):
+        sec["present"] = False
+        sec["summary"] = [missing_row("repro", "reproducible build", "sec10", jpath, bundle)]
+        return sec
+    arts = [a for a in as_list(data.get("artefacts")) if isinstance(a, dict)]
+    same = all(truthy(a.get("identical")) for a in arts) and bool(arts)
+    for a in arts:
+        # the artefact of the main build tree, for comparison (not part of the verdict)
+        cur = os.path.join(bundle.build, str(a.get("file", "")))
+        a["build_file"] = bundle.rel(cur)
+        a["build_sha256"] = sha256_file(cur)
+    sec.update({"present": True, "compiler": data.get("compiler"), "artefacts": arts, "identical": same})
+    shas = ", ".join(f"{os.path.basename(str(a.get('file')))} {str(a.get('sha256', ''))[:12]}" for a in arts)
+    fig = f"identical: {'yes' if same else 'no'} ({len(arts)} artefacts; {shas})"
+    moved = [os.path.basename(str(a.get("file"))) for a in arts
+             if a.get("build_sha256") and a.get("build_sha256") != a.get("sha256")]
+    if moved:
+        fig += f"; {bundle.b()} now differs: {', '.join(moved)}"
+    sec["summary"] = [row("repro", "reproducible build", same, fig, "sec10")]
+    return sec
+
+
+def sha256_file(path):
+    try:
+        h = hashlib.sha256()
+        with open(path, "rb") as f:
+            for chunk in iter(lambda: f.read(1 << 16), b""):
+                h.update(chunk)
+        return h.hexdigest()
+    except OSError:
+        return None
+
+
+def collect_gates(bundle):
+    sec = {"title": "Gate log (make check)"}
+    spath = bundle.b("check-summary.txt")
+    sec["inputs"] = bundle.inputs(spath)
+    text = read_text(bundle.path(spath))
+    if text is None:
+        sec["present"] = False
+        return sec
+    gates = []
+    for line in text.splitlines():
+        m = re.match(r"^(\S+)\s+(PASS|FAIL)\s+(\d+)s\s*(.*)$", line)
+        if m:
+            log = bundle.b(f"check-{m.group(1)}.log")
+            gates.append({"gate": m.group(1), "result": m.group(2), "seconds": as_int(m.group(3)),
+                          "last_line": m.group(4), "log": bundle.art(log) if bundle.exists(log) else None})
+    sec.update({"present": True, "gates": gates, "failed": [g["gate"] for g in gates if g["result"] != "PASS"]})
+    return sec
+
+
+def git_info(root):
+    def git(*args):
+        try:
+            r = subprocess.run(["git", "-C", root, *args], capture_output=True, text=True, timeout=30,
+                               check=False)
+        except (OSError, subprocess.SubprocessError):
+            return None
+        return r.stdout.strip() if r.returncode == 0 else None
+
+    head = git("rev-parse", "HEAD")
+    status = git("status", "--porcelain", "--untracked-files=no") if head else None
+    return {"commit": head or "unknown (not a git checkout)",
+            "dirty": None if status is None else bool(status),
+            "branch": git("rev-parse", "--abbrev-ref", "HEAD") if head else None}
+
+
+# --------------------------------------------------------------------------- HTML
+
+CSS = """
+body{font-family:sans-serif;font-size:14px;margin:1.5em auto;max-width:1200px;padding:0 1em;color:#111}
+h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #444;margin-top:2em}
+table{border-collapse:collapse;margin:.5em 0}th,td{border:1px solid #bbb;padding:2px 6px;vertical-align:top;text-align:left}
+th{background:#eee}td.n{text-align:right}tr.pass td.s,td.pass{background:#c8f0c8}tr.fail td.s,td.fail{background:#f6c4c4}
+tr.pass td{background:#eefaee}tr.fail td{background:#fdeeee}
+table.summary td{font-size:1.05em}table.summary td.s{font-weight:bold;text-align:center}
+code{background:#f3f3f3;padding:0 2px}pre{background:#f6f6f6;padding:.5em;overflow-x:auto;font-size:12px}
+details{margin:.3em 0}summary{cursor:pointer}.meta{color:#555}.small{font-size:12px}
+.missing{color:#a00;font-weight:bold}nav a{margin-right:.8em}
+"""
+
+
+def cls(ok):
+    return "pass" if ok else "fail"
+
+
+def th(*cols):
+    return "<tr>" + "".join(f"<th>{esc(c)}</th>" for c in cols) + "</tr>"
+
+
+def td(value, num=False, extra=""):
+    return f'<td{" class=n" if num else ""}{extra}>{esc(value)}</td>'
+
+
+def link(href, text=None):
+    if not href:
+        return esc(text or "")
+    return f'<a href="{esc(href)}">{esc(text or href)}</a>'
+
+
+def inputs_html(sec):
+    parts = []
+    for i in sec.get("inputs") or []:
+        if i["present"]:
+            parts.append(f"{link(i.get('link'), i['path'])} <span class=meta>({esc(i['modified'])})</span>")
+        else:
+            parts.append(f'<code>{esc(i["path"])}</code> <span class=missing>not found</span>')
+    return "<p class=small>Inputs: " + "; ".join(parts) + "</p>" if parts else ""
+
+
+def not_run(sec, what):
+    return f'<p class=missing>Not run: {esc(what)} not found.</p>' + inputs_html(sec)
+
+
+def details_list(items, label=None):
+    items = [str(i) for i in items]
+    if not items:
+        return "-"
+    if len(items) == 1 and label is None:
+        return esc(items[0])
+    head = label or f"{len(items)}"
+    return (f"<details><summary title=\"{esc(', '.join(items))}\">{esc(head)}</summary>"
+            + "<br>".join(esc(i) for i in items) + "</details>")
+
+
+def html_sec1(sec):
+    out = [inputs_html(sec)]
+    if not sec.get("present"):
+        return not_run(sec, "the traceability matrix (build/trace/trace.json or trace.md; make trace)")
+    out.append(f"<p>{sec['total']} requirements, {sec['verified']} verified; {sec['with_tests']} with tests, "
+               f"{sec['with_cbmc']} with CBMC harnesses, {sec['with_scenarios']} with demonstration scenarios. "
+               f"Source: <code>{esc(sec['source'])}</code>.")
+    if any(r.get("scenarios_from") == "demo" for r in sec["requirements"]):
+        out.append(" Scenarios from the demonstration's <code>metrics.json</code> files where the matrix gives none.")
+    out.append(" One block per module; a module with a requirement not verified is open.</p>")
+    if sec.get("gate_failures"):
+        out.append(f"<details open><summary class=missing>{len(sec['gate_failures'])} trace gate failures</summary>"
+                   "<ul>" + "".join(f"<li>{esc(g)}</li>" for g in sec["gate_failures"]) + "</ul></details>")
+    if sec.get("totals"):
+        out.append("<details><summary>Totals of the matrix</summary><table>" + th("figure", "value")
+                   + "".join("<tr>" + td(k.replace("_", " ")) + td(v, True) + "</tr>"
+                             for k, v in sec["totals"].items()) + "</table></details>")
+    mods = {}
+    for r in sec["requirements"]:
+        mods.setdefault(r["module"], []).append(r)
+    for mod, reqs in sorted(mods.items()):
+        v = sum(1 for r in reqs if r["verified"])
+        opened = " open" if v != len(reqs) else ""
+        out.append(f"<details{opened}><summary><b>{esc(mod)}</b>: {len(reqs)} requirements, {v} verified</summary>")
+        out.append("<table>" + th("ID", "title", "contracts", "WP", "CBMC", "tests", "scenarios", "verified"))
+        for r in reqs:
+            out.append(f"<tr class={cls(r['verified'])}>" + td(r["id"]) + td(r["title"])
+                       + (f"<td>{details_list(r['contracts'])}</td>" if r["contracts"] else
+                          f"<td class=meta>{('named in ' + esc(', '.join(r['named_in']))) if r['named_in'] else '-'}</td>")
+                       + f"<td>{details_list(r['wp_items'], r['wp']) if r['wp_items'] else esc(r['wp'])}</td>"
+                       + f"<td>{details_list(r['cbmc'])}</td>"
+                       + f"<td>{details_list(r['tests'], str(len(r['tests']))) if r['tests'] else '0'}</td>"
+                       + f"<td>{details_list(r['scenarios'])}</td>"
+                       + f"<td class='s {cls(r['verified'])}'>{'yes' if r['verified'] else 'NO'}</td></tr>")
+        out.append("</table></details>")
+    return "\n".join(out)
+
+
+def html_sec2(wp, cbmc, eva):
+    out = ["<h3>2.1 Frama-C WP, per function</h3>", inputs_html(wp)]
+    if wp.get("present"):
+        out.append(f"<p><b>proved {wp['proved']} / {wp['goals']} goals</b> in {len(wp['functions'])} functions "
+                   f"of {len(wp['units'])} units (source <code>{esc(wp['source'])}</code>).</p>")
+        if wp.get("note"):
+            out.append(f"<p class=meta>{esc(wp['note'])}</p>")
+        if wp["units_without_result"] or wp["functions_without_result"]:
+            out.append("<p class=missing>Without a WP result: "
+                       + esc(", ".join(wp["units_without_result"] + wp["functions_without_result"])) + "</p>")
+        units = {}
+        for r in wp["functions"]:
+            units.setdefault(r["unit"], []).append(r)
+        for unit, rows in sorted(units.items()):
+            g = sum(r["goals"] for r in rows)
+            p = sum(r["proved"] for r in rows)
+            t = sum(r["time_ms"] or 0 for r in rows)
+            opened = " open" if p != g else ""
+            out.append(f"<details{opened}><summary><b>{esc(unit)}</b>: {len(rows)} functions, "
+                       f"{p}/{g} goals, {t / 1000:.1f} s solver time</summary><table>"
+                       + th("function", "goals", "proved", "provers", "time (ms)"))
+            for r in rows:
+                ok = r["goals"] == r["proved"]
+                out.append(f"<tr class={cls(ok)}>" + td(r["function"]) + td(r["goals"], True)
+                           + td(r["proved"], True) + td(r["provers"])
+                           + td("-" if r["time_ms"] is None else f"{r['time_ms']:.0f}", True) + "</tr>")
+            out.append("</table></details>")
+    else:
+        out.append(not_run(wp, "WP results (build/wp/wp-summary.json or proofs/wp/results.md; make prove)"))
+    out += ["<h3>2.2 CBMC, per harness</h3>", inputs_html(cbmc)]
+    if cbmc.get("present"):
+        out.append(f"<p><b>{cbmc['count']} harnesses, {cbmc['properties']} properties, "
+                   f"{cbmc['failed_properties']} failed</b> (source <code>{esc(cbmc['source'])}</code>).</p>")
+        if cbmc["harnesses_without_result"]:
+            out.append("<p class=missing>Harnesses without a result: "
+                       + esc(", ".join(cbmc["harnesses_without_result"])) + "</p>")
+        out.append("<table>" + th("harness", "result", "properties", "failed", "unwind", "time (s)"))
+        for r in cbmc["harnesses"]:
+            ok = r["result"].upper() == "PASS" and not r["failed"]
+            out.append(f"<tr class={cls(ok)}>" + td(r["harness"]) + td(r["result"]) + td(r["properties"], True)
+                       + td(r["failed"], True) + td(r["unwind"], True) + td(r["time_s"], True) + "</tr>")
+        out.append("</table>")
+    else:
+        out.append(not_run(cbmc, "CBMC results (proofs/cbmc/results.md; make cbmc)"))
+    out += ["<h3>2.3 Frama-C EVA over the whole drive</h3>", inputs_html(eva)]
+    if eva.get("present"):
+        out.append(f"<p><b>{len(eva['alarms'])} runtime-error alarms</b> (target 0); ACSL properties EVA leaves "
+                   f"unknown (proved by WP): {esc(eva.get('unknown_properties'))}; Frama-C exit "
+                   f"{esc(eva.get('frama_c_exit'))}; {esc(eva.get('seconds'))} s.</p>")
+        if eva["alarms"]:
+            out.append("<table>" + th("file", "line", "alarm"))
+            for a in eva["alarms"]:
+                out.append("<tr class=fail>" + td(a.get("file")) + td(a.get("line"), True) + td(a.get("message"))
+                           + "</tr>")
+            out.append("</table>")
+    else:
+        out.append(not_run(eva, "build/eva/eva.json (make eva)"))
+    return "\n".join(out)
+
+
+def html_sec3(sec):
+    out = [inputs_html(sec)]
+    if sec.get("cppcheck_unrecorded") is not None:
+        out.append(f"<p>cppcheck MISRA addon (<code>make misra</code>): {sec['cppcheck_unrecorded']} unrecorded "
+                   f"findings, {esc(sec.get('cppcheck_suppressed'))} suppressed under deviation records.</p>")
+    if not sec.get("present"):
+        out.append(not_run(sec, "build/misra/compliance-summary.json (make misra-summary)"))
+    else:
+        c = sec["counts"]
+        out.append(f"<p>{esc(sec.get('framework'))}; {esc(sec.get('guideline_set'))}; code: "
+                   f"{esc(sec.get('scope'))}.</p>")
+        out.append("<table>" + th("guidelines", "compliant", "with deviations", "disapplied", "violations")
+                   + "<tr>" + "".join(td(c.get(k, 0), True) for k in
+                                      ("guidelines", "compliant", "deviations", "disapplied")) +
+                   td(c.get("violations", 0), True, f" class='n {cls(not as_int(c.get('violations')))}'") +
+                   "</tr></table>")
+        for what, items in (("Plan errors", sec["plan_errors"]), ("Unattributed findings", sec["unattributed_findings"])):
+            if items:
+                out.append(f"<p class=missing>{what}: " + esc("; ".join(json.dumps(i) if not isinstance(i, str)
+                                                                         else i for i in items)) + "</p>")
+        bad = [g for g in sec["guidelines"] if str(g.get("status")) != "Compliant"]
+        out.append("<h4>Guidelines not simply compliant</h4><table>"
+                   + th("guideline", "category", "status", "detail", "methods"))
+        for g in bad:
+            st = str(g.get("status"))
+            detail = "; ".join([str(v) for v in as_list(g.get("violations"))]
+                               + [f"{d.get('id')} ({d.get('sites')} sites)" for d in as_list(g.get("deviations"))
+                                  if isinstance(d, dict)] + ([str(g.get("reason"))] if g.get("reason") else []))
+            out.append(f"<tr class={cls(st != 'Violations')}>" + td(g.get("id")) + td(g.get("category"))
+                       + td(st) + td(detail) + td(", ".join(as_list(g.get("methods")))) + "</tr>")
+        out.append("</table>")
+        out.append(f"<details><summary>Guideline compliance summary: all {len(sec['guidelines'])} guidelines"
+                   "</summary><table>" + th("guideline", "category", "edition", "status", "methods", "evidence"))
+        for g in sec["guidelines"]:
+            st = str(g.get("status"))
+            out.append(f"<tr class={cls(st != 'Violations')}>" + td(g.get("id")) + td(g.get("category"))
+                       + td(g.get("edition")) + td(st) + td(", ".join(as_list(g.get("methods"))))
+                       + td(g.get("evidence")) + "</tr>")
+        out.append("</table></details>")
+        if sec["recategorisation"]:
+            out.append("<h4>Re-categorisation plan</h4><table>" + th("guideline", "category", "re-categorised", "reason"))
+            for r in sec["recategorisation"]:
+                if isinstance(r, dict):
+                    out.append("<tr>" + td(r.get("id")) + td(r.get("category")) + td(r.get("recategorised"))
+                               + td(r.get("reason")) + "</tr>")
+            out.append("</table>")
+        out.append("<h4>Deviation records</h4><table>" + th("record", "guidelines", "sites", "title"))
+        for d in sec["deviation_records"]:
+            out.append("<tr>" + td(d.get("id")) + td(", ".join(as_list(d.get("guidelines"))))
+                       + td(d.get("sites"), True) + td(d.get("title")) + "</tr>")
+        out.append("</table>")
+        if sec["tools"]:
+            out.append("<details><summary>Tools of the MISRA analysis</summary><table>" + th("tool", "version")
+                       + "".join("<tr>" + td(k) + td(v) + "</tr>" for k, v in sec["tools"].items())
+                       + "</table></details>")
+    if sec.get("deviations_md"):
+        out.append("<details><summary>misra/deviations.md (rendered)</summary>"
+                   + md_to_html(sec["deviations_md"], shift=3) + "</details>")
+    links = {i["path"]: i.get("link") for i in sec.get("inputs") or []}
+    out.append("<p>Enforcement plan: " + link(links.get("misra/enforcement-plan.csv"), "misra/enforcement-plan.csv")
+               + "; review records: " + link(links.get("misra/reviews.md"), "misra/reviews.md") + ".</p>")
+    return "\n".join(out)
+
+
+def html_sec4(cov, mcdc):
+    out = ["<h3>4.1 Statement and branch coverage (gcovr, Cobertura)</h3>", inputs_html(cov)]
+    if cov.get("present"):
+        t = cov["total"]
+        out.append(f"<p><b>statements {fmt_pct(cov['statement_percent'])} ({t['lines_covered']}/{t['lines']}), "
+                   f"branches {fmt_pct(cov['branch_percent'])} ({t['branches_covered']}/{t['branches']})</b>; "
+                   f"target 100 %. " + (f"HTML report: {link(cov.get('html'), 'gcovr')}." if cov.get("html") else "")
+                   + "</p>")
+        if cov["files"]:
+            out.append("<table>" + th("file", "lines", "covered", "%", "branches", "covered", "%"))
+            for f, v in sorted(cov["files"].items()):
+                ok = v["lines_covered"] == v["lines"] and v["branches_covered"] == v["branches"]
+                out.append(f"<tr class={cls(ok)}>" + td(f) + td(v["lines"], True) + td(v["lines_covered"], True)
+                           + td(fmt_pct(pct(v["lines_covered"], v["lines"])), True) + td(v["branches"], True)
+                           + td(v["branches_covered"], True)
+                           + td(fmt_pct(pct(v["branches_covered"], v["branches"])), True) + "</tr>")
+            out.append("</table>")
+    else:
+        out.append(not_run(cov, "build/coverage/coverage.xml (make coverage)"))
+    out += ["<h3>4.2 MC/DC (gcc 14 -fcondition-coverage)</h3>", inputs_html(mcdc)]
+    if mcdc.get("present"):
+        out.append(f"<p><b>{fmt_pct(mcdc['percent'], 2)} of {mcdc['outcomes']} condition outcomes covered</b>, "
+                   f"{mcdc['justified']} justified exclusions, {mcdc['unjustified']} not covered without a "
+                   f"justification; target 100 %. Criterion: {esc(mcdc.get('criterion'))}; tool: "
+                   f"{esc(mcdc.get('tool'))}.</p>")
+        if mcdc["scopes"]:
+            out.append("<table>" + th("scope", "outcomes", "covered", "%", "justified"))
+            for k, v in mcdc["scopes"].items():
+                ok = as_int(v.get("covered")) + as_int(v.get("justified")) == as_int(v.get("outcomes"))
+                out.append(f"<tr class={cls(ok)}>" + td("src/" if k == "src" else "include/qfoc/ (inline)")
+                           + td(v.get("outcomes"), True) + td(v.get("covered"), True)
+                           + td(fmt_pct(as_float(v.get("percent")), 2), True) + td(v.get("justified"), True) + "</tr>")
+            out.append("</table>")
+        if mcdc["files"]:
+            out.append("<table>" + th("file", "outcomes", "covered", "%", "justified"))
+            for f, v in sorted(mcdc["files"].items()):
+                o, c, j = as_int(v.get("outcomes")), as_int(v.get("covered")), as_int(v.get("justified"))
+                out.append(f"<tr class={cls(c + j == o)}>" + td(f) + td(o, True) + td(c, True)
+                           + td(fmt_pct(pct(c, o), 2), True) + td(j, True) + "</tr>")
+            out.append("</table>")
+        out.append("<h4>Condition outcomes not covered</h4>")
+        if mcdc["uncovered"]:
+            out.append("<table>" + th("location", "function", "condition", "outcome", "justification"))
+            for u in mcdc["uncovered"]:
+                out.append(f"<tr class={cls(bool(u['justification']))}>" + td(f"{u['file']}:{u['line']}")
+                           + td(u["function"]) + td(u["condition"]) + td(u["outcome"])
+                           + td(u["justification"] or "NOT JUSTIFIED") + "</tr>")
+            out.append("</table>")
+        else:
+            out.append("<p>None: every condition outcome is covered; no exclusion is used.</p>")
+        if mcdc["unused_justifications"]:
+            out.append("<p class=missing>Justifications matching nothing: "
+                       + esc(json.dumps(mcdc["unused_justifications"])) + "</p>")
+        if mcdc["not_instrumented"]:
+            out.append(f"<details><summary>{len(mcdc['not_instrumented'])} decisions without conditions in the "
+                       "object code (branch-free MIN/MAX/ABS)</summary><table>" + th("location", "kind", "decision"))
+            for d in mcdc["not_instrumented"]:
+                if isinstance(d, dict):
+                    out.append("<tr>" + td(f"{d.get('file')}:{d.get('line')}") + td(d.get("kind"))
+                               + td(d.get("decision")) + "</tr>")
+            out.append("</table></details>")
+    else:
+        out.append(not_run(mcdc, "build/mcdc/mcdc.json (make mcdc)"))
+    return "\n".join(out)
+
+
+def html_sec5(tests, tt):
+    out = ["<h3>5.1 JUnit results</h3>", inputs_html(tests)]
+    if tests.get("present"):
+        out.append(f"<p><b>{tests['passed']} of {tests['tests']} tests passed</b>, {tests['failures']} failures, "
+                   f"{tests['errors']} errors, {tests['skipped']} skipped, in {len(tests['files'])} JUnit files.</p>")
+        out.append("<table>" + th("file", "suites", "tests", "failures", "errors", "skipped", "time (s)", "failed"))
+        for f in tests["files"]:
+            if f.get("error"):
+                out.append("<tr class=fail>" + td(f["file"]) + f"<td colspan=7>{esc(f['error'])}</td></tr>")
+                continue
+            ok = not f["failures"] and not f["errors"] and f["tests"] > 0
+            tn = f["test_names"]
+            out.append(f"<tr class={cls(ok)}><td>{link(f.get('link'), f['file'])}</td>"
+                       + td(", ".join(f["suites"]))
+                       + f"<td class=n>{details_list(tn, str(f['tests'])) if tn else esc(f['tests'])}</td>"
+                       + td(f["failures"], True) + td(f["errors"], True) + td(f["skipped"], True)
+                       + td("-" if f["time"] is None else f"{f['time']:.2f}", True)
+                       + f"<td>{details_list(f['failed_tests'])}</td></tr>")
+        out.append("</table>")
+    else:
+        out.append(not_run(tests, "build/junit/*.xml (make test)"))
+    out += ["<h3>5.2 Target equivalence (golden vectors on the Cortex-M4F under QEMU)</h3>", inputs_html(tt)]
+    if tt.get("present"):
+        out.append(f"<p>{esc(tt['header'])}<br><b>{esc(tt['result'])}</b></p>")
+        out.append(f"<details><summary>{len(tt['groups'])} groups</summary><table>"
+                   + th("group", "vectors", "result"))
+        for g in tt["groups"]:
+            out.append(f"<tr class={cls(g['result'] == 'identical')}>" + td(g["group"])
+                       + td(g["vectors"], True) + td(g["result"]) + "</tr>")
+        out.append("</table></details>")
+    else:
+        out.append(not_run(tt, "build/target_test/target.txt (make target-test)"))
+    out.append("<h3>5.3 Demonstration (simulation with the library in the loop)</h3>")
+    if tests.get("demo_link"):
+        out.append(f"<p>Report: {link(tests['demo_link'], 'build/demo/index.html')}.</p>")
+        if tests.get("demo"):
+            out.append("<table>" + th("scenario", "title", "requirements", "targets met"))
+            for s in tests["demo"]:
+                ok = s["pass"] is not False
+                out.append(f"<tr class={cls(ok)}>" + td(s["scenario"]) + td(s["title"])
+                           + td(", ".join(str(r) for r in s["requirements"]))
+                           + td("-" if s["pass"] is None else ("yes" if s["pass"] else "NO")) + "</tr>")
+            out.append("</table>")
+    else:
+        out.append('<p class=missing>Not run: build/demo/index.html not found (make demo).</p>')
+    if tests.get("robustness"):
+        r = tests["robustness"]
+        out.append(f"<p>Robustness campaign ({link(tests.get('robustness_link'), 'build/robustness/index.html')}): "
+                   f"<b>{esc(r.get('successes'))} of {esc(r.get('count'))} cold starts succeed</b> "
+                   f"({esc(r.get('rate_pct'))} %, table {esc(r.get('table'))}); {esc(r.get('criteria'))}.</p>")
+    return "\n".join(out)
+
+
+def html_sec6(sec):
+    out = [inputs_html(sec)]
+    if not sec.get("present"):
+        return not_run(sec, "build/bench/bench.json (make bench)")
+    out.append(f"<p><b>limits met {sec['limits_met']} / {sec['limits']}</b>"
+               + (f"; goals met {sec['goals_met']} / {sec['goals']} (goals are reported, not enforced)"
+                  if sec.get("goals") else "") + f". Compiler: {esc(sec.get('compiler'))}."
+               + (f" Over the limit: {esc('; '.join(str(o) for o in sec['over']))}." if sec["over"] else "") + "</p>")
+    goal = sec.get("has_goal")
+    out.append("<table>" + th("item", "min", "max", "limit", "result", *(["goal", "goal result"] if goal else []),
+                              "unit", "requirement"))
+    for r in sec["table"]:
+        res = str(r.get("result", ""))
+        c = "" if r.get("limit") is None else f" class={cls(res.upper() in ('OK', 'PASS'))}"
+        out.append(f"<tr{c}><td>{md_inline(str(r.get('item', '')))}</td>"
+                   + td("-" if r.get("min") is None else r.get("min"), True)
+                   + td("-" if r.get("max") is None else r.get("max"), True)
+                   + td("-" if r.get("limit") is None else r.get("limit"), True)
+                   + td(res)
+                   + (td("-" if r.get("goal") is None else r.get("goal"), True) + td(r.get("goal_result", "-"))
+                      if goal else "")
+                   + td(r.get("unit")) + td(r.get("requirement")) + "</tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
+def html_sec7(sec):
+    out = [inputs_html(sec)]
+    if not sec.get("present"):
+        return not_run(sec, "build/static/qfoc.sarif (make static)")
+    out.append("<table>" + th("tool", "version", "ran", "findings", "accepted", "unaccepted"))
+    for t in sec["tools"]:
+        ok = not t["unaccepted"] and t["ran"] is not False
+        out.append(f"<tr class={cls(ok)}>" + td(t["tool"]) + td(t["version"])
+                   + td({True: "yes", False: "NO", None: "-"}[t["ran"]]) + td(t["findings"], True)
+                   + td(t["accepted"], True) + td(t["unaccepted"], True) + "</tr>")
+    out.append("</table><h4>Findings per rule</h4><table>" + th("tool", "rule", "findings", "accepted", "reason"))
+    for r in sec["rules"]:
+        reasons = "<br>".join(f'<span title="{esc(x["justification"])}">{esc(x["reason"])}</span>'
+                              for x in r["reasons"])
+        out.append(f"<tr class={cls(r['accepted'] == r['findings'])}>" + td(r["tool"]) + td(r["rule"])
+                   + td(r["findings"], True) + td(r["accepted"], True) + f"<td>{reasons or '-'}</td></tr>")
+    out.append("</table>")
+    if sec["unaccepted"]:
+        out.append("<h4>Unaccepted findings</h4><table>" + th("tool", "rule", "where", "message"))
+        for u in sec["unaccepted"]:
+            out.append("<tr class=fail>" + td(u["tool"]) + td(u["rule"]) + td(u["where"]) + td(u["message"]) + "</tr>")
+        out.append("</table>")
+    return "\n".join(out)
+
+
+def html_sec8(sec):
+    out = [inputs_html(sec)]
+    if sec.get("tools"):
+        out.append("<table>" + th("tool", "version (recorded)", "use cases", "TI", "TD", "TCL", "mitigation"))
+        for t in sec["tools"]:
+            uses = "<ul>" + "".join(f"<li>{esc(u)}</li>" for u in as_list(t.get("use_cases"))) + "</ul>"
+            out.append("<tr>" + td(t.get("tool")) + td(t.get("version")) + f"<td>{uses}</td>"
+                       + f'<td title="{esc(t.get("impact_reason"))}">{esc(t.get("impact"))}</td>'
+                       + f'<td title="{esc(t.get("detection_reason"))}">{esc(t.get("detection"))}</td>'
+                       + td(t.get("tcl")) + td(t.get("mitigation")) + "</tr>")
+        out.append("</table>")
+    else:
+        out.append('<p class=missing>Not found: specs/tool-confidence.json.</p>')
+    out.append("<h4>Tool versions of this run (<code>sh tools/evidence/tool_versions.sh</code>)</h4>")
+    if sec.get("versions") is not None:
+        out.append(f"<p>{link(sec.get('versions_link'), 'tool-versions.txt')}"
+                   + (f" (exit status {sec['versions_exit']})" if sec.get("versions_exit") else "") + "</p>")
+        out.append("<pre>" + esc(sec["versions"]) + "</pre>")
+    else:
+        out.append('<p class=missing>Not run: tools/evidence/tool_versions.sh not found or failed.</p>')
+    return "\n".join(out)
+
+
+def html_sec9(sec):
+    out = [inputs_html(sec)]
+    if not sec.get("present"):
+        return '<p class=missing>Not found: specs/safety-manual.md.</p>'
+    out.append("<details open><summary>specs/safety-manual.md, rendered</summary>"
+               + md_to_html(sec["text"], shift=2) + "</details>")
+    return "\n".join(out)
+
+
+def html_sec10(sec):
+    out = [inputs_html(sec)]
+    if not sec.get("present"):
+        return not_run(sec, "build/repro/repro.json (make repro)")
+    out.append(f"<p>Two builds from the same sources in separate build trees: <b>"
+               f"{'identical' if sec['identical'] else 'DIFFERENT'}</b>. Compiler: {esc(sec.get('compiler'))}.</p>")
+    out.append("<table>" + th("artefact", "SHA-256 (first build)", "SHA-256 (second build)", "identical"))
+    for a in sec["artefacts"]:
+        ok = truthy(a.get("identical"))
+        out.append(f"<tr class={cls(ok)}>" + td(a.get("file")) + f"<td><code>{esc(a.get('sha256'))}</code></td>"
+                   + f"<td><code>{esc(a.get('sha256_second'))}</code></td>" + td("yes" if ok else "NO") + "</tr>")
+    out.append("</table>")
+    out.append("<p>The same artefacts in the main build tree now (for reference; built by <code>make target</code> "
+               "and <code>make firmware</code>, possibly from another state of the sources):</p><table>"
+               + th("file", "SHA-256", "same as the reproducibility builds"))
+    for a in sec["artefacts"]:
+        h = a.get("build_sha256")
+        same = "-" if h is None else ("yes" if h == a.get("sha256") else "no")
+        out.append("<tr>" + td(a.get("build_file")) + f"<td><code>{esc(h or 'not built')}</code></td>"
+                   + td(same) + "</tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
+def html_sec11(sec):
+    out = [inputs_html(sec)]
+    if not sec.get("present"):
+        return ('<p class=missing>Not run: build/check-summary.txt not found (<code>make check</code> writes it).'
+                '</p>' + inputs_html(sec))
+    out.append("<table>" + th("gate", "result", "time (s)", "last line of its log"))
+    for g in sec["gates"]:
+        out.append(f"<tr class={cls(g['result'] == 'PASS')}><td>{link(g.get('log'), g['gate'])}</td>"
+                   + td(g["result"]) + td(g["seconds"], True) + td(g["last_line"]) + "</tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
+SECTIONS = [("sec1", "1 Requirements and traceability"), ("sec2", "2 Formal verification"),
+            ("sec3", "3 MISRA Compliance:2020"), ("sec4", "4 Structural coverage"), ("sec5", "5 Tests"),
+            ("sec6", "6 Resource usage"), ("sec7", "7 Static analysis"), ("sec8", "8 Tool confidence"),
+            ("sec9", "9 Safety manual"), ("sec10", "10 Reproducibility"), ("sec11", "11 Gate log")]
+
+
+def write_html(path, model, secs):
+    g, date = model["commit"], model["date"]
+    dirty = {True: " (working tree modified)", False: " (clean)", None: ""}[g["dirty"]]
+    green = sum(1 for r in model["summary"] if r["status"] == "PASS")
+    red = len(model["summary"]) - green
+    out = ["<!DOCTYPE html>", "<html lang=en><head><meta charset=utf-8>",
+           "<title>qfoc evidence</title>", f"<style>{CSS}</style></head><body>",
+           "<h1>qfoc: ISO 26262 verification evidence</h1>",
+           f"<p class=meta>Commit <code>{esc(g['commit'])}</code>{esc(dirty)}"
+           + (f", branch {esc(g['branch'])}" if g.get("branch") else "")
+           + f"; generated {esc(date)} by <code>make evidence</code> (tools/evidence/evidence.py) from the results the "
+           "gates wrote; it runs no gate. Machine-readable: <a href=\"evidence.json\">evidence.json</a>.</p>",
+           "<nav>" + "".join(f'<a href="#{k}">{esc(t)}</a>' for k, t in SECTIONS) + "</nav>",
+           f"<h2 id=summary>Summary: {green} green, {red} red</h2>",
+           "<table class=summary>" + th("evidence", "figure", "status")]
+    for r in model["summary"]:
+        out.append(f"<tr class={cls(r['status'] == 'PASS')}><td><a href=\"#{r['section']}\">{esc(r['label'])}</a>"
+                   f"</td>{td(r['figure'])}<td class=s>{'PASS' if r['status'] == 'PASS' else 'FAIL'}</td></tr>")
+    out.append("</table><p class=small>A row is green only when its input exists and meets its target; a "
+               "missing input is red with \"not run\".</p>")
+    bodies = {"sec1": html_sec1(secs["trace"]), "sec2": html_sec2(secs["wp"], secs["cbmc"], secs["eva"]),
+              "sec3": html_sec3(secs["misra"]), "sec4": html_sec4(secs["coverage"], secs["mcdc"]),
+              "sec5": html_sec5(secs["tests"], secs["target_test"]), "sec6": html_sec6(secs["bench"]),
+              "sec7": html_sec7(secs["static"]), "sec8": html_sec8(secs["tools"]),
+              "sec9": html_sec9(secs["manual"]), "sec10": html_sec10(secs["repro"]),
+              "sec11": html_sec11(secs["gates"])}
+    for key, title in SECTIONS:
+        out.append(f"<h2 id={key}>{esc(title)}</h2>")
+        out.append(bodies[key])
+    out.append("</body></html>")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(out) + "\n")
+
+
+# --------------------------------------------------------------------------- main
+
+
+def build_model(bundle):
+    secs = {
+        "trace": collect_trace(bundle), "wp": collect_wp(bundle), "eva": collect_eva(bundle),
+        "cbmc": collect_cbmc(bundle), "misra": collect_misra(bundle), "coverage": collect_coverage(bundle),
+        "mcdc": collect_mcdc(bundle), "tests": collect_tests(bundle), "target_test": collect_target_test(bundle),
+        "static": collect_static(bundle), "bench": collect_bench(bundle), "repro": collect_repro(bundle),
+        "tools": collect_tools(bundle), "manual": collect_manual(bundle), "gates": collect_gates(bundle),
+    }
+    order = ["trace", "wp", "eva", "cbmc", "misra", "coverage", "mcdc", "tests", "target_test", "static",
+             "bench", "repro"]
+    summary = [r for k in order for r in secs[k].get("summary", [])]
+    model = {"generated_by": "tools/evidence/evidence.py (make evidence)",
+             "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC"),
+             "commit": git_info(bundle.root), "summary": summary,
+             "green": sum(1 for r in summary if r["status"] == "PASS"),
+             "red": sum(1 for r in summary if r["status"] != "PASS")}
+    return model, secs
+
+
+def json_sections(secs):
+    """The sections for evidence.json (the rendered texts left out: they are files of their own)."""
+    out = {}
+    for k, s in secs.items():
+        d = {kk: vv for kk, vv in s.items() if kk not in ("summary", "text", "deviations_md", "versions")}
+        if k == "tools":
+            d["versions"] = s.get("versions")
+        out[k] = d
+    return out
+
+
+def main(argv=None) -> int:
+    here = os.path.dirname(os.path.abspath(__file__))
+    ap = argparse.ArgumentParser(description="Collect the gates' results into build/evidence/.")
+    ap.add_argument("--root", default=os.path.dirname(os.path.dirname(here)),
+                    help="repository root (default: this checkout)")
+    ap.add_argument("--build", default="build", help="build directory, relative to the root (default build)")
+    ap.add_argument("--out", default=None, help="output directory (default BUILD/evidence)")
+    ap.add_argument("--strict", action="store_true", help="exit 1 when a summary row is red")
+    args = ap.parse_args(argv)
+    out = args.out or os.path.join(args.build, "evidence")
+    bundle = Bundle(args.root, args.build, out)
+    os.makedirs(bundle.out, exist_ok=True)
+    shutil.rmtree(os.path.join(bundle.out, "artefacts"), ignore_errors=True)
+    for stale in ("tool-versions.txt",):
+        if os.path.exists(os.path.join(bundle.out, stale)):
+            os.remove(os.path.join(bundle.out, stale))
+    model, secs = build_model(bundle)
+    model["sections"] = json_sections(secs)
+    model["artefacts"] = sorted(bundle.copied.values())
+    index = os.path.join(bundle.out, "index.html")
+    write_html(index, model, secs)
+    with open(os.path.join(bundle.out, "evidence.json"), "w", encoding="utf-8") as f:
+        json.dump(model, f, indent=1, sort_keys=False, default=str)
+        f.write("\n")
+    width = max(len(r["label"]) for r in model["summary"]) + 2
+    g = model["commit"]
+    print(f"evidence: commit {g['commit']}" + {True: " (working tree modified)", False: "", None: ""}[g["dirty"]])
+    for r in model["summary"]:
+        print(f"{r['label']:<{width}}{r['figure']}   {r['status']}")
+    print(f"evidence: {bundle.rel(index)} ({model['green']} green, {model['red']} red)")
+    if args.strict and model["red"]:
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,362 @@
+"""Tests of tools/evidence/evidence.py (run: python3 -m pytest tools/evidence/tests).
+
+Each test makes up the gates' results in a temporary repository root (a few lines of
+JUnit, results.md, JSON), runs the tool on it and reads the summary rows of
+evidence.json.  The requirements are those of specs/requirements/evidence.md.
+"""
+import json
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent.parent  # tools/evidence
+GATES = HERE.parent / "gates"
+sys.path.insert(0, str(HERE))
+
+import evidence as ev  # noqa: E402
+
+# Requirement IDs of the made-up matrix, written so that the trace gate does not read them
+# as IDs named by this file.
+X1, X2, Y1 = "REQ-" + "X-001", "REQ-" + "X-002", "REQ-" + "Y-001"
+
+JUNIT_OK = """<?xml version="1.0" encoding="UTF-8"?>
+<testsuites tests="2" failures="0" errors="0">
+  <testsuite name="test_a" tests="2" failures="0" errors="0" skipped="0">
+    <testcase classname="test_a" name="test_one"/>
+    <testcase classname="test_a" name="test_two"/>
+  </testsuite>
+</testsuites>
+"""
+
+JUNIT_FAIL = """<?xml version="1.0" encoding="UTF-8"?>
+<testsuites tests="2" failures="1" errors="0">
+  <testsuite name="test_b" tests="2" failures="1" errors="0" skipped="0">
+    <testcase classname="test_b" name="test_good"/>
+    <testcase classname="test_b" name="test_bad"><failure message="failed">x != y</failure></testcase>
+  </testsuite>
+</testsuites>
+"""
+
+# pytest's own dialect: <testsuite> at the root, time attributes, a skipped test
+JUNIT_PYTEST = """<?xml version="1.0" encoding="utf-8"?>
+<testsuite name="pytest" errors="0" failures="0" skipped="1" tests="3" time="0.50">
+  <testcase classname="tools.tests.test_x" name="test_p" time="0.1"/>
+  <testcase classname="tools.tests.test_x" name="test_q" time="0.2"/>
+  <testcase classname="tools.tests.test_x" name="test_r" time="0.0"><skipped message="no"/></testcase>
+</testsuite>
+"""
+
+
+def wp_results(proved, total):
+    return ("# Frama-C WP results, per function\n\n"
+            f"**proved {proved} / {total} goals**\n\n"
+            "| unit | function | goals | proved | provers | time (ms) |\n"
+            "|---|---|---:|---:|---|---:|\n"
+            f"| qfoc_x | qfoc_x_step | {total - 3} | {proved - 3} | Qed+Z3 | 120 |\n"
+            "| qfoc_x | qfoc_x_init | 3 | 3 | Qed | 2 |\n")
+
+
+CBMC_RESULTS = ("# CBMC results, per harness\n\n"
+                "| harness | result | properties proved | failed | unwind | time (s) |\n"
+                "|---|---|---:|---:|---:|---:|\n"
+                "| x_step | PASS | 120 | 0 | 2 | 3 |\n"
+                "| x_init | PASS | 30 | 0 | 1 | 0 |\n")
+
+TRACE = {"requirements": [
+    {"id": X1, "title": "Step", "contracts": ["qfoc_x_step"],
+     "wp": {"functions": ["qfoc_x_step"], "goals": 10, "proved": 10}, "cbmc": ["x_step"],
+     "tests": [{"kind": "cmocka", "file": "tests/test_x.c", "name": "test_x_001"}],
+     "scenarios": [], "verified": True},
+    {"id": Y1, "title": "Init", "contracts": ["qfoc_y_init"], "wp": {"goals": 0, "proved": 0},
+     "cbmc": [], "tests": [{"name": "test_y_001", "file": "tests/test_y.c"}], "verified": True}],
+    "gate_failures": []}
+
+
+def write(root, rel, text):
+    p = root / rel
+    p.parent.mkdir(parents=True, exist_ok=True)
+    p.write_text(text if isinstance(text, str) else json.dumps(text), encoding="utf-8")
+    return p
+
+
+def full_inputs(root):
+    """Every input of a passing run."""
+    write(root, "build/junit/test_a.xml", JUNIT_OK)
+    write(root, "proofs/wp/results.md", wp_results(13, 13))
+    write(root, "proofs/cbmc/results.md", CBMC_RESULTS)
+    write(root, "build/eva/eva.json", {"frama_c_exit": 0, "seconds": 9, "rte_alarms": [],
+                                       "unknown_properties": 4})
+    write(root, "build/trace/trace.json", TRACE)
+    write(root, "build/misra/compliance-summary.json",
+          {"framework": "MISRA Compliance:2020",
+           "counts": {"guidelines": 3, "compliant": 2, "deviations": 1, "disapplied": 0, "violations": 0},
+           "guideline_status": [{"id": "Rule 8.7", "category": "advisory", "status": "Deviations",
+                                 "deviations": [{"id": "DEV-002", "sites": 2}], "methods": ["cppcheck"]}],
+           "deviation_records": [{"id": "DEV-002", "title": "t", "guidelines": ["Rule 8.7"], "sites": 2}],
+           "plan_errors": [], "unattributed_findings": [], "compliant": True})
+    write(root, "misra/deviations.md", "# MISRA C:2012 deviation records\n\n## DEV-002 t\n\nRule: 8.7.\n")
+    write(root, "misra/enforcement-plan.csv", "id,kind\nRule 8.7,rule\n")
+    write(root, "build/coverage/coverage.xml",
+          '<?xml version="1.0"?><coverage lines-valid="3" lines-covered="3" branches-valid="2" '
+          'branches-covered="2"><packages><package><classes><class filename="src/x.c"><lines>'
+          '<line number="1" hits="4" branch="false"/><line number="2" hits="1" branch="true" '
+          'condition-coverage="100% (2/2)"/><line number="3" hits="2" branch="false"/></lines>'
+          '</class></classes></package></packages></coverage>')
+    write(root, "build/mcdc/mcdc.json",
+          {"summary": {"src": {"outcomes": 4, "covered": 3, "justified": 1, "percent": 75.0},
+                       "include": {"outcomes": 2, "covered": 2, "justified": 0, "percent": 100.0},
+                       "unjustified": 0, "unused_justifications": []},
+           "files": {"src/x.c": {"outcomes": 4, "covered": 3, "justified": 1, "percent": 75.0}},
+           "decisions": [{"file": "src/x.c", "line": 7, "function": "qfoc_x_step", "decision": "a && b",
+                          "outcomes": [{"text": "b", "outcome": "false", "covered": False,
+                                        "justification": "b is always true by XValid"}]}]})
+    write(root, "build/bench/bench.json",
+          {"table": [{"item": "`qfoc_drive_fast_step`, closed loop", "min": 10, "max": 20, "limit": 30,
+                      "result": "OK", "unit": "instructions", "requirement": "REQ-BENCH-002", "goal": 5,
+                      "goal_result": "OVER"},
+                     {"item": "RAM per motor", "min": None, "max": 400, "limit": 512, "result": "OK",
+                      "unit": "bytes", "requirement": "REQ-BENCH-005"}],
+           "sizes": {"lib_text_rodata": 1000, "sizeof_drive": 400},
+           "stack": {"qfoc_drive_fast_step": {"bytes": 100}}})
+    write(root, "build/static/qfoc.sarif",
+          {"version": "2.1.0", "runs": [
+              {"tool": {"driver": {"name": "cppcheck", "version": "2.10"}},
+               "invocations": [{"executionSuccessful": True}],
+               "results": [{"ruleId": "variableScope", "message": {"text": "m"},
+                            "suppressions": [{"kind": "external", "status": "accepted",
+                                              "justification": "specs/static-accepted.md, Locals: why"}]}]}]})
+    write(root, "build/repro/repro.json",
+          {"compiler": "arm-none-eabi-gcc 12", "artefacts": [
+              {"file": "target/libqfoc.a", "sha256": "ab" * 32, "sha256_second": "ab" * 32, "identical": True}]})
+    write(root, "build/target_test/target.txt",
+          "qfoc golden vectors: 2 groups\nq15_sat: 10 vectors, identical\nsin: 5 vectors, identical\n"
+          "result: 2 groups, 15 vectors, all identical (0.1 s)\n")
+    write(root, "specs/tool-confidence.json",
+          [{"tool": "gcc", "version": "12", "use_cases": ["builds"], "impact": "TI2", "detection": "TD1",
+            "tcl": "TCL1", "mitigation": "none"}])
+    write(root, "specs/safety-manual.md", "# Manual\n\n- **one**\n  - nested `x`\n\n| a | b |\n|---|---|\n| 1 | 2 |\n")
+    write(root, "build/check-summary.txt", "test      PASS     3s  2 passed, 0 failed\n"
+                                           "prove     FAIL    40s  proved 12 / 13 goals\n")
+    write(root, "build/check-test.log", "2 passed, 0 failed\n")
+
+
+def run(root, *extra):
+    """Run the tool on ROOT; (exit status, evidence.json, summary rows by key)."""
+    rc = ev.main(["--root", str(root), *extra])
+    data = json.loads((root / "build" / "evidence" / "evidence.json").read_text(encoding="utf-8"))
+    return rc, data, {r["key"]: r for r in data["summary"]}
+
+
+def test_all_inputs_green_and_bundle_written(tmp_path, capsys):
+    """REQ-EVD-001, REQ-EVD-002: every row green on a passing run; the page, the JSON and
+    the copied artefacts are written, the page is self-contained and its links resolve."""
+    full_inputs(tmp_path)
+    rc, data, rows = run(tmp_path, "--strict")
+    assert rc == 0
+    assert all(r["status"] == "PASS" for r in data["summary"]), [r for r in data["summary"]
+                                                                   if r["status"] != "PASS"]
+    assert data["red"] == 0 and data["green"] == len(data["summary"]) == 13
+    out = tmp_path / "build" / "evidence"
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert "<script" not in page and "http://" not in page.replace("http://cobertura", "")
+    assert (out / "artefacts" / "proofs" / "wp" / "results.md").exists()
+    assert (out / "artefacts" / "build" / "junit" / "test_a.xml").exists()
+    for href in __import__("re").findall(r'href="([^"#][^"]*)"', page):
+        assert (out / href).exists(), href
+    text = capsys.readouterr().out
+    assert text.strip().splitlines()[-1].endswith("(13 green, 0 red)")
+    assert "tests passed" in text and "PASS" in text
+
+
+def test_failed_test_turns_tests_row_red(tmp_path):
+    """REQ-EVD-007, REQ-EVD-002: one failed JUnit test makes the tests row red, with the
+    totals over every JUnit file (both dialects), and --strict exits 1."""
+    full_inputs(tmp_path)
+    write(tmp_path, "build/junit/test_b.xml", JUNIT_FAIL)
+    write(tmp_path, "build/junit/pytest/pytest.xml", JUNIT_PYTEST)
+    rc, data, rows = run(tmp_path)
+    assert rc == 0
+    assert rows["tests"]["status"] == "FAIL"
+    assert rows["tests"]["figure"].startswith("5/7 passed, 1 failures, 0 errors, 1 skipped")
+    tests = data["sections"]["tests"]
+    assert tests["failures"] == 1 and tests["tests"] == 7
+    assert any("test_b.test_bad" in f["failed_tests"] for f in tests["files"])
+    rc, _data, _rows = run(tmp_path, "--strict")
+    assert rc == 1
+
+
+def test_missing_inputs_are_red_not_run(tmp_path, capsys):
+    """REQ-EVD-002: with no result at all every summary row is red 'not run', the page is
+    still written and the exit status is 0 (1 with --strict)."""
+    rc, data, rows = run(tmp_path)
+    assert rc == 0
+    assert data["green"] == 0 and data["red"] == len(data["summary"]) == 13
+    for r in data["summary"]:
+        assert r["status"] == "FAIL" and r["figure"] == "not run" and r["missing"], r
+    assert (tmp_path / "build" / "evidence" / "index.html").exists()
+    assert "(0 green, 13 red)" in capsys.readouterr().out
+    assert run(tmp_path, "--strict")[0] == 1
+
+
+def test_one_missing_input_only_its_row_red(tmp_path):
+    """REQ-EVD-002, REQ-EVD-004: without build/eva/eva.json only the EVA row turns red."""
+    full_inputs(tmp_path)
+    os.remove(tmp_path / "build" / "eva" / "eva.json")
+    _rc, _data, rows = run(tmp_path)
+    assert rows["eva"]["status"] == "FAIL" and rows["eva"]["figure"] == "not run"
+    assert [k for k, r in rows.items() if r["status"] == "FAIL"] == ["eva"]
+    write(tmp_path, "build/eva/eva.json", "{ truncated")
+    _rc, _data, rows = run(tmp_path)
+    assert rows["eva"]["status"] == "FAIL" and rows["eva"]["figure"] == "unreadable: build/eva/eva.json"
+
+
+def test_wp_not_all_proved_is_red(tmp_path):
+    """REQ-EVD-004: WP with proved < total is red, with the figure proved/total."""
+    full_inputs(tmp_path)
+    write(tmp_path, "proofs/wp/results.md", wp_results(12, 13))
+    _rc, data, rows = run(tmp_path)
+    assert rows["wp"]["status"] == "FAIL"
+    assert rows["wp"]["figure"].startswith("12/13 goals")
+    assert data["sections"]["wp"]["source"] == "proofs/wp/results.md"
+
+
+def test_wp_prefers_fresh_build_results(tmp_path):
+    """REQ-EVD-004: build/wp/wp-summary.json written after the committed results wins."""
+    full_inputs(tmp_path)
+    write(tmp_path, "build/wp/wp-summary.json",
+          {"proved": 20, "total": 20, "clean": True,
+           "functions": [{"unit": "qfoc_x", "function": "qfoc_x_step", "goals": 20, "proved": 20,
+                          "provers": "Z3", "time_ms": 5}]})
+    later = os.path.getmtime(tmp_path / "proofs" / "wp" / "results.md") + 60
+    os.utime(tmp_path / "build" / "wp" / "wp-summary.json", (later, later))
+    _rc, data, rows = run(tmp_path)
+    assert data["sections"]["wp"]["source"] == "build/wp/wp-summary.json"
+    assert rows["wp"]["status"] == "PASS" and rows["wp"]["figure"].startswith("20/20 goals")
+
+
+def test_wp_function_without_result_is_red(tmp_path):
+    """REQ-EVD-004: a function that src/ defines but the WP results do not list is red."""
+    full_inputs(tmp_path)
+    gates = tmp_path / "tools" / "gates"
+    gates.mkdir(parents=True)
+    (gates / "c_functions.py").write_bytes((GATES / "c_functions.py").read_bytes())
+    write(tmp_path, "src/qfoc_x.c", "void qfoc_x_init(void)\n{\n}\n\nvoid qfoc_x_step(void)\n{\n}\n\n"
+                                    "static void qfoc_x_extra(void)\n{\n}\n")
+    write(tmp_path, "src/qfoc_z.c", "int qfoc_z_get(void)\n{\n    return 0;\n}\n")
+    _rc, data, rows = run(tmp_path)
+    assert rows["wp"]["status"] == "FAIL"
+    assert data["sections"]["wp"]["functions_without_result"] == ["qfoc_x:qfoc_x_extra"]
+    assert data["sections"]["wp"]["units_without_result"] == ["qfoc_z"]
+
+
+def test_eva_alarm_and_cbmc_failure_are_red(tmp_path):
+    """REQ-EVD-004: an EVA runtime-error alarm, or a CBMC harness that fails, is red."""
+    full_inputs(tmp_path)
+    write(tmp_path, "build/eva/eva.json", {"frama_c_exit": 0, "seconds": 9, "rte_alarms": [
+        {"file": "src/x.c", "line": 3, "message": "signed overflow. assert a + b <= 32767;"}]})
+    write(tmp_path, "proofs/cbmc/results.md", CBMC_RESULTS.replace("| x_init | PASS | 30 | 0 |",
+                                                                    "| x_init | FAIL | 29 | 1 |"))
+    _rc, _data, rows = run(tmp_path)
+    assert rows["eva"]["status"] == "FAIL" and rows["eva"]["figure"].startswith("1 alarm (target 0)")
+    assert rows["cbmc"]["status"] == "FAIL" and "1 failed" in rows["cbmc"]["figure"]
+
+
+def test_cbmc_harness_without_result_is_red(tmp_path):
+    """REQ-EVD-004: a harness folder of proofs/cbmc/ missing from the results is red."""
+    full_inputs(tmp_path)
+    write(tmp_path, "proofs/cbmc/x_new/harness.c", "void harness(void) {}\n")
+    write(tmp_path, "proofs/cbmc/x_step/harness.c", "void harness(void) {}\n")
+    _rc, data, rows = run(tmp_path)
+    assert rows["cbmc"]["status"] == "FAIL"
+    assert data["sections"]["cbmc"]["harnesses_without_result"] == ["x_new"]
+
+
+def test_trace_from_markdown_and_gate_failures(tmp_path):
+    """REQ-EVD-003: without trace.json the matrix comes from trace.md; a requirement
+    without test or harness is not verified; trace gate failures turn the row red."""
+    full_inputs(tmp_path)
+    os.remove(tmp_path / "build" / "trace" / "trace.json")
+    write(tmp_path, "build/trace/trace.md",
+          "# Requirement traceability\n\n| requirement | title | header | CBMC | tests |\n"
+          f"|---|---|---|---|---|\n| {X1} | Step | x.h | x_step | test_x.c<br>test_y.c |\n"
+          f"| {X2} | Init | x.h | - | - |\n")
+    _rc, data, rows = run(tmp_path)
+    assert rows["requirements"]["status"] == "FAIL" and rows["requirements"]["figure"] == "1/2 verified"
+    reqs = {r["id"]: r for r in data["sections"]["trace"]["requirements"]}
+    assert reqs[X1]["tests"] == ["test_x.c", "test_y.c"] and reqs[X1]["module"] == "X"
+    trace = dict(TRACE, gate_failures=["tests/test_x.c: cmocka test t names no requirement"])
+    write(tmp_path, "build/trace/trace.json", trace)
+    _rc, _data, rows = run(tmp_path)
+    assert rows["requirements"]["status"] == "FAIL"
+    assert rows["requirements"]["figure"] == "2/2 verified; 1 trace gate failures"
+
+
+def test_misra_violation_coverage_gap_bench_over_static_unaccepted(tmp_path):
+    """REQ-EVD-005, REQ-EVD-006, REQ-EVD-008, REQ-EVD-009, REQ-EVD-012: a MISRA violation,
+    a branch not covered, an MC/DC outcome without justification, a limit exceeded, an
+    unaccepted finding and two different builds each turn their row red."""
+    full_inputs(tmp_path)
+    misra = json.loads((tmp_path / "build/misra/compliance-summary.json").read_text())
+    misra["counts"]["violations"] = 1
+    write(tmp_path, "build/misra/compliance-summary.json", misra)
+    cov = (tmp_path / "build/coverage/coverage.xml").read_text()
+    write(tmp_path, "build/coverage/coverage.xml",
+          cov.replace('branches-covered="2"', 'branches-covered="1"').replace("100% (2/2)", "50% (1/2)"))
+    write(tmp_path, "build/mcdc/mcdc.json",
+          {"summary": {"src": {"outcomes": 4, "covered": 3, "justified": 0}, "unjustified": 1},
+           "decisions": [{"file": "src/x.c", "line": 7, "function": "f", "decision": "a && b",
+                          "outcomes": [{"text": "b", "outcome": "false", "covered": False}]}]})
+    bench = json.loads((tmp_path / "build/bench/bench.json").read_text())
+    bench["table"][1].update({"max": 600, "result": "OVER"})
+    write(tmp_path, "build/bench/bench.json", bench)
+    sarif = json.loads((tmp_path / "build/static/qfoc.sarif").read_text())
+    sarif["runs"][0]["results"].append({"ruleId": "nullPointer", "message": {"text": "n"}})
+    write(tmp_path, "build/static/qfoc.sarif", sarif)
+    write(tmp_path, "build/repro/repro.json", {"artefacts": [
+        {"file": "target/libqfoc.a", "sha256": "ab" * 32, "sha256_second": "cd" * 32, "identical": False}]})
+    _rc, data, rows = run(tmp_path)
+    red = {k for k, r in rows.items() if r["status"] == "FAIL"}
+    assert red == {"misra", "branch", "mcdc", "bench", "static", "repro"}
+    assert rows["statement"]["status"] == "PASS"
+    assert rows["branch"]["figure"].startswith("50.0 % (1/2 branches")
+    assert rows["bench"]["figure"].startswith("limits met 1/2")
+    assert rows["static"]["figure"].endswith("1 accepted, 1 unaccepted")
+    assert data["sections"]["mcdc"]["uncovered"][0]["justification"] is None
+
+
+def test_mcdc_justified_exclusion_listed(tmp_path):
+    """REQ-EVD-006: an outcome not covered but justified keeps MC/DC green and is listed
+    with its justification."""
+    full_inputs(tmp_path)
+    _rc, data, rows = run(tmp_path)
+    assert rows["mcdc"]["status"] == "PASS"
+    assert "1 justified exclusions" in rows["mcdc"]["figure"]
+    page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
+    assert "b is always true by XValid" in page
+
+
+def test_sections_tools_manual_gates(tmp_path):
+    """REQ-EVD-010, REQ-EVD-011, REQ-EVD-013: the tool classification, the rendered safety
+    manual and the gate log with its links are in the page and in the JSON."""
+    full_inputs(tmp_path)
+    _rc, data, _rows = run(tmp_path)
+    page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
+    assert "<td>TCL1</td>" in page
+    assert "<li><strong>one</strong><ul><li>nested <code>x</code></li></ul></li>" in page
+    assert "<td>1</td><td>2</td>" in page
+    gates = data["sections"]["gates"]["gates"]
+    assert [(g["gate"], g["result"], g["seconds"]) for g in gates] == [("test", "PASS", 3), ("prove", "FAIL", 40)]
+    assert gates[0]["log"] == "artefacts/build/check-test.log"
+    assert data["sections"]["gates"]["failed"] == ["prove"]
+
+
+@pytest.mark.parametrize("text, html", [
+    ("a `x*y*z` **b** *c*", "a <code>x*y*z</code> <strong>b</strong> <em>c</em>"),
+    ("see [doc](specs/x.md)", "see doc (<code>specs/x.md</code>)"),
+    ("a < b & c", "a &lt; b &amp; c"),
+])
+def test_markdown_inline(text, html):
+    """REQ-EVD-011: the inline markdown of the rendered documents."""
+    assert ev.md_inline(text) == html

@@ -1,0 +1,244 @@
+"""Tests of the motor-file input of tools/tune/qfoc_tune.py: the refusals, the schema and its
+documentation docs/motor-file.md (run: python3 -m pytest tools/tune/tests).
+
+Every refusal test checks the exit code 1, a message naming the key as the motor file
+writes it (section.key) with its value and the rule, and that nothing was written.
+"""
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+TUNE = Path(__file__).resolve().parent.parent  # tools/tune
+REPO = TUNE.parent.parent
+sys.path.insert(0, str(TUNE))
+
+import qfoc_tune as qt  # noqa: E402
+
+REFERENCE = REPO / "specs" / "motors" / "reference.toml"
+SECOND = REPO / "specs" / "motors" / "traction350.toml"
+DOC = REPO / "docs" / "motor-file.md"
+
+
+def refused(tmp_path, capsys, motor, *extra):
+    """Run the tool in-process; assert exit code 1 and no file written; return stderr."""
+    rc = qt.main([str(motor), "--out-dir", str(tmp_path / "out"),
+                  "--table-dir", str(tmp_path / "tables"), "--no-plots", *extra])
+    err = capsys.readouterr().err
+    assert rc == 1, err
+    assert "refused, no table written" in err
+    assert not (tmp_path / "tables").exists()
+    assert not (tmp_path / "out").exists()
+    return err
+
+
+def with_text(tmp_path, motor, old, new):
+    """A copy of a motor file with one text replaced."""
+    text = motor.read_text()
+    assert old in text
+    path = tmp_path / motor.name
+    path.write_text(text.replace(old, new))
+    return path
+
+
+# REQ-TUNE-001: a protection threshold its sensor cannot read is refused.  The bus reading
+# is code x 8 (12-bit code 0 .. 4095, 4096 codes = V_base), at most 32760; the current
+# reading is (code - offset) x 16 with the offset within 2048 +- offset_window; the
+# temperature input reads -40.0 .. 200.0 degC.
+@pytest.mark.parametrize("overrides, message", [
+    # bus max 470 V, full scale 480 V: default OV 1.05 x 470 = 493.5 V -> 32767 > 32760
+    (("sensing.vdc_full_scale_v=480", "inverter.vdc_max_v=470"),
+     "limits.vdc_ov_v = 493.5 V (default 1.05 x inverter.vdc_max_v): the DC-bus sensor "
+     "cannot read this over-voltage threshold: it is not below the largest reading 4095 codes "
+     "x sensing.vdc_full_scale_v 480 V / 4096 = 479.883 V"),
+    # 499.9 / 500 x 32768 = 32761.4 -> 32761 >= 32760
+    (("limits.vdc_ov_v=499.9",), "limits.vdc_ov_v = 499.9 V: the DC-bus sensor cannot read"),
+    # 499.95 V -> 32765: the bus always reads under it
+    (("limits.vdc_uv_v=499.95", "limits.vdc_ov_v=499.99"),
+     "limits.vdc_uv_v = 499.95 V: the DC-bus sensor cannot read this under-voltage threshold"),
+    # one code = 500 / 4096 = 0.122 V
+    (("limits.vdc_uv_v=0.1",), "limits.vdc_uv_v = 0.1 V: below one code of the DC-bus "
+                               "sensor, sensing.vdc_full_scale_v 500 V / 4096 = 0.12207 V"),
+    # (2047 - 100) x 40 / 2048 = 38.027 A
+    (("limits.i_trip_a=39",), "limits.i_trip_a = 39 A: the current sensor cannot read this "
+                              "over-current trip: it is not below the largest reading (2047 - "
+                              "drive.offset_window_counts 100) codes x sensing.i_full_scale_a "
+                              "40 A / 2048 = 38.0273 A"),
+    # a wide offset window: (2047 - 600) x 40 / 2048 = 28.26 A < the default trip 30 A
+    (("drive.offset_window_counts=600",), "limits.i_trip_a = 30 A (default 1.5 x "
+                                          "limits.i_max_a): the current sensor cannot read"),
+    (("drive.t_ipm_max_degc=200",), "drive.t_ipm_max_degc = 200 degC: outside -40 <= x < 200"),
+    (("drive.t_pcb_max_degc=-41",), "drive.t_pcb_max_degc = -41 degC: outside -40 <= x < 200"),
+])
+def test_refused_threshold_sensor_cannot_read(tmp_path, capsys, overrides, message):
+    args = [a for o in overrides for a in ("--set", o)]
+    err = refused(tmp_path, capsys, REFERENCE, *args)
+    assert f"refused: {REFERENCE}: {message}" in err
+
+
+# REQ-TUNE-001: a threshold or setting inside the operating range, which would trip or
+# mislead the drive in normal operation (or never act), is refused.
+@pytest.mark.parametrize("override, message", [
+    ("limits.vdc_ov_v=400", "limits.vdc_ov_v = 400 V is below inverter.vdc_max_v = 420 V "
+                            "(rule: the DC-bus protection thresholds lie outside the operating "
+                            "bus"),
+    ("limits.vdc_uv_v=260", "limits.vdc_uv_v = 260 V is above inverter.vdc_min_v = 250 V"),
+    ("limits.vdc_svpwm_min_v=300", "limits.vdc_svpwm_min_v = 300 V is above "
+                                   "inverter.vdc_min_v = 250 V"),
+    ("drive.stall_err_rpm=9000", "drive.stall_err_rpm = 9000 rpm: outside the motor's speed "
+                                 "range 0 .. 8000 rpm (limits.speed_max_rpm)"),
+    ("drive.phase_i_min_a=20", "drive.phase_i_min_a = 20 A is not below limits.i_max_a = 20 A "
+                               "(default motor.rated_current_a)"),
+])
+def test_refused_operating_range(tmp_path, capsys, override, message):
+    err = refused(tmp_path, capsys, REFERENCE, "--set", override)
+    assert f"refused: {REFERENCE}: {message}" in err
+
+
+# REQ-TUNE-001: the rule of specs/scaling.md section 2 is enforced, naming scaling.f_base_hz,
+# the speed that needs more and the f_base the motor needs.
+@pytest.mark.parametrize("overrides, message", [
+    # 8000 rpm x 5 / 60 = 666.667 Hz; 1.25 x 666.667 = 833.333 Hz > 500 Hz
+    (("motor.pole_pairs=5",),
+     "scaling.f_base_hz = 500 Hz breaks the rule of specs/scaling.md section 2: f_base >= "
+     "1.25 x the highest electrical frequency (field weakening included): "
+     "motor.max_speed_rpm 8000 rpm x motor.pole_pairs 5 / 60 = 666.667 Hz, so this motor "
+     "needs scaling.f_base_hz >= 1.25 x 666.667 = 833.333 Hz"),
+    # 9000 rpm x 3 / 60 = 450 Hz; 1.25 x 450 = 562.5 Hz
+    (("limits.speed_max_rpm=9000",),
+     "limits.speed_max_rpm 9000 rpm x motor.pole_pairs 3 / 60 = 450 Hz, so this motor needs "
+     "scaling.f_base_hz >= 1.25 x 450 = 562.5 Hz"),
+    # 1.25 x 400 Hz = 500 Hz is the least f_base; k_rpm = 3 x 32768 x 4096 / (60 x 499.9)
+    (("scaling.f_base_hz=499.9",), "scaling.f_base_hz = 499.9 Hz breaks the rule"),
+    # slow motor: 3 x 32768 x 4096 / (60 x 1000 / ... ): at 1500 rpm max, f_base 100 Hz
+    # meets 1.25 x 75 Hz but k_rpm = 3 x 32768 x 4096 / 6000 = 67109 > 65535
+    (("motor.rated_speed_rpm=1000", "motor.max_speed_rpm=1500", "scaling.f_base_hz=100",
+      "drive.rpm_min=500", "drive.of_speed_rpm=300", "drive.tc_speed_min_rpm=100"),
+     "scaling.f_base_hz = 100 Hz is too low for motor.pole_pairs 3: the drive's rpm conversion "
+     "k_rpm = n_p 32768 x 4096 / (60 f_base) = 67108.9 exceeds 65535"),
+])
+def test_refused_f_base_rule(tmp_path, capsys, overrides, message):
+    args = [a for o in overrides for a in ("--set", o)]
+    err = refused(tmp_path, capsys, REFERENCE, *args)
+    assert message in err
+
+
+# REQ-TUNE-001: the library reads 12-bit ADC codes (drive.h, drv_adc12): adc_bits other
+# than 12 is refused rather than ignored.
+@pytest.mark.parametrize("bits", [10, 16])
+def test_refused_adc_bits(tmp_path, capsys, bits):
+    err = refused(tmp_path, capsys, REFERENCE, "--set", f"sensing.adc_bits={bits}")
+    assert (f"sensing.adc_bits = {bits}: must be 12 (rule: the library reads 12-bit codes "
+            "(include/qfoc/drive.h, src/qfoc_drive.c drv_adc12)") in err
+
+
+# REQ-TUNE-001: a key or section the tool does not use is refused, named, with the close
+# match; in the file as on the command line.
+@pytest.mark.parametrize("old, new, message", [
+    ("pole_pairs = 3\n", "pole_pairs = 3\npole_pair = 3\n",
+     "unknown key motor.pole_pair (did you mean motor.pole_pairs?)"),
+    ("[scaling]", "[limits]\nvdc_ov = 450\n\n[scaling]",
+     "unknown key limits.vdc_ov (did you mean limits.vdc_ov_v?)"),
+    ("[scaling]", "[limit]\nvdc_ov_v = 450\n\n[scaling]",
+     "unknown section [limit] (did you mean [limits]?)"),
+    ("adc_bits = 12", "adc_bits = 12\nadc_ref_v = 3.3", "unknown key sensing.adc_ref_v"),
+])
+def test_refused_unknown_key(tmp_path, capsys, old, new, message):
+    path = with_text(tmp_path, REFERENCE, old, new)
+    err = refused(tmp_path, capsys, path)
+    assert f"refused: {path}: {message}" in err
+
+
+# REQ-TUNE-001: the same refusal for a key given with --set.
+@pytest.mark.parametrize("override, message", [
+    ("design.no_such_key=1", "unknown key design.no_such_key"),
+    ("drive.tc_speed_max=7000", "unknown key drive.tc_speed_max (did you mean "
+                                "drive.tc_speed_max_rpm?)"),
+    ("nosection.key=1", "unknown section [nosection]"),
+])
+def test_refused_unknown_key_set(tmp_path, capsys, override, message):
+    err = refused(tmp_path, capsys, REFERENCE, "--set", override)
+    assert message in err
+
+
+# REQ-TUNE-001: the [demo] keys of the simulator (sim/scenario.c) are known keys.
+def test_demo_keys_accepted(tmp_path):
+    rc = qt.main([str(REFERENCE), "--out-dir", str(tmp_path / "out"), "--table-dir",
+                  str(tmp_path / "tables"), "--no-plots", "--set", "demo.start_rpm=3000",
+                  "--set", "demo.start_load_nm=2.5"])
+    assert rc == 0
+    assert (tmp_path / "tables" / "reference_params.c").exists()
+
+
+# REQ-TUNE-001: the default of drive.tc_speed_max_rpm is the motor's rated speed (not a
+# fixed 6000 rpm); an explicit value above the largest target is refused.
+def test_tc_speed_max_default_rated(tmp_path, capsys):
+    path = with_text(tmp_path, REFERENCE, "rated_speed_rpm = 6000", "rated_speed_rpm = 7000")
+    cfg = qt.load_config(path, [])
+    assert cfg["drive"]["tc_speed_max_rpm"] == 7000.0
+    items = qt.build_table(cfg, qt.design_loops(cfg, qt.make_bases(cfg)))
+    flat = dict((n, f.value) for n, f in qt.flatten(items))
+    assert flat["drive.tc_speed_max"] == 22938          # 7000 x 3 / 60 / 500 x 32768 = 22937.6
+    err = refused(tmp_path, capsys, REFERENCE, "--set", "drive.tc_speed_max_rpm=8001")
+    assert ("drive.tc_speed_max_rpm = 8001 rpm: outside the motor's speed range 0 .. 8000 rpm "
+            "(motor.max_speed_rpm)") in err
+
+
+# REQ-TUNE-001: no Python warning or traceback reaches the terminal: a value the per-key range
+# refuses (pole_pairs 1 .. 16, drive_cfg.h) is named as typed before any computation; loop
+# models that leave the floating-point range (a plant pole far beyond the sample rate, a
+# vanishing inertia) fail the loop check, naming the keys the loops are made from.
+@pytest.mark.parametrize("override, message", [
+    ("motor.pole_pairs=500", "refused: " + str(REFERENCE) + ": motor.pole_pairs = 500: "
+                             "outside 1 .. 16"),
+    ("motor.rs_ohm=1e6", "loop check failed: the loop models leave the floating-point range"),
+    ("motor.j_kgm2=1e-12", "motor.j_kgm2 = 1e-12 kg m^2"),
+])
+def test_no_python_warning(tmp_path, override, message):
+    proc = subprocess.run([sys.executable, str(TUNE / "qfoc_tune.py"), str(REFERENCE),
+                           "--no-plots", "--out-dir", str(tmp_path / "out"), "--table-dir",
+                           str(tmp_path / "tables"), "--set", override],
+                          capture_output=True, text=True, cwd=REPO, check=False)
+    assert proc.returncode == 1
+    assert message in proc.stderr
+    assert "Warning" not in proc.stderr and "Traceback" not in proc.stderr
+    assert not (tmp_path / "tables").exists()
+
+
+# REQ-TUNE-001: docs/motor-file.md is the tool's schema (--motor-file-doc), every section and
+# key with its unit, range, default and rule; --help points to it.
+def test_motor_file_doc_matches_schema(capsys):
+    assert qt.main(["--motor-file-doc"]) == 0
+    out = capsys.readouterr().out
+    assert out == qt.motor_file_doc()
+    assert DOC.read_text(encoding="utf-8") == out, \
+        "docs/motor-file.md differs from the tool's schema: python3 tools/tune/qfoc_tune.py " \
+        "--motor-file-doc > docs/motor-file.md"
+    for section in qt.SECTIONS:
+        assert f"## [{section}]" in out
+    for k in qt.SCHEMA:
+        row = next(ln for ln in out.splitlines() if ln.startswith(f"| `{k.key}` |")
+                   and k.desc.replace("|", "\\|") in ln)
+        assert k.rule.replace("|", "\\|") in row
+        assert qt.range_text(k.rng) in row or k.kind == "str"
+    assert "| `vdc_ov_v` | number | V | > 0 | 1.05 x inverter.vdc_max_v |" in out
+    assert "| `adc_bits` | integer | bits | = 12 | required |" in out
+    assert "| `start_load_nm` | number | N m | >= 0 | motor.nominal_torque_nm |" in out
+
+
+# REQ-TUNE-001: --help points to the motor-file format.
+def test_help_points_to_motor_file_doc(capsys):
+    with pytest.raises(SystemExit):
+        qt.main(["--help"])
+    assert "docs/motor-file.md" in capsys.readouterr().out
+
+
+# REQ-TUNE-001: every key of the committed motor files is a key of the schema.
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
+def test_committed_motor_keys_in_schema(motor):
+    import tomllib
+    raw = tomllib.loads(motor.read_text())
+    for section, keys in raw.items():
+        for key in keys:
+            assert f"{section}.{key}" in qt.SCHEMA_BY_NAME

@@ -1,0 +1,427 @@
+"""Tests of tools/tune/qfoc_tune.py (run: python3 -m pytest tools/tune/tests).
+
+The hand computations below are written out so that a reader can check every expected
+number with a pocket calculator.
+"""
+import math
+import sys
+import zlib
+from pathlib import Path
+
+import pytest
+
+TUNE = Path(__file__).resolve().parent.parent  # tools/tune
+REPO = TUNE.parent.parent
+sys.path.insert(0, str(TUNE))
+
+import qfoc_tune as qt  # noqa: E402
+
+REFERENCE = REPO / "specs" / "motors" / "reference.toml"
+SECOND = REPO / "specs" / "motors" / "traction350.toml"
+
+SIMPLE_MOTOR = """
+[motor]
+name = "simple test motor"
+pole_pairs = 2
+rs_ohm = 1.0
+ld_h = 1.0e-3
+lq_h = 1.0e-3
+psi_f_wb = 0.05
+j_kgm2 = 1.0e-3
+b_nms = 1.0e-3
+rated_speed_rpm = 1000
+max_speed_rpm = 1200
+rated_current_a = 5.0
+nominal_torque_nm = 0.5
+
+[inverter]
+vdc_nominal_v = 48.0
+vdc_min_v = 40.0
+vdc_max_v = 56.0
+f_pwm_hz = 10000.0
+f_timer_hz = 80.0e6
+dead_time_s = 1.0e-6
+
+[sensing]
+i_full_scale_a = 10.0
+vdc_full_scale_v = 100.0
+adc_bits = 12
+
+[scaling]
+f_base_hz = 100.0
+"""
+
+
+def run(tmp_path, motor, *extra):
+    """Run the tool in-process into tmp_path; return the exit code."""
+    return qt.main([str(motor), "--out-dir", str(tmp_path / "out"),
+                    "--table-dir", str(tmp_path / "tables"), "--no-plots", *extra])
+
+
+def simple_design(tmp_path):
+    """Design of the simple motor."""
+    path = tmp_path / "simple.toml"
+    path.write_text(SIMPLE_MOTOR)
+    cfg = qt.load_config(path, [])
+    b = qt.make_bases(cfg)
+    return qt.design_loops(cfg, b), path
+
+
+# REQ-PAR-002, REQ-TUNE-006: the table CRC is CRC-32/ISO-HDLC (check value, zlib agreement).
+def test_crc_check_value():
+    assert qt.crc32_iso_hdlc(b"123456789") == 0xCBF43926
+    data = bytes(range(256)) * 3
+    assert qt.crc32_iso_hdlc(data) == zlib.crc32(data)
+    assert qt.crc32_iso_hdlc(b"") == 0
+
+
+# REQ-TUNE-003: gains in the pi.h representation (Q15 mantissa, left shift).
+def test_mantissa_left_corners():
+    assert qt.mant_left(0.0) == (0, 0)
+    assert qt.mant_left(32767 / 32768) == (32767, 0)      # largest gain with shift 0
+    assert qt.mant_left(1.0) == (16384, 1)                 # 32768 does not fit: shift 1
+    assert qt.mant_left(2.5) == (20480, 2)                 # the example of pi.h
+    assert qt.mant_left(32767.0) == (32767, 15)            # largest representable gain
+    assert qt.mant_left(1.0e6) == (32767, 15)              # saturates (caught by range checks)
+    assert qt.mant_left(1.0 / 32768) == (1, 0)             # one LSB
+    assert qt.mant_left(0.4 / 32768) == (0, 0)             # below half an LSB
+
+
+# REQ-TUNE-002, REQ-TUNE-003: flux.h right-shift mantissa, Q15 and Qn rounding corners.
+def test_mantissa_right_and_q15_corners():
+    # flux.h example: g = 3141.593 / 8000 -> 25736 with gain_shift 1
+    assert qt.mant_right(2 * math.pi * 500 / 8000) == (25736, 1)
+    assert qt.mant_right(0.9) == (29491, 0)                # 0.9 x 65536 > 32767: no shift
+    assert qt.mant_right(1e-9)[1] == 15                    # smallest values: largest shift
+    assert qt.q15(1.0) == 32767 and qt.q15(-1.0) == -32767  # symmetric range
+    assert qt.q15(0.5 / 32768) == 1                         # ties round up
+    assert qt.q15(-0.5 / 32768) == 0                        # floor(x + 0.5), as est_q15
+    assert qt.qn(8.0, 12) == 32767                          # Q12 saturates at 8 pu
+
+
+# REQ-TUNE-002, REQ-TUNE-003: bases and every chapter 2 gain against a hand computation.
+def test_simple_motor_gains_by_hand(tmp_path):
+    ds, _ = simple_design(tmp_path)
+    g = ds.gains
+    # Bases: w_base = 2 pi 100 = 628.3185 rad/s, T_s = 1 / 10 kHz = 100 us.
+    # T_sigma = T_s / 2 (PWM) + T_s (computation) + 0 (filter) = 150 us.
+    assert ds.t_sigma == pytest.approx(150e-6)
+    # Current loop: k_cp = L / (2 T_sigma) = 1e-3 / 3e-4 = 3.3333 ohm;
+    # kp_pu = k_cp I_base / V_base = 3.3333 x 10 / 100 = 0.33333 -> 0.33333 x 32768 = 10922.7
+    assert g["pi_id.kp"].real == pytest.approx(1.0 / 3.0)
+    assert (g["pi_id.kp"].raw, g["pi_id.kp"].shift) == (10923, 0)
+    # k_ci = R / (2 T_sigma) = 1 / 3e-4 = 3333.3 ohm/s; ki T = 0.33333 ohm;
+    # per unit 0.033333 -> 0.033333 x 32768 = 1092.3
+    assert g["pi_iq.ki"].real == pytest.approx(1.0 / 30.0)
+    assert (g["pi_iq.ki"].raw, g["pi_iq.ki"].shift) == (1092, 0)
+    # Output limits: V_dc,max / sqrt 3 / V_base = 56 / 1.73205 / 100 = 0.323316 -> 10594.4
+    assert g["pi_id.out"].raw == math.floor(56 / math.sqrt(3) / 100 * 32768 + 0.5) == 10594
+    # Speed loop, sampled every T_sam = 1 ms (the drive's tick):
+    # T_ssigma = 2 T_sigma + 1 / (2 pi 20 Hz) + T_sam = 0.3 ms + 7.9577 ms + 1 ms
+    t_ss = 2 * 150e-6 + 1 / (2 * math.pi * 20) + 1e-3
+    assert ds.t_ssigma == pytest.approx(t_ss)
+    # K_t = 1.5 x 2 x 0.05 = 0.15 N m/A, b = 1 / J = 1000: ksp = 1 / (2 T_ssigma K_t b)
+    ksp = 1 / (2 * t_ss * 0.15 * 1000)                     # = 0.39883 A s/rad (mechanical)
+    assert ds.phys["ksp"] == pytest.approx(ksp)
+    # electrical speed in pu of w_base: kp_pu = ksp / n_p x w_base / I_base = 11.311
+    kp = ksp / 2 * 2 * math.pi * 100 / 10
+    assert g["pi_speed.kp"].real == pytest.approx(kp)
+    assert g["pi_speed.kp"].shift == 4                      # 11.31 / 16 = 0.707 < 1
+    assert g["pi_speed.kp"].raw == math.floor(kp / 16 * 32768 + 0.5)
+    # tau_s = J / B = 1 s: ki T = kp T_sam / tau_s
+    assert g["pi_speed.ki"].real == pytest.approx(kp * 1e-3 / 1.0)
+    # PLL: w_n = 2 pi 100 = 628.32; kp = 2 x 0.9 x 628.32 / 628.32 = 1.8 -> shift 1,
+    # 0.9 x 32768 = 29491.2; ki T = w_n^2 T / w_base = 628.32 x 1e-4 = 0.062832 -> 2058.9
+    assert (g["pll.kp"].raw, g["pll.kp"].shift) == (29491, 1)
+    assert (g["pll.ki"].raw, g["pll.ki"].shift) == (2059, 0)
+    # k_theta = 100 / 10000 x 131072 = 1310.72 -> 1311
+    assert g["pll.k_theta"].raw == 1311
+    # Flux: g = T w_base = 0.0628319; right shift 3: 0.0628319 x 2^18 = 16470.97 -> 16471
+    assert (g["flux.gain"].raw, g["flux.gain"].shift) == (16471, 3)
+    # r = R / Z_base = 1 / 10 = 0.1 -> 3276.8 -> 3277; L_base = 10 / 628.32 = 15.915 mH,
+    # l = 1e-3 / 15.915e-3 = 0.062832 -> Q12 257.36 -> 257; kg = 100 / 628.32 -> 5215.2
+    assert g["flux.r"].raw == 3277
+    assert g["flux.l"].raw == 257
+    assert g["flux.kg"].raw == 5215
+    # Low-pass: alpha = 2 pi 20 / 10000 = 0.012566 -> 411.77 -> 412
+    assert g["pll.speed_alpha"].raw == 412
+    # Field weakening: G_fw = w_max L_d I_base / (V_dc,min / sqrt 3)
+    # = (1200 x 2 x 2 pi / 60) x 1e-3 x 10 / (40 / sqrt 3) = 251.33 x 0.01 / 23.094 = 0.10883
+    g_fw = 1200 * 2 * 2 * math.pi / 60 * 1e-3 * 10 / (40 / math.sqrt(3))
+    w_fw = 0.1 / (2 * 150e-6)                               # 333.3 rad/s
+    assert g["pi_fw.ki"].real == pytest.approx(w_fw / g_fw * 100e-6)
+    assert g["pi_fw.kp"].real == pytest.approx(1 / (4 * g_fw))
+
+
+# REQ-TUNE-006: the serialisation length of params.h and the generated initialiser.
+def test_simple_motor_passes_and_table_compiles_layout(tmp_path):
+    ds, path = simple_design(tmp_path)
+    items = qt.build_table(ds.cfg, ds)
+    # params.h serialisation: 4+2+2+4+4+4 + svpwm 8 + 4 PI x 10 + flux 9 + pll 18 + 10 x 2
+    # = 115, then the drive configuration (layout 2): 4 x 1 + 40 x 2 = 84 bytes
+    assert len(qt.serialise(items)) == 115 + 84
+    assert run(tmp_path, path) == 0
+    text = (tmp_path / "tables" / "simple_params.c").read_text()
+    assert "const qfoc_param_table_t qfoc_params_simple = {" in text
+    assert ".out_min = (int16_t)-10594," in text
+
+
+# REQ-TUNE-004: a scaling made too tight is rejected, naming the bound and the input.
+# I_base = 32 A: the trip 30 A (0.9375 I_base) is still below the sensor's largest reading
+# (1947 / 2048 I_base), but the Clarke output at 110 deg is 1.1 x 30720 > 32767.
+def test_too_tight_scaling_rejected(tmp_path, capsys):
+    rc = run(tmp_path, REFERENCE, "--set", "sensing.i_full_scale_a=32")
+    err = capsys.readouterr().err
+    assert rc == 1
+    assert "bound violated: Clarke (2-5, 2-6" in err
+    assert "> 32767 for i_trip = 30 A" in err
+    assert not (tmp_path / "tables").exists()                # no table on failure
+    assert "Status: **FAILED**" in (tmp_path / "out" / "report.md").read_text()
+
+
+# REQ-TUNE-001: malformed motor data are rejected with exit code 2 and the field named.
+@pytest.mark.parametrize("override, message", [
+    ("motor.rs_ohm=-1", "must be > 0"),
+    ("motor.pole_pairs=2.5", "expected an integer"),
+    ("motor.ld_h=\"abc\"", "expected a number"),
+])
+def test_bad_input_exit_2(tmp_path, capsys, override, message):
+    assert run(tmp_path, REFERENCE, "--set", override) == 2
+    assert message in capsys.readouterr().err
+
+
+# REQ-TUNE-001: a missing field is rejected with exit code 2.
+def test_missing_field_exit_2(tmp_path, capsys):
+    path = tmp_path / "broken.toml"
+    path.write_text(SIMPLE_MOTOR.replace("rs_ohm = 1.0\n", ""))
+    assert run(tmp_path, path) == 2
+    assert "missing [motor] rs_ohm" in capsys.readouterr().err
+
+
+# REQ-TUNE-004, REQ-TUNE-005, REQ-TUNE-006: both motors pass every bound and loop check;
+# the committed tables regenerate byte for byte.
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
+def test_motor_passes_and_table_reproducible(tmp_path, motor):
+    assert run(tmp_path, motor) == 0
+    for ext in ("c", "h"):
+        name = f"{motor.stem}_params.{ext}"
+        assert (tmp_path / "tables" / name).read_bytes() == (REPO / "tables" / name).read_bytes()
+
+
+# REQ-TUNE-007: the report and its Bode / step plots.
+def test_report_with_plots(tmp_path):
+    rc = qt.main([str(REFERENCE), "--out-dir", str(tmp_path), "--table-dir", str(tmp_path)])
+    assert rc == 0
+    report = (tmp_path / "report.md").read_text()
+    assert "Status: **PASSED**" in report
+    for loop in ("current_d", "current_q", "speed", "field_weakening", "PLL"):
+        assert (tmp_path / f"loop_{loop}.png").stat().st_size > 1000
+        assert f"loop_{loop}.png" in report
+
+
+# REQ-TUNE-005: the document's current-loop design gives PM 65.5 deg; every discrete loop >= 45 deg.
+def test_loop_margins_reference():
+    cfg = qt.load_config(REFERENCE, [])
+    ds = qt.design_loops(cfg, qt.make_bases(cfg))
+    res = qt.run_analysis(cfg, ds)
+    rc, rd = res["current q"]
+    # K T = 0.5 on 1 / (s (T s + 1)): crossover w T = 0.4551, PM = 90 - atan(0.4551) = 65.5 deg
+    assert rc.pm_deg == pytest.approx(65.53, abs=0.1)
+    for _name, (_c, d) in res.items():
+        assert d.stable and d.pm_deg >= 45.0
+
+
+# ---- layout version 2: the drive configuration (REQ-TUNE-006, REQ-PAR-006, REQ-PAR-007) ----
+
+# drive_cfg.h, declaration order: (field, struct format) -- written here from the header,
+# independently of the tool's field list
+DRIVE_LAYOUT = [
+    ("pole_pairs", "B"), ("k_rpm", "H"), ("k_speed_rpm", "H"), ("rpm_min", "H"),
+    ("rpm_max", "H"), ("speed_ramp", "h"), ("precharge_ms", "H"), ("offset_shift", "B"),
+    ("offset_window", "H"), ("i_align", "h"), ("align_ms", "H"), ("i_start", "h"),
+    ("of_accel", "h"), ("of_speed", "h"), ("ho_angle", "H"), ("ho_dwell_ms", "H"),
+    ("ol_timeout_ms", "H"), ("cl_hold_ms", "H"), ("t_ipm_max", "h"), ("t_pcb_max", "h"),
+    ("vdc_ms", "H"), ("temp_ms", "H"), ("stall_err", "h"), ("flux_tol", "h"),
+    ("stall_ms", "H"), ("phase_alpha", "h"), ("phase_i_min", "h"), ("phase_ratio", "h"),
+    ("phase_ms", "H"), ("link_timeout_ms", "H"), ("clear_ms", "H"), ("fw_level", "h"),
+    ("fw_alpha", "h"), ("tc_gain", "h"), ("tc_amp_max", "h"), ("tc_speed_min", "h"),
+    ("tc_speed_max", "h"), ("para_speed", "h"), ("ld_hs", "h"), ("lq_hs", "h"),
+    ("lin_id_cmd", "B"), ("lin_id_status", "B"), ("can_id_a", "H"), ("can_id_b", "H"),
+]
+
+
+def c_values(text):
+    """(name, int) of every '.name = value' line of a generated table, in file order."""
+    import re
+    out = []
+    for m in re.finditer(r"^\s*\.(\w+) = (\(int16_t\))?(-?(?:0x[0-9A-Fa-f]+|\d+))u?[,\s]",
+                         text, re.M):
+        out.append((m.group(1), int(m.group(3), 0)))
+    return out
+
+
+# REQ-TUNE-006, REQ-PAR-006: the CRC in each committed table equals zlib's CRC-32 of an
+# independent serialisation: the 115-byte layout-1 part as the tool emits it, then the
+# drive fields packed here from DRIVE_LAYOUT (little-endian, own width).
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
+def test_committed_crc_independent_with_drive(motor):
+    import struct
+    text = (REPO / "tables" / f"{motor.stem}_params.c").read_text()
+    vals = c_values(text)
+    names = [n for n, _ in vals]
+    i = names.index("pole_pairs")
+    head = vals[:i]
+    drive = vals[i:i + len(DRIVE_LAYOUT)]
+    crc_name, crc = vals[i + len(DRIVE_LAYOUT)]
+    assert crc_name == "crc" and len(vals) == i + len(DRIVE_LAYOUT) + 1
+    assert [n for n, _ in drive] == [n for n, _ in DRIVE_LAYOUT]
+    # layout-1 part: widths from params.h (magic u32, version u16, f_pwm u16, 3 x u32 ...)
+    fmts = {"magic": "I", "v_base_mv": "I", "i_base_ma": "I", "f_base_mhz": "I",
+            "kp_shift": "B", "ki_shift": "B", "gain_shift": "B", "version": "H",
+            "f_pwm_hz": "H", "period": "H", "dt_comp": "H", "k_theta": "H"}
+    data = b"".join(struct.pack("<" + fmts.get(n, "h"), v) for n, v in head)
+    assert len(data) == 115
+    assert head[1] == ("version", 2)
+    data += b"".join(struct.pack("<" + f, v) for (_n, f), (_m, v) in zip(DRIVE_LAYOUT, drive))
+    assert len(data) == 199
+    assert zlib.crc32(data) == crc
+
+
+def drive_of(tmp_path, motor, *extra):
+    """Run the tool; return {drive field: value} of the generated table (None on failure)."""
+    rc = run(tmp_path, motor, *extra)
+    if rc != 0:
+        return None
+    text = next((tmp_path / "tables").glob("*_params.c")).read_text()
+    vals = c_values(text)
+    i = [n for n, _ in vals].index("pole_pairs")
+    return dict(vals[i:i + len(DRIVE_LAYOUT)])
+
+
+# REQ-PAR-006, REQ-TUNE-006: the documented defaults of [drive] by hand for the reference
+# motor (n_p 3, f_base 500 Hz, I_base 40 A, f_pwm 8 kHz, rated 20 A / 6000 rpm,
+# max 8000 rpm).
+def test_drive_defaults_by_hand(tmp_path):
+    d = drive_of(tmp_path, REFERENCE)
+    rpm = 3 / 60 / 500 * 32768                                # Q15 counts per rpm = 3.2768
+    assert d["k_rpm"] == math.floor(3.2768 * 4096) == 13421      # 13421.77, rounded down
+    assert d["k_speed_rpm"] == 10000                           # 60 x 500 / 3
+    # k_rpm rounded down so that 8000 rpm -> (8000 x 13421 + 2048) >> 12 = 26213 fits
+    # speed_max 26214 (rounded, 13422 would give 26215)
+    assert (8000 * 13422 + 2048) >> 12 == 26215
+    assert d["rpm_max"] == 8000 and (8000 * 13421 + 2048) >> 12 == 26213 <= 26214
+    assert d["rpm_min"] == 1000
+    assert d["speed_ramp"] == round(3000e-3 * rpm) == 10       # 9.83 counts per ms
+    assert d["of_accel"] == round(1000e-3 * rpm) == 3          # 3.28
+    assert d["of_speed"] == 3277                               # 1000 x 3.2768
+    assert d["i_align"] == 8192 and d["i_start"] == 16384      # 10 A, 20 A of 40 A
+    assert d["ho_angle"] == 2731                               # 15 / 360 x 65536 = 2730.7
+    assert d["stall_err"] == 5898                              # 0.3 x 0.6 x 32768 = 5898.2
+    assert d["flux_tol"] == round(0.5 * 0.065 / (500 / (2 * math.pi * 500)) * 32768)
+    assert d["phase_alpha"] == 129                             # 2 pi 5 / 8000 x 32768 = 128.7
+    assert d["phase_i_min"] == 1638 and d["phase_ratio"] == 8192
+    assert d["fw_level"] == 30147 and d["fw_alpha"] == 1287    # 0.92; 2 pi 50 / 8000
+    assert d["tc_gain"] == 492 and d["tc_amp_max"] == 8192
+    assert d["tc_speed_min"] == 1966 and d["tc_speed_max"] == 19661  # 600, 6000 rpm
+    assert d["para_speed"] == 18350                            # 5600 rpm x 3.2768
+    assert (d["t_ipm_max"], d["t_pcb_max"], d["vdc_ms"], d["temp_ms"]) == (1100, 1000, 2, 10)
+    assert (d["precharge_ms"], d["offset_shift"], d["offset_window"], d["align_ms"]) == \
+        (200, 6, 100, 300)
+    assert (d["ho_dwell_ms"], d["ol_timeout_ms"], d["cl_hold_ms"], d["stall_ms"]) == \
+        (50, 4000, 2000, 500)
+    assert (d["phase_ms"], d["link_timeout_ms"], d["clear_ms"]) == (100, 500, 5000)
+    assert (d["lin_id_cmd"], d["lin_id_status"], d["can_id_a"], d["can_id_b"]) == \
+        (0x10, 0x11, 0x310, 0x311)
+
+
+# REQ-TUNE-001, REQ-TUNE-006, REQ-PAR-006: the defaults round-trip: a motor file that
+# writes every documented default of [drive] explicitly gives the same table bytes as one
+# without the section, and the stored values convert back to the defaults within half a
+# count.
+def test_drive_defaults_round_trip(tmp_path):
+    cfg = qt.load_config(REFERENCE, [])
+    ds = qt.design_loops(cfg, qt.make_bases(cfg))
+    items = qt.build_table(cfg, ds)
+    explicit = dict(cfg["drive"])
+    explicit["rpm_max"] = ds.phys["drive.rpm_max"]
+    text = REFERENCE.read_text() + "\n[drive]\n" + "".join(
+        f"{k} = {int(v) if k in qt.DRIVE_INT_KEYS else float(v)!r}\n"
+        for k, v in explicit.items())
+    path = tmp_path / "explicit.toml"
+    path.write_text(text)
+    cfg2 = qt.load_config(path, [])
+    ds2 = qt.design_loops(cfg2, qt.make_bases(cfg2))
+    assert qt.serialise(qt.build_table(cfg2, ds2)) == qt.serialise(items)
+    flat = dict((n, f.value) for n, f in qt.flatten(items))
+    assert abs(flat["drive.i_align"] / 32768 * 40 - 10.0) <= 0.5 * 40 / 32768
+    assert abs(flat["drive.of_speed"] / 32768 * 500 * 60 / 3 - 1000.0) <= 0.5 * 500 * 60 / 3 / 32768
+    assert abs(flat["drive.ho_angle"] / 65536 * 360 - 15.0) <= 0.5 * 360 / 65536
+
+
+# REQ-TUNE-001, REQ-TUNE-006, REQ-PAR-006: [drive] overrides reach the table;
+# motor.ld_hs_h / lq_hs_h set the high-speed inductances.
+def test_drive_overrides(tmp_path):
+    d = drive_of(tmp_path, REFERENCE, "--set", "drive.rpm_max=7000", "--set",
+                 "drive.lin_id_cmd=0x20", "--set", "drive.tc_gain_q15=0",
+                 "--set", "motor.ld_hs_h=2.0e-3")
+    assert d["rpm_max"] == 7000 and d["lin_id_cmd"] == 0x20 and d["tc_gain"] == 0
+    assert d["ld_hs"] == round(2.0e-3 / (500 / 40 / (2 * math.pi * 500)) * 4096)   # 2059
+    assert d["lq_hs"] == 4324                                   # = lq (no lq_hs_h)
+
+
+# REQ-TUNE-004, REQ-PAR-007: the tool checks the drive ranges and the cross-field
+# conditions of params.h itself and refuses to write a table that breaks one, naming the
+# key of the motor file (the refusal comes before any computation).
+@pytest.mark.parametrize("override, message", [
+    ("drive.i_align_a=20.01", "drive.i_align_a = 20.01 A is above limits.i_max_a"),
+    ("drive.i_start_a=21", "drive.i_start_a = 21 A"),
+    ("drive.tc_amp_max_a=25", "drive.tc_amp_max_a = 25 A"),
+    ("drive.of_speed_rpm=8001", "drive.of_speed_rpm = 8001 rpm"),   # > speed_max (8000 rpm)
+    ("drive.rpm_max=8002", "drive.rpm_max = 8002 rpm is above limits.speed_max_rpm"),
+    ("drive.rpm_min=8001", "drive.rpm_min = 8001 rpm"),             # > rpm_max 8000
+    ("drive.lin_id_status=16", "drive.lin_id_status = 16 equals"),  # == lin_id_cmd 0x10
+    ("drive.lin_id_cmd=60", "drive.lin_id_cmd = 60: outside 0 .. 59"),   # > 0x3B
+    ("drive.can_id_b=2048", "drive.can_id_b = 2048"),
+    ("drive.offset_shift=11", "drive.offset_shift = 11"),
+    ("drive.vdc_ms=11", "drive.vdc_ms = 11 ms"),
+    ("drive.t_ipm_max_degc=200.1", "drive.t_ipm_max_degc = 200.1 degC"),
+    ("drive.align_ms=1", "drive.align_ms = 1 ms"),
+    ("drive.tc_speed_min_rpm=6001", "drive.tc_speed_min_rpm = 6001 rpm is above"),  # > 6000
+])
+def test_drive_range_refused(tmp_path, capsys, override, message):
+    assert run(tmp_path, REFERENCE, "--set", override) == 1
+    err = capsys.readouterr().err
+    assert f"refused: {REFERENCE}: {message}" in err
+    assert not (tmp_path / "tables").exists()
+
+
+# REQ-TUNE-004, REQ-PAR-007: the table's own range check (behind the input rules) names
+# the motor-file keys a derived field comes from.
+def test_table_range_names_typed_keys():
+    cfg = qt.load_config(REFERENCE, [])
+    ds = qt.design_loops(cfg, qt.make_bases(cfg))
+    items = qt.build_table(cfg, ds)
+    assert qt.range_checks(items) == []
+    drive = next(it for it in items if isinstance(it, qt.Group) and it.name == "drive")
+    next(f for f in drive.items if f.name == "k_rpm").value = 70000
+    bad = qt.range_checks(items)
+    assert [b.name for b in bad] == ["table field drive.k_rpm", "table field drive.rpm_max"]
+    assert qt.field_source(cfg, "drive.k_rpm") == \
+        " (from motor.pole_pairs = 3, scaling.f_base_hz = 500 Hz)"
+
+
+# REQ-TUNE-006, REQ-PAR-007: a boundary value of a cross-field condition is accepted.
+def test_drive_cross_boundary_accepted(tmp_path):
+    d = drive_of(tmp_path, REFERENCE, "--set", "drive.i_align_a=20", "--set",
+                 "drive.of_speed_rpm=8000", "--set", "drive.rpm_min=8000")
+    assert d["i_align"] == 16384 and d["of_speed"] == 26214 and d["rpm_min"] == 8000
+
+
+# REQ-TUNE-007: the report lists the drive configuration with its ranges.
+def test_report_lists_drive(tmp_path):
+    assert run(tmp_path, REFERENCE) == 0
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert "## 5. Drive configuration" in report
+    assert "| drive.rpm_max | 8000u |" in report
+    assert "<= i_max = 16384" in report
+    assert "drive.accel_rpm_s" in report                  # the [drive] keys in section 1
