@@ -1,6 +1,6 @@
 /* proofs/cbmc-selftest/planted.c -- the CBMC gate's own check of its SAT back end.
  *
- * tools/cbmc.sh runs this program with the flags and the solver of every harness before
+ * tools/gates/cbmc.sh runs this program with the flags and the solver of every harness before
  * the harnesses, and stops unless CBMC reports exactly what is planted here: the signed
  * product overflows for some inputs (a FAILURE with a counterexample, which needs the
  * solver's model to be read back), and the assertion holds for every input (a SUCCESS,

@@ -1,7 +1,7 @@
 /* tools/demo/accuracy.c -- the qfoc core measured against double precision.
  *
  * Host program behind 'make accuracy': runs every core function over exhaustive
- * or dense input sets, compares with the document's equations evaluated in double
+ * or dense input sets, compares with the equations of specs/equations.md evaluated in double
  * precision, and prints a table of the measured worst-case errors beside the
  * bounds the headers state.  Exit status 1 when a bound is exceeded.  Not part of
  * the library (it uses floating point). */
@@ -50,7 +50,7 @@ static void row(const char *name, const char *inputs, double measured, double bo
 int main(void)
 {
     double e;
-    printf("qfoc core accuracy against double precision (the document's equations)\n\n");
+    printf("qfoc core accuracy against double precision (specs/equations.md)\n\n");
     printf("| %-26s | %-34s | %-16s | %-13s | %-4s |\n", "function", "inputs", "max abs error", "header bound",
            "");
     printf("|%s|%s|%s|%s|%s|\n", "----------------------------", "------------------------------------",
@@ -96,7 +96,7 @@ int main(void)
     }
     row("qfoc_vec_mag", "1e6 random vectors", e, 1.0, "LSB");
 
-    /* Clarke inside the document's bound (2-6) */
+    /* Clarke inside the bound of specs/equations.md E2-6 */
     e = 0.0;
     for (uint32_t k = 0u; k < 1000000u; k++) {
         int16_t iu = rnd_q15();

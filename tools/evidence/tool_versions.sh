@@ -105,7 +105,7 @@ else
     line goto-instrument goto-instrument --version
 fi
 
-# CBMC's SAT back end (tools/cbmc.sh: --external-sat-solver)
+# CBMC's SAT back end (tools/gates/cbmc.sh: --external-sat-solver)
 line cadical cadical --version
 pkg cadical-package cadical
 

@@ -5,6 +5,8 @@
 #   SRCS   = library sources the harness links (paths from the repository root)
 #   UNWIND = loop unwinding bound (checked: --unwinding-assertions)
 #   CBMC_EXTRA = optional further flags
+#   SAT    = optional: minisat for CBMC's built-in MiniSat 2 instead of CaDiCaL (below),
+#            for a harness that the built-in solver decides faster
 #   GOTO_INSTRUMENT = optional goto-instrument flags applied first (the harness and
 #                sources are then compiled with goto-cc), e.g. --remove-function-body F
 # Every harness runs with the full set of runtime checks below; the run fails unless
@@ -18,7 +20,7 @@ CBMC=${CBMC:-build/tools/cbmc/bin/cbmc}
 OUT=build/cbmc
 JOBS=${JOBS:-2}
 mkdir -p "$OUT"
-rm -f "$OUT"/*.log "$OUT"/*.res
+rm -f "$OUT"/*.log "$OUT"/*.res "$OUT"/*.backend
 
 CHECKS="--bounds-check --pointer-check --div-by-zero-check --signed-overflow-check \
 --unsigned-overflow-check --pointer-overflow-check --conversion-check --undefined-shift-check \
@@ -54,6 +56,17 @@ run_one() {
     unwind=$(mkval "$d/config.mk" UNWIND)
     extra=$(mkval "$d/config.mk" CBMC_EXTRA)
     [ -n "$unwind" ] || unwind=1
+    sat=$CBMC_SAT
+    # a harness on an SMT back end (CBMC_EXTRA --z3 ...), or one that asks for MiniSat
+    case " $extra $(mkval "$d/config.mk" SAT) " in
+        *" --z3 "*|*" --cvc4 "*|*" --cvc5 "*|*" --smt2 "*|*" minisat "*) sat="" ;;
+    esac
+    if [ -z "$sat" ]; then
+        case " $extra " in
+            *" --z3 "*|*" --cvc4 "*|*" --cvc5 "*|*" --smt2 "*) echo "$name (SMT: $extra)" ;;
+            *) echo "$name (MiniSat 2)" ;;
+        esac > "$OUT/$name.backend"
+    fi
     gi=$(mkval "$d/config.mk" GOTO_INSTRUMENT)
     start=$(date +%s)
     input="$d/harness.c $srcs"
@@ -67,7 +80,7 @@ run_one() {
         input="$OUT/$name.gi.gb"
     fi
     # shellcheck disable=SC2086
-    if "$CBMC" $input -Iinclude -DQFOC_CBMC $CHECKS --unwind "$unwind" $extra $CBMC_SAT \
+    if "$CBMC" $input -Iinclude -DQFOC_CBMC $CHECKS --unwind "$unwind" $extra $sat \
         > "$OUT/$name.log" 2>&1; then
         res=PASS
     else
@@ -111,7 +124,8 @@ wait
     echo "runs with $CHECKS."
     echo
     if [ -n "$CBMC_SAT" ]; then
-        echo "SAT back end: CaDiCaL $("$CADICAL" --version) (--external-sat-solver)."
+        echo "SAT back end: CaDiCaL $("$CADICAL" --version) (--external-sat-solver), except:" \
+            "$(cat "$OUT"/*.backend 2>/dev/null | sort | paste -sd, - | sed 's/,/, /g')."
     else
         echo "SAT back end: MiniSat 2 (built into CBMC)."
     fi

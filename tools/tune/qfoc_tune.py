@@ -180,10 +180,10 @@ SCHEMA: tuple = (
     _k("motor", "nominal_torque_nm", "num", "N m", NONNEG, REQUIRED, "nominal load torque",
        "the simulator's load (sim/motor.c); default of demo.start_load_nm; not in the table"),
     _k("motor", "ld_hs_h", "num", "H", POS, "motor.ld_h",
-       "d-axis inductance at high speed (the document's motorParaChange)",
+       "d-axis inductance at high speed (formerly motorParaChange, specs/equations.md section 8)",
        "drive.ld_hs, used above drive.para_speed_rpm"),
     _k("motor", "lq_hs_h", "num", "H", POS, "motor.lq_h",
-       "q-axis inductance at high speed (the document's motorParaChange)",
+       "q-axis inductance at high speed (formerly motorParaChange, specs/equations.md section 8)",
        "drive.lq_hs, used above drive.para_speed_rpm"),
     # [inverter]
     _k("inverter", "vdc_nominal_v", "num", "V", POS, REQUIRED, "nominal DC bus",
@@ -302,7 +302,7 @@ SCHEMA: tuple = (
        "no handover this long after OPEN_LOOP entry: stall (the handover waits for cl_hold_ms "
        "after RUN entry)", "drive.ol_timeout_ms"),
     _k("drive", "cl_hold_ms", "int", "ms", (0, 60000, "[]"), 2000,
-       "no ramp to the target before this long after RUN entry (the document's 2 s)",
+       "no ramp to the target before this long after RUN entry (2 s, specs/equations.md section 8.3)",
        "drive.cl_hold_ms"),
     _k("drive", "t_ipm_max_degc", "num", "degC", (-40, 200, "[)"), 110.0,
        "IPM over-temperature",
@@ -1044,7 +1044,7 @@ class Design:
 
 
 def design_loops(cfg: dict, b: Bases) -> Design:
-    """Design every loop and quantise every gain (the document's chapter 2 rules)."""
+    """Design every loop and quantise every gain (the rules of specs/equations.md section 7)."""
     m, inv, d, lim = cfg["motor"], cfg["inverter"], cfg["design"], cfg["limits"]
     ds = Design(cfg, b)
     g, ph = ds.gains, ds.phys
@@ -1227,7 +1227,7 @@ def park_peak(a_alpha: float, a_beta: float, phi1: float, delta: float) -> float
     """Largest |i_d|, |i_q| of Park (2-7, 2-8) applied with angle error delta to
     i_alpha = a_alpha sin x, i_beta = a_beta sin(x - phi1).
 
-    Closed form of the document (2-9 .. 2-12), evaluated without the small-angle
+    Closed form of specs/equations.md E2-9 .. E2-12, evaluated without the small-angle
     approximation: the 2 w t term has amplitude A1 |sin(pi/4 - phi1/2)| and the DC terms
     are P = A1 (sin d + cos(d - phi1)) / 2, Q = A1 (sin(d - phi1) - cos d) / 2, with
     A1 = max(a_alpha, a_beta); the sampled sup over one period with the exact amplitudes
@@ -1887,7 +1887,7 @@ def analyse(model: LoopModel, w_top: float) -> LoopResult:
 def build_loops(cfg: dict, ds: Design) -> dict[str, tuple[LoopModel, LoopModel]]:
     """(continuous, discrete) models of the current loops, speed loop, FW loop and PLL.
 
-    Continuous: the document's models with the quantised gains (delays lumped in
+    Continuous: the models of specs/equations.md section 7 with the quantised gains (delays lumped in
     1 / (T_sigma s + 1), 1 / (T_ssigma s + 1)).  Discrete at T_s: PI as implemented by
     qfoc_pi_step (u = kp e + I, I(k) = I(k-1) + ki T e(k): kp + kiT z / (z - 1)), one
     sample of computation delay z^-1, zero-order hold of the plant.
@@ -2121,7 +2121,7 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
                        for bd in bounds])
     if results:
         lines += ["", "## 7. Loop analysis (chapter 4)", "",
-                  "Continuous: the document's models with the stored gains.  Discrete: T_s = "
+                  "Continuous: the models of specs/equations.md section 7 with the stored gains.  Discrete: T_s = "
                   f"{fmt(b.t_s * 1e6)} us, zero-order hold of the plant, z^-1 computation delay, "
                   "PI as qfoc_pi_step (kp + kiT z/(z-1)); speed loop with the speed low-pass "
                   "alpha z/(z-1+alpha) in the feedback; FW loop through the discrete closed d "

@@ -219,7 +219,7 @@ def test_report_with_plots(tmp_path):
         assert f"loop_{loop}.png" in report
 
 
-# REQ-TUNE-005: the document's current-loop design gives PM 65.5 deg; every discrete loop >= 45 deg.
+# REQ-TUNE-005: the current-loop design of specs/equations.md section 7 gives PM 65.5 deg; every discrete loop >= 45 deg.
 def test_loop_margins_reference():
     cfg = qt.load_config(REFERENCE, [])
     ds = qt.design_loops(cfg, qt.make_bases(cfg))
