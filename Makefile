@@ -111,9 +111,11 @@ cbmc: deps
 	@sh tools/gates/cbmc.sh
 
 # ---------------------------------------------------------------- traceability
-## trace: every requirement exercised by a test or harness and named in a header
+## trace: every requirement exercised by a test or harness and named in a header;
+##        specs/architecture.md names only modules, functions and requirements that exist
 trace:
 	@$(PYTHON) tools/evidence/trace.py
+	@$(PYTHON) tools/evidence/arch_check.py
 
 # ---------------------------------------------------------------- MISRA C:2012
 ## misra: cppcheck MISRA C:2012 addon, deviations recorded

@@ -84,17 +84,17 @@
  * writes the other's data.  Initialisation runs before the interrupts are enabled.
  *
  * Resources on the Cortex-M4F (arm-none-eabi-gcc -O2, measured by make bench into
- * build/bench/bench.md; specs/requirements/bench.md): no recursion, no dynamic memory,
- * no library data or bss; one qfoc_drive_t is 444 bytes (REQ-BENCH-005); worst-case
- * stack 216 bytes for the fast step, 152 for the tick (REQ-BENCH-006); the fast step
- * executes at most about 2600 instructions in closed loop with field weakening and
- * torque compensation (REQ-BENCH-001, REQ-BENCH-002; the core functions against
- * published figures: REQ-BENCH-003), the tick at most about 11000 (the 100 ms table
- * re-check); the library's code is about 20 KiB, 15.7 KiB of it linked by a drive
- * firmware (REQ-BENCH-004).  The target build gives the host build's outputs bit for
- * bit (REQ-BENCH-007; make target-test replays golden vectors of every function group
- * and of the whole drive under QEMU: REQ-TGT-001 .. REQ-TGT-005 in
- * specs/requirements/target.md, named in tools/target_test/tt.h).
+ * build/bench/bench.md): no recursion, no dynamic memory, no library data or bss.  The
+ * size of one qfoc_drive_t (REQ-BENCH-005), the worst-case stack of the fast step and of
+ * the tick (REQ-BENCH-006), the instructions of the fast step's longest path in closed
+ * loop with field weakening and torque compensation (REQ-BENCH-001, REQ-BENCH-002; the
+ * core functions against published figures: REQ-BENCH-003), those of the tick with the
+ * 100 ms table re-check, and the code a drive firmware links (REQ-BENCH-004) are each
+ * gated by a limit in specs/requirements/bench.md: make bench fails when a measured
+ * figure exceeds it, so the limits are the figures to plan with.  The target build gives
+ * the host build's outputs bit for bit (REQ-BENCH-007; make target-test replays golden
+ * vectors of every function group and of the whole drive under QEMU: REQ-TGT-001 ..
+ * REQ-TGT-005 in specs/requirements/target.md, named in tools/target_test/tt.h).
  *
  * Requirements (specs/requirements/drive.md): REQ-DRV-001 motor object and table,
  * REQ-DRV-002 PWM only in RUN, REQ-DRV-003 over-current, REQ-DRV-004 measurement,
@@ -405,7 +405,7 @@ qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
 int32_t qfoc_drive_command(qfoc_drive_t *d, const qfoc_cmd_t *cmd);
 
 /**
- * @brief State of the state machine: QFOC_STATE_INIT .. QFOC_STATE_ERROR (sm.h).
+ * @brief State of the state machine: QFOC_STATE_PRECHARGE .. QFOC_STATE_ERROR (sm.h).
  * Requirements: REQ-DRV-017.
  */
 /*@

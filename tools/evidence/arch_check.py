@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Keep the software architecture description (specs/architecture.md) true to the sources.
+"""Keep the software architecture description (specs/architecture.md) true to the sources
+(REQ-EVD-014).
 
 Usage: python3 tools/evidence/arch_check.py [--root DIR]
 

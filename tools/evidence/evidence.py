@@ -18,7 +18,7 @@ Every summary row is green or red with its figure; an input that is missing make
 row red with "not run", never green.  Prints the summary as plain text, one line per row,
 and 'evidence: OUT/index.html (N green, M red)'.  Exit status 0 when the page was
 written; with --strict, 1 when a summary row is red.  The requirements are
-specs/requirements/evidence.md (REQ-EVD-001 .. REQ-EVD-013).
+specs/requirements/evidence.md (REQ-EVD-001 .. REQ-EVD-014).
 """
 import argparse
 import datetime

@@ -31,7 +31,8 @@ names, contract documentation) and from the committed proof results:
              test of tests/test_scenarios.c runs while naming the ID
   named_in   the headers naming the ID anywhere: include/qfoc/*.h, the tuning tool's
              interface tools/tune/qfoc_tune.py, the evidence generator's
-             tools/evidence/evidence.py, the vector format tools/target_test/tt.h and the
+             tools/evidence/evidence.py, the architecture check tools/evidence/arch_check.py,
+             the vector format tools/target_test/tt.h and the
              bench's tools/bench/*.h
 
 Gates (exit status 1, every offender listed):
@@ -673,7 +674,8 @@ def main() -> int:
     scn = scenarios(defined, cm)
 
     interfaces = (sorted(glob.glob("include/qfoc/*.h"))
-                  + ["tools/tune/qfoc_tune.py", "tools/evidence/evidence.py", "tools/target_test/tt.h",
+                  + ["tools/tune/qfoc_tune.py", "tools/evidence/evidence.py",
+                     "tools/evidence/arch_check.py", "tools/target_test/tt.h",
                      "sim/sim.h"]
                   + sorted(glob.glob("tools/bench/*.h")))
     named_in = {}

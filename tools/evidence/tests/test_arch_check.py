@@ -56,6 +56,7 @@ def tree(tmp_path):
     return tmp_path
 
 
+# REQ-EVD-014
 def test_repository_passes():
     rc, out = run(ROOT)
     assert rc == 0, out
@@ -68,6 +69,7 @@ def test_repository_passes():
     assert functions >= 145 and modules >= len(list((ROOT / "src").glob("*.c"))) and reqs > 0
 
 
+# REQ-EVD-014
 def test_default_root_is_the_repository():
     proc = subprocess.run([sys.executable, str(CHECK)], capture_output=True, text=True,
                           check=False, cwd=str(Path("/")))
@@ -75,6 +77,7 @@ def test_default_root_is_the_repository():
     assert SUMMARY.match(proc.stdout.strip())
 
 
+# REQ-EVD-014
 def test_renamed_function_fails(tree):
     # qfoc_ramp_toward renamed in the code, not in the document
     for f in ("include/qfoc/ramp.h", "src/qfoc_ramp.c", "src/qfoc_drive.c"):
@@ -91,6 +94,7 @@ def test_renamed_function_fails(tree):
     assert "problem" in out.strip().splitlines()[-1]
 
 
+# REQ-EVD-014
 def test_missing_module_fails(tree):
     # a module the document names no longer exists
     os.remove(tree / "src/qfoc_ramp.c")
@@ -100,6 +104,7 @@ def test_missing_module_fails(tree):
                for ln in out.splitlines()), out
 
 
+# REQ-EVD-014
 def test_undescribed_module_fails(tree):
     # a new module of src/ that the document does not describe
     (tree / "src/qfoc_extra.c").write_text(
@@ -113,6 +118,7 @@ def test_undescribed_module_fails(tree):
                for ln in out.splitlines()), out
 
 
+# REQ-EVD-014
 def test_undocumented_public_function_fails(tree):
     # a public function added to a header, not to the interface section
     edit(tree / "include/qfoc/sm.h", "#endif /* QFOC_SM_H */",
@@ -123,6 +129,7 @@ def test_undocumented_public_function_fails(tree):
                and "interface section" in ln for ln in out.splitlines()), out
 
 
+# REQ-EVD-014
 def test_unknown_requirement_fails(tree):
     doc = tree / DOC
     text = doc.read_text(encoding="utf-8")
@@ -134,6 +141,7 @@ def test_unknown_requirement_fails(tree):
     assert hits and f"{DOC} line {line}" in hits[0], out
 
 
+# REQ-EVD-014
 def test_unknown_function_in_document_fails(tree):
     # a name written as a call that nothing defines (a static helper renamed away)
     edit(tree / DOC, "`drv_measure()`", "`drv_sample()`")
@@ -142,6 +150,7 @@ def test_unknown_function_in_document_fails(tree):
     assert any(named(ln, "drv_sample") for ln in out.splitlines()), out
 
 
+# REQ-EVD-014
 def test_dependency_table_follows_the_includes(tree):
     edit(tree / "src/qfoc_sm.c", '#include "qfoc/sm.h"\n',
          '#include "qfoc/sm.h"\n#include "qfoc/trig.h"\n', count=1)
@@ -151,6 +160,7 @@ def test_dependency_table_follows_the_includes(tree):
                for ln in out.splitlines()), out
 
 
+# REQ-EVD-014
 def test_dependency_table_follows_the_calls(tree):
     # the state machine starts to call a primitive of another module
     edit(tree / "src/qfoc_sm.c", '#include "qfoc/sm.h"\n',
@@ -163,6 +173,7 @@ def test_dependency_table_follows_the_calls(tree):
                for ln in out.splitlines()), out
 
 
+# REQ-EVD-014
 def test_missing_interface_section_fails(tree):
     edit(tree / DOC, "## 3. Interfaces", "## 3. Calls", count=1)
     rc, out = run(tree)
