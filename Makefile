@@ -112,10 +112,16 @@ cbmc: deps
 
 # ---------------------------------------------------------------- traceability
 ## trace: every requirement exercised by a test or harness and named in a header;
-##        specs/architecture.md names only modules, functions and requirements that exist
+##        specs/architecture.md names only modules, functions and requirements that exist;
+##        the case counts of specs/verification-spec.md match the test sources
 trace:
 	@$(PYTHON) tools/evidence/trace.py
 	@$(PYTHON) tools/evidence/arch_check.py
+	@$(PYTHON) tools/evidence/verif_counts.py --check
+
+## verif-counts: rewrite the generated case counts of specs/verification-spec.md
+verif-counts:
+	@$(PYTHON) tools/evidence/verif_counts.py
 
 # ---------------------------------------------------------------- MISRA C:2012
 ## misra: cppcheck MISRA C:2012 addon, deviations recorded
