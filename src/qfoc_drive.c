@@ -754,6 +754,19 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
     const bool rotating = run && (sub != QFOC_SUB_ALIGN);
     const bool closed = run && ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
     const bool imbalanced = qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, c->phase_ratio);
+    /* ALIGN after its current ramp (the first half of align_ms), and OPEN_LOOP: the drive
+       imposes |i_align| or |i_start|, so the current must reach the sensors (REQ-DRV-018) */
+    const bool aligned = run && (sub == QFOC_SUB_ALIGN) &&
+                         ((uint32_t)s->sm.t_sub >= ((uint32_t)c->align_ms / 2u));
+    const bool open_loop = run && (sub == QFOC_SUB_OPEN_LOOP);
+    const int32_t i_imposed = aligned ? (int32_t)qfoc_q15_abs(c->i_align)
+                                      : (int32_t)qfoc_q15_abs(c->i_start);
+    /* at the alignment angle a healthy machine gives min / max = 1/2 >= ratio / 2 */
+    const qfoc_q15_t half_ratio = (qfoc_q15_t)(c->phase_ratio / 2);
+    const bool align_imbalanced = aligned &&
+                                  qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, half_ratio);
+    const bool no_current = (aligned || open_loop) &&
+                            (((int32_t)qfoc_phase_mon_peak(&f->phase) * 4) < i_imposed);
     uint16_t w = 0u;
     bool stall;
 
@@ -774,7 +787,8 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
     } else {
         /* synchronised */
     }
-    if (qfoc_debounce_step(&s->db_phase, rotating && imbalanced, c->phase_ms)) {
+    if (qfoc_debounce_step(&s->db_phase, (rotating && imbalanced) || align_imbalanced || no_current,
+                           c->phase_ms)) {
         w = (uint16_t)(w + QFOC_FAULT_PHASE);
     } else {
         /* balanced */

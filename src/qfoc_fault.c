@@ -172,6 +172,27 @@ bool qfoc_phase_mon_imbalanced(const qfoc_phase_mon_t *m, qfoc_q15_t i_min, qfoc
     return imbalanced;
 }
 
+qfoc_q15_t qfoc_phase_mon_peak(const qfoc_phase_mon_t *m)
+{
+    /* filtered magnitudes, Q15, each in [0, 32767] (state in [0, 32767 x 65536]) */
+    const qfoc_q15_t a = qfoc_q15_from_q31(m->abs_lpf[0].state);
+    const qfoc_q15_t b = qfoc_q15_from_q31(m->abs_lpf[1].state);
+    const qfoc_q15_t c = qfoc_q15_from_q31(m->abs_lpf[2].state);
+    qfoc_q15_t hi = a;
+
+    if (b > hi) {
+        hi = b;
+    } else {
+        /* a stays the largest so far */
+    }
+    if (c > hi) {
+        hi = c;
+    } else {
+        /* the largest is a or b */
+    }
+    return hi;
+}
+
 bool qfoc_fault_over(qfoc_q15_t x, qfoc_q15_t limit)
 {
     return (x > limit);

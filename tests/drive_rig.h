@@ -11,6 +11,7 @@
 #define QFOC_TESTS_DRIVE_RIG_H
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* ADC code of a DC-bus voltage (4096 codes = V_base = 500 V) */
@@ -33,6 +34,10 @@ typedef struct {
     bool send;                  /* the master sends a frame every 10 ms (rig_ms) */
     long ms;
     long enabled_outside_run;   /* enable seen while the state was not RUN */
+    bool motor_current;         /* before each tick the phase monitor reads, on all three
+                                   phases, the current the drive imposes (|i_align| or
+                                   |i_start|): a connected motor, for tests that feed zero
+                                   current samples; false: only what the samples give */
 } rig_t;
 
 /* A drive on a copy of t: 320 V, zero currents, 40 / 35 degC, the master sending rpm. */
@@ -48,6 +53,7 @@ static inline void rig_init_table(rig_t *r, const qfoc_param_table_t *t, uint16_
     r->t_pcb = 350;
     r->send = true;
     r->rpm = rpm;
+    r->motor_current = true;
 }
 
 /* command frame as the master sends it (sim/drive_sim.c's independent LIN encoder) */
@@ -80,6 +86,15 @@ static inline void rig_fast(rig_t *r)
 static inline void rig_tick_rx(rig_t *r, const uint8_t *rx, uint8_t len)
 {
     qfoc_tick_in_t in;
+    if (r->motor_current) {
+        const int32_t ia = abs((int32_t)r->table.drive.i_align);
+        const int32_t is = abs((int32_t)r->table.drive.i_start);
+        const int32_t i = (r->d.s.sm.sub == QFOC_SUB_ALIGN) ? ia : is;
+        int k;
+        for (k = 0; k < 3; k++) {
+            r->d.f.phase.abs_lpf[k].state = i * 65536;
+        }
+    }
     in.t_ipm = r->t_ipm;
     in.t_pcb = r->t_pcb;
     in.rx = rx;

@@ -799,47 +799,113 @@ static void test_req_drv_008_stall_speed_and_flux(void **state)
     }
 }
 
-/* REQ-DRV-008: PHASE when one phase carries no current while the others do, in the
-   rotating sub-states only: not in ALIGN however long, in OPEN_LOOP after exactly
-   phase_ms ticks; three carrying phases (smallest / largest = 1/2 >= phase_ratio) no
-   fault. */
+/* Ticks from the RUN entry to ERROR (at most `limit`), from STOP with the samples as set;
+   the phase monitor reads the samples only (no emulated motor current). */
+static int ms_to_error(rig_t *r, int limit)
+{
+    int ms;
+    r->motor_current = false;
+    r->power_on = true;
+    for (ms = 0; (ms < 20) && (st(r) != QFOC_STATE_RUN); ms++) {
+        rig_ms(r, 1);
+    }
+    assert_int_equal(st(r), QFOC_STATE_RUN);
+    for (ms = 0; (ms < limit) && (st(r) == QFOC_STATE_RUN); ms++) {
+        rig_ms(r, 1);
+    }
+    return ms;
+}
+
+/* REQ-DRV-008, REQ-DRV-018: PHASE when one phase carries no current while the others
+   do.  In ALIGN (phase u on the d axis: a healthy machine gives smallest / largest = 1/2)
+   the check applies from align_ms / 2, when the current ramp is complete, with half the
+   ratio; turning, with the ratio.  Lost phase w from the start: ERROR in ALIGN after
+   align_ms / 2 + phase_ms ticks.  ALIGN shorter than that: the debounce count goes on
+   in OPEN_LOOP and the fault comes at the same time.  Three carrying phases: no fault in
+   ALIGN or in OPEN_LOOP. */
 static void test_req_drv_008_phase_loss(void **state)
 {
     rig_t r;
     const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
     const uint16_t a = 400u;   /* 400 codes = 6400 Q15: above phase_i_min, below i_trip */
+    const int t_fault = (int)c->align_ms / 2 + (int)c->phase_ms;
     int bal;
+    int ms;
     (void)state;
     assert_true((int32_t)a * 16 > c->phase_i_min);
     assert_true((int32_t)a * 16 < qfoc_params_reference.i_trip);
+    assert_true((int32_t)a * 16 * 4 >= c->i_start && (int32_t)a * 16 * 4 >= c->i_align);
     assert_true(c->phase_ratio < 16384);
-    assert_true(c->align_ms > c->phase_ms);
+    assert_true(t_fault < (int)c->align_ms);
     for (bal = 0; bal < 2; bal++) {
-        int ms;
         rig_init(&r);
         rig_to_stop(&r);
         r.adc.iu = (uint16_t)(QFOC_ADC_MID + a);
         /* lost phase w: i_w = -(i_u + i_v) = 0; balanced: i_v = i_w = -i_u / 2 */
         r.adc.iv = (uint16_t)(QFOC_ADC_MID - ((bal != 0) ? (a / 2u) : a));
-        r.power_on = true;
-        for (ms = 0; (ms < 2000) && (st(&r) == QFOC_STATE_STOP || sub(&r) == QFOC_SUB_ALIGN); ms++) {
-            rig_ms(&r, 1);
-        }
-        assert_int_equal(st(&r), QFOC_STATE_RUN);
-        assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);   /* ALIGN survived */
-        for (ms = 1; ms <= 3 * (int)c->phase_ms; ms++) {
-            rig_ms(&r, 1);
-            if (st(&r) == QFOC_STATE_ERROR) {
-                break;
-            }
-        }
+        ms = ms_to_error(&r, (int)c->align_ms + 3 * (int)c->phase_ms);
         if (bal != 0) {
             assert_int_equal(st(&r), QFOC_STATE_RUN);
+            assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);
         } else {
-            assert_int_equal(ms, (int)c->phase_ms);
+            assert_int_equal(ms, t_fault);
             assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_PHASE);
+            rig_fast(&r);   /* the next period after the tick that entered ERROR */
+            assert_false(r.pwm.enable);
         }
     }
+    /* ALIGN of 150 ms: the check starts at 75 ms, the fault comes 25 ms into OPEN_LOOP */
+    rig_init(&r);
+    r.table.drive.align_ms = 150u;
+    table_seal(&r.table);
+    assert_int_equal(qfoc_drive_init(&r.d, &r.table), QFOC_PARAMS_OK);
+    rig_to_stop(&r);
+    r.adc.iu = (uint16_t)(QFOC_ADC_MID + a);
+    r.adc.iv = (uint16_t)(QFOC_ADC_MID - a);
+    ms = ms_to_error(&r, 1000);
+    assert_int_equal(ms, 75 + (int)c->phase_ms);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_PHASE);
+}
+
+/* REQ-DRV-018: no current where the drive imposes one.  Samples at the offset (no motor,
+   or both sensors stuck at mid-scale): ERROR / PHASE in ALIGN, align_ms / 2 + phase_ms
+   ticks after the RUN entry, never OPEN_LOOP.  A current in ALIGN that vanishes in
+   OPEN_LOOP: PHASE once the largest filtered magnitude falls below |i_start| / 4 and
+   phase_ms more ticks have passed. */
+static void test_req_drv_018_no_current(void **state)
+{
+    rig_t r;
+    const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
+    const uint16_t a = 400u;
+    int ms;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    ms = ms_to_error(&r, 2000);
+    assert_int_equal(ms, (int)c->align_ms / 2 + (int)c->phase_ms);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_PHASE);
+    rig_fast(&r);   /* the next period after the tick that entered ERROR */
+    assert_false(r.pwm.enable);
+    /* balanced current through ALIGN, none from the OPEN_LOOP entry on */
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.motor_current = false;
+    r.adc.iu = (uint16_t)(QFOC_ADC_MID + a);
+    r.adc.iv = (uint16_t)(QFOC_ADC_MID - a / 2u);
+    r.power_on = true;
+    for (ms = 0; (ms < 2000) && (sub(&r) != QFOC_SUB_OPEN_LOOP); ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);
+    r.adc.iu = QFOC_ADC_MID;
+    r.adc.iv = QFOC_ADC_MID;
+    for (ms = 0; (ms < 1000) && (st(&r) == QFOC_STATE_RUN); ms++) {
+        rig_ms(&r, 1);
+    }
+    /* 6400 decays below 16384 / 4 = 4096 in about 32 ms x ln(6400 / 4096) = 14 ms */
+    assert_true(ms > (int)c->phase_ms + 5);
+    assert_true(ms < (int)c->phase_ms + 30);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_PHASE);
 }
 
 /* REQ-DRV-007: an offset more than offset_window codes from 2048 on either side of
@@ -1016,6 +1082,7 @@ int main(void)
         cmocka_unit_test(test_req_drv_007_offset_shift_changed_during_calibration),
         cmocka_unit_test(test_req_drv_008_stall_speed_and_flux),
         cmocka_unit_test(test_req_drv_008_phase_loss),
+        cmocka_unit_test(test_req_drv_018_no_current),
         cmocka_unit_test(test_req_drv_009_rpm_to_speed_limit),
         cmocka_unit_test(test_req_drv_013_iq_reference_clamp),
         cmocka_unit_test(test_req_drv_013_tc_learning_held_when_clamped),

@@ -141,6 +141,49 @@ static bool ref_criterion(const double a[3], int16_t i_min, int16_t ratio)
     return (hi >= (double)i_min) && (lo < (((double)ratio / 32768.0) * hi));
 }
 
+/* REQ-FAULT-007: qfoc_phase_mon_peak is the largest of the three filter states rounded to
+   nearest (x / 65536, ties away from zero, as the imbalance check reads them), against a
+   double-precision reference, on random valid states, the extremes and ties. */
+static void test_phase_mon_peak(void **state)
+{
+    static const int32_t corner[] = { 0, 1, 32767, 32768, 65535, 65536, 98303, 98304,
+                                      2147385344, 2147418111, 2147418112 };
+    const size_t nc = sizeof corner / sizeof corner[0];
+    qfoc_phase_mon_t m;
+    uint32_t k;
+    size_t a;
+    size_t b;
+    (void)state;
+    assert_int_equal(qfoc_phase_mon_init(&m, 129), QFOC_FAULT_OK);
+    for (k = 0u; k < 200000u; k++) {
+        double hi = 0.0;
+        size_t x;
+        for (x = 0u; x < 3u; x++) {
+            const int32_t v = ((k % 7u) == 0u) ? corner[rand_range(0, (int32_t)nc - 1)]
+                                               : rand_range(0, 2147418112);
+            m.abs_lpf[x].state = ((k % 11u) == 0u) ? m.abs_lpf[0].state : v;
+            hi = fmax(hi, floor((double)m.abs_lpf[x].state / 65536.0 + 0.5));
+        }
+        assert_true(qfoc_phase_mon_is_valid(&m));
+        assert_int_equal(qfoc_phase_mon_peak(&m), (int32_t)hi);
+    }
+    /* every pair of corners on u and v, w at 0, and the same rotated */
+    for (a = 0u; a < nc; a++) {
+        for (b = 0u; b < nc; b++) {
+            const double ra = floor((double)corner[a] / 65536.0 + 0.5);
+            const double rb = floor((double)corner[b] / 65536.0 + 0.5);
+            m.abs_lpf[0].state = corner[a];
+            m.abs_lpf[1].state = corner[b];
+            m.abs_lpf[2].state = 0;
+            assert_int_equal(qfoc_phase_mon_peak(&m), (int32_t)fmax(ra, rb));
+            m.abs_lpf[0].state = 0;
+            m.abs_lpf[1].state = corner[a];
+            m.abs_lpf[2].state = corner[b];
+            assert_int_equal(qfoc_phase_mon_peak(&m), (int32_t)fmax(ra, rb));
+        }
+    }
+}
+
 /* REQ-FAULT-003, REQ-FAULT-005: random currents against the double low-pass, and
    the criterion on random thresholds */
 static void test_phase_mon_random_vs_reference(void **state)
@@ -444,6 +487,7 @@ int main(void)
         cmocka_unit_test(test_debounce_run_length),
         cmocka_unit_test(test_debounce_corners),
         cmocka_unit_test(test_phase_mon_random_vs_reference),
+        cmocka_unit_test(test_phase_mon_peak),
         cmocka_unit_test(test_phase_mon_phase_loss),
         cmocka_unit_test(test_phase_mon_update_one_vs_reference),
         cmocka_unit_test(test_phase_mon_alpha3),

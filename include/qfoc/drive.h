@@ -66,8 +66,13 @@
  *   STALL  in CLOSED_LOOP, |speed ref - estimate| > stall_err or the observer's flux
  *          magnitude off its expected value by more than flux_tol, for stall_ms; or
  *          no handover within ol_timeout_ms of OPEN_LOOP;
- *   PHASE  in RUN, the smallest filtered |phase current| below phase_ratio x the
- *          largest, the largest above phase_i_min, for phase_ms;
+ *   PHASE  in OPEN_LOOP, CLOSED_LOOP and STOPPING, the smallest filtered |phase
+ *          current| below phase_ratio x the largest, the largest above phase_i_min, for
+ *          phase_ms; in ALIGN from align_ms / 2 on, the same with phase_ratio / 2; and
+ *          in ALIGN (from align_ms / 2) and OPEN_LOOP, no current: 4 x the largest
+ *          filtered |phase current| below |i_align| / |i_start| (no motor, an open phase,
+ *          stuck current sensors), for phase_ms: ERROR align_ms / 2 + phase_ms after
+ *          the start, before the motor is accelerated (REQ-DRV-018);
  *   OFFSET offset calibration out of its window (PRECHARGE);
  *   LINK   no valid command frame for link_timeout_ms while running: the command
  *          becomes power-off (controlled ramp-down), then ERROR;
@@ -102,7 +107,8 @@
  * offsets, REQ-DRV-008 faults, REQ-DRV-009 commands, REQ-DRV-010 table re-check,
  * REQ-DRV-011 status and CAN, REQ-DRV-012 motorParaChange, REQ-DRV-013 field weakening
  * and torque compensation, REQ-DRV-014 start on the plant, REQ-DRV-015 malformed frames,
- * REQ-DRV-016 command without frames, REQ-DRV-017 status readers.
+ * REQ-DRV-016 command without frames, REQ-DRV-017 status readers, REQ-DRV-018 current
+ * response in ALIGN and OPEN_LOOP.
  *
  * Behaviour on the plant, end to end (specs/requirements/scenarios.md, targets in
  * specs/scenarios.toml, shown by make demo): REQ-SCN-001 cold start, REQ-SCN-002 speed

@@ -357,6 +357,35 @@ qfoc_q15_t qfoc_phase_mon_alpha3(qfoc_q15_t alpha);
 bool qfoc_phase_mon_imbalanced(const qfoc_phase_mon_t *m, qfoc_q15_t i_min, qfoc_q15_t ratio);
 
 /**
+ * @brief Largest of the three filtered phase-current magnitudes.
+ * @param[in] m valid monitor
+ * @return max(a_u, a_v, a_w), a_x = filtered |i_x| in Q15 of I_base (the filter state
+ *         rounded to nearest, as qfoc_phase_mon_imbalanced() reads it); in [0, 32767].
+ *
+ * A current that the inverter imposes but that does not reach the sensors (no motor, an
+ * open phase on the measured path, a current sensor stuck at its zero code) leaves all
+ * three magnitudes near 0.  At the drive's alignment angle (0, phase u on the d axis) a
+ * healthy machine gives a_u = |i_d| and a_v = a_w = |i_d| / 2; turning at any speed,
+ * the largest of the three is at least 2 / pi of the current amplitude.
+ *
+ * Drive use: the 1 ms tick, the current-response check of ALIGN and OPEN_LOOP
+ * (REQ-DRV-018).
+ *
+ * Scaling and overflow: the states are in [0, 32767 x 65536] (PhaseMonValid); the rounded
+ * outputs are in [0, 32767]; compares only.
+ *
+ * Requirements: REQ-FAULT-007.
+ */
+/*@
+  requires valid_m: \valid_read(m);
+  requires m_valid: PhaseMonValid(m);
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+  ensures value: \result == FaultMax3(PhaseMonOut(m, 0), PhaseMonOut(m, 1), PhaseMonOut(m, 2));
+*/
+qfoc_q15_t qfoc_phase_mon_peak(const qfoc_phase_mon_t *m);
+
+/**
  * @brief Over-threshold compare: x > limit.
  * @param[in] x     measured value, Q15 (or any int16_t scaling shared with limit)
  * @param[in] limit trip level in the same scaling
