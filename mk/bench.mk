@@ -3,6 +3,8 @@
 # counted in Unicorn on the -O2 Cortex-M4F build; flash, RAM, worst-case stack
 # (tools/bench/, specs/requirements/bench.md).  Report: build/bench/bench.md and bench.json.
 # The bench fails when a figure is above its limit (the goals are reported only).
+# bench.json and bench.md are stamped with the run's UTC time and the SHA-256 of their inputs
+# (tools/evidence/inputs.py bench; the list in build/bench/inputs-bench.sha256).
 #
 # The library objects are compiled again here with $(ARM_CFLAGS) plus -fcallgraph-info=su,
 # which only adds the call graph with frame sizes (.ci beside each .o and .su).
@@ -65,8 +67,12 @@ $(BENCH_DIR)/fw8000.bin: $(BENCH_DIR)/gen_replay specs/motors/reference.toml
 bench: deps $(BENCH_DIR)/bench.elf $(BENCH_DIR)/drive_only.elf $(BENCH_DIR)/fwtc.bin \
        $(BENCH_DIR)/fw8000.bin
 	@sh tools/bench/isqrt_steps.sh $(BENCH_DIR)
-	@$(PYTHON) tools/bench/count.py --elf $(BENCH_DIR)/bench.elf \
+	@t0=$$(date +%s); rc=0; rm -f $(BENCH_DIR)/bench.json $(BENCH_DIR)/bench.md; \
+	 $(PYTHON) tools/bench/count.py --elf $(BENCH_DIR)/bench.elf \
 	    --drive-elf $(BENCH_DIR)/drive_only.elf --obj-dir $(BENCH_OBJ) \
 	    --replay "fwtc=$(BENCH_DIR)/fwtc.bin=$(BENCH_FWTC_TITLE)" \
 	    --replay "fw8000=$(BENCH_DIR)/fw8000.bin=$(BENCH_FW8000_TITLE)" \
-	    --out-dir $(BENCH_DIR) --cc $(ARM_CC) --cflags "$(ARM_CFLAGS) -fcallgraph-info=su"
+	    --out-dir $(BENCH_DIR) --cc $(ARM_CC) --cflags "$(ARM_CFLAGS) -fcallgraph-info=su" || rc=$$?; \
+	 for f in $(BENCH_DIR)/bench.json $(BENCH_DIR)/bench.md; do \
+	     [ -f "$$f" ] && { $(PYTHON) tools/evidence/inputs.py --stamp "$$f" bench --started "$$t0" > /dev/null || rc=1; }; \
+	 done; exit $$rc

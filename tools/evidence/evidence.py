@@ -13,12 +13,22 @@ and specs/; it runs no gate itself) and writes into OUT (default build/evidence/
                   (artefacts/proofs/wp/results.md, artefacts/build/eva/eva.json, ...);
                   the page links them relatively, so OUT can be archived and handed over
   tool-versions.txt  the output of `sh tools/evidence/tool_versions.sh` for this run
+  MANIFEST.sha256 the SHA-256 of every other file of OUT (sha256sum format)
+
+artefacts/ also holds what an assessor needs to read what was verified: the requirements
+(specs/requirements/*.md), the contracts (include/qfoc/*.h), the sources, specs/*.acsl and
+specs/*.md, the tests (tests/*.c, tools/*/tests/*.py), the proofs and their results, the
+MISRA records (misra/), and every input file of every stamped result.
 
 Every summary row is green or red with its figure; an input that is missing makes its
-row red with "not run", never green.  Prints the summary as plain text, one line per row,
-and 'evidence: OUT/index.html (N green, M red)'.  Exit status 0 when the page was
-written; with --strict, 1 when a summary row is red.  The requirements are
-specs/requirements/evidence.md (REQ-EVD-001 .. REQ-EVD-014).
+row red with "not run", never green.  A result whose inputs stamp (tools/evidence/inputs.py)
+differs from the inputs now is stale: red.  A requirement is verified only when every proof
+it names is proved in results tied to the current sources and every test it names passed
+in this run's results (tools/evidence/verdict.py); a test that did not run is "not run".
+Prints the summary as plain text, one line per row, and
+'evidence: OUT/index.html (N green, M red)'.  Exit status 0 when the page was written; with
+--strict, 1 when a summary row is red.  The requirements are specs/requirements/evidence.md
+(REQ-EVD-001 .. REQ-EVD-017).
 """
 import argparse
 import datetime
@@ -32,6 +42,10 @@ import shutil
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import inputs as inp  # noqa: E402  (tools/evidence/inputs.py: the gates' inputs and stamps)
+import verdict as vd  # noqa: E402  (tools/evidence/verdict.py: the requirement verdicts)
 
 # --------------------------------------------------------------------------- helpers
 
@@ -57,14 +71,6 @@ def read_json(path):
         return json.loads(text)
     except ValueError:
         return None
-
-
-def mtime_iso(path):
-    try:
-        t = os.path.getmtime(path)
-    except OSError:
-        return None
-    return datetime.datetime.fromtimestamp(t, datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
 
 
 def as_int(value, default=0):
@@ -357,12 +363,14 @@ class Bundle:
         return link
 
     def inputs(self, *rels):
-        """The record of the inputs of a section: path, present, modified; copies them."""
+        """The record of the inputs of a section: path, present, run (the UTC time of the run
+        that wrote it, from its stamp or JUnit timestamp; never the file's mtime), link; copies
+        them."""
         recs = []
         for rel in rels:
             present = self.exists(rel)
             recs.append({"path": self.rel(rel), "present": present,
-                         "modified": mtime_iso(self.path(rel)) if present else None,
+                         "run": inp.run_date(self.path(rel)) if present else None,
                          "link": self.art(rel) if present else None})
         return recs
 
@@ -440,7 +448,8 @@ def normalise_requirement(rid, rec):
         verified = truthy(rec.get("verified"))
     else:
         verified = bool(contracts) and bool(tests or cbmc or wp_items)
-    return {"id": rid, "title": str(rec.get("title", "")), "module": rec.get("module") or module_of(rid),
+    return {"raw": rec, "req_file": rec.get("file"),
+            "id": rid, "title": str(rec.get("title", "")), "module": rec.get("module") or module_of(rid),
             "contracts": contracts, "named_in": named_in, "wp": wp_text, "wp_items": wp_items, "cbmc": cbmc,
             "tests": tests, "scenarios": scenarios, "verified": verified}
 
@@ -497,7 +506,7 @@ def collect_trace(bundle):
     else:
         sec["inputs"] = bundle.inputs(jpath)
         sec["present"] = False
-        sec["summary"] = [missing_row("requirements", "requirements traced", "sec1",
+        sec["summary"] = [missing_row("requirements", "requirements verified", "sec1",
                                       f"{jpath} and {mpath}")]
         return sec
     demo = demo_scenarios(bundle)
@@ -514,12 +523,12 @@ def collect_trace(bundle):
                 "with_scenarios": sum(1 for r in reqs if r["scenarios"])})
     failures = sec.get("gate_failures") or []
     if n == 0:
-        sec["summary"] = [row("requirements", "requirements traced", False, "0 requirements found", "sec1")]
+        sec["summary"] = [row("requirements", "requirements verified", False, "0 requirements found", "sec1")]
     else:
         fig = f"{v}/{n} verified"
         if failures:
             fig += f"; {len(failures)} trace gate failures"
-        sec["summary"] = [row("requirements", "requirements traced", v == n and not failures, fig, "sec1")]
+        sec["summary"] = [row("requirements", "requirements verified", v == n and not failures, fig, "sec1")]
     return sec
 
 
@@ -911,9 +920,10 @@ def collect_tests(bundle):
         rec["file"] = bundle.rel(p)
         rec["link"] = bundle.art(p)
         files.append(rec)
-    newest = max(paths, key=os.path.getmtime) if paths else None
+    runs = sorted(d for d in (inp.run_date(p) for p in paths) if d)
     sec["inputs"] = [{"path": bundle.b("junit") + "/**/*.xml", "present": bool(paths),
-                      "modified": mtime_iso(newest) if newest else None, "link": None}]
+                      "run": (runs[0] if runs[0] == runs[-1] else f"{runs[0]} .. {runs[-1]}")
+                      if runs else None, "link": None}]
     sec["files"] = files
     # the demonstration (build/demo): linked, with each scenario's result
     demo_index = bundle.b("demo", "index.html")
@@ -1216,6 +1226,293 @@ def git_info(root):
             "branch": git("rev-parse", "--abbrev-ref", "HEAD") if head else None}
 
 
+# --------------------------------------------------------------------------- results tied to sources
+
+
+# (section, gate of tools/evidence/inputs.py): the sections whose result files the gates stamp
+# with the SHA-256 of their inputs (REQ-EVD-016)
+STAMPED = (("wp", "wp"), ("cbmc", "cbmc"), ("eva", "eva"), ("misra", "misra"), ("coverage", "coverage"),
+           ("bench", "bench"))
+
+
+def stamped_file(bundle, key, sec):
+    """The result file whose stamp ties a section to its inputs (None: rows from files that
+    carry no stamp, the per-harness files of an unfinished CBMC run)."""
+    if key == "wp":
+        return sec.get("source") or "proofs/wp/results.md"
+    if key == "cbmc":
+        src = sec.get("source") or ""
+        return src if src.endswith(".md") else None
+    if key == "coverage":
+        x = bundle.b("coverage", "coverage.xml")
+        return x if bundle.exists(x) else bundle.b("coverage", "summary.txt")
+    return {"eva": bundle.b("eva", "eva.json"), "misra": bundle.b("misra", "compliance-summary.json"),
+            "bench": bundle.b("bench", "bench.json")}[key]
+
+
+def stale_reason(st):
+    if st["state"] == inp.UNSTAMPED:
+        return "no inputs stamp, not tied to the sources it was computed from"
+    text = "; ".join(st.get("reasons") or ["inputs changed since the run"])
+    return text if len(text) <= 160 else text[:157] + "..."
+
+
+def apply_staleness(bundle, secs):
+    """Compare each stamped result with its inputs now (tools/evidence/inputs.py): a result
+    whose inputs changed since its run, or that carries no stamp, is STALE and its summary
+    rows are red, whatever its figures."""
+    for key, gate in STAMPED:
+        sec = secs.get(key) or {}
+        if not sec.get("present"):
+            continue
+        path = stamped_file(bundle, key, sec)
+        if path is None:
+            st = {"state": inp.UNSTAMPED, "gate": gate, "run": None, "recorded": None, "now": None,
+                  "reasons": [f"rows from the per-harness files of {bundle.b('cbmc')}, which carry no "
+                              "inputs stamp"]}
+        else:
+            st = inp.check(bundle.path(path), gate, root=bundle.root)
+            man = inp.manifest_path(bundle.path(path), gate)
+            if os.path.exists(man):
+                st["manifest"] = bundle.art(man)
+        st["file"] = path
+        sec["stamp"] = st
+        if st["state"] == inp.CURRENT:
+            continue
+        for r in sec.get("summary", []):
+            r["status"] = "FAIL"
+            r["stale"] = True
+            r["figure"] = f"{r['figure']}; STALE: {stale_reason(st)}"
+
+
+def stamp_html(sec):
+    st = sec.get("stamp")
+    if not st:
+        return ""
+    where = f"<code>{esc(st.get('file'))}</code>"
+    man = f" (inputs: {link(st['manifest'], 'list')})" if st.get("manifest") else ""
+    if st["state"] == inp.CURRENT:
+        return (f"<p class=small><span class=st-ok>tied to the current sources</span>: {where} was computed "
+                f"{esc(st.get('run'))} from inputs sha256 <code>{esc(st.get('now'))}</code>{man}, the same as "
+                f"now (<code>python3 tools/evidence/inputs.py --check {esc(st.get('file'))}</code>).</p>")
+    reasons = "".join(f"<li>{esc(x)}</li>" for x in st.get("reasons") or [])
+    run = f" run {esc(st['run'])}" if st.get("run") else ""
+    return (f"<div class=small><p class=missing>STALE: {where}{run} is not tied to the current sources; "
+            f"its figures are shown, never green.{man}</p><ul>{reasons}</ul></div>")
+
+
+# --------------------------------------------------------------------------- requirement verdicts
+
+
+def verdict_results(bundle, secs):
+    """What the verdicts read: this run's JUnit cases, the WP and CBMC rows with the state of
+    their stamp, the bench rows, the demonstration's scenarios, the robustness campaign."""
+    paths = sorted(glob.glob(os.path.join(bundle.build, "junit", "**", "*.xml"), recursive=True))
+
+    def proof(key, rows_key):
+        sec = secs.get(key) or {}
+        if not sec.get("present"):
+            return {"state": "absent", "rows": []}
+        return {"state": (sec.get("stamp") or {}).get("state", inp.UNSTAMPED), "rows": sec.get(rows_key) or []}
+
+    bench = secs.get("bench") or {}
+    tests = secs.get("tests") or {}
+    return {
+        "junit": vd.junit_cases(paths),
+        "wp": proof("wp", "functions"), "cbmc": proof("cbmc", "harnesses"),
+        "bench": {"state": (bench.get("stamp") or {}).get("state", inp.UNSTAMPED),
+                  "rows": bench.get("table") or []} if bench.get("present") else None,
+        "demo": {d["scenario"]: d.get("pass") for d in tests["demo"]} if "demo" in tests else None,
+        "robustness": tests.get("robustness"),
+    }
+
+
+def apply_verdicts(bundle, secs):
+    """The verdict of every requirement from the results (tools/evidence/verdict.py), and the
+    requirements summary row: green only when every requirement is verified."""
+    sec = secs.get("trace") or {}
+    sec["strict"] = bool(getattr(bundle, "strict", False))
+    if not sec.get("present"):
+        return
+    results = verdict_results(bundle, secs)
+    by = {}
+    for r in sec["requirements"]:
+        raw = r.pop("raw", None) or {}
+        v = vd.requirement_verdict(r["id"], raw, results)
+        r.update({"verdict": v["verdict"], "verified": v["verdict"] == vd.VERIFIED,
+                  "proof_items": v["proofs"], "test_items": v["tests"], "scenario_items": v["scenarios"]})
+        r["req_link"] = bundle.art(r["req_file"]) if r.get("req_file") and bundle.exists(r["req_file"]) else None
+        for x in v["proofs"] + v["tests"] + v["scenarios"]:
+            f = x.get("file")
+            if x["kind"] in ("WP", "WP helper"):
+                f = (secs.get("wp") or {}).get("source")
+            elif x["kind"] == "scenario" and x["status"] != vd.NOT_RUN and x["detail"].endswith(".json"):
+                f = x["detail"]
+            x["link"] = bundle.art(f) if f and bundle.exists(f) else None
+        by[v["verdict"]] = by.get(v["verdict"], 0) + 1
+    n = len(sec["requirements"])
+    v = by.get(vd.VERIFIED, 0)
+    sec["verified"] = v
+    sec["verdicts"] = by
+    failures = sec.get("gate_failures") or []
+    if n:
+        fig = f"{v}/{n} verified"
+        rest = [f"{by[k]} {k}" for k in (vd.FAILED, vd.STALE, vd.NOT_RUN, vd.NO_EVIDENCE) if by.get(k)]
+        if rest:
+            fig += "; " + ", ".join(rest)
+        if failures:
+            fig += f"; {len(failures)} trace gate failures"
+        sec["summary"] = [row("requirements", "requirements verified", v == n and not failures, fig, "sec1")]
+
+
+def status_class(status, strict=False):
+    if status in vd.OK_STATUSES or status == vd.VERIFIED:
+        return "st-ok"
+    if status in (vd.NOT_RUN, vd.NO_RESULT) and not strict:
+        return "st-nr"
+    return "st-bad"
+
+
+def items_html(items, strict=False):
+    """The proofs or tests of a requirement, each with its status, under a count line."""
+    if not items:
+        return "-"
+    worst = vd.verdict_of([x["status"] for x in items])
+    lines = [f"<span class={status_class(x['status'], strict)}>{esc(x['status'])}</span> "
+             + (f"{esc(x['kind'])} " if x["kind"] in ("WP", "WP helper", "CBMC") else "")
+             + link(x.get("link"), x["name"]) + f" <span class=meta>({esc(x.get('detail'))})</span>"
+             for x in items]
+    return (f"<details{' open' if worst != vd.VERIFIED and len(items) <= 3 else ''}><summary "
+            f"class={status_class(worst, strict)}>{esc(vd.counts(items))}</summary>"
+            + "<br>".join(lines) + "</details>")
+
+
+def matrix_row_html(r, strict=False):
+    """One requirement of the matrix: its proofs, tests and scenarios with their status, and
+    its verdict (not run: amber, red under --strict)."""
+    v = r.get("verdict") or (vd.VERIFIED if r.get("verified") else vd.NOT_RUN)
+    c = "pass" if v == vd.VERIFIED else ("notrun" if v == vd.NOT_RUN and not strict else "fail")
+    contracts = (f"<td>{details_list(r['contracts'])}</td>" if r["contracts"] else
+                 f"<td class=meta>{('named in ' + esc(', '.join(r['named_in']))) if r['named_in'] else '-'}</td>")
+    if r.get("scenario_items"):
+        scen = items_html(r["scenario_items"], strict)
+    elif r.get("scenarios"):
+        scen = details_list(r["scenarios"]) + " <span class=meta>(from the demonstration; not in the verdict)</span>"
+    else:
+        scen = "-"
+    return (f"<tr class={c}><td>{link(r.get('req_link'), r['id'])}</td>" + td(r["title"]) + contracts
+            + f"<td>{items_html(r.get('proof_items'), strict)}</td>"
+            + f"<td>{items_html(r.get('test_items'), strict)}</td><td>{scen}</td>"
+            + f"<td class='s {c}'>{esc(v)}</td></tr>")
+
+
+def verdict_rule_html(sec):
+    by = sec.get("verdicts") or {}
+    counts = ", ".join(f"{by[k]} {k}" for k in (vd.VERIFIED, vd.FAILED, vd.STALE, vd.NOT_RUN, vd.NO_EVIDENCE)
+                       if by.get(k))
+    return ("<p class=small>Verdict (<code>tools/evidence/verdict.py</code>): a requirement is <b>verified</b> "
+            "only when every proof it names is <i>proved</i> in results tied to the current sources (their "
+            "inputs stamp is current) and every test it names <i>passed</i> in this run's results "
+            "(<code>build/junit/*.xml</code>, <code>build/bench/bench.json</code>, the demonstration's and the "
+            "robustness campaign's results). Otherwise: <b>failed</b> (a proof or test failed), <b>stale</b> "
+            "(a result not tied to the current sources), <b>not run</b> (a test or proof without a result; "
+            + ("red: <code>--strict</code>" if sec.get("strict") else "amber here, red under "
+               "<code>EVIDENCE_STRICT=1</code>")
+            + "), <b>no evidence</b> (it names no proof and no test). " + (f"Here: {esc(counts)}." if counts else "")
+            + "</p>")
+
+
+# --------------------------------------------------------------------------- the archive
+
+
+MANIFEST = "MANIFEST.sha256"
+
+# What the bundle holds besides the results, so that an assessor who receives the folder can
+# read what was verified (REQ-EVD-017): (group, patterns relative to the root)
+ARCHIVE = (
+    ("requirements", ("specs/requirements/*.md",)),
+    ("contracts: the public headers", ("include/qfoc/*.h",)),
+    ("library sources", ("src/*.c",)),
+    ("ACSL specifications", ("specs/*.acsl",)),
+    ("work products: specifications, safety manual, tool confidence, architecture",
+     ("specs/*.md", "specs/*.json", "specs/*.toml", "specs/motors/*.toml")),
+    ("unit tests (CMocka)", ("tests/*.c", "tests/*.h")),
+    ("pytest tests", ("tools/*/tests/*.py",)),
+    ("proofs: WP units, CBMC harnesses and configurations, EVA driver, committed results",
+     ("proofs/**/*",)),
+    ("MISRA: guideline lists, enforcement plan, deviation and review records", ("misra/*",)),
+    ("parameter tables", ("tables/*",)),
+    ("plant model and scenarios", ("sim/*.c", "sim/*.h", "sim/apps/*.c", "sim/apps/*.h")),
+    ("target-equivalence test and bench", ("tools/target_test/*", "tools/bench/*")),
+    ("gate and evidence scripts, make files", ("tools/gates/*", "tools/evidence/*.py", "tools/evidence/*.sh",
+                                               "Makefile", "mk/*.mk")),
+    ("read-me, change log, documents", ("README.md", "CHANGELOG.md", "docs/*.md")),
+)
+
+
+def archive_sources(bundle):
+    """Copy the documents, sources, tests and proof inputs into artefacts/ (with the input files
+    of every stamped result, so that its digest can be recomputed from the bundle)."""
+    groups, done = [], set()
+
+    def add(name, rels):
+        links = []
+        for rel in sorted(set(rels)):
+            if rel in done or not os.path.isfile(bundle.path(rel)) or "__pycache__" in rel:
+                continue
+            done.add(rel)
+            lk = bundle.art(rel)
+            if lk:
+                links.append({"path": rel, "link": lk})
+        if links:
+            groups.append({"group": name, "files": links})
+
+    for name, pats in ARCHIVE:
+        rels = []
+        for pat in pats:
+            rels += [os.path.relpath(p, bundle.root).replace(os.sep, "/")
+                     for p in glob.glob(bundle.path(pat), recursive=True)]
+        add(name, rels)
+    extra = []
+    for _key, gate in STAMPED:
+        extra += inp.files(gate, bundle.root)
+    add("other inputs of the stamped results (tools/evidence/inputs.py)", extra)
+    return {"groups": groups, "count": sum(len(g["files"]) for g in groups)}
+
+
+def write_manifest(out):
+    """OUT/MANIFEST.sha256: the SHA-256 of every other file of the bundle (sha256sum format,
+    paths relative to OUT); returns the number of files."""
+    rows = []
+    for root, dirs, fnames in os.walk(out):
+        dirs.sort()
+        for f in fnames:
+            p = os.path.join(root, f)
+            rel = os.path.relpath(p, out).replace(os.sep, "/")
+            if rel != MANIFEST:
+                rows.append((rel, sha256_file(p)))
+    rows.sort()
+    with open(os.path.join(out, MANIFEST), "w", encoding="utf-8") as f:
+        for rel, h in rows:
+            f.write(f"{h}  {rel}\n")
+    return len(rows)
+
+
+def html_sec12(sec):
+    out = [f"<p>This folder can be archived and handed over as it is. <a href=\"{MANIFEST}\">{MANIFEST}</a> "
+           "holds the SHA-256 of every other file of it (<code>sha256sum -c " + MANIFEST + "</code> in the folder "
+           f"checks them). Besides the results linked above, <code>artefacts/</code> holds {esc(sec.get('count', 0))} "
+           "files of the repository at their paths: what was verified and how.</p>"]
+    if sec.get("groups"):
+        out.append("<table>" + th("group", "files"))
+        for g in sec["groups"]:
+            items = "<br>".join(link(x["link"], x["path"]) for x in g["files"])
+            out.append("<tr>" + td(g["group"]) + f"<td><details><summary>{len(g['files'])} files</summary>"
+                       f"{items}</details></td></tr>")
+        out.append("</table>")
+    return "\n".join(out)
+
+
 # --------------------------------------------------------------------------- HTML
 
 CSS = """
@@ -1228,6 +1525,8 @@ table.summary td{font-size:1.05em}table.summary td.s{font-weight:bold;text-align
 code{background:#f3f3f3;padding:0 2px}pre{background:#f6f6f6;padding:.5em;overflow-x:auto;font-size:12px}
 details{margin:.3em 0}summary{cursor:pointer}.meta{color:#555}.small{font-size:12px}
 .missing{color:#a00;font-weight:bold}nav a{margin-right:.8em}
+tr.notrun td{background:#fff6dd}td.notrun,tr.notrun td.s{background:#fde3a7}
+.st-ok{color:#075e07;font-weight:bold}.st-bad{color:#a00;font-weight:bold}.st-nr{color:#8a5a00;font-weight:bold}
 """
 
 
@@ -1253,10 +1552,11 @@ def inputs_html(sec):
     parts = []
     for i in sec.get("inputs") or []:
         if i["present"]:
-            parts.append(f"{link(i.get('link'), i['path'])} <span class=meta>({esc(i['modified'])})</span>")
+            parts.append(f"{link(i.get('link'), i['path'])}"
+                         + (f" <span class=meta>(run {esc(i['run'])})</span>" if i.get("run") else ""))
         else:
             parts.append(f'<code>{esc(i["path"])}</code> <span class=missing>not found</span>')
-    return "<p class=small>Inputs: " + "; ".join(parts) + "</p>" if parts else ""
+    return ("<p class=small>Inputs: " + "; ".join(parts) + "</p>" if parts else "") + stamp_html(sec)
 
 
 def not_run(sec, what):
@@ -1284,6 +1584,7 @@ def html_sec1(sec):
     if any(r.get("scenarios_from") == "demo" for r in sec["requirements"]):
         out.append(" Scenarios from the demonstration's <code>metrics.json</code> files where the matrix gives none.")
     out.append(" One block per module; a module with a requirement not verified is open.</p>")
+    out.append(verdict_rule_html(sec))
     if sec.get("gate_failures"):
         out.append(f"<details open><summary class=missing>{len(sec['gate_failures'])} trace gate failures</summary>"
                    "<ul>" + "".join(f"<li>{esc(g)}</li>" for g in sec["gate_failures"]) + "</ul></details>")
@@ -1298,16 +1599,10 @@ def html_sec1(sec):
         v = sum(1 for r in reqs if r["verified"])
         opened = " open" if v != len(reqs) else ""
         out.append(f"<details{opened}><summary><b>{esc(mod)}</b>: {len(reqs)} requirements, {v} verified</summary>")
-        out.append("<table>" + th("ID", "title", "contracts", "WP", "CBMC", "tests", "scenarios", "verified"))
+        out.append("<table>" + th("ID", "title", "contracts", "proofs (WP, CBMC)", "tests", "scenarios",
+                                  "verdict"))
         for r in reqs:
-            out.append(f"<tr class={cls(r['verified'])}>" + td(r["id"]) + td(r["title"])
-                       + (f"<td>{details_list(r['contracts'])}</td>" if r["contracts"] else
-                          f"<td class=meta>{('named in ' + esc(', '.join(r['named_in']))) if r['named_in'] else '-'}</td>")
-                       + f"<td>{details_list(r['wp_items'], r['wp']) if r['wp_items'] else esc(r['wp'])}</td>"
-                       + f"<td>{details_list(r['cbmc'])}</td>"
-                       + f"<td>{details_list(r['tests'], str(len(r['tests']))) if r['tests'] else '0'}</td>"
-                       + f"<td>{details_list(r['scenarios'])}</td>"
-                       + f"<td class='s {cls(r['verified'])}'>{'yes' if r['verified'] else 'NO'}</td></tr>")
+            out.append(matrix_row_html(r, sec.get("strict")))
         out.append("</table></details>")
     return "\n".join(out)
 
@@ -1678,7 +1973,8 @@ def html_sec11(sec):
 SECTIONS = [("sec1", "1 Requirements and traceability"), ("sec2", "2 Formal verification"),
             ("sec3", "3 MISRA Compliance:2020"), ("sec4", "4 Structural coverage"), ("sec5", "5 Tests"),
             ("sec6", "6 Resource usage"), ("sec7", "7 Static analysis"), ("sec8", "8 Tool confidence"),
-            ("sec9", "9 Safety manual"), ("sec10", "10 Reproducibility"), ("sec11", "11 Gate log")]
+            ("sec9", "9 Safety manual"), ("sec10", "10 Reproducibility"), ("sec11", "11 Gate log"),
+            ("sec12", "12 Archive")]
 
 
 def write_html(path, model, secs):
@@ -1700,13 +1996,15 @@ def write_html(path, model, secs):
         out.append(f"<tr class={cls(r['status'] == 'PASS')}><td><a href=\"#{r['section']}\">{esc(r['label'])}</a>"
                    f"</td>{td(r['figure'])}<td class=s>{'PASS' if r['status'] == 'PASS' else 'FAIL'}</td></tr>")
     out.append("</table><p class=small>A row is green only when its input exists and meets its target; a "
-               "missing input is red with \"not run\".</p>")
+               "missing input is red with \"not run\"; a result whose inputs changed since its run (or that "
+               "carries no inputs stamp) is red with \"STALE\". Dates are those of the runs, from the "
+               "result files' stamps.</p>")
     bodies = {"sec1": html_sec1(secs["trace"]), "sec2": html_sec2(secs["wp"], secs["cbmc"], secs["eva"]),
               "sec3": html_sec3(secs["misra"]), "sec4": html_sec4(secs["coverage"], secs["mcdc"]),
               "sec5": html_sec5(secs["tests"], secs["target_test"]), "sec6": html_sec6(secs["bench"]),
               "sec7": html_sec7(secs["static"]), "sec8": html_sec8(secs["tools"]),
               "sec9": html_sec9(secs["manual"]), "sec10": html_sec10(secs["repro"]),
-              "sec11": html_sec11(secs["gates"])}
+              "sec11": html_sec11(secs["gates"]), "sec12": html_sec12(secs.get("archive") or {})}
     for key, title in SECTIONS:
         out.append(f"<h2 id={key}>{esc(title)}</h2>")
         out.append(bodies[key])
@@ -1726,6 +2024,9 @@ def build_model(bundle):
         "static": collect_static(bundle), "bench": collect_bench(bundle), "repro": collect_repro(bundle),
         "tools": collect_tools(bundle), "manual": collect_manual(bundle), "gates": collect_gates(bundle),
     }
+    apply_staleness(bundle, secs)
+    apply_verdicts(bundle, secs)
+    secs["archive"] = archive_sources(bundle)
     order = ["trace", "wp", "eva", "cbmc", "misra", "coverage", "mcdc", "tests", "target_test", "static",
              "bench", "repro"]
     summary = [r for k in order for r in secs[k].get("summary", [])]
@@ -1759,9 +2060,10 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     out = args.out or os.path.join(args.build, "evidence")
     bundle = Bundle(args.root, args.build, out)
+    bundle.strict = args.strict
     os.makedirs(bundle.out, exist_ok=True)
     shutil.rmtree(os.path.join(bundle.out, "artefacts"), ignore_errors=True)
-    for stale in ("tool-versions.txt",):
+    for stale in ("tool-versions.txt", MANIFEST):
         if os.path.exists(os.path.join(bundle.out, stale)):
             os.remove(os.path.join(bundle.out, stale))
     model, secs = build_model(bundle)
@@ -1772,11 +2074,13 @@ def main(argv=None) -> int:
     with open(os.path.join(bundle.out, "evidence.json"), "w", encoding="utf-8") as f:
         json.dump(model, f, indent=1, sort_keys=False, default=str)
         f.write("\n")
+    n_manifest = write_manifest(bundle.out)
     width = max(len(r["label"]) for r in model["summary"]) + 2
     g = model["commit"]
     print(f"evidence: commit {g['commit']}" + {True: " (working tree modified)", False: "", None: ""}[g["dirty"]])
     for r in model["summary"]:
         print(f"{r['label']:<{width}}{r['figure']}   {r['status']}")
+    print(f"evidence: {bundle.rel(os.path.join(bundle.out, MANIFEST))} ({n_manifest} files)")
     print(f"evidence: {bundle.rel(index)} ({model['green']} green, {model['red']} red)")
     if args.strict and model["red"]:
         return 1

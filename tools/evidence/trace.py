@@ -552,18 +552,32 @@ def bench_rows(defined):
 
 
 def label_text(node):
-    """A readable form of a label expression: the string as written, {expr} for the
-    values formatted into it, the first branch of a conditional part."""
+    """A readable form of a label expression: the string as written, [name] for a value
+    formatted into it (the key or name it is read from: never the Python source of a
+    template), the first branch of a conditional part."""
     if isinstance(node, ast.Constant):
         return str(node.value)
     if isinstance(node, ast.JoinedStr):
         return "".join(str(v.value) if isinstance(v, ast.Constant)
-                       else "{" + ast.unparse(v.value) + "}" for v in node.values)
+                       else "[" + placeholder(v.value) + "]" for v in node.values)
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
         return label_text(node.left) + label_text(node.right)
     if isinstance(node, ast.IfExp):
         return label_text(node.body)
-    return "{" + ast.unparse(node) + "}"
+    return "[" + placeholder(node) + "]"
+
+
+def placeholder(expr):
+    """The name of what a value formatted into a label stands for: d['title'] -> title."""
+    if isinstance(expr, ast.Subscript) and isinstance(expr.slice, ast.Constant):
+        return str(expr.slice.value)
+    if isinstance(expr, ast.Attribute):
+        return expr.attr
+    if isinstance(expr, ast.Name):
+        return expr.id
+    if isinstance(expr, ast.Call):
+        return placeholder(expr.func)
+    return "value"
 
 
 def harnesses(defined):
@@ -904,7 +918,8 @@ def write_md(path, doc):
                 "functions and their comments, scenario scripts; goal and property counts from "
                 "the committed `proofs/wp/results.md` and `proofs/cbmc/results.md`.\n\n")
         f.write(f"- requirements: {t['requirements']}; traced to a proof or a test: {t['traced']}; "
-                f"verified (evidence, none of it failing): {t['verified']}\n")
+                f"traced with no committed proof failing: {t['verified']} (whether they are verified, "
+                f"from the results of a run: `make evidence`)\n")
         f.write(f"- with contracts: {t['with_contracts']}, with WP goals: {t['with_wp']} "
                 f"({t['wp_goals_attributed']} of the {t['wp_goals_total']} goals of proofs/wp/results.md "
                 f"attributed: the public functions' own goals and the lemmas named; "
@@ -931,7 +946,7 @@ def write_md(path, doc):
             f.write("\n")
         f.write("## Matrix\n\n")
         f.write("| requirement | title | contract (behaviours) | ACSL | WP goals | CBMC (properties, "
-                "result, unwind) | tests | scenarios | verified |\n|---|---|---|---|---:|---|---|---|---|\n")
+                "result, unwind) | tests | scenarios | traced |\n|---|---|---|---|---:|---|---|---|---|\n")
         for e in doc["requirements"]:
             cons = []
             for c in e["contracts"]:

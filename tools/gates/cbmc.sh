@@ -11,7 +11,9 @@
 #                sources are then compiled with goto-cc), e.g. --remove-function-body F
 # Every harness runs with the full set of runtime checks below; the run fails unless
 # every property of every harness holds.  Results: build/cbmc/*.log and
-# proofs/cbmc/results.md (property count, result, unwinding bound, time).
+# proofs/cbmc/results.md (property count, result, unwinding bound, time), stamped with the
+# run's UTC time and the SHA-256 of its inputs (tools/evidence/inputs.py cbmc), with the list
+# of those inputs beside it (proofs/cbmc/inputs-cbmc.sha256, committed with the results).
 set -eu
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$TOP"
@@ -19,6 +21,7 @@ cd "$TOP"
 CBMC=${CBMC:-build/tools/cbmc/bin/cbmc}
 OUT=build/cbmc
 JOBS=${JOBS:-2}
+STARTED=$(date +%s)
 mkdir -p "$OUT"
 rm -f "$OUT"/*.log "$OUT"/*.res "$OUT"/*.backend
 
@@ -134,8 +137,11 @@ wait
     echo "|---|---|---:|---:|---:|---:|"
     cat "$OUT"/*.res 2>/dev/null | sort | awk -F'|' '{printf "| %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6}'
 } > proofs/cbmc/results.md
+stamped=1
+/usr/bin/python3 tools/evidence/inputs.py --stamp proofs/cbmc/results.md cbmc --started "$STARTED" > /dev/null ||
+    { echo "cbmc: could not stamp proofs/cbmc/results.md with its inputs"; stamped=0; }
 n=$(cat "$OUT"/*.res 2>/dev/null | wc -l)
 bad=$(cat "$OUT"/*.res 2>/dev/null | grep -c '|FAIL|' || true)
 props=$(cat "$OUT"/*.res 2>/dev/null | awk -F'|' '{s += $3} END {print s + 0}')
 echo "cbmc: $((n - bad)) / $n harnesses pass, $props properties hold"
-[ "$n" -gt 0 ] && [ "$bad" = 0 ]
+[ "$n" -gt 0 ] && [ "$bad" = 0 ] && [ "$stamped" = 1 ]

@@ -4,10 +4,13 @@
 # Links every test against the --coverage library objects, runs them, then
 # gcovr reports src/ and the inline code of include/qfoc/ (HTML under
 # build/coverage/, Cobertura XML beside it) and fails below 100 % lines or branches.
+# coverage.xml and summary.txt are stamped with the run's UTC time and the SHA-256 of their
+# inputs (tools/evidence/inputs.py coverage; the list in build/coverage/inputs-coverage.sha256).
 set -eu
 objs=$1
 shift
 OUT=build/cov
+STARTED=$(date +%s)
 mkdir -p "$OUT/tests" "$OUT/sim" build/coverage
 find "$OUT" -name '*.gcda' -delete
 # The plant model (sim/) is test equipment and the generated parameter tables
@@ -35,6 +38,11 @@ gcovr --root . --object-directory "$OUT" --filter 'src/' --filter 'include/' \
     --txt build/coverage/coverage.txt \
     --fail-under-line 100 --fail-under-branch 100 > build/coverage/summary.txt 2>&1 && rc=0 || rc=$?
 cat build/coverage/summary.txt
+for f in build/coverage/coverage.xml build/coverage/summary.txt; do
+    [ -f "$f" ] || continue
+    /usr/bin/python3 tools/evidence/inputs.py --stamp "$f" coverage --started "$STARTED" > /dev/null ||
+        { echo "coverage: could not stamp $f with its inputs"; exit 1; }
+done
 if [ "$rc" != 0 ]; then
     echo "coverage: below 100 % (gcovr exit $rc); uncovered:"
     gcovr --root . --object-directory "$OUT" --filter 'src/' --filter 'include/' --branches \

@@ -14,6 +14,8 @@
 # most 65535) is proved by WP with every runtime-error check (make prove), and its code
 # has no memory access beyond its locals, so the two analyses together cover it.
 # EVA_EXTRA replaces these options, EVA_PRECISION (default 4) sets -eva-precision.
+# eva.json and eva.md are stamped with the run's UTC time and the SHA-256 of their inputs
+# (tools/evidence/inputs.py eva; the list of the inputs in build/eva/inputs-eva.sha256).
 set -u
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$TOP"
@@ -51,3 +53,9 @@ print(f"eva: {len(rte)} runtime-error alarms (limit {mx}), {len(props)} ACSL pro
       f"to WP, {secs} s; build/eva/eva.md")
 sys.exit(0 if rc == 0 and len(rte) <= mx else 1)
 PY
+rc=$?
+for f in "$OUT/eva.json" "$OUT/eva.md"; do
+    /usr/bin/python3 tools/evidence/inputs.py --stamp "$f" eva --started "$t0" > /dev/null ||
+        { echo "eva: could not stamp $f with its inputs"; rc=1; }
+done
+exit "$rc"

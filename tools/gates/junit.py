@@ -8,10 +8,15 @@ Each OUTPUT_FILE holds the standard output of one CMocka executable (the '[ RUN 
 SUITE names it; SUITE=vectors:OUTPUT_FILE reads instead the report of the
 target-equivalence runner (tools/target_test/tt_runner.c: one '<group>: <n> vectors,
 identical' or '<group>: DIFFERENT: ...' line per group, then a 'result:' line), one
-<testcase> per group.  Writes OUT_DIR/SUITE.xml with one <testcase> per test, the messages as
-<system-out>, a failure's messages as its <failure> text, and an executable that ended
-without its summary line as an <error>.  Prints 'junit: N suites, T tests, F failures'.
+<testcase> per group; SUITE=checks:OUTPUT_FILE reads one '<name>: OK' or
+'<name>: FAILED: <message>' line per check (the checking programs of the target test,
+tools/target_test/target_test.sh), one <testcase> per line.  Writes OUT_DIR/SUITE.xml with
+one <testcase> per test, the messages as <system-out>, a failure's messages as its
+<failure> text, and an executable that ended without its summary line as an <error>; the
+<testsuite> carries the run's UTC time (timestamp), which tools/evidence/evidence.py shows.
+Prints 'junit: N suites, T tests, F failures'.
 """
+import datetime
 import os
 import re
 import sys
@@ -64,15 +69,29 @@ def parse_vectors(text):
     return tests, done
 
 
+CHECK = re.compile(r"^([A-Za-z0-9_.\-]+): (OK|FAILED)(?:: (.*))?$")
+
+
+def parse_checks(text):
+    """Checks as test records: '<name>: OK' or '<name>: FAILED: <message>'; always complete."""
+    tests = []
+    for line in text.splitlines():
+        m = CHECK.match(line.strip())
+        if m:
+            tests.append((m.group(1), m.group(2), m.group(3) or ""))
+    return tests, True
+
+
 def write(out_dir, suite, tests, done):
     """One JUnit XML file; returns (tests, failures, errors)."""
     fails = sum(1 for t in tests if t[1] == "FAILED")
     errs = sum(1 for t in tests if t[1] == "ERROR") + (0 if done else 1)
     skips = sum(1 for t in tests if t[1] == "SKIPPED")
+    stamp = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<testsuites tests="{len(tests)}" failures="{fails}" errors="{errs}">',
            f'  <testsuite name={quoteattr(suite)} tests="{len(tests)}" failures="{fails}" '
-           f'errors="{errs}" skipped="{skips}">']
+           f'errors="{errs}" skipped="{skips}" timestamp="{stamp}">']
     for name, status, msg in tests:
         out.append(f'    <testcase classname={quoteattr(suite)} name={quoteattr(name)}>')
         if status == "FAILED":
@@ -107,6 +126,8 @@ def main(argv):
         reader = parse
         if path.startswith("vectors:"):
             reader, path = parse_vectors, path[len("vectors:"):]
+        elif path.startswith("checks:"):
+            reader, path = parse_checks, path[len("checks:"):]
         with open(path, encoding="utf-8", errors="replace") as f:
             tests, done = reader(f.read())
         t, fl, er = write(out_dir, suite, tests, done)

@@ -7,7 +7,8 @@
 # from misra/guidelines.txt (qfoc's own one-line summaries).  A finding passes only
 # when it is suppressed at its site by a comment that names a deviation record
 # (DEV-nnn) of misra/deviations.md; tools/gates/misra_report.py checks that and writes
-# build/misra/report.md.  Exit 1 on any unrecorded finding.
+# build/misra/report.md, stamped with the run's UTC time and the SHA-256 of its inputs
+# (tools/evidence/inputs.py misra).  Exit 1 on any unrecorded finding.
 set -eu
 # Debian's interpreter (a python3 earlier on PATH may lack the packages)
 PY=/usr/bin/python3
@@ -16,6 +17,7 @@ TOP=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$TOP"
 OUT=build/misra
 mkdir -p "$OUT"
+STARTED=$(date +%s)
 "$PY" tools/gates/misra_rule_texts.py misra/guidelines.txt "$OUT/rule-texts.txt"
 printf '{\n "script": "misra.py",\n "args": ["--rule-texts=%s/%s/rule-texts.txt"]\n}\n' "$TOP" "$OUT" > "$OUT/misra.json"
 set +e
@@ -27,4 +29,6 @@ rc=$?
 set -e
 "$PY" tools/gates/misra_report.py "$OUT/cppcheck.xml" misra/deviations.md "$OUT/report.md" src include tables port_s32k
 rc2=$?
-[ "$rc" = 0 ] && [ "$rc2" = 0 ]
+rc3=0
+"$PY" tools/evidence/inputs.py --stamp "$OUT/report.md" misra --started "$STARTED" > /dev/null || rc3=$?
+[ "$rc" = 0 ] && [ "$rc2" = 0 ] && [ "$rc3" = 0 ]

@@ -11,6 +11,10 @@
 # is ever used unproved.  Runtime-error goals (-wp-rte) cover signed and unsigned overflow, downcasts,
 # shifts, division by zero and memory access.  The summary and per-function table are
 # written by tools/gates/wp_report.py; the script exits non-zero unless every goal is proved.
+# Both result files (proofs/wp/results.md, build/wp/wp-summary.json) are stamped with the run's
+# UTC time and the SHA-256 of the inputs they were proved from (tools/evidence/inputs.py wp),
+# with the list of those inputs beside them (proofs/wp/inputs-wp.sha256, committed with the
+# results): make evidence shows a result whose inputs changed since as stale.
 set -eu
 # Debian's interpreter (a python3 earlier on PATH may lack the packages)
 PY=/usr/bin/python3
@@ -19,6 +23,7 @@ TOP=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$TOP"
 . tools/gates/jobs.sh
 OUT=${WP_OUT:-build/wp}
+STARTED=$(date +%s)
 # Three jobs at a time on the two processors: a WP job waits on its prover processes for
 # about a third of its wall time (process start, Why3's polling), which a third job fills.
 # Measured on the 2-core machine, the transforms unit proved n times at once: 2 at a time
@@ -95,4 +100,10 @@ if [ $# = 0 ]; then
         [ -f "$t" ] && echo "$(basename "$t" .time) $(cat "$t")"
     done | sort > "$TIMES"
 fi
-"$PY" tools/gates/wp_report.py "$OUT" proofs/wp/results.md
+rc=0
+"$PY" tools/gates/wp_report.py "$OUT" proofs/wp/results.md || rc=$?
+for f in proofs/wp/results.md "$OUT/wp-summary.json"; do
+    "$PY" tools/evidence/inputs.py --stamp "$f" wp --started "$STARTED" > /dev/null ||
+        { echo "prove: could not stamp $f with its inputs"; rc=1; }
+done
+exit "$rc"

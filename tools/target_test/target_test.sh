@@ -12,7 +12,10 @@
 #      the exit status is 1 (the failure path works on the target too).
 # Exit status 0 only when all four hold.  Requirements: REQ-TGT-002, REQ-TGT-004, REQ-TGT-005
 # (specs/requirements/target.md).  Outputs: OUT/host.txt, OUT/target.txt,
-# OUT/target_selftest.txt.
+# OUT/target_selftest.txt; the JUnit files build/junit/target_equivalence.xml (one test
+# case per group of the target run) and build/junit/target_checks.xml (one per checking
+# program, target_test.sh, tt_gen.c and tt_runner.c: OK when all four hold, FAILED with
+# the reason otherwise), which tools/evidence/evidence.py reads for the verdicts.
 set -u
 OUT=${1:?usage: target_test.sh BUILD_DIR}
 QEMU=${QEMU:-qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none}
@@ -20,9 +23,26 @@ SEMI="-semihosting-config enable=on,target=native"
 HOST="$OUT/tt_runner_host"
 ELF="$OUT/tt_runner.elf"
 T0=$(date +%s)
+# the JUnit files of this run (those of an earlier run are removed first: a run that stops
+# early must not leave them to be read as its own)
+JDIR="$(dirname "$OUT")/junit"
+rm -f "$JDIR/target_equivalence.xml" "$JDIR/target_checks.xml"
+
+# checks_junit STATUS [MESSAGE]: the result of the checking programs as JUnit
+# (tools/gates/junit.py checks:), one test case per program, all with the run's result
+checks_junit() {
+    mkdir -p "$JDIR"
+    msg=$(printf '%s' "${2:-}" | tr '\n' ' ')
+    for c in target_test.sh tt_gen.c tt_runner.c; do
+        echo "$c: $1${msg:+: $msg}"
+    done > "$OUT/checks.txt"
+    /usr/bin/python3 "$(dirname "$0")/../gates/junit.py" "$JDIR" target_checks=checks:"$OUT/checks.txt" >/dev/null ||
+        echo "target-test: could not write $JDIR/target_checks.xml"
+}
 
 fail() {
     echo "target-test: FAILED: $*"
+    checks_junit FAILED "$*"
     exit 1
 }
 
@@ -68,7 +88,7 @@ timeout 120 $QEMU $SEMI,arg=tt_runner -kernel "$ELF" > "$OUT/target.txt" 2>&1
 rc=$?
 cat "$OUT/target.txt"
 # JUnit XML of the run, one test case per group, beside the unit tests' (build/junit/)
-/usr/bin/python3 "$(dirname "$0")/../gates/junit.py" "$(dirname "$OUT")/junit" target_equivalence=vectors:"$OUT/target.txt" >/dev/null ||
+/usr/bin/python3 "$(dirname "$0")/../gates/junit.py" "$JDIR" target_equivalence=vectors:"$OUT/target.txt" >/dev/null ||
     fail "could not write the JUnit file of the run"
 [ $rc -eq 0 ] || fail "the Cortex-M4F runner exited with status $rc (1: a difference, 3: a fault, 124: timeout)"
 nid=$(grep -c ', identical$' "$OUT/target.txt")
@@ -86,6 +106,7 @@ grep -q "^sincos: DIFFERENT: 1 of 65536 vectors differ, first at vector 40000:" 
     fail "target self-test: the corruptions were not reported ($OUT/target_selftest.txt)"
 
 T1=$(date +%s)
+checks_junit OK
 echo "target-test: host: identical, also under UndefinedBehaviorSanitizer; self-test: $nexp corrupted" \
      "digests (one per group) and 2 flipped input bits reported on the host, 2 on the target" \
      "(exit status 1); $((T1 - T0)) s"

@@ -1,8 +1,9 @@
 """Tests of tools/evidence/evidence.py (run: python3 -m pytest tools/evidence/tests).
 
 Each test makes up the gates' results in a temporary repository root (a few lines of
-JUnit, results.md, JSON), runs the tool on it and reads the summary rows of
-evidence.json.  The requirements are those of specs/requirements/evidence.md.
+JUnit, results.md, JSON), stamps them with their inputs as the gates do
+(tools/evidence/inputs.py, with fixed tool versions), runs the tool on it and reads the
+summary rows of evidence.json.  The requirements are those of specs/requirements/evidence.md.
 """
 import json
 import os
@@ -16,6 +17,15 @@ GATES = HERE.parent / "gates"
 sys.path.insert(0, str(HERE))
 
 import evidence as ev  # noqa: E402
+import inputs  # noqa: E402
+
+
+@pytest.fixture(autouse=True)
+def fixed_tools(monkeypatch):
+    """The tools' version lines of the inputs stamps, fixed (no tool is run)."""
+    monkeypatch.setattr(inputs, "tool_line", lambda name, argv: name + " 1.0")
+    for var in ("WP_TIMEOUT", "CBMC_SAT", "EVA_EXTRA", "EVA_PRECISION", "EVA_MAX_ALARMS"):
+        monkeypatch.delenv(var, raising=False)
 
 # Requirement IDs of the made-up matrix, written so that the trace gate does not read them
 # as IDs named by this file.
@@ -67,11 +77,24 @@ CBMC_RESULTS = ("# CBMC results, per harness\n\n"
 TRACE = {"requirements": [
     {"id": X1, "title": "Step", "contracts": ["qfoc_x_step"],
      "wp": {"functions": ["qfoc_x_step"], "goals": 10, "proved": 10}, "cbmc": ["x_step"],
-     "tests": [{"kind": "cmocka", "file": "tests/test_x.c", "name": "test_x_001"}],
-     "scenarios": [], "verified": True},
+     "tests": [{"kind": "cmocka", "file": "tests/test_a.c", "name": "test_one"}],
+     "scenarios": [], "verified": True, "file": "specs/requirements/x.md"},
     {"id": Y1, "title": "Init", "contracts": ["qfoc_y_init"], "wp": {"goals": 0, "proved": 0},
-     "cbmc": [], "tests": [{"name": "test_y_001", "file": "tests/test_y.c"}], "verified": True}],
+     "cbmc": [], "tests": [{"name": "test_two", "file": "tests/test_a.c"}], "verified": True}],
     "gate_failures": []}
+
+# The result files the gates stamp, with their gate (tools/evidence/inputs.py)
+STAMPED = (("proofs/wp/results.md", "wp"), ("build/wp/wp-summary.json", "wp"),
+           ("proofs/cbmc/results.md", "cbmc"), ("build/eva/eva.json", "eva"),
+           ("build/misra/compliance-summary.json", "misra"), ("build/coverage/coverage.xml", "coverage"),
+           ("build/bench/bench.json", "bench"))
+
+
+def stamp(root, now=None):
+    """Stamp every result file there is with its inputs, as the gates do."""
+    for rel, gate in STAMPED:
+        if (root / rel).exists():
+            inputs.stamp(str(root / rel), gate, str(root), now=now)
 
 
 def write(root, rel, text):
@@ -140,6 +163,7 @@ def full_inputs(root):
     write(root, "build/check-summary.txt", "test      PASS     3s  2 passed, 0 failed\n"
                                            "prove     FAIL    40s  proved 12 / 13 goals\n")
     write(root, "build/check-test.log", "2 passed, 0 failed\n")
+    stamp(root)
 
 
 def run(root, *extra):
@@ -229,6 +253,7 @@ def test_wp_prefers_fresh_build_results(tmp_path):
           {"proved": 20, "total": 20, "clean": True,
            "functions": [{"unit": "qfoc_x", "function": "qfoc_x_step", "goals": 20, "proved": 20,
                           "provers": "Z3", "time_ms": 5}]})
+    stamp(tmp_path)
     later = os.path.getmtime(tmp_path / "proofs" / "wp" / "results.md") + 60
     os.utime(tmp_path / "build" / "wp" / "wp-summary.json", (later, later))
     _rc, data, rows = run(tmp_path)
@@ -280,12 +305,14 @@ def test_trace_from_markdown_and_gate_failures(tmp_path):
     os.remove(tmp_path / "build" / "trace" / "trace.json")
     write(tmp_path, "build/trace/trace.md",
           "# Requirement traceability\n\n| requirement | title | header | CBMC | tests |\n"
-          f"|---|---|---|---|---|\n| {X1} | Step | x.h | x_step | test_x.c<br>test_y.c |\n"
+          f"|---|---|---|---|---|\n| {X1} | Step | x.h | x_step | test_a.c: test_one<br>test_a.c: test_two |\n"
           f"| {X2} | Init | x.h | - | - |\n")
     _rc, data, rows = run(tmp_path)
-    assert rows["requirements"]["status"] == "FAIL" and rows["requirements"]["figure"] == "1/2 verified"
+    assert rows["requirements"]["status"] == "FAIL"
+    assert rows["requirements"]["figure"] == "1/2 verified; 1 no evidence"
     reqs = {r["id"]: r for r in data["sections"]["trace"]["requirements"]}
-    assert reqs[X1]["tests"] == ["test_x.c", "test_y.c"] and reqs[X1]["module"] == "X"
+    assert reqs[X1]["tests"] == ["test_a.c: test_one", "test_a.c: test_two"] and reqs[X1]["module"] == "X"
+    assert reqs[X1]["verdict"] == "verified" and reqs[X2]["verdict"] == "no evidence"
     trace = dict(TRACE, gate_failures=["tests/test_x.c: cmocka test t names no requirement"])
     write(tmp_path, "build/trace/trace.json", trace)
     _rc, _data, rows = run(tmp_path)
@@ -316,6 +343,7 @@ def test_misra_violation_coverage_gap_bench_over_static_unaccepted(tmp_path):
     write(tmp_path, "build/static/qfoc.sarif", sarif)
     write(tmp_path, "build/repro/repro.json", {"artefacts": [
         {"file": "target/libqfoc.a", "sha256": "ab" * 32, "sha256_second": "cd" * 32, "identical": False}]})
+    stamp(tmp_path)
     _rc, data, rows = run(tmp_path)
     red = {k for k, r in rows.items() if r["status"] == "FAIL"}
     assert red == {"misra", "branch", "mcdc", "bench", "static", "repro"}
@@ -360,3 +388,114 @@ def test_sections_tools_manual_gates(tmp_path):
 def test_markdown_inline(text, html):
     """REQ-EVD-011: the inline markdown of the rendered documents."""
     assert ev.md_inline(text) == html
+
+
+def test_stale_results_are_red_and_their_proofs_stale(tmp_path):
+    """REQ-EVD-016, REQ-EVD-015: a source changed after the runs makes every result computed
+    from it stale: its row red with STALE and the file named, its figures kept, and a
+    requirement whose WP and CBMC rows all hold gets the verdict 'stale'.  A committed result
+    without a stamp is stale too."""
+    full_inputs(tmp_path)
+    _rc, data, rows = run(tmp_path, "--strict")
+    assert data["red"] == 0
+    write(tmp_path, "src/qfoc_x.c", "int qfoc_x_step(void) { return 1; }\n")
+    rc, data, rows = run(tmp_path, "--strict")
+    assert rc == 1
+    for key in ("wp", "cbmc", "eva", "misra", "statement", "branch", "bench"):
+        assert rows[key]["status"] == "FAIL" and "; STALE: " in rows[key]["figure"], rows[key]
+    assert rows["wp"]["figure"].startswith("13/13 goals")
+    assert "src/qfoc_x.c" in rows["wp"]["figure"]
+    reqs = {r["id"]: r for r in data["sections"]["trace"]["requirements"]}
+    assert reqs[X1]["verdict"] == "stale"
+    assert {p["kind"]: p["status"] for p in reqs[X1]["proof_items"]} == {"WP": "stale", "CBMC": "stale"}
+    assert reqs[Y1]["verdict"] == "verified"
+    assert rows["requirements"]["figure"] == "1/2 verified; 1 stale"
+    page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
+    assert "STALE: <code>proofs/wp/results.md</code>" in page
+    # the gates run again: current again
+    stamp(tmp_path)
+    _rc, data, rows = run(tmp_path)
+    assert data["red"] == 0
+    # a committed result without a stamp, all PASS: stale
+    write(tmp_path, "proofs/cbmc/results.md", CBMC_RESULTS)
+    _rc, data, rows = run(tmp_path)
+    assert rows["cbmc"]["status"] == "FAIL"
+    assert rows["cbmc"]["figure"] == ("2 harnesses, 150 properties, 0 failed; STALE: no inputs stamp, not tied "
+                                      "to the sources it was computed from")
+    assert data["sections"]["cbmc"]["stamp"]["state"] == "unstamped"
+
+
+def test_verdict_needs_every_named_test_passed(tmp_path):
+    """REQ-EVD-015, REQ-EVD-003: a test the matrix names but the JUnit files do not hold is
+    'not run' (amber, red under --strict), a failed one 'failed'; the requirements row counts
+    them and is red; the page shows each test's status."""
+    full_inputs(tmp_path)
+    write(tmp_path, "build/junit/test_a.xml", JUNIT_OK.replace('    <testcase classname="test_a" name="test_two"/>\n', ""))
+    _rc, data, rows = run(tmp_path)
+    reqs = {r["id"]: r for r in data["sections"]["trace"]["requirements"]}
+    assert reqs[Y1]["verdict"] == "not run" and reqs[Y1]["test_items"][0]["status"] == "not run"
+    assert reqs[X1]["verdict"] == "verified"
+    assert rows["requirements"]["status"] == "FAIL" and rows["requirements"]["figure"] == "1/2 verified; 1 not run"
+    page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
+    assert "<td class='s notrun'>not run</td>" in page and "<span class=st-nr>not run</span>" in page
+    assert run(tmp_path, "--strict")[0] == 1
+    page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
+    assert "<td class='s fail'>not run</td>" in page and "red: <code>--strict</code>" in page
+    write(tmp_path, "build/junit/test_a.xml", JUNIT_OK.replace(
+        '<testcase classname="test_a" name="test_one"/>',
+        '<testcase classname="test_a" name="test_one"><failure message="f">no</failure></testcase>'))
+    _rc, data, rows = run(tmp_path)
+    reqs = {r["id"]: r for r in data["sections"]["trace"]["requirements"]}
+    assert reqs[X1]["verdict"] == "failed" and reqs[Y1]["verdict"] == "verified"
+    assert rows["requirements"]["figure"] == "1/2 verified; 1 failed"
+
+
+def test_archive_holds_what_was_verified_with_manifest(tmp_path):
+    """REQ-EVD-017, REQ-EVD-001: artefacts/ holds the requirements, the contracts, the sources,
+    the ACSL files, the specs' work products, the tests (C and Python), the proofs and the MISRA
+    records; MANIFEST.sha256 lists every other file of the bundle with its SHA-256; every
+    relative link of the page resolves to a file of the bundle; a requirement links its file."""
+    full_inputs(tmp_path)
+    sources = {"specs/requirements/x.md": f"### {X1} Step\nStatement: steps.\n",
+               "include/qfoc/x.h": "int qfoc_x_step(void);\n", "src/qfoc_x.c": "int qfoc_x_step(void) { return 0; }\n",
+               "specs/x.acsl": "/*@ predicate P = \\true; */\n", "specs/architecture.md": "# Architecture\n",
+               "specs/tool-confidence.md": "# Tools\n", "tests/test_a.c": "/* tests */\n",
+               "tools/tune/tests/test_t.py": "def test_t():\n    pass\n",
+               "proofs/cbmc/x_step/harness.c": "void harness(void) {}\n", "proofs/wp/q15_unit.c": "\n",
+               "misra/reviews.md": "# Reviews\n"}
+    for rel, text in sources.items():
+        write(tmp_path, rel, text)
+    stamp(tmp_path)
+    _rc, data, _rows = run(tmp_path)
+    out = tmp_path / "build" / "evidence"
+    for rel in list(sources) + ["specs/safety-manual.md", "misra/deviations.md", "proofs/wp/results.md",
+                                "proofs/wp/inputs-wp.sha256", "build/eva/inputs-eva.sha256"]:
+        assert (out / "artefacts" / rel).read_bytes() == (tmp_path / rel).read_bytes(), rel
+    listed = {}
+    for line in (out / "MANIFEST.sha256").read_text(encoding="utf-8").splitlines():
+        h, rel = line.split("  ", 1)
+        listed[rel] = h
+    on_disk = sorted(str(p.relative_to(out)).replace(os.sep, "/") for p in out.rglob("*") if p.is_file())
+    assert sorted(listed) == [p for p in on_disk if p != "MANIFEST.sha256"]
+    for rel, h in listed.items():
+        assert ev.sha256_file(str(out / rel)) == h, rel
+    page = (out / "index.html").read_text(encoding="utf-8")
+    hrefs = __import__("re").findall(r'href="([^"#][^"]*)"', page)
+    assert 'href="MANIFEST.sha256"' in page and 'href="artefacts/specs/requirements/x.md"' in page
+    for href in hrefs:
+        assert (out / __import__("html").unescape(href)).is_file(), href
+    assert data["sections"]["archive"]["count"] >= len(sources)
+
+
+def test_dates_are_those_of_the_runs(tmp_path):
+    """REQ-EVD-001, REQ-EVD-016: the date shown for a result is the run's, from its stamp or
+    its JUnit timestamp, not the file's modification time."""
+    full_inputs(tmp_path)
+    stamp(tmp_path, now=1_000_000_000)
+    write(tmp_path, "build/junit/test_a.xml", JUNIT_OK.replace(
+        '<testsuite name="test_a"', '<testsuite timestamp="2002-02-02T02:02:02Z" name="test_a"'))
+    _rc, data, _rows = run(tmp_path)
+    page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
+    assert "proofs/wp/results.md</a> <span class=meta>(run 2001-09-09 01:46:40 UTC)</span>" in page
+    assert "(run 2002-02-02 02:02:02 UTC)" in page
+    assert data["sections"]["wp"]["stamp"]["run"] == "2001-09-09 01:46:40 UTC"
