@@ -18,7 +18,7 @@ Every summary row is green or red with its figure; an input that is missing make
 row red with "not run", never green.  Prints the summary as plain text, one line per row,
 and 'evidence: OUT/index.html (N green, M red)'.  Exit status 0 when the page was
 written; with --strict, 1 when a summary row is red.  The requirements are
-specs/requirements/evidence.md (REQ-EVD-001 .. REQ-EVD-014).
+specs/requirements/evidence.md (REQ-EVD-001 .. REQ-EVD-020).
 """
 import argparse
 import datetime
@@ -245,6 +245,10 @@ def md_to_html(text, shift=2):
                 j += 1
             out.append("<pre>" + esc("\n".join(lines[i + 1:j])) + "</pre>")
             i = j + 1
+            continue
+        if line.strip().startswith("<!--") and line.strip().endswith("-->"):
+            flush()  # a marker of a generated block (tools/evidence/gen_manual.py): not shown
+            i += 1
             continue
         m = re.match(r"^(#{1,6})\s+(.*)$", line)
         if m:
@@ -521,6 +525,102 @@ def collect_trace(bundle):
             fig += f"; {len(failures)} trace gate failures"
         sec["summary"] = [row("requirements", "requirements traced", v == n and not failures, fig, "sec1")]
     return sec
+
+
+# --------------------------------------------------------------------------- 1.1 attributes
+# The requirement attributes and clauses of the matrix (tools/evidence/req_attrs.py,
+# specs/requirements/README.md; REQ-EVD-020).
+
+ATTR_ASILS = ("D", "C", "B", "A", "QM")
+ATTR_KINDS = ("safety", "functional", "tool", "simulation")
+ATTR_METHODS = ("proof", "analysis", "test", "review")
+
+
+def collect_attrs(bundle):
+    """The requirements of build/trace/trace.json by ASIL, kind and verification method."""
+    data = read_json(bundle.path(bundle.b("trace", "trace.json")))
+    reqs = data.get("requirements") if isinstance(data, dict) else None
+    if not isinstance(reqs, list) or not any(isinstance(r, dict) and "attributes" in r for r in reqs):
+        return {"present": False}
+    by_asil = {a: [] for a in ATTR_ASILS}
+    kinds = {k: [] for k in ATTR_KINDS}
+    methods = {m: [] for m in ATTR_METHODS}
+    missing, clause_failed, clause_open, clause_held = [], 0, 0, 0
+    for r in reqs:
+        if not isinstance(r, dict):
+            continue
+        a = r.get("attributes")
+        if not isinstance(a, dict):
+            missing.append(str(r.get("id")))
+            continue
+        rec = {"id": str(r.get("id")), "title": str(r.get("title", "")), "asil": a.get("asil"),
+               "kind": a.get("kind"), "verification": as_list(a.get("verification")),
+               "asr": as_list(a.get("asr")), "clauses": []}
+        for c in as_list(r.get("clauses")):
+            if isinstance(c, dict):
+                rec["clauses"].append({"ref": str(c.get("ref")), "status": str(c.get("status", "")),
+                                       "ok": c.get("ok")})
+                clause_held += c.get("ok") is True
+                clause_failed += c.get("ok") is False
+                clause_open += c.get("ok") is None
+        by_asil.setdefault(rec["asil"], []).append(rec)
+        kinds.setdefault(rec["kind"], []).append(rec["id"])
+        for m in rec["verification"]:
+            methods.setdefault(m, []).append(rec["id"])
+    return {"present": True, "by_asil": by_asil, "kinds": kinds, "methods": methods, "missing": missing,
+            "clauses": {"held": clause_held, "failed": clause_failed, "no_result": clause_open}}
+
+
+def attrs_counts_text(sec):
+    """'ASIL D 73, QM 168; kind safety 81, ...; verification proof 146, ...' (non-zero only)."""
+    if not sec or not sec.get("present"):
+        return "requirement attributes: not run (no attributes in build/trace/trace.json; make trace)"
+    asil = ", ".join(f"{a} {len(v)}" for a, v in sec["by_asil"].items() if v)
+    kind = ", ".join(f"{k} {len(v)}" for k, v in sec["kinds"].items() if v)
+    meth = ", ".join(f"{m} {len(v)}" for m, v in sec["methods"].items() if v)
+    text = f"requirements per ASIL: {asil}; per kind: {kind}; per verification method: {meth}"
+    if sec["missing"]:
+        text += f"; {len(sec['missing'])} without attributes"
+    return text
+
+
+def html_attrs(sec):
+    out = ["<h3 id=attrs>1.1 Requirements by ASIL, kind and verification method</h3>"]
+    if not sec.get("present"):
+        return out[0] + '<p class=missing>Not run: no requirement attributes in build/trace/trace.json (make trace).</p>'
+    c = sec["clauses"]
+    out.append(f"<p>{esc(attrs_counts_text(sec))}.  Clauses named by the requirements: {c['held']} hold, "
+               f"{c['failed']} failed, {c['no_result']} without a result here (a WP clause needs the report "
+               "of <code>make prove</code>, <code>build/wp/*.json</code>; without it the clause reads \"no WP "
+               "result\", never a pass).  Attributes and clauses: <code>specs/requirements/README.md</code>.</p>")
+    if sec["missing"]:
+        out.append(f"<p class=missing>Without attributes: {esc(', '.join(sec['missing']))}</p>")
+    out.append("<table>" + th("ASIL", "requirements", "safety", "functional", "tool", "simulation"))
+    for a, reqs in sec["by_asil"].items():
+        if reqs:
+            out.append("<tr>" + td(a) + td(len(reqs), True)
+                       + "".join(td(sum(1 for r in reqs if r["kind"] == k), True) for k in ATTR_KINDS) + "</tr>")
+    out.append("</table>")
+    for a, reqs in sec["by_asil"].items():
+        if not reqs:
+            continue
+        bad = any(cl["ok"] is False for r in reqs for cl in r["clauses"])
+        opened = " open" if a != "QM" or bad else ""
+        out.append(f"<details{opened}><summary><b>ASIL {esc(a)}</b>: {len(reqs)} requirements</summary>")
+        out.append("<table>" + th("ID", "title", "kind", "verification", "ASR", "clauses (status)"))
+        for r in reqs:
+            cl = "<br>".join(
+                f'<span{"" if x["ok"] is None else " class=" + cls(x["ok"])}>{esc(x["ref"])}: {esc(x["status"])}</span>'
+                for x in r["clauses"]) or "-"
+            out.append("<tr>" + td(r["id"]) + td(r["title"]) + td(r["kind"]) + td(", ".join(r["verification"]))
+                       + td(", ".join(r["asr"]) or "-") + f"<td class=small>{cl}</td></tr>")
+        out.append("</table></details>")
+    for label, groups in (("kind", sec["kinds"]), ("verification method", sec["methods"])):
+        for k, ids in groups.items():
+            if ids:
+                out.append(f"<details><summary>{esc(label)} <b>{esc(k)}</b>: {len(ids)} requirements</summary>"
+                           f"<p class=small>{esc(', '.join(ids))}</p></details>")
+    return "\n".join(out)
 
 
 # --------------------------------------------------------------------------- 2 formal
@@ -1227,7 +1327,7 @@ tr.pass td{background:#eefaee}tr.fail td{background:#fdeeee}
 table.summary td{font-size:1.05em}table.summary td.s{font-weight:bold;text-align:center}
 code{background:#f3f3f3;padding:0 2px}pre{background:#f6f6f6;padding:.5em;overflow-x:auto;font-size:12px}
 details{margin:.3em 0}summary{cursor:pointer}.meta{color:#555}.small{font-size:12px}
-.missing{color:#a00;font-weight:bold}nav a{margin-right:.8em}
+.missing{color:#a00;font-weight:bold}nav a{margin-right:.8em}span.fail{color:#a00;font-weight:bold}
 """
 
 
@@ -1701,7 +1801,8 @@ def write_html(path, model, secs):
                    f"</td>{td(r['figure'])}<td class=s>{'PASS' if r['status'] == 'PASS' else 'FAIL'}</td></tr>")
     out.append("</table><p class=small>A row is green only when its input exists and meets its target; a "
                "missing input is red with \"not run\".</p>")
-    bodies = {"sec1": html_sec1(secs["trace"]), "sec2": html_sec2(secs["wp"], secs["cbmc"], secs["eva"]),
+    out.append(f'<p><a href="#attrs">{esc(attrs_counts_text(secs["attrs"]))}</a></p>')
+    bodies = {"sec1": html_sec1(secs["trace"]) + "\n" + html_attrs(secs["attrs"]), "sec2": html_sec2(secs["wp"], secs["cbmc"], secs["eva"]),
               "sec3": html_sec3(secs["misra"]), "sec4": html_sec4(secs["coverage"], secs["mcdc"]),
               "sec5": html_sec5(secs["tests"], secs["target_test"]), "sec6": html_sec6(secs["bench"]),
               "sec7": html_sec7(secs["static"]), "sec8": html_sec8(secs["tools"]),
@@ -1725,6 +1826,7 @@ def build_model(bundle):
         "mcdc": collect_mcdc(bundle), "tests": collect_tests(bundle), "target_test": collect_target_test(bundle),
         "static": collect_static(bundle), "bench": collect_bench(bundle), "repro": collect_repro(bundle),
         "tools": collect_tools(bundle), "manual": collect_manual(bundle), "gates": collect_gates(bundle),
+        "attrs": collect_attrs(bundle),
     }
     order = ["trace", "wp", "eva", "cbmc", "misra", "coverage", "mcdc", "tests", "target_test", "static",
              "bench", "repro"]
@@ -1777,6 +1879,7 @@ def main(argv=None) -> int:
     print(f"evidence: commit {g['commit']}" + {True: " (working tree modified)", False: "", None: ""}[g["dirty"]])
     for r in model["summary"]:
         print(f"{r['label']:<{width}}{r['figure']}   {r['status']}")
+    print(attrs_counts_text(secs["attrs"]))
     print(f"evidence: {bundle.rel(index)} ({model['green']} green, {model['red']} red)")
     if args.strict and model["red"]:
         return 1
