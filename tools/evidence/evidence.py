@@ -28,7 +28,7 @@ in this run's results (tools/evidence/verdict.py); a test that did not run is "n
 Prints the summary as plain text, one line per row, and
 'evidence: OUT/index.html (N green, M red)'.  Exit status 0 when the page was written; with
 --strict, 1 when a summary row is red.  The requirements are specs/requirements/evidence.md
-(REQ-EVD-001 .. REQ-EVD-017).
+(REQ-EVD-001 .. REQ-EVD-029).
 """
 import argparse
 import datetime
@@ -251,6 +251,10 @@ def md_to_html(text, shift=2):
                 j += 1
             out.append("<pre>" + esc("\n".join(lines[i + 1:j])) + "</pre>")
             i = j + 1
+            continue
+        if line.strip().startswith("<!--") and line.strip().endswith("-->"):
+            flush()  # a marker of a generated block (tools/evidence/gen_manual.py): not shown
+            i += 1
             continue
         m = re.match(r"^(#{1,6})\s+(.*)$", line)
         if m:
@@ -530,6 +534,102 @@ def collect_trace(bundle):
             fig += f"; {len(failures)} trace gate failures"
         sec["summary"] = [row("requirements", "requirements verified", v == n and not failures, fig, "sec1")]
     return sec
+
+
+# --------------------------------------------------------------------------- 1.1 attributes
+# The requirement attributes and clauses of the matrix (tools/evidence/req_attrs.py,
+# specs/requirements/README.md; REQ-EVD-020).
+
+ATTR_ASILS = ("D", "C", "B", "A", "QM")
+ATTR_KINDS = ("safety", "functional", "tool", "simulation")
+ATTR_METHODS = ("proof", "analysis", "test", "review")
+
+
+def collect_attrs(bundle):
+    """The requirements of build/trace/trace.json by ASIL, kind and verification method."""
+    data = read_json(bundle.path(bundle.b("trace", "trace.json")))
+    reqs = data.get("requirements") if isinstance(data, dict) else None
+    if not isinstance(reqs, list) or not any(isinstance(r, dict) and "attributes" in r for r in reqs):
+        return {"present": False}
+    by_asil = {a: [] for a in ATTR_ASILS}
+    kinds = {k: [] for k in ATTR_KINDS}
+    methods = {m: [] for m in ATTR_METHODS}
+    missing, clause_failed, clause_open, clause_held = [], 0, 0, 0
+    for r in reqs:
+        if not isinstance(r, dict):
+            continue
+        a = r.get("attributes")
+        if not isinstance(a, dict):
+            missing.append(str(r.get("id")))
+            continue
+        rec = {"id": str(r.get("id")), "title": str(r.get("title", "")), "asil": a.get("asil"),
+               "kind": a.get("kind"), "verification": as_list(a.get("verification")),
+               "asr": as_list(a.get("asr")), "clauses": []}
+        for c in as_list(r.get("clauses")):
+            if isinstance(c, dict):
+                rec["clauses"].append({"ref": str(c.get("ref")), "status": str(c.get("status", "")),
+                                       "ok": c.get("ok")})
+                clause_held += c.get("ok") is True
+                clause_failed += c.get("ok") is False
+                clause_open += c.get("ok") is None
+        by_asil.setdefault(rec["asil"], []).append(rec)
+        kinds.setdefault(rec["kind"], []).append(rec["id"])
+        for m in rec["verification"]:
+            methods.setdefault(m, []).append(rec["id"])
+    return {"present": True, "by_asil": by_asil, "kinds": kinds, "methods": methods, "missing": missing,
+            "clauses": {"held": clause_held, "failed": clause_failed, "no_result": clause_open}}
+
+
+def attrs_counts_text(sec):
+    """'ASIL D 73, QM 168; kind safety 81, ...; verification proof 146, ...' (non-zero only)."""
+    if not sec or not sec.get("present"):
+        return "requirement attributes: not run (no attributes in build/trace/trace.json; make trace)"
+    asil = ", ".join(f"{a} {len(v)}" for a, v in sec["by_asil"].items() if v)
+    kind = ", ".join(f"{k} {len(v)}" for k, v in sec["kinds"].items() if v)
+    meth = ", ".join(f"{m} {len(v)}" for m, v in sec["methods"].items() if v)
+    text = f"requirements per ASIL: {asil}; per kind: {kind}; per verification method: {meth}"
+    if sec["missing"]:
+        text += f"; {len(sec['missing'])} without attributes"
+    return text
+
+
+def html_attrs(sec):
+    out = ["<h3 id=attrs>1.1 Requirements by ASIL, kind and verification method</h3>"]
+    if not sec.get("present"):
+        return out[0] + '<p class=missing>Not run: no requirement attributes in build/trace/trace.json (make trace).</p>'
+    c = sec["clauses"]
+    out.append(f"<p>{esc(attrs_counts_text(sec))}.  Clauses named by the requirements: {c['held']} hold, "
+               f"{c['failed']} failed, {c['no_result']} without a result here (a WP clause needs the report "
+               "of <code>make prove</code>, <code>build/wp/*.json</code>; without it the clause reads \"no WP "
+               "result\", never a pass).  Attributes and clauses: <code>specs/requirements/README.md</code>.</p>")
+    if sec["missing"]:
+        out.append(f"<p class=missing>Without attributes: {esc(', '.join(sec['missing']))}</p>")
+    out.append("<table>" + th("ASIL", "requirements", "safety", "functional", "tool", "simulation"))
+    for a, reqs in sec["by_asil"].items():
+        if reqs:
+            out.append("<tr>" + td(a) + td(len(reqs), True)
+                       + "".join(td(sum(1 for r in reqs if r["kind"] == k), True) for k in ATTR_KINDS) + "</tr>")
+    out.append("</table>")
+    for a, reqs in sec["by_asil"].items():
+        if not reqs:
+            continue
+        bad = any(cl["ok"] is False for r in reqs for cl in r["clauses"])
+        opened = " open" if a != "QM" or bad else ""
+        out.append(f"<details{opened}><summary><b>ASIL {esc(a)}</b>: {len(reqs)} requirements</summary>")
+        out.append("<table>" + th("ID", "title", "kind", "verification", "ASR", "clauses (status)"))
+        for r in reqs:
+            cl = "<br>".join(
+                f'<span{"" if x["ok"] is None else " class=" + cls(x["ok"])}>{esc(x["ref"])}: {esc(x["status"])}</span>'
+                for x in r["clauses"]) or "-"
+            out.append("<tr>" + td(r["id"]) + td(r["title"]) + td(r["kind"]) + td(", ".join(r["verification"]))
+                       + td(", ".join(r["asr"]) or "-") + f"<td class=small>{cl}</td></tr>")
+        out.append("</table></details>")
+    for label, groups in (("kind", sec["kinds"]), ("verification method", sec["methods"])):
+        for k, ids in groups.items():
+            if ids:
+                out.append(f"<details><summary>{esc(label)} <b>{esc(k)}</b>: {len(ids)} requirements</summary>"
+                           f"<p class=small>{esc(', '.join(ids))}</p></details>")
+    return "\n".join(out)
 
 
 # --------------------------------------------------------------------------- 2 formal
@@ -1230,7 +1330,7 @@ def git_info(root):
 
 
 # (section, gate of tools/evidence/inputs.py): the sections whose result files the gates stamp
-# with the SHA-256 of their inputs (REQ-EVD-016)
+# with the SHA-256 of their inputs (REQ-EVD-028)
 STAMPED = (("wp", "wp"), ("cbmc", "cbmc"), ("eva", "eva"), ("misra", "misra"), ("coverage", "coverage"),
            ("bench", "bench"))
 
@@ -1428,7 +1528,7 @@ def verdict_rule_html(sec):
 MANIFEST = "MANIFEST.sha256"
 
 # What the bundle holds besides the results, so that an assessor who receives the folder can
-# read what was verified (REQ-EVD-017): (group, patterns relative to the root)
+# read what was verified (REQ-EVD-029): (group, patterns relative to the root)
 ARCHIVE = (
     ("requirements", ("specs/requirements/*.md",)),
     ("contracts: the public headers", ("include/qfoc/*.h",)),
@@ -1524,7 +1624,7 @@ tr.pass td{background:#eefaee}tr.fail td{background:#fdeeee}
 table.summary td{font-size:1.05em}table.summary td.s{font-weight:bold;text-align:center}
 code{background:#f3f3f3;padding:0 2px}pre{background:#f6f6f6;padding:.5em;overflow-x:auto;font-size:12px}
 details{margin:.3em 0}summary{cursor:pointer}.meta{color:#555}.small{font-size:12px}
-.missing{color:#a00;font-weight:bold}nav a{margin-right:.8em}
+.missing{color:#a00;font-weight:bold}nav a{margin-right:.8em}span.fail{color:#a00;font-weight:bold}
 tr.notrun td{background:#fff6dd}td.notrun,tr.notrun td.s{background:#fde3a7}
 .st-ok{color:#075e07;font-weight:bold}.st-bad{color:#a00;font-weight:bold}.st-nr{color:#8a5a00;font-weight:bold}
 """
@@ -1999,7 +2099,8 @@ def write_html(path, model, secs):
                "missing input is red with \"not run\"; a result whose inputs changed since its run (or that "
                "carries no inputs stamp) is red with \"STALE\". Dates are those of the runs, from the "
                "result files' stamps.</p>")
-    bodies = {"sec1": html_sec1(secs["trace"]), "sec2": html_sec2(secs["wp"], secs["cbmc"], secs["eva"]),
+    out.append(f'<p><a href="#attrs">{esc(attrs_counts_text(secs["attrs"]))}</a></p>')
+    bodies = {"sec1": html_sec1(secs["trace"]) + "\n" + html_attrs(secs["attrs"]), "sec2": html_sec2(secs["wp"], secs["cbmc"], secs["eva"]),
               "sec3": html_sec3(secs["misra"]), "sec4": html_sec4(secs["coverage"], secs["mcdc"]),
               "sec5": html_sec5(secs["tests"], secs["target_test"]), "sec6": html_sec6(secs["bench"]),
               "sec7": html_sec7(secs["static"]), "sec8": html_sec8(secs["tools"]),
@@ -2023,6 +2124,7 @@ def build_model(bundle):
         "mcdc": collect_mcdc(bundle), "tests": collect_tests(bundle), "target_test": collect_target_test(bundle),
         "static": collect_static(bundle), "bench": collect_bench(bundle), "repro": collect_repro(bundle),
         "tools": collect_tools(bundle), "manual": collect_manual(bundle), "gates": collect_gates(bundle),
+        "attrs": collect_attrs(bundle),
     }
     apply_staleness(bundle, secs)
     apply_verdicts(bundle, secs)
@@ -2081,6 +2183,7 @@ def main(argv=None) -> int:
     for r in model["summary"]:
         print(f"{r['label']:<{width}}{r['figure']}   {r['status']}")
     print(f"evidence: {bundle.rel(os.path.join(bundle.out, MANIFEST))} ({n_manifest} files)")
+    print(attrs_counts_text(secs["attrs"]))
     print(f"evidence: {bundle.rel(index)} ({model['green']} green, {model['red']} red)")
     if args.strict and model["red"]:
         return 1

@@ -6,7 +6,7 @@ build/misra/compliance-summary.json, build/coverage/coverage.xml, build/bench/be
 ...) carries the SHA-256 of the inputs it was computed from, written into it by the gate
 when it ends (the "stamp"), with the run's UTC time.  `make evidence` computes the digest
 again from the checkout: a result whose inputs changed since its run is stale (red), never
-green (specs/requirements/evidence.md, REQ-EVD-016).
+green (specs/requirements/evidence.md, REQ-EVD-028).
 
 The input set of each gate is defined here and nowhere else (GATES below): the sorted input
 files (sources, headers, specs/*.acsl, tables, harnesses and their configurations, the gate's

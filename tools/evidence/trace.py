@@ -43,7 +43,14 @@ Gates (exit status 1, every offender listed):
       that names no requirement (a test's name does not count here: the ID must be
       written in its body or in the comment above it);
   also a requirement named by no header, and a requirement traced to a proof result
-  that is not a success.
+  that is not a success;
+  (d) the attribute and clause lines of the requirements (tools/evidence/req_attrs.py,
+      specs/requirements/README.md): a missing or invalid attribute line, a verification
+      method claimed that the trace does not find, an ASIL other than the one
+      specs/asr.toml assumes for the requirement's ASRs, a safety requirement without
+      clauses, a clause, lemma, harness or test that does not exist or does not name the
+      requirement, a clause that the WP report of make prove (build/wp/*.json) does not
+      prove.
 Warnings (no gate): a requirement's text names a test or harness (`test_...`,
 "CBMC harness `name`") that does not name the requirement.
 
@@ -57,6 +64,8 @@ import json
 import os
 import re
 import sys
+
+import req_attrs
 
 REQ = re.compile(r"\bREQ-([A-Z0-9]+)-(\d{3})\b")
 RANGE = re.compile(r"\bREQ-([A-Z0-9]+)-(\d{3})\s*(?:\.\.|\u2026|--)\s*REQ-([A-Z0-9]+)-(\d{3})\b")
@@ -787,6 +796,8 @@ def main() -> int:
         for b in bad:
             failures.append(f"{rid} ({r['file']}) is traced to a proof that does not hold: {b}")
 
+    failures += attribute_gate(matrix, callees, hs, all_tests, tt, cbmc_res, acsl_decls)
+
     # (b) IDs named anywhere that no requirement defines
     undefined = {}
     for p in all_sources():
@@ -884,6 +895,7 @@ def main() -> int:
         "tests": tests_index,
         "harnesses": harness_index,
     }
+    doc["attributes"] = req_attrs.attribute_totals(matrix)
     os.makedirs(OUT, exist_ok=True)
     with open(os.path.join(OUT, "trace.json"), "w", encoding="utf-8") as f:
         json.dump(doc, f, indent=1, sort_keys=False)
@@ -899,6 +911,7 @@ def main() -> int:
           f"({totals['wp_goals_attributed_with_helpers']} with the static functions they call); "
           f"{n_unit_tagged} of {n_unit} tests naming a requirement, "
           f"{totals['harnesses_naming_a_requirement']} of {len(hs)} harnesses naming a requirement")
+    print_attributes(doc["attributes"])
     if warnings:
         print(f"trace: {len(warnings)} warning(s): requirement texts naming a test or harness that "
               f"does not name them (listed in {OUT}/trace.md)")
@@ -978,6 +991,50 @@ def write_md(path, doc):
         for h in doc["harnesses"]:
             f.write(f"| {h['harness']} | {h['properties']} | {h['result']} | {h['unwind']} | "
                     f"{', '.join(h['requirements']) or '**none**'} |\n")
+        write_md_attributes(f, doc)
+
+
+# ------------------------------------------------------------------ attributes and clauses
+# The attribute and clause lines of the requirements (tools/evidence/req_attrs.py,
+# specs/requirements/README.md; REQ-EVD-015 .. REQ-EVD-017).
+
+def attribute_gate(matrix, callees, hs, all_tests, tt, cbmc_res, acsl_decls):
+    """Adds 'attributes' and 'clauses' to every matrix entry; the gate failures of the
+    attribute lines, of the verification methods they claim and of the clauses named."""
+    ctx = req_attrs.make_context(".", callees, hs, all_tests, tt, cbmc_res, acsl_decls)
+    return req_attrs.apply_to_matrix(matrix, ctx, ".")
+
+
+def print_attributes(t):
+    asil = ", ".join(f"{a} {n}" for a, n in t["asil"].items() if n)
+    kind = ", ".join(f"{k} {n}" for k, n in t["kind"].items() if n)
+    print(f"trace: attributes: ASIL {asil}; kind {kind}; {t['clauses']} clauses named "
+          f"({t['clauses_held']} held, {t['clauses_no_result']} without a result here)")
+
+
+def write_md_attributes(f, doc):
+    """The attributes of every requirement and the clause-level trace of those with clauses."""
+    t = doc["attributes"]
+    f.write("\n## Attributes\n\n"
+            "From the `Attributes:` and `Clauses:` lines of `specs/requirements/*.md` "
+            "(`specs/requirements/README.md`).  A clause's status comes from the WP report of "
+            "`make prove` (`build/wp/*.json`), `proofs/cbmc/results.md`, `build/junit/`, "
+            "`build/target_test/target.txt` or `build/bench/bench.json`; without that result it "
+            "reads \"no ... result\", which is not a pass.\n\n")
+    f.write("| ASIL | " + " | ".join(t["asil"]) + " |\n|---|" + "---:|" * len(t["asil"]) + "\n")
+    f.write("| requirements | " + " | ".join(str(n) for n in t["asil"].values()) + " |\n\n")
+    f.write("| kind | " + " | ".join(t["kind"]) + " |\n|---|" + "---:|" * len(t["kind"]) + "\n")
+    f.write("| requirements | " + " | ".join(str(n) for n in t["kind"].values()) + " |\n\n")
+    f.write("| requirement | ASIL | kind | verification | ASR | clauses (status) |\n"
+            "|---|---|---|---|---|---|\n")
+    for e in doc["requirements"]:
+        a = e.get("attributes")
+        if not a:
+            f.write(f"| {e['id']} | **none** | | | | |\n")
+            continue
+        cl = [f"{c['ref']} ({c['status']})" for c in e.get("clauses", [])]
+        f.write(f"| {e['id']} | {a['asil']} | {a['kind']} | {', '.join(a['verification'])} | "
+                f"{', '.join(a['asr']) or '-'} | {cell(cl)} |\n")
 
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 
 The traceability matrix of `make trace` (build/trace/trace.json) says which proofs and
 tests each requirement names; it reads the sources only.  Whether the requirement is
-verified is decided here, from the results (specs/requirements/evidence.md, REQ-EVD-015):
+verified is decided here, from the results (specs/requirements/evidence.md, REQ-EVD-027):
 
   proof  a WP function (its own goals, and those of the static functions it calls), a
          lemma, or a CBMC harness:

@@ -391,7 +391,7 @@ def test_markdown_inline(text, html):
 
 
 def test_stale_results_are_red_and_their_proofs_stale(tmp_path):
-    """REQ-EVD-016, REQ-EVD-015: a source changed after the runs makes every result computed
+    """REQ-EVD-028, REQ-EVD-027: a source changed after the runs makes every result computed
     from it stale: its row red with STALE and the file named, its figures kept, and a
     requirement whose WP and CBMC rows all hold gets the verdict 'stale'.  A committed result
     without a stamp is stale too."""
@@ -426,7 +426,7 @@ def test_stale_results_are_red_and_their_proofs_stale(tmp_path):
 
 
 def test_verdict_needs_every_named_test_passed(tmp_path):
-    """REQ-EVD-015, REQ-EVD-003: a test the matrix names but the JUnit files do not hold is
+    """REQ-EVD-027, REQ-EVD-003: a test the matrix names but the JUnit files do not hold is
     'not run' (amber, red under --strict), a failed one 'failed'; the requirements row counts
     them and is red; the page shows each test's status."""
     full_inputs(tmp_path)
@@ -451,7 +451,7 @@ def test_verdict_needs_every_named_test_passed(tmp_path):
 
 
 def test_archive_holds_what_was_verified_with_manifest(tmp_path):
-    """REQ-EVD-017, REQ-EVD-001: artefacts/ holds the requirements, the contracts, the sources,
+    """REQ-EVD-029, REQ-EVD-001: artefacts/ holds the requirements, the contracts, the sources,
     the ACSL files, the specs' work products, the tests (C and Python), the proofs and the MISRA
     records; MANIFEST.sha256 lists every other file of the bundle with its SHA-256; every
     relative link of the page resolves to a file of the bundle; a requirement links its file."""
@@ -488,7 +488,7 @@ def test_archive_holds_what_was_verified_with_manifest(tmp_path):
 
 
 def test_dates_are_those_of_the_runs(tmp_path):
-    """REQ-EVD-001, REQ-EVD-016: the date shown for a result is the run's, from its stamp or
+    """REQ-EVD-001, REQ-EVD-028: the date shown for a result is the run's, from its stamp or
     its JUnit timestamp, not the file's modification time."""
     full_inputs(tmp_path)
     stamp(tmp_path, now=1_000_000_000)

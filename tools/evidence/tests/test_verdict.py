@@ -85,7 +85,7 @@ def rec(**kw):
 
 
 def test_verified_when_every_proof_proved_and_every_test_passed(tmp_path):
-    """REQ-EVD-015: every kind of test (CMocka, parametrised pytest and a method, target group
+    """REQ-EVD-027: every kind of test (CMocka, parametrised pytest and a method, target group
     and checking program, bench rows named from the run, a scenario, the robustness campaign)
     passed and every proof (WP function, its static helper, lemma, CBMC harness) proved:
     verified."""
@@ -110,7 +110,7 @@ def test_verified_when_every_proof_proved_and_every_test_passed(tmp_path):
 
 
 def test_test_not_run_is_not_run_never_verified(tmp_path):
-    """REQ-EVD-015: a test that names the requirement but is in no result (or was skipped),
+    """REQ-EVD-027: a test that names the requirement but is in no result (or was skipped),
     a target group or bench of a run that did not happen: 'not run', and the verdict is
     'not run', although every proof holds."""
     res = results(tmp_path)
@@ -132,7 +132,7 @@ def test_test_not_run_is_not_run_never_verified(tmp_path):
 
 
 def test_failed_test_or_proof_is_failed(tmp_path):
-    """REQ-EVD-015: a failed CMocka test, a scenario whose targets are not met, a bench row
+    """REQ-EVD-027: a failed CMocka test, a scenario whose targets are not met, a bench row
     over its limit, a WP function with a goal not proved or a failing CBMC harness make the
     verdict 'failed', which wins over 'not run'."""
     res = results(tmp_path)
@@ -153,7 +153,7 @@ def test_failed_test_or_proof_is_failed(tmp_path):
 
 
 def test_stale_results_are_stale_not_proved(tmp_path):
-    """REQ-EVD-015, REQ-EVD-016: WP or CBMC rows that all hold, but from results whose inputs
+    """REQ-EVD-027, REQ-EVD-028: WP or CBMC rows that all hold, but from results whose inputs
     stamp is not current (inputs changed, or no stamp at all), are 'stale', and so is the
     verdict; bench rows of a stale bench result too.  A failure still wins."""
     r = rec(wp={"functions": [{"unit": "qfoc_x", "function": "qfoc_x_step"}], "helpers": []},
@@ -173,7 +173,7 @@ def test_stale_results_are_stale_not_proved(tmp_path):
 
 
 def test_no_result_and_no_evidence(tmp_path):
-    """REQ-EVD-015: a function or harness without a row, or no WP result at all, is 'no
+    """REQ-EVD-027: a function or harness without a row, or no WP result at all, is 'no
     result' (verdict 'not run'); a requirement that names nothing has 'no evidence'."""
     res = results(tmp_path)
     v = vd.requirement_verdict(X1, rec(wp={"functions": [{"unit": "qfoc_x", "function": "qfoc_x_gone"}]},
@@ -187,7 +187,7 @@ def test_no_result_and_no_evidence(tmp_path):
 
 
 def test_bench_rows_named_from_the_source(tmp_path):
-    """REQ-EVD-015: a bench row the matrix named from tools/bench/count.py (the bench had not
+    """REQ-EVD-027: a bench row the matrix named from tools/bench/count.py (the bench had not
     run when the matrix was made) takes the rows of the run that name the requirement."""
     res = results(tmp_path)
     t = {"kind": "bench", "file": "tools/bench/count.py", "name": "row `qfoc_x_step`, [title]"}
@@ -196,7 +196,7 @@ def test_bench_rows_named_from_the_source(tmp_path):
 
 
 def test_loose_records_and_counts(tmp_path):
-    """REQ-EVD-015: records in the loose forms of a hand-written matrix (function and harness
+    """REQ-EVD-027: records in the loose forms of a hand-written matrix (function and harness
     names as strings, tests as 'file: name') are read; the count line of the matrix cell."""
     res = results(tmp_path)
     v = vd.requirement_verdict(X1, {"wp": {"functions": ["qfoc_x_step"], "goals": 10, "proved": 10},
