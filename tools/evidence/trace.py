@@ -26,14 +26,16 @@ names, contract documentation) and from the committed proof results:
              target-equivalence groups of tools/target_test/tt_groups.c (the IDs of the
              comment above the suite table, of the group's entry line and of its replay
              function) and the checking programs target_test.sh, tt_gen.c, tt_runner.c
-             (their header); the rows of the bench report (tools/bench/count.py, row())
+             (their header); the rows of the bench report (tools/bench/count.py, row());
+             the libFuzzer harnesses tests/fuzz/fuzz_*.c and their runner tests/fuzz/run.py
+             (their header; fuzz_tests())
   scenarios  the scenarios of sim/scenario.c (the IDs each one records), and those a
              test of tests/test_scenarios.c runs while naming the ID
   named_in   the headers naming the ID anywhere: include/qfoc/*.h, the tuning tool's
              interface tools/tune/qfoc_tune.py, the evidence generator's
              tools/evidence/evidence.py, the architecture check tools/evidence/arch_check.py,
-             the vector format tools/target_test/tt.h and the
-             bench's tools/bench/*.h
+             the vector format tools/target_test/tt.h, the
+             bench's tools/bench/*.h and the fuzz harnesses' tests/fuzz/fuzz.h
 
 Gates (exit status 1, every offender listed):
   (a) a requirement with no proof (a contract with WP goals, an ACSL lemma, or a CBMC
@@ -75,6 +77,9 @@ OUT = "build/trace"
 # Checking programs of the target-equivalence test: each is one test, traced by its header.
 TT_CHECKERS = ("tools/target_test/target_test.sh", "tools/target_test/tt_gen.c",
                "tools/target_test/tt_runner.c")
+# The fuzz harnesses' runner, traced like a harness, and their shared header (an interface).
+FUZZ_RUNNER = ("tests/fuzz/run.py",)
+FUZZ_INTERFACE = "tests/fuzz/fuzz.h"
 # Files read for gate (b) besides the ones traced (text files of these trees).
 SCAN_TREES = ("include", "src", "specs", "tests", "tools", "proofs", "sim", "port_s32k",
               "misra", "tables", "mk")
@@ -527,6 +532,14 @@ def target_tests(defined):
     return tests
 
 
+def fuzz_tests(defined):
+    """The libFuzzer harnesses (tests/fuzz/fuzz_*.c) and their runner (tests/fuzz/run.py):
+    each is one test, traced by the IDs of its header comment; (file, name, ids).
+    FUZZ_INTERFACE, the header they share, names their requirements."""
+    paths = sorted(glob.glob("tests/fuzz/fuzz_*.c")) + [p for p in FUZZ_RUNNER if os.path.exists(p)]
+    return [(p, os.path.basename(p), ids(header_comment(read(p)), defined)) for p in paths]
+
+
 def bench_rows(defined):
     """Rows of the bench report: the rows of build/bench/bench.json (item, requirement)
     when the bench has run, else the row(<REQ id or a choice of two>, <label>, ...) calls
@@ -700,7 +713,7 @@ def main() -> int:
                   + ["tools/tune/qfoc_tune.py", "tools/evidence/evidence.py",
                      "tools/evidence/arch_check.py", "tools/target_test/tt.h",
                      "sim/sim.h"]
-                  + sorted(glob.glob("tools/bench/*.h")))
+                  + sorted(glob.glob("tools/bench/*.h")) + [FUZZ_INTERFACE])
     named_in = {}
     for p in interfaces:
         if os.path.exists(p):
@@ -710,7 +723,8 @@ def main() -> int:
     all_tests = ([("cmocka",) + t for t in with_names(cm, defined)]
                  + [("pytest",) + t for t in with_names(py, defined)]
                  + [("target", f, n, i, i) for f, n, i in tt]
-                 + [("bench", f, n, i, i) for f, n, i in bench])
+                 + [("bench", f, n, i, i) for f, n, i in bench]
+                 + [("fuzz", f, n, i, i) for f, n, i in fuzz_tests(defined)])
 
     lemma_rows = {}
     for fn, rows in wp.items():
@@ -884,7 +898,7 @@ def main() -> int:
             "requirements": "specs/requirements/*.md", "contracts": "include/qfoc/*.h",
             "acsl": "specs/*.acsl", "wp": "proofs/wp/results.md",
             "cbmc": "proofs/cbmc/*/harness.c, proofs/cbmc/results.md",
-            "tests": "tests/*.c, tools/*/tests/*.py, tools/target_test/, tools/bench/*.py",
+            "tests": "tests/*.c, tools/*/tests/*.py, tools/target_test/, tools/bench/*.py, tests/fuzz/",
             "scenarios": "sim/scenario.c, tests/test_scenarios.c",
         },
         "totals": totals,

@@ -22,12 +22,12 @@ PKGS="make gcc frama-c-base why3 z3 cvc4 cppcheck lcov gcovr libcmocka-dev \
 gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi \
 python3 python3-matplotlib python3-numpy python3-scipy python3-pytest \
 qemu-system-arm python3-unicorn python3-pyelftools clang-tidy debootstrap \
-debian-archive-keyring dpkg-dev cmake cadical"
+debian-archive-keyring dpkg-dev cmake cadical clang"
 
 # command that must exist for each tool (same order is not required)
 need_cmds() {
     for c in gcc make frama-c why3 z3 cvc4 cppcheck lcov gcovr arm-none-eabi-gcc python3 dpkg-deb \
-             qemu-system-arm clang-tidy debootstrap cmake cadical; do
+             qemu-system-arm clang-tidy debootstrap cmake cadical clang; do
         command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
     done
     [ -f /usr/include/cmocka.h ] || { echo "missing: libcmocka-dev"; return 1; }
