@@ -63,6 +63,7 @@ gate demo     make --no-print-directory demo
 gate robust   make --no-print-directory robustness ROBUST_COUNT=24
 gate repro    make --no-print-directory repro
 gate cmake    make --no-print-directory cmake-check
+gate fuzz     make --no-print-directory fuzz-check
 gate_wait eva
 
 # The evidence bundle last: it collects what the gates above wrote, and fails when one of
