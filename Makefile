@@ -192,7 +192,7 @@ tune: deps-tune
 tune-check: deps-tune
 	@mkdir -p $(BUILD)/junit
 	@$(PYTHON) -m pytest -q --junitxml=$(BUILD)/junit/pytest.xml -o junit_suite_name=pytest \
-	    tools/tune/tests tools/evidence/tests
+	    tools/tune/tests tools/evidence/tests tools/validation/tests
 	@PYTHON=$(PYTHON) sh tools/tune/tables.sh check
 
 # ---------------------------------------------------------------- demo
@@ -250,4 +250,5 @@ check: deps
 	@sh tools/gates/check.sh
 
 clean:
-	rm -rf $(BUILD)/host $(BUILD)/demo $(BUILD)/robustness $(BUILD)/target_test $(BUILD)/bench $(BUILD)/s32k144 $(BUILD)/reports $(BUILD)/target $(BUILD)/cov $(BUILD)/wp $(BUILD)/cbmc $(BUILD)/misra $(BUILD)/coverage
+	rm -rf $(BUILD)/host $(BUILD)/demo $(BUILD)/robustness $(BUILD)/target_test $(BUILD)/bench $(BUILD)/s32k144 $(BUILD)/reports $(BUILD)/target $(BUILD)/cov $(BUILD)/wp $(BUILD)/cbmc $(BUILD)/misra $(BUILD)/coverage \
+	    $(BUILD)/validation

@@ -28,7 +28,7 @@ in this run's results (tools/evidence/verdict.py); a test that did not run is "n
 Prints the summary as plain text, one line per row, and
 'evidence: OUT/index.html (N green, M red)'.  Exit status 0 when the page was written; with
 --strict, 1 when a summary row is red.  The requirements are specs/requirements/evidence.md
-(REQ-EVD-001 .. REQ-EVD-029).
+(REQ-EVD-001 .. REQ-EVD-030; REQ-EVD-030 the tool validation of section 13).
 """
 import argparse
 import datetime
@@ -2070,11 +2070,87 @@ def html_sec11(sec):
     return "\n".join(out)
 
 
+# --------------------------------------------------------------------------- 12 tool validation
+
+
+TOOLVAL_GATES = (("wp", "WP"), ("cbmc", "CBMC"), ("eva", "EVA"), ("misra", "MISRA"), ("tests", "tests"),
+                 ("coverage", "coverage"))
+
+
+def collect_tool_validation(bundle):
+    """Tool validation by seeded defects (REQ-EVD-030): build/validation/results.json of
+    `make tool-validation` (tools/validation/run.py).  Its row is green when every expected
+    catch happened and the control (the unmodified copy through the same gates) passed.
+    `make check` does not run the campaign: without the file the section shows a red "not
+    run" row and the one-screen summary has no row for it (so --strict does not fail)."""
+    sec = {"title": "Tool validation by seeded defects"}
+    jpath, mpath = bundle.b("validation", "results.json"), bundle.b("validation", "results.md")
+    sec["inputs"] = bundle.inputs(*[p for p in (jpath, mpath) if bundle.exists(p)] or [jpath])
+    data = read_json(bundle.path(jpath))
+    summ = data.get("summary") if isinstance(data, dict) else None
+    if not isinstance(summ, dict) or not isinstance(data.get("defects"), list):
+        sec["present"] = False
+        sec["summary"] = []
+        sec["status"] = missing_row("toolval", "tool validation (seeded defects)", "sec13", jpath, bundle)
+        return sec
+    defects = [d for d in data["defects"] if isinstance(d, dict)]
+    control = [c for c in as_list(data.get("control")) if isinstance(c, dict)]
+    expected = sum(len(as_list(d.get("expected"))) for d in defects)
+    caught = sum(1 for d in defects for g in as_list(d.get("expected"))
+                 if isinstance(d.get("gates"), dict) and (d["gates"].get(g) or {}).get("status") == "caught")
+    control_ok = bool(control) and all(truthy(c.get("ok")) for c in control)
+    partial = summ.get("partial") or ""
+    ok = expected > 0 and caught == expected and control_ok and not partial
+    sec.update({"present": True, "defects": defects, "control": control, "expected": expected,
+                "caught": caught, "control_ok": control_ok, "date": data.get("date"),
+                "commit": data.get("commit"), "wall_seconds": summ.get("wall_seconds"),
+                "cpu_seconds": summ.get("cpu_seconds")})
+    fig = (f"{caught} / {expected} expected catches in {len(defects)} seeded defects; control "
+           f"{'passes' if control_ok else 'FAILS'} ({len(control)} runs)" + (f"; partial run ({partial})" if partial else ""))
+    sec["status"] = row("toolval", "tool validation (seeded defects)", ok, fig, "sec13")
+    sec["summary"] = [sec["status"]]
+    return sec
+
+
+def html_tool_validation(sec):
+    st = sec["status"]
+    out = [f"<table class=summary><tr class={cls(st['status'] == 'PASS')}>{td(st['label'])}{td(st['figure'])}"
+           f"<td class=s>{esc(st['status'])}</td></tr></table>"]
+    if not sec.get("present"):
+        return out[0] + not_run(sec, "build/validation/results.json (make tool-validation, not part of make check)")
+    out.append(inputs_html(sec))
+    out.append(f"<p>Defects seeded into copies of the library, each run through the gates expected to catch "
+               f"it, scoped to the unit it touches (<code>make tool-validation</code>, catalogue "
+               f"<code>tools/validation/defects.toml</code>): <b>{sec['caught']} / {sec['expected']}</b> expected "
+               f"catches; the unmodified copy through the same gates: <b>{'passes' if sec['control_ok'] else 'FAILS'}"
+               f"</b>. Run {esc(sec.get('date'))}, commit <code>{esc(sec.get('commit'))}</code>, "
+               f"{esc(sec.get('wall_seconds'))} s wall, {esc(sec.get('cpu_seconds'))} s CPU.</p>")
+    out.append("<table>" + th("defect", "class", "file", *[n for _g, n in TOOLVAL_GATES]))
+    for d in sec["defects"]:
+        gates = d.get("gates") if isinstance(d.get("gates"), dict) else {}
+        good = all((gates.get(g) or {}).get("status") == "caught" for g in as_list(d.get("expected")))
+        cells = []
+        for g, _n in TOOLVAL_GATES:
+            st = (gates.get(g) or {}).get("status", "not expected")
+            cells.append(td("-" if st == "not expected" else st,
+                            extra=f' title="{esc((gates.get(g) or {}).get("detail", ""))}"'))
+        out.append(f"<tr class={cls(good)}>" + td(f"{d.get('id')} {d.get('title', '')}") + td(d.get("class"))
+                   + td(d.get("file")) + "".join(cells) + "</tr>")
+    out.append("</table>")
+    out.append("<details><summary>Control runs (the unmodified copy)</summary><table>"
+               + th("scope", "gate", "result", "figure"))
+    for c in sec["control"]:
+        out.append(f"<tr class={cls(truthy(c.get('ok')))}>" + td(c.get("scope")) + td(c.get("gate"))
+                   + td(c.get("outcome")) + td(c.get("detail")) + "</tr>")
+    out.append("</table></details>")
+    return "\n".join(out)
+
+
 SECTIONS = [("sec1", "1 Requirements and traceability"), ("sec2", "2 Formal verification"),
             ("sec3", "3 MISRA Compliance:2020"), ("sec4", "4 Structural coverage"), ("sec5", "5 Tests"),
             ("sec6", "6 Resource usage"), ("sec7", "7 Static analysis"), ("sec8", "8 Tool confidence"),
             ("sec9", "9 Safety manual"), ("sec10", "10 Reproducibility"), ("sec11", "11 Gate log"),
-            ("sec12", "12 Archive")]
+            ("sec12", "12 Archive"), ("sec13", "13 Tool validation")]
 
 
 def write_html(path, model, secs):
@@ -2105,7 +2181,8 @@ def write_html(path, model, secs):
               "sec5": html_sec5(secs["tests"], secs["target_test"]), "sec6": html_sec6(secs["bench"]),
               "sec7": html_sec7(secs["static"]), "sec8": html_sec8(secs["tools"]),
               "sec9": html_sec9(secs["manual"]), "sec10": html_sec10(secs["repro"]),
-              "sec11": html_sec11(secs["gates"]), "sec12": html_sec12(secs.get("archive") or {})}
+              "sec11": html_sec11(secs["gates"]), "sec12": html_sec12(secs.get("archive") or {}),
+              "sec13": html_tool_validation(secs["toolval"])}
     for key, title in SECTIONS:
         out.append(f"<h2 id={key}>{esc(title)}</h2>")
         out.append(bodies[key])
@@ -2125,12 +2202,13 @@ def build_model(bundle):
         "static": collect_static(bundle), "bench": collect_bench(bundle), "repro": collect_repro(bundle),
         "tools": collect_tools(bundle), "manual": collect_manual(bundle), "gates": collect_gates(bundle),
         "attrs": collect_attrs(bundle),
+        "toolval": collect_tool_validation(bundle),
     }
     apply_staleness(bundle, secs)
     apply_verdicts(bundle, secs)
     secs["archive"] = archive_sources(bundle)
     order = ["trace", "wp", "eva", "cbmc", "misra", "coverage", "mcdc", "tests", "target_test", "static",
-             "bench", "repro"]
+             "bench", "repro", "toolval"]
     summary = [r for k in order for r in secs[k].get("summary", [])]
     model = {"generated_by": "tools/evidence/evidence.py (make evidence)",
              "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC"),

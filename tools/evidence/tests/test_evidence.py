@@ -97,6 +97,21 @@ def stamp(root, now=None):
             inputs.stamp(str(root / rel), gate, str(root), now=now)
 
 
+# build/validation/results.json of make tool-validation (tools/validation/run.py): two
+# defects, every expected catch made, the control passing
+TOOLVAL = {"date": "2025-01-01 00:00:00 UTC", "commit": "abc",
+           "summary": {"ok": True, "caught": 3, "expected_catches": 3, "control_ok": True,
+                       "wall_seconds": 100.0, "cpu_seconds": 150.0},
+           "defects": [{"id": "TV-01", "class": "overflow", "title": "t", "file": "src/x.c",
+                        "expected": ["wp", "cbmc"],
+                        "gates": {"wp": {"status": "caught", "detail": "proved 1 / 2 goals"},
+                                  "cbmc": {"status": "caught"}, "tests": {"status": "not expected"}}},
+                       {"id": "TV-02", "class": "MISRA violation", "title": "u", "file": "src/x.c",
+                        "expected": ["misra"], "gates": {"misra": {"status": "caught"}}}],
+           "control": [{"scope": "x", "gate": "wp", "outcome": "pass", "ok": True, "detail": "proved 2 / 2"},
+                       {"scope": "x", "gate": "misra", "outcome": "pass", "ok": True, "detail": "0"}]}
+
+
 def write(root, rel, text):
     p = root / rel
     p.parent.mkdir(parents=True, exist_ok=True)
@@ -164,6 +179,7 @@ def full_inputs(root):
                                            "prove     FAIL    40s  proved 12 / 13 goals\n")
     write(root, "build/check-test.log", "2 passed, 0 failed\n")
     stamp(root)
+    write(root, "build/validation/results.json", TOOLVAL)
 
 
 def run(root, *extra):
@@ -181,7 +197,7 @@ def test_all_inputs_green_and_bundle_written(tmp_path, capsys):
     assert rc == 0
     assert all(r["status"] == "PASS" for r in data["summary"]), [r for r in data["summary"]
                                                                    if r["status"] != "PASS"]
-    assert data["red"] == 0 and data["green"] == len(data["summary"]) == 13
+    assert data["red"] == 0 and data["green"] == len(data["summary"]) == 14
     out = tmp_path / "build" / "evidence"
     page = (out / "index.html").read_text(encoding="utf-8")
     assert "<script" not in page and "http://" not in page.replace("http://cobertura", "")
@@ -190,7 +206,7 @@ def test_all_inputs_green_and_bundle_written(tmp_path, capsys):
     for href in __import__("re").findall(r'href="([^"#][^"]*)"', page):
         assert (out / href).exists(), href
     text = capsys.readouterr().out
-    assert text.strip().splitlines()[-1].endswith("(13 green, 0 red)")
+    assert text.strip().splitlines()[-1].endswith("(14 green, 0 red)")
     assert "tests passed" in text and "PASS" in text
 
 
@@ -234,6 +250,38 @@ def test_one_missing_input_only_its_row_red(tmp_path):
     write(tmp_path, "build/eva/eva.json", "{ truncated")
     _rc, _data, rows = run(tmp_path)
     assert rows["eva"]["status"] == "FAIL" and rows["eva"]["figure"] == "unreadable: build/eva/eva.json"
+
+
+# REQ-EVD-030
+def test_tool_validation_row_and_section(tmp_path):
+    """REQ-EVD-030: the tool-validation row is green when every expected catch happened and
+    the control passed; a missed catch or a failed control turns it red; the section lists
+    every defect with its gates; without results.json (make check does not run the campaign)
+    the section shows a red 'not run' row and the one-screen summary has no row for it."""
+    full_inputs(tmp_path)
+    _rc, data, rows = run(tmp_path)
+    assert rows["toolval"]["status"] == "PASS"
+    assert rows["toolval"]["figure"].startswith("3 / 3 expected catches in 2 seeded defects; control passes")
+    page = (tmp_path / "build" / "evidence" / "index.html").read_text(encoding="utf-8")
+    assert "12 Tool validation" in page and "TV-02 u" in page
+    assert (tmp_path / "build" / "evidence" / "artefacts" / "build" / "validation" / "results.json").exists()
+    missed = json.loads(json.dumps(TOOLVAL))
+    missed["defects"][0]["gates"]["cbmc"]["status"] = "MISSED"
+    write(tmp_path, "build/validation/results.json", missed)
+    _rc, _data, rows = run(tmp_path)
+    assert rows["toolval"]["status"] == "FAIL" and rows["toolval"]["figure"].startswith("2 / 3")
+    assert [k for k, r in rows.items() if r["status"] == "FAIL"] == ["toolval"]
+    false_alarm = json.loads(json.dumps(TOOLVAL))
+    false_alarm["control"][0].update(ok=False, outcome="FALSE ALARM")
+    write(tmp_path, "build/validation/results.json", false_alarm)
+    _rc, _data, rows = run(tmp_path)
+    assert rows["toolval"]["status"] == "FAIL" and "control FAILS" in rows["toolval"]["figure"]
+    os.remove(tmp_path / "build" / "validation" / "results.json")
+    rc, data, rows = run(tmp_path, "--strict")
+    assert "toolval" not in rows and rc == 0
+    assert data["sections"]["toolval"]["status"]["figure"] == "not run"
+    page = (tmp_path / "build" / "evidence" / "index.html").read_text(encoding="utf-8")
+    assert "Not run: build/validation/results.json" in page
 
 
 def test_wp_not_all_proved_is_red(tmp_path):
