@@ -1278,6 +1278,30 @@ static qfoc_q15_t drv_utilisation(const qfoc_ab_t *v, qfoc_q15_t vdc, qfoc_q15_t
     return (qfoc_q15_t)u;
 }
 
+/* The drive object in RAM against its invariant, at the start of every tick (REQ-DRV-019):
+   a random hardware fault (a flipped RAM bit, a stray write) that breaks the invariant
+   clears table_ok for good, so this same tick raises PARAM and enters ERROR and the next
+   fast step turns the PWM off.  Under the tick's precondition the check passes (WP: the
+   result is DriveValid); it is the run-time monitor of what the proof assumes of the
+   hardware.  Reading the fast step's half while it may pre-empt is sound: every relation
+   of DRV_FAST bounds one field the fast step writes by constants of the table or by
+   fields only the tick or the init write, so a mix of two periods' values is valid. */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \separated(d, d->p);
+  assigns d->s.table_ok;
+  ensures kept: !\old(d->s.table_ok) ==> !d->s.table_ok;
+  ensures intact: DriveValid{Pre}(d) ==> d->s.table_ok == \old(d->s.table_ok);
+  ensures detected: !DriveValid{Pre}(d) ==> !d->s.table_ok;
+*/
+static void drv_object_check(qfoc_drive_t *d)
+{
+    if (!qfoc_drive_is_valid(d)) {
+        d->s.table_ok = false;
+    } else {
+        /* the drive object is intact */
+    }
+}
+
 /* The tick's second half: the state machine step and its transition, the speed loop,
    the status, the answer frame and the 100 ms period (REQ-DRV-005, REQ-DRV-006,
    REQ-DRV-010, REQ-DRV-011). */
@@ -1318,8 +1342,10 @@ qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
 {
     const uint8_t old_state = d->s.sm.state;
     const uint8_t old_sub = d->s.sm.sub;
-    const bool accepted = drv_tick_in(d, in, old_state, old_sub);
+    bool accepted;
 
+    drv_object_check(d);
+    accepted = drv_tick_in(d, in, old_state, old_sub);
     drv_tick_out(d, in, old_state, old_sub, accepted);
     return d->s.out;
 }

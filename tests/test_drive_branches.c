@@ -908,6 +908,91 @@ static void test_req_drv_018_no_current(void **state)
     assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_PHASE);
 }
 
+/* REQ-DRV-019: a drive object that breaks its invariant in RAM (one field of either half
+   set outside what the invariant allows, as a flipped bit or a stray write would) is
+   seen by the next tick: ERROR with PARAM in that tick, the PWM off in the next period,
+   and the fault latched (a clear request changes nothing).  Each corruption is first
+   shown to break the invariant (qfoc_drive_is_valid), so the test cannot pass on a
+   corruption the check does not cover. */
+typedef enum {
+    CORRUPT_PI_IQ, CORRUPT_PI_ID_PARAMS, CORRUPT_PLL_SPEED, CORRUPT_FLUX_PSI, CORRUPT_FLUX_GAIN,
+    CORRUPT_FW_ID, CORRUPT_VDC_ALPHA, CORRUPT_PHASE_LPF, CORRUPT_MECH_TURN, CORRUPT_MECH_RECIP,
+    CORRUPT_SM_STATE, CORRUPT_SM_FAULTS, CORRUPT_PI_SPEED, CORRUPT_TC_COEF, CORRUPT_LINK_CFG,
+    CORRUPT_LINK_LOST, CORRUPT_OFFSET, CORRUPT_OFF_SUM, CORRUPT_COUNT
+} corrupt_t;
+
+static void corrupt(qfoc_drive_t *d, corrupt_t k)
+{
+    switch (k) {
+    case CORRUPT_PI_IQ:        d->f.pi_iq.integ = (d->f.pi_iq.params.out_max * 65536) + 1; break;
+    case CORRUPT_PI_ID_PARAMS: d->f.pi_id.params.kp_shift = 16u; break;
+    case CORRUPT_PLL_SPEED:    d->f.pll.speed = (qfoc_q15_t)(d->f.pll.pi.params.out_max + 1); break;
+    case CORRUPT_FLUX_PSI:     d->f.flux.psi_alpha = INT32_MIN; break;
+    case CORRUPT_FLUX_GAIN:    d->f.flux.params.gain = -1; break;
+    case CORRUPT_FW_ID:        d->f.fw.id_ref = 1; break;
+    case CORRUPT_VDC_ALPHA:    d->f.vdc_lpf.alpha = 0; break;
+    case CORRUPT_PHASE_LPF:    d->f.phase.abs_lpf[2].state = -1; break;
+    case CORRUPT_MECH_TURN:    d->f.mech.turn = d->f.mech.pole_pairs; break;
+    case CORRUPT_MECH_RECIP:   d->f.mech.recip = d->f.mech.recip ^ 0x0100u; break;
+    case CORRUPT_SM_STATE:     d->s.sm.state = 0x82u; break;
+    case CORRUPT_SM_FAULTS:    d->s.sm.faults = QFOC_FAULT_OT_PCB; break;
+    case CORRUPT_PI_SPEED:     d->s.pi_speed.integ = (d->s.pi_speed.params.out_min * 65536) - 1; break;
+    case CORRUPT_TC_COEF:      d->s.tc.a[1] = (d->s.tc.params.amp_max * 65536) + 1; break;
+    case CORRUPT_LINK_CFG:     d->s.link.cfg.timeout_ms = 0u; break;
+    case CORRUPT_LINK_LOST:    d->s.link.lost = !d->s.link.lost; break;
+    case CORRUPT_OFFSET:       d->s.offset_v = 4096u; break;
+    default:                   d->s.off_n = 1025u; break;
+    }
+}
+
+static void test_req_drv_019_object_check(void **state)
+{
+    int k;
+    (void)state;
+    for (k = 0; k < (int)CORRUPT_COUNT; k++) {
+        rig_t r;
+        qfoc_tick_in_t in;
+        int ms;
+        rig_init(&r);
+        rig_to_stop(&r);
+        r.power_on = true;
+        for (ms = 0; (ms < 200) && (sub(&r) != QFOC_SUB_ALIGN); ms++) {
+            rig_ms(&r, 1);
+        }
+        rig_ms(&r, 20);
+        assert_int_equal(st(&r), QFOC_STATE_RUN);
+        rig_fast(&r);
+        assert_true(r.pwm.enable);
+        corrupt(&r.d, (corrupt_t)k);
+        assert_false(qfoc_drive_is_valid(&r.d));
+        in.t_ipm = r.t_ipm;
+        in.t_pcb = r.t_pcb;
+        in.rx = NULL;
+        in.rx_len = 0u;
+        (void)qfoc_drive_tick(&r.d, &in);
+        /* ERROR with PARAM in this tick, the PWM off in the next period */
+        assert_int_equal(r.d.s.sm.state, QFOC_STATE_ERROR);
+        assert_true((qfoc_drive_faults(&r.d) & QFOC_FAULT_PARAM) != 0u);
+        assert_false(r.d.s.table_ok);
+        r.pwm = qfoc_drive_fast_step(&r.d, &r.adc);
+        assert_false(r.pwm.enable);
+        /* latched: a second of clear requests and ticks leaves the PWM off */
+        {
+            const qfoc_cmd_t clear = { false, true, 0u };
+            for (ms = 0; ms < 1000; ms++) {
+                int j;
+                (void)qfoc_drive_command(&r.d, &clear);
+                for (j = 0; j < 8; j++) {
+                    r.pwm = qfoc_drive_fast_step(&r.d, &r.adc);
+                    assert_false(r.pwm.enable);
+                }
+                (void)qfoc_drive_tick(&r.d, &in);
+                assert_int_equal(r.d.s.sm.state, QFOC_STATE_ERROR);
+            }
+        }
+    }
+}
+
 /* REQ-DRV-007: an offset more than offset_window codes from 2048 on either side of
    either channel is an OFFSET fault; offsets at the window's edges are taken as
    calibrated, exactly. */
@@ -1083,6 +1168,7 @@ int main(void)
         cmocka_unit_test(test_req_drv_008_stall_speed_and_flux),
         cmocka_unit_test(test_req_drv_008_phase_loss),
         cmocka_unit_test(test_req_drv_018_no_current),
+        cmocka_unit_test(test_req_drv_019_object_check),
         cmocka_unit_test(test_req_drv_009_rpm_to_speed_limit),
         cmocka_unit_test(test_req_drv_013_iq_reference_clamp),
         cmocka_unit_test(test_req_drv_013_tc_learning_held_when_clamped),

@@ -42,7 +42,7 @@
 #define QFOC_FAULT_PHASE  ((uint16_t)0x0040u)  /**< phase loss (current imbalance) */
 #define QFOC_FAULT_OFFSET ((uint16_t)0x0080u)  /**< current-sensor offset out of window */
 #define QFOC_FAULT_LINK   ((uint16_t)0x0100u)  /**< command-link timeout */
-#define QFOC_FAULT_PARAM  ((uint16_t)0x0200u)  /**< parameter table corrupted / invalid */
+#define QFOC_FAULT_PARAM  ((uint16_t)0x0200u)  /**< parameter table or drive object corrupted */
 #define QFOC_FAULT_ALL    ((uint16_t)0x03FFu)  /**< every fault bit above */
 
 /** Phase-monitor init status: coefficient accepted. */
