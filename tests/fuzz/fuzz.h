@@ -370,6 +370,24 @@ static inline qfoc_tick_out_t fz_rig_tick(fz_rig_t *r, bool frame)
     return fz_tick(&r->d, &in);
 }
 
+/* The current a healthy motor carries where the drive imposes one (ALIGN: i_align,
+   OPEN_LOOP: i_start), put into the phase monitor's filters before a tick, as
+   tests/drive_rig.h does: the rig's samples are at the offset, so without it the
+   current-response monitor (REQ-DRV-018) stops every start with PHASE. */
+static inline void fz_rig_motor_current(fz_rig_t *r)
+{
+    if (r->d.s.sm.state == QFOC_STATE_RUN) {
+        const qfoc_drive_cfg_t *const c = &r->d.p->drive;
+        const int32_t ia = (c->i_align < 0) ? -(int32_t)c->i_align : (int32_t)c->i_align;
+        const int32_t is = (c->i_start < 0) ? -(int32_t)c->i_start : (int32_t)c->i_start;
+        const int32_t i = (r->d.s.sm.sub == QFOC_SUB_ALIGN) ? ia : is;
+        int k;
+        for (k = 0; k < 3; k++) {
+            r->d.f.phase.abs_lpf[k].state = i * 65536;
+        }
+    }
+}
+
 /* n ms of nominal samples, a tick each, the master's frame every 10 ms */
 static inline void fz_rig_ms(fz_rig_t *r, int n)
 {
@@ -379,6 +397,7 @@ static inline void fz_rig_ms(fz_rig_t *r, int n)
         for (j = 0; j < r->ppm; j++) {
             (void)fz_fast(&r->d, &r->adc);
         }
+        fz_rig_motor_current(r);
         (void)fz_rig_tick(r, (r->ms % 10u) == 0u);
     }
 }

@@ -263,7 +263,7 @@ def test_tool_validation_row_and_section(tmp_path):
     assert rows["toolval"]["status"] == "PASS"
     assert rows["toolval"]["figure"].startswith("3 / 3 expected catches in 2 seeded defects; control passes")
     page = (tmp_path / "build" / "evidence" / "index.html").read_text(encoding="utf-8")
-    assert "12 Tool validation" in page and "TV-02 u" in page
+    assert "13 Tool validation" in page and "TV-02 u" in page
     assert (tmp_path / "build" / "evidence" / "artefacts" / "build" / "validation" / "results.json").exists()
     missed = json.loads(json.dumps(TOOLVAL))
     missed["defects"][0]["gates"]["cbmc"]["status"] = "MISSED"
