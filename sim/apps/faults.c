@@ -687,22 +687,79 @@ static inj_t *add(list_t *l, int c, int start, int kind, int ch, double a, doubl
     return in;
 }
 
-static int build(list_t *l, long n_flips, int table_step, uint64_t seed)
+/* A class's injections: each value, on each channel when the class names channels. */
+typedef struct {
+    int cls;
+    int start;
+    int kind;
+    int names;           /* 0: no channel; 1: the sensing channels iu, iv (, vdc); 2: phases */
+    int n_ch;            /* channels to go through (ch = j, or 1 << j for K_STUCK, K_OPEN) */
+    double window_s;
+    double per_value_s;  /* added to the window per unit of the value */
+    const char *fmt;     /* the channel's name (when names != 0), then the value (may be unused) */
+    int n;
+    double v[7];
+} sweep_t;
+
+static const sweep_t sweeps[] = {
+    { C_OC, S_RUN, K_SURGE, 2, 3, 0.02, 0.0, "phase %s: %+.0f A", 6,
+      { 32.0, -32.0, 36.0, -36.0, 39.0, -39.0 } },
+    { C_OV, S_RUN, K_BUS, 0, 0, 0.1, 0.0, "bus 320 -> %.0f V", 3, { 460.0, 480.0, 520.0 } },
+    { C_UV, S_RUN, K_BUS, 0, 0, 0.1, 0.0, "bus 320 -> %.0f V", 3, { 210.0, 180.0, 120.0 } },
+    { C_BUS_IN, S_RUN, K_BUS, 0, 0, 1.0, 0.0, "bus 320 -> %.0f V", 4, { 250.0, 280.0, 360.0, 420.0 } },
+    { C_OT_IPM, S_RUN, K_T_IPM, 0, 0, 0.1, 0.0, "IPM 40 -> %.1f degC", 3, { 110.1, 115.0, 150.0 } },
+    { C_OT_PCB, S_RUN, K_T_PCB, 0, 0, 0.1, 0.0, "PCB 35 -> %.1f degC", 3, { 100.1, 105.0, 130.0 } },
+    { C_TEMP_IN, S_RUN, K_T_IPM, 0, 0, 0.5, 0.0, "IPM 40 -> %.0f degC (limit 110)", 2, { 105.0, 110.0 } },
+    { C_TEMP_IN, S_RUN, K_T_PCB, 0, 0, 0.5, 0.0, "PCB 35 -> %.0f degC (limit 100)", 2, { 95.0, 100.0 } },
+    { C_STALL, S_RUN, K_SEIZE, 0, 0, 1.0, 0.0, "load %.0f x nominal", 3, { 2.0, 3.0, 5.0 } },
+    { C_LOCKED, S_STOP, K_LOCK, 0, 0, 7.0, 0.0, "rotor locked at %.0f deg", 3, { 0.0, 100.0, 220.0 } },
+    { C_OPEN_RUN, S_RUN, K_OPEN, 2, 3, 0.5, 0.0, "phase %s open at 3000 rpm", 1, { 0.0 } },
+    { C_OPEN_START, S_STOP, K_OPEN, 2, 3, 0.6, 0.0, "phase %s open from the run command", 1, { 0.0 } },
+    { C_OFFSET, S_COLD, K_OFFSET, 1, 2, 0.6, 0.0, "%s offset %+.0f counts at power-up", 6,
+      { 120.0, -120.0, 300.0, -300.0, 600.0, -600.0 } },
+    { C_OFFSET_IN, S_COLD, K_OFFSET, 1, 2, T_RUN_S + 0.4, 0.0, "%s offset %+.0f counts at power-up",
+      4, { 50.0, -50.0, 90.0, -90.0 } },
+    { C_STUCK, S_RUN, K_STUCK, 1, 3, 1.0, 0.0, "%s stuck at %.0f", 3, { 0.0, 4095.0, 2048.0 } },
+    { C_DRIFT, S_RUN, K_OFFSET, 1, 2, 1.0, 0.0, "%s offset drift %+.0f counts", 6,
+      { 50.0, -50.0, 200.0, -200.0, 600.0, -600.0 } },
+    { C_GAIN, S_RUN, K_GAIN, 1, 2, 1.0, 0.0, "%s gain %.2f", 4, { 0.5, 0.8, 1.25, 2.0 } },
+    { C_SKIP_FAST, S_RUN, K_SKIP_FAST, 0, 0, 0.5, 1.25e-4, "%.0f fast steps missed", 7,
+      { 1.0, 2.0, 3.0, 8.0, 16.0, 40.0, 80.0 } },
+    { C_SKIP_TICK, S_RUN, K_SKIP_TICK, 0, 0, 0.5, 1e-3, "no tick for %.0f ms", 5,
+      { 2.0, 10.0, 50.0, 200.0, 1000.0 } },
+};
+
+static int add_sweep(list_t *l, const sweep_t *w)
 {
-    static const char *const chan[3] = { "iu", "iv", "vdc" };
-    static const char *const ph[3] = { "u", "v", "w" };
-    static const double amp[3] = { 32.0, 36.0, 39.0 };
-    static const int stuck[3] = { 0, 4095, 2048 };
-    static const double offs[3] = { 50.0, 200.0, 600.0 };
-    static const double gains[4] = { 0.5, 0.8, 1.25, 2.0 };
-    static const int skips[7] = { 1, 2, 3, 8, 16, 40, 80 };
-    static const int ticks[5] = { 2, 10, 50, 200, 1000 };
-    char w[64];
-    uint64_t s = seed;
-    long k;
+    static const char *const names[3][3] = { { "", "", "" }, { "iu", "iv", "vdc" }, { "u", "v", "w" } };
+    const bool mask = (w->kind == K_STUCK || w->kind == K_OPEN);
+    char what[64];
     int j;
     int i;
+    for (j = 0; j < ((w->n_ch > 0) ? w->n_ch : 1); j++) {
+        for (i = 0; i < w->n; i++) {
+            if (w->names != 0) {
+                snprintf(what, sizeof what, w->fmt, names[w->names][j], w->v[i]);
+            } else {
+                snprintf(what, sizeof what, w->fmt, w->v[i]);
+            }
+            if (add(l, w->cls, w->start, w->kind, mask ? (1 << j) : j, w->v[i],
+                    w->window_s + w->per_value_s * w->v[i], what) == NULL) {
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+static int build(list_t *l, long n_flips, int table_step, uint64_t seed)
+{
     const size_t n_bytes = DRV_HI - DRV_LO;
+    uint64_t s = seed;
+    inj_t *in;
+    char w[64];
+    long k;
+    int j;
 
     add(l, C_CONTROL, S_COLD, K_NONE, 0, 0.0, T_RUN_S + 0.4, "cold start to 3000 rpm");
     add(l, C_CONTROL, S_RUN, K_NONE, 0, 0.0, 2.0, "2 s steady at 3000 rpm");
@@ -711,128 +768,39 @@ static int build(list_t *l, long n_flips, int table_step, uint64_t seed)
         snprintf(w, sizeof w, "garbage frames, seed %d", j + 1);
         add(l, C_GARBAGE, S_RUN, K_GARBAGE, 0, (double)(0x2545F491u * (unsigned)(j + 1)), 2.0, w);
     }
-    for (j = 0; j < 3; j++) {
-        for (i = 0; i < 3; i++) {
-            snprintf(w, sizeof w, "%+.0f A on phase %s", amp[i], ph[j]);
-            add(l, C_OC, S_RUN, K_SURGE, j, amp[i], 0.02, w);
-            snprintf(w, sizeof w, "%+.0f A on phase %s", -amp[i], ph[j]);
-            add(l, C_OC, S_RUN, K_SURGE, j, -amp[i], 0.02, w);
-        }
-    }
-    add(l, C_OC, S_RUN, K_SURGE, 0, 60.0, 0.02, "+60 A on phase u (beyond full scale)");
-    add(l, C_OC, S_RUN, K_SURGE, 1, -60.0, 0.02, "-60 A on phase v (beyond full scale)");
-    {
-        static const double ov[3] = { 460.0, 480.0, 520.0 };
-        static const double uv[3] = { 210.0, 180.0, 120.0 };
-        static const double in_v[4] = { 250.0, 280.0, 360.0, 420.0 };
-        for (j = 0; j < 3; j++) {
-            snprintf(w, sizeof w, "bus 320 -> %.0f V", ov[j]);
-            add(l, C_OV, S_RUN, K_BUS, 0, ov[j], 0.1, w);
-            snprintf(w, sizeof w, "bus 320 -> %.0f V", uv[j]);
-            add(l, C_UV, S_RUN, K_BUS, 0, uv[j], 0.1, w);
-        }
-        for (j = 0; j < 4; j++) {
-            snprintf(w, sizeof w, "bus 320 -> %.0f V", in_v[j]);
-            add(l, C_BUS_IN, S_RUN, K_BUS, 0, in_v[j], 1.0, w);
-        }
-    }
-    {
-        static const double ti[3] = { 110.1, 115.0, 150.0 };
-        static const double tp[3] = { 100.1, 105.0, 130.0 };
-        for (j = 0; j < 3; j++) {
-            snprintf(w, sizeof w, "IPM 40 -> %.1f degC", ti[j]);
-            add(l, C_OT_IPM, S_RUN, K_T_IPM, 0, ti[j], 0.1, w);
-            snprintf(w, sizeof w, "PCB 35 -> %.1f degC", tp[j]);
-            add(l, C_OT_PCB, S_RUN, K_T_PCB, 0, tp[j], 0.1, w);
-        }
-        add(l, C_TEMP_IN, S_RUN, K_T_IPM, 0, 105.0, 0.5, "IPM 40 -> 105 degC");
-        add(l, C_TEMP_IN, S_RUN, K_T_IPM, 0, 110.0, 0.5, "IPM 40 -> 110 degC (the limit)");
-        add(l, C_TEMP_IN, S_RUN, K_T_PCB, 0, 95.0, 0.5, "PCB 35 -> 95 degC");
-        add(l, C_TEMP_IN, S_RUN, K_T_PCB, 0, 100.0, 0.5, "PCB 35 -> 100 degC (the limit)");
-    }
-    for (j = 0; j < 3; j++) {
-        static const double load[3] = { 2.0, 3.0, 5.0 };
-        static const double th0[3] = { 0.0, 100.0, 220.0 };
-        snprintf(w, sizeof w, "load %.0f x nominal", load[j]);
-        add(l, C_STALL, S_RUN, K_SEIZE, 0, load[j], 1.0, w);
-        snprintf(w, sizeof w, "rotor locked at %.0f deg", th0[j]);
-        add(l, C_LOCKED, S_STOP, K_LOCK, 0, th0[j], 7.0, w);
-    }
+    add(l, C_OC, S_RUN, K_SURGE, 0, 60.0, 0.02, "phase u: +60 A (beyond full scale)");
+    add(l, C_OC, S_RUN, K_SURGE, 1, -60.0, 0.02, "phase v: -60 A (beyond full scale)");
     add(l, C_NO_CURRENT, S_STOP, K_STUCK, 3, 2048.0, 0.6, "iu and iv stuck at 2048");
     add(l, C_NO_CURRENT, S_STOP, K_OPEN, 7, 0.0, 0.6, "motor disconnected (u, v, w open)");
     add(l, C_NO_CURRENT, S_STOP, K_OPEN, 3, 0.0, 0.6, "phases u and v open");
-    for (j = 0; j < 3; j++) {
-        snprintf(w, sizeof w, "phase %s open at 3000 rpm", ph[j]);
-        add(l, C_OPEN_RUN, S_RUN, K_OPEN, 1 << j, 0.0, 0.5, w);
-        snprintf(w, sizeof w, "phase %s open from the run command", ph[j]);
-        add(l, C_OPEN_START, S_STOP, K_OPEN, 1 << j, 0.0, 0.6, w);
-    }
-    for (j = 0; j < 2; j++) {
-        static const double big[3] = { 120.0, 300.0, 600.0 };
-        static const double small[2] = { 50.0, 90.0 };
-        for (i = 0; i < 6; i++) {
-            const double o = (i % 2 == 0 ? 1.0 : -1.0) * big[i / 2];
-            snprintf(w, sizeof w, "%s offset %+.0f counts at power-up", chan[j], o);
-            add(l, C_OFFSET, S_COLD, K_OFFSET, j, o, 0.6, w);
-        }
-        for (i = 0; i < 4; i++) {
-            const double o = (i % 2 == 0 ? 1.0 : -1.0) * small[i / 2];
-            snprintf(w, sizeof w, "%s offset %+.0f counts at power-up", chan[j], o);
-            add(l, C_OFFSET_IN, S_COLD, K_OFFSET, j, o, T_RUN_S + 0.4, w);
-        }
-    }
     add(l, C_LINK, S_RUN, K_LINK_STOP, 0, 0.0, 4.5, "master stops at 3000 rpm");
     add(l, C_LINK, S_RUN, K_LINK_BAD, 0, 0.0, 4.5, "only frames with a wrong checksum");
-    {
-        inj_t *in = add(l, C_LINK, S_STOP, K_LINK_STOP, 0, 0.0, 4.5, "master stops in OPEN_LOOP");
-        if (in != NULL) {
-            in->delay = lround(l->per_s);   /* 1 s after the run command */
-        }
+    in = add(l, C_LINK, S_STOP, K_LINK_STOP, 0, 0.0, 4.5, "master stops in OPEN_LOOP");
+    if (in == NULL) {
+        return -1;
     }
-    for (j = 0; j < 3; j++) {
-        for (i = 0; i < 3; i++) {
-            snprintf(w, sizeof w, "%s stuck at %d", chan[j], stuck[i]);
-            add(l, C_STUCK, S_RUN, K_STUCK, 1 << j, (double)stuck[i], 1.0, w);
+    in->delay = lround(l->per_s);   /* 1 s after the run command */
+    for (j = 0; j < (int)(sizeof sweeps / sizeof sweeps[0]); j++) {
+        if (add_sweep(l, &sweeps[j]) != 0) {
+            return -1;
         }
-    }
-    for (j = 0; j < 2; j++) {
-        for (i = 0; i < 6; i++) {
-            const double o = (i % 2 == 0 ? 1.0 : -1.0) * offs[i / 2];
-            snprintf(w, sizeof w, "%s offset drift %+.0f counts", chan[j], o);
-            add(l, C_DRIFT, S_RUN, K_OFFSET, j, o, 1.0, w);
-        }
-        for (i = 0; i < 4; i++) {
-            snprintf(w, sizeof w, "%s gain %.2f", chan[j], gains[i]);
-            add(l, C_GAIN, S_RUN, K_GAIN, j, gains[i], 1.0, w);
-        }
-    }
-    for (j = 0; j < 7; j++) {
-        snprintf(w, sizeof w, "%d fast steps missed", skips[j]);
-        add(l, C_SKIP_FAST, S_RUN, K_SKIP_FAST, 0, (double)skips[j], 0.5 + skips[j] / l->per_s, w);
-    }
-    for (j = 0; j < 5; j++) {
-        snprintf(w, sizeof w, "no tick for %d ms", ticks[j]);
-        add(l, C_SKIP_TICK, S_RUN, K_SKIP_TICK, 0, (double)ticks[j], 0.5 + ticks[j] * 1e-3, w);
     }
     for (k = 0; k < (long)(8 * sizeof(qfoc_param_table_t)); k += table_step) {
         /* with a step, the bit within the step turns, so every bit position is hit */
         const int bit = (int)(k + (k / table_step) % table_step);
-        inj_t *in;
         if (bit >= (int)(8 * sizeof(qfoc_param_table_t))) {
             break;
         }
         snprintf(w, sizeof w, "table bit %d", bit);
-        in = add(l, C_FLIP_TABLE, S_RUN, K_FLIP_TABLE, bit, 0.0, 0.0, w);
+        in = add(l, C_FLIP_TABLE, S_RUN, K_FLIP_TABLE, bit, 0.0, ftti_ms[M_PARAM_TABLE] * 1e-3 + 0.02, w);
         if (in == NULL) {
             return -1;
         }
         in->delay = (long)(mix(&s) % FLIP_DELAY_MAX);
-        in->window = lround((ftti_ms[M_PARAM_TABLE] * 1e-3 + 0.02) * l->per_s);
     }
     for (k = 0; k < n_flips; k++) {
         const size_t byte = DRV_LO + (size_t)(mix(&s) % n_bytes);
         const int bit = (int)(byte * 8u) + (int)(mix(&s) % 8u);
-        inj_t *in;
         snprintf(w, sizeof w, "drive bit %d", bit);
         in = add(l, C_FLIP_DRIVE, S_RUN, K_FLIP_DRIVE, bit, 0.0, FLIP_WINDOW_S, w);
         if (in == NULL) {
@@ -916,16 +884,34 @@ static void jnum(FILE *f, double v, double scale)
     }
 }
 
+/* , "key": value x scale */
+static void jfield(FILE *f, const char *key, double v, double scale)
+{
+    fprintf(f, ", \"%s\": ", key);
+    jnum(f, v, scale);
+}
+
+/* , "key": [lo, hi] x scale */
+static void jrange(FILE *f, const char *key, double lo, double hi, double scale)
+{
+    fprintf(f, ", \"%s\": [", key);
+    jnum(f, lo, scale);
+    fputs(", ", f);
+    jnum(f, hi, scale);
+    fputc(']', f);
+}
+
+static const char *const fault_names[10] = { "OC", "OV", "UV", "OT_IPM", "OT_PCB", "STALL", "PHASE",
+                                             "OFFSET", "LINK", "PARAM" };
+
 static void jbits(FILE *f, uint16_t w)
 {
-    static const char *const names[10] = { "OC", "OV", "UV", "OT_IPM", "OT_PCB", "STALL", "PHASE",
-                                           "OFFSET", "LINK", "PARAM" };
     int b;
     int first = 1;
     fputc('[', f);
     for (b = 0; b < 10; b++) {
         if ((w & (1u << b)) != 0u) {
-            fprintf(f, "%s\"%s\"", first ? "" : ", ", names[b]);
+            fprintf(f, "%s\"%s\"", first ? "" : ", ", fault_names[b]);
             first = 0;
         }
     }
@@ -939,12 +925,9 @@ static void jrec(FILE *f, const inj_t *in, const res_t *r)
     jbits(f, r->faults);
     fputs(", \"first\": ", f);
     jbits(f, r->first);
-    fputs(", \"t_det_ms\": ", f);
-    jnum(f, r->t_det, 1e3);
-    fputs(", \"t_react_ms\": ", f);
-    jnum(f, r->t_react, 1e3);
-    fputs(", \"ftti_ms\": ", f);
-    jnum(f, r->ftti, 1e3);
+    jfield(f, "t_det_ms", r->t_det, 1e3);
+    jfield(f, "t_react_ms", r->t_react, 1e3);
+    jfield(f, "ftti_ms", r->ftti, 1e3);
     fprintf(f, ", \"i_peak_a\": %.2f, \"rpm_peak\": %.0f, \"oc_missed\": %s, \"over_full_scale\": %s, "
                "\"state_bad\": %s, \"pwm_outside_run\": %s, \"cmd_changed\": %s, "
                "\"frames_rejected\": %ld, \"harmless\": %s, \"in_time\": %s, \"pass\": %s}",
@@ -999,9 +982,10 @@ static void jflips(FILE *f, int c, const fld_t *fl, int nf, size_t base, size_t 
         if (v[k].cls == c && !r[k].pass) {
             const size_t byte = (size_t)(v[k].ch / 8);
             const int fi = field_at(fl, nf, byte);
-            fprintf(f, "%s\n        {\"field\": \"%s\", \"bit\": %d, \"record\": ", first ? "" : ",",
-                    (fi < 0) ? "(padding)" : fl[fi].name,
-                    (fi < 0) ? v[k].ch % 8 : (int)((byte - fl[fi].off) * 8u) + v[k].ch % 8);
+            fprintf(f, "%s\n        {\"field\": \"%s\", \"bit\": %d, \"delay_ms\": %.3f, \"record\": ",
+                    first ? "" : ",", (fi < 0) ? "(padding)" : fl[fi].name,
+                    (fi < 0) ? v[k].ch % 8 : (int)((byte - fl[fi].off) * 8u) + v[k].ch % 8,
+                    (double)v[k].delay * snap[S_RUN].plant.bases.t_s * 1e3);
             jrec(f, &v[k], &r[k]);
             fputc('}', f);
             first = 0;
@@ -1056,10 +1040,9 @@ static int write_results(const char *out, const inj_t *v, const res_t *r, int n,
             (unsigned)RPM_OP, nominal_nm(), motor.vdc_nominal_v, i_trip_a, motor.i_full_scale_a,
             motor.max_speed_rpm, MARGIN);
     for (k = 0; k < M_N; k++) {
-        fprintf(f, "%s\n    {\"mechanism\": \"%s\", \"spec_ms\": ", k ? "," : "", mech_name[k]);
-        jnum(f, spec_ms[k], 1.0);
-        fputs(", \"ftti_ms\": ", f);
-        jnum(f, ftti_ms[k], 1.0);
+        fprintf(f, "%s\n    {\"mechanism\": \"%s\"", k ? "," : "", mech_name[k]);
+        jfield(f, "spec_ms", spec_ms[k], 1.0);
+        jfield(f, "ftti_ms", ftti_ms[k], 1.0);
         fprintf(f, ", \"source\": \"%s\"}", spec_text[k]);
     }
     fputs("\n  ],\n  \"model_checks\": [", f);
@@ -1071,9 +1054,9 @@ static int write_results(const char *out, const inj_t *v, const res_t *r, int n,
     for (k = 0; k < C_N; k++) {
         const agg_t *g = &a[k];
         int b;
-        fprintf(f, "%s\n    {\"class\": \"%s\", \"title\": \"%s\", \"mechanism\": \"%s\", \"ftti_ms\": ",
+        fprintf(f, "%s\n    {\"class\": \"%s\", \"title\": \"%s\", \"mechanism\": \"%s\"",
                 k ? "," : "", cls[k].id, cls[k].title, mech_name[cls[k].mech]);
-        jnum(f, ftti_ms[cls[k].mech], 1.0);
+        jfield(f, "ftti_ms", ftti_ms[cls[k].mech], 1.0);
         fputs(", \"expected_bit\": ", f);
         jbits(f, cls[k].bit);
         fprintf(f, ", \"expected_bit_raised\": %s, \"within_limits\": %s, \"injected\": %ld, "
@@ -1086,21 +1069,14 @@ static int write_results(const char *out, const inj_t *v, const res_t *r, int n,
         fputs(", \"per_bit\": {", f);
         for (b = 0, first = 1; b < 10; b++) {
             if (g->per_bit[b] > 0) {
-                static const char *const nm[10] = { "OC", "OV", "UV", "OT_IPM", "OT_PCB", "STALL",
-                                                    "PHASE", "OFFSET", "LINK", "PARAM" };
-                fprintf(f, "%s\"%s\": %ld", first ? "" : ", ", nm[b], g->per_bit[b]);
+                fprintf(f, "%s\"%s\": %ld", first ? "" : ", ", fault_names[b], g->per_bit[b]);
                 first = 0;
             }
         }
-        fputs("}, \"t_det_ms\": [", f);
-        jnum(f, g->det_min, 1e3);
-        fputs(", ", f);
-        jnum(f, g->det_max, 1e3);
-        fputs("], \"t_react_ms\": [", f);
-        jnum(f, g->react_min, 1e3);
-        fputs(", ", f);
-        jnum(f, g->react_max, 1e3);
-        fprintf(f, "], \"i_peak_a\": %.2f, \"rpm_peak\": %.0f, \"verdict\": \"%s\"}", g->i_peak,
+        fputc('}', f);
+        jrange(f, "t_det_ms", g->det_min, g->det_max, 1e3);
+        jrange(f, "t_react_ms", g->react_min, g->react_max, 1e3);
+        fprintf(f, ", \"i_peak_a\": %.2f, \"rpm_peak\": %.0f, \"verdict\": \"%s\"}", g->i_peak,
                 g->rpm_peak, (g->n > 0 && g->pass == g->n) ? "PASS" : "FAIL");
     }
     fputs("\n  ],\n  \"injections\": [", f);

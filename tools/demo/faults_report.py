@@ -163,8 +163,8 @@ def write_md(d, path):
             n = sum(v[k] for k, _ in OUTCOMES)
             out.append(f"| {g} | {v['bytes']} | {n} | " + " | ".join(str(v[k]) for k, _ in OUTCOMES) + " |")
         out += ["", f"Failed flips ({len(fl['failures'])}):", ""]
-        out += [f"- `{x['field']}` bit {x['bit']}: {det_text(x['record'])}; {harm_text(x['record'])}."
-                for x in fl["failures"]] or ["None."]
+        out += [f"- `{x['field']}` bit {x['bit']} ({fnum(x['delay_ms'])} ms after RUN): "
+                f"{det_text(x['record'])}; {harm_text(x['record'])}." for x in fl["failures"]] or ["None."]
     out += ["", "## Model checks", ""]
     out += [f"- {m['check']}: {fnum(m['value'])} ({'ok' if m['ok'] else 'FAILED'})" for m in d["model_checks"]]
     with open(path, "w", encoding="utf-8") as f:
@@ -276,9 +276,9 @@ def write_html(d, fdir):
             body.append('<figure><img src="flips.png" alt="flips by region"></figure>')
         body.append(f"<p>Failed flips: {len(fl['failures'])}.</p>")
         if fl["failures"]:
-            body.append(table_html(["field", "bit", "detection", "harm"],
-                                   [[x["field"], x["bit"], det_text(x["record"]), harm_text(x["record"])]
-                                    for x in fl["failures"]]))
+            body.append(table_html(["field", "bit", "after RUN", "detection", "harm"],
+                                   [[x["field"], x["bit"], f"{fnum(x['delay_ms'])} ms", det_text(x["record"]),
+                                     harm_text(x["record"])] for x in fl["failures"]]))
         body.append('<div class="wide">' + table_html(
             ["field", "offset", "bytes"] + [lab for _k, lab in OUTCOMES],
             [[r["field"], r["offset"], r["bytes"]] + [r[k] for k, _ in OUTCOMES]
