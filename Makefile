@@ -204,7 +204,7 @@ $(BUILD)/host/gen/tables_registry.c: tables/manifest.txt tools/demo/gen_registry
 	@mkdir -p $(@D)
 	@sh tools/demo/gen_registry.sh $< > $@
 
-$(BUILD)/host/qfoc_demo $(BUILD)/host/qfoc_robust: $(BUILD)/host/qfoc_%: sim/apps/%.c \
+$(BUILD)/host/qfoc_demo $(BUILD)/host/qfoc_robust $(BUILD)/host/qfoc_faults: $(BUILD)/host/qfoc_%: sim/apps/%.c \
         sim/apps/tables_registry.h $(BUILD)/host/gen/tables_registry.c $(SIM_SRCS) $(SIM_HDRS) \
         $(TABLE_SRCS) $(TABLE_HDRS) $(BUILD)/host/libqfoc.a
 	$(CC) $(SIM_APP_CFLAGS) $< $(BUILD)/host/gen/tables_registry.c $(SIM_SRCS) $(TABLE_SRCS) \
@@ -251,4 +251,4 @@ check: deps
 
 clean:
 	rm -rf $(BUILD)/host $(BUILD)/demo $(BUILD)/robustness $(BUILD)/target_test $(BUILD)/bench $(BUILD)/s32k144 $(BUILD)/reports $(BUILD)/target $(BUILD)/cov $(BUILD)/wp $(BUILD)/cbmc $(BUILD)/misra $(BUILD)/coverage \
-	    $(BUILD)/validation
+	    $(BUILD)/validation $(BUILD)/faults

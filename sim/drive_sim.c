@@ -45,10 +45,45 @@ int32_t dsim_init(dsim_t *ds, const sim_cfg_t *cfg, const qfoc_param_table_t *ta
     return qfoc_drive_init(&ds->drv, table);
 }
 
+/* A garbage frame: 0 .. QFOC_LIN_FRAME_MAX random bytes, half of them behind a valid sync
+   byte and command identifier; never a valid command frame (a checksum that would match is
+   changed). */
+static uint8_t dsim_garbage(dsim_t *ds, uint8_t *frame)
+{
+    uint32_t x = ds->garbage;
+    uint8_t n;
+    uint8_t k;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    n = (uint8_t)(x % (QFOC_LIN_FRAME_MAX + 1u));
+    for (k = 0u; k < n; k++) {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        frame[k] = (uint8_t)(x >> 24);
+    }
+    if ((ds->garbage & 1u) != 0u && n >= 2u) {
+        frame[0] = 0x55u;
+        frame[1] = dsim_lin_pid(ds->table->drive.lin_id_cmd);
+    }
+    if (n == 7u && frame[0] == 0x55u && frame[1] == dsim_lin_pid(ds->table->drive.lin_id_cmd) &&
+        frame[6] == dsim_lin_checksum(&frame[1], 5)) {
+        frame[6] = (uint8_t)(frame[6] ^ 0x01u);
+    }
+    ds->garbage = (x != 0u) ? x : 1u;
+    return n;
+}
+
 static void dsim_tick(dsim_t *ds)
 {
     uint8_t frame[QFOC_LIN_FRAME_MAX];
     qfoc_tick_in_t in;
+    if (ds->skip_tick > 0) {
+        ds->skip_tick--;
+        ds->ms++;
+        return;
+    }
     in.t_ipm = ds->t_ipm;
     in.t_pcb = ds->t_pcb;
     in.rx = frame;
@@ -66,6 +101,8 @@ static void dsim_tick(dsim_t *ds)
             ds->corrupt_next = false;
         }
         in.rx_len = 7u;
+    } else if (ds->garbage != 0u) {
+        in.rx_len = dsim_garbage(ds, frame);
     }
     ds->out = qfoc_drive_tick(&ds->drv, &in);
     if (ds->out.tx_len > 0u) {
@@ -89,9 +126,15 @@ void dsim_period(dsim_t *ds)
     adc.iu = (uint16_t)(iu < 0 ? 0 : (iu > 4095 ? 4095 : iu));
     adc.iv = a.iv;
     adc.vdc = a.vdc;
-    ds->pwm = qfoc_drive_fast_step(&ds->drv, &adc);
-    sim_set_compare(&ds->plant, ds->pwm.cmp);
-    sim_set_enable(&ds->plant, ds->pwm.enable);
+    ds->fast_ran = (ds->skip_fast <= 0);
+    if (ds->fast_ran) {
+        ds->fast_state = ds->drv.s.sm.state;
+        ds->pwm = qfoc_drive_fast_step(&ds->drv, &adc);
+        sim_set_compare(&ds->plant, ds->pwm.cmp);
+        sim_set_enable(&ds->plant, ds->pwm.enable);
+    } else {
+        ds->skip_fast--;   /* a missed interrupt: the PWM unit goes on with its last values */
+    }
     sim_step_period(&ds->plant);
     ds->period++;
     if ((ds->period % ds->periods_per_ms) == 0) {

@@ -29,6 +29,14 @@ typedef struct {
     int16_t t_ipm;           /**< 0.1 degC */
     int16_t t_pcb;
     int adc_iu_add;          /**< added to the phase-u current code (fault injection) */
+    /* fault injection (sim/apps/faults.c, REQ-FINJ-001): none after dsim_init */
+    int skip_fast;           /**< the next periods whose fast step is not called: the
+                                  inverter keeps the last compare values and enable */
+    int skip_tick;           /**< the next ticks not called (the frames of those ms are lost) */
+    uint32_t garbage;        /**< != 0: a frame of random bytes, never a valid command frame,
+                                  on every tick without a command frame (xorshift state) */
+    uint8_t fast_state;      /**< the drive state the last fast step ran in */
+    bool fast_ran;           /**< the fast step ran in the last period */
     /* last outputs */
     qfoc_pwm_t pwm;
     qfoc_tick_out_t out;

@@ -136,6 +136,8 @@ void sim_init(sim_t *s, const sim_cfg_t *cfg)
     s->en_active = true;
     s->en_pending = true;
     s->extinct = false;
+    s->inj.gain[0] = s->inj.gain[1] = 1.0;
+    s->inj.stuck[0] = s->inj.stuck[1] = s->inj.stuck[2] = -1;
     if (s->cfg.speed_locked) {
         s->w_m = s->cfg.locked_speed_e / s->cfg.motor.pole_pairs;
     }
@@ -174,6 +176,21 @@ void sim_sample(sim_t *s, sim_adc_t *adc)
     adc->iu = sim_adc(2048.0 + iu * cps + s->cfg.adc_offset_counts);
     adc->iv = sim_adc(2048.0 + iv * cps + s->cfg.adc_offset_counts);
     adc->vdc = sim_adc(vdc / s->cfg.motor.vdc_full_scale_v * 4096.0);
+    if (s->inj.sense) {
+        const sim_inj_t *f = &s->inj;
+        adc->iu = sim_adc(2048.0 + f->gain[0] * iu * cps + s->cfg.adc_offset_counts + f->offset[0]);
+        adc->iv = sim_adc(2048.0 + f->gain[1] * iv * cps + s->cfg.adc_offset_counts + f->offset[1]);
+        adc->iu = (f->stuck[0] >= 0) ? sim_adc((double)f->stuck[0]) : adc->iu;
+        adc->iv = (f->stuck[1] >= 0) ? sim_adc((double)f->stuck[1]) : adc->iv;
+        adc->vdc = (f->stuck[2] >= 0) ? sim_adc((double)f->stuck[2]) : adc->vdc;
+    }
+}
+
+void sim_set_current_ab(sim_t *s, const double i_ab[2])
+{
+    const double th = sim_theta_e(s);
+    s->id = i_ab[0] * cos(th) + i_ab[1] * sin(th);
+    s->iq = -i_ab[0] * sin(th) + i_ab[1] * cos(th);
 }
 
 void sim_set_compare(sim_t *s, const uint16_t cmp[3])
@@ -227,6 +244,19 @@ typedef struct {
     double id, iq, w_m, th_m;
 } sim_x_t;
 
+/* The derivative of a state x under the voltage v_ab (alpha, beta, V). */
+typedef void (*sim_deriv_fn)(const sim_t *s, const sim_x_t *x, const double v_ab[2], sim_x_t *dx);
+
+/* Mechanics: dw_m/dt for the currents id, iq (0 with the speed imposed). */
+static double sim_accel(const sim_t *s, double id, double iq, double th_m, double w_m)
+{
+    const sim_motor_t *m = &s->cfg.motor;
+    if (s->cfg.speed_locked) {
+        return 0.0;
+    }
+    return (sim_te(m, id, iq) - sim_tl(&s->cfg.load, th_m, w_m) - m->b_nms * w_m) / m->j_kgm2;
+}
+
 static void sim_deriv(const sim_t *s, const sim_x_t *x, const double v_ab[2], sim_x_t *dx)
 {
     const sim_motor_t *m = &s->cfg.motor;
@@ -239,12 +269,7 @@ static void sim_deriv(const sim_t *s, const sim_x_t *x, const double v_ab[2], si
 
     dx->id = (vd - m->rs_ohm * x->id + we * m->lq_h * x->iq) / m->ld_h;
     dx->iq = (vq - m->rs_ohm * x->iq - we * m->ld_h * x->id - we * m->psi_f_wb) / m->lq_h;
-    if (s->cfg.speed_locked) {
-        dx->w_m = 0.0;
-    } else {
-        dx->w_m = (sim_te(m, x->id, x->iq) - sim_tl(&s->cfg.load, x->th_m, x->w_m) - m->b_nms * x->w_m) /
-                  m->j_kgm2;
-    }
+    dx->w_m = sim_accel(s, x->id, x->iq, x->th_m, x->w_m);
     dx->th_m = x->w_m;
 }
 
@@ -256,13 +281,136 @@ static void sim_axpy(const sim_x_t *x, double h, const sim_x_t *d, sim_x_t *out)
     out->th_m = x->th_m + h * d->th_m;
 }
 
+/* One classical RK4 step of h from x under a constant v_ab. */
+static void sim_rk4(const sim_t *s, sim_deriv_fn f, const sim_x_t *x, const double v_ab[2], double h,
+                    sim_x_t *out)
+{
+    sim_x_t k1, k2, k3, k4, tmp;
+    f(s, x, v_ab, &k1);
+    sim_axpy(x, 0.5 * h, &k1, &tmp);
+    f(s, &tmp, v_ab, &k2);
+    sim_axpy(x, 0.5 * h, &k2, &tmp);
+    f(s, &tmp, v_ab, &k3);
+    sim_axpy(x, h, &k3, &tmp);
+    f(s, &tmp, v_ab, &k4);
+    out->id = x->id + h / 6.0 * (k1.id + 2.0 * k2.id + 2.0 * k3.id + k4.id);
+    out->iq = x->iq + h / 6.0 * (k1.iq + 2.0 * k2.iq + 2.0 * k3.iq + k4.iq);
+    out->w_m = x->w_m + h / 6.0 * (k1.w_m + 2.0 * k2.w_m + 2.0 * k3.w_m + k4.w_m);
+    out->th_m = x->th_m + h / 6.0 * (k1.th_m + 2.0 * k2.th_m + 2.0 * k3.th_m + k4.th_m);
+}
+
+/* ---- open phases (sim_inj_t) */
+
+/* The axis phi of the only current path (one phase open): true; false when two or three
+   phases are open and no current can flow. */
+static bool sim_open_axis(unsigned open, double *phi)
+{
+    int n = 0;
+    int j = 0;
+    int k;
+    for (k = 0; k < 3; k++) {
+        if ((open & (1u << k)) != 0u) {
+            n++;
+            j = k;
+        }
+    }
+    *phi = ((double)j * 120.0 + 90.0) * SIM_PI / 180.0;
+    return n == 1;
+}
+
+/* L_e(theta) = L_d cos^2(theta - phi) + L_q sin^2(theta - phi) and psi_f cos(theta - phi). */
+static double sim_open_l(const sim_motor_t *m, double th, double phi, double *psi_pm)
+{
+    const double c = cos(th - phi);
+    const double sn = sin(th - phi);
+    *psi_pm = m->psi_f_wb * c;
+    return m->ld_h * c * c + m->lq_h * sn * sn;
+}
+
+/* The current along e from the flux linkage along it. */
+static double sim_open_i(const sim_t *s, double psi_e, double th_m, double phi)
+{
+    double psi_pm;
+    const double l = sim_open_l(&s->cfg.motor, s->cfg.motor.pole_pairs * th_m, phi, &psi_pm);
+    return (psi_e - psi_pm) / l;
+}
+
+/* One phase open: x->id carries psi_e (Wb), x->iq is unused (0); v_ab[0] carries e . v. */
+static void sim_deriv_open(const sim_t *s, const sim_x_t *x, const double v_ab[2], sim_x_t *dx)
+{
+    double phi;
+    const sim_motor_t *m = &s->cfg.motor;
+    const bool conducts = sim_open_axis(s->inj.open, &phi);
+    const double th = m->pole_pairs * x->th_m;
+    const double i = conducts ? sim_open_i(s, x->id, x->th_m, phi) : 0.0;
+    /* i_ab = i e: i_d = i cos(phi - theta), i_q = i sin(phi - theta) */
+    dx->id = conducts ? v_ab[0] - m->rs_ohm * i : 0.0;
+    dx->iq = 0.0;
+    dx->w_m = sim_accel(s, i * cos(phi - th), i * sin(phi - th), x->th_m, x->w_m);
+    dx->th_m = x->w_m;
+}
+
+/* One sub-step of h with open phases. */
+static void sim_step_open(sim_t *s, const double v_ab[2], double h)
+{
+    double phi;
+    double psi_pm;
+    const sim_motor_t *m = &s->cfg.motor;
+    const bool conducts = sim_open_axis(s->inj.open, &phi);
+    const double th = m->pole_pairs * s->theta_m;
+    /* the current along e; the component along the open phase is cut */
+    const double i0 = conducts ? s->id * cos(phi - th) + s->iq * sin(phi - th) : 0.0;
+    const double l = sim_open_l(m, th, phi, &psi_pm);
+    const double v_e[2] = { v_ab[0] * cos(phi) + v_ab[1] * sin(phi), 0.0 };
+    const sim_x_t x = { l * i0 + psi_pm, 0.0, s->w_m, s->theta_m };
+    sim_x_t y;
+    double i;
+    double th1;
+    sim_rk4(s, sim_deriv_open, &x, v_e, h, &y);
+    th1 = m->pole_pairs * y.th_m;
+    i = conducts ? sim_open_i(s, y.id, y.th_m, phi) : 0.0;
+    s->id = i * cos(phi - th1);
+    s->iq = i * sin(phi - th1);
+    s->w_m = y.w_m;
+    s->theta_m = y.th_m;
+}
+
+/* Average phase-to-neutral voltages (alpha, beta) over the sub-step [a, a + h] of the
+   period T, for the high-side times tx and the present phase currents. */
+static void sim_phase_v(const sim_t *s, double a, double h, double T, const double tx[3],
+                        double v_ab[2])
+{
+    const double td = s->cfg.dead_time_s;
+    const double vdc = s->cfg.vdc_v;
+    double i_ab[2];
+    double iph[3];
+    double vp[3];
+    double vn0;
+    int j;
+
+    sim_i_ab(s, i_ab);
+    iph[0] = i_ab[0];
+    iph[1] = -0.5 * i_ab[0] + 0.5 * SIM_SQRT3 * i_ab[1];
+    iph[2] = -0.5 * i_ab[0] - 0.5 * SIM_SQRT3 * i_ab[1];
+    for (j = 0; j < 3; j++) {
+        if (s->en_active) {
+            vp[j] = sim_pole_avg(a, a + h, T, tx[j], td, iph[j], vdc);
+        } else {
+            /* switches off: the diode of the current's direction conducts */
+            vp[j] = (iph[j] > 0.0) ? -0.5 * vdc : 0.5 * vdc;
+        }
+    }
+    vn0 = (vp[0] + vp[1] + vp[2]) / 3.0;
+    /* phase-to-neutral voltages, then amplitude-invariant Clarke */
+    v_ab[0] = vp[0] - vn0;
+    v_ab[1] = ((vp[1] - vn0) - (vp[2] - vn0)) * SIM_INV_SQRT3;
+}
+
 void sim_step_period(sim_t *s)
 {
     const double T = s->bases.t_s;
     const int n = s->cfg.substeps;
     const double h = T / (double)n;
-    const double td = s->cfg.dead_time_s;
-    const double vdc = s->cfg.vdc_v;
     double tx[3];
     double vsum[2] = { 0.0, 0.0 };
     double tsum = 0.0;
@@ -273,43 +421,19 @@ void sim_step_period(sim_t *s)
         tx[j] = T * (double)s->cmp_active[j] / (double)s->bases.period;
     }
     for (k = 0; k < n; k++) {
-        sim_x_t x = { s->id, s->iq, s->w_m, s->theta_m };
-        sim_x_t k1, k2, k3, k4, tmp;
-        double i_ab[2];
-        double iph[3];
-        double vp[3];
-        double vn0;
         double v_ab[2];
-        const double a = (double)k * h;
-
-        sim_i_ab(s, i_ab);
-        iph[0] = i_ab[0];
-        iph[1] = -0.5 * i_ab[0] + 0.5 * SIM_SQRT3 * i_ab[1];
-        iph[2] = -0.5 * i_ab[0] - 0.5 * SIM_SQRT3 * i_ab[1];
-        for (j = 0; j < 3; j++) {
-            if (s->en_active) {
-                vp[j] = sim_pole_avg(a, a + h, T, tx[j], td, iph[j], vdc);
-            } else {
-                /* switches off: the diode of the current's direction conducts */
-                vp[j] = (iph[j] > 0.0) ? -0.5 * vdc : 0.5 * vdc;
-            }
+        sim_phase_v(s, (double)k * h, h, T, tx, v_ab);
+        if (s->inj.open == 0u) {
+            const sim_x_t x = { s->id, s->iq, s->w_m, s->theta_m };
+            sim_x_t y;
+            sim_rk4(s, sim_deriv, &x, v_ab, h, &y);
+            s->id = y.id;
+            s->iq = y.iq;
+            s->w_m = y.w_m;
+            s->theta_m = y.th_m;
+        } else {
+            sim_step_open(s, v_ab, h);
         }
-        vn0 = (vp[0] + vp[1] + vp[2]) / 3.0;
-        /* phase-to-neutral voltages, then amplitude-invariant Clarke */
-        v_ab[0] = vp[0] - vn0;
-        v_ab[1] = ((vp[1] - vn0) - (vp[2] - vn0)) * SIM_INV_SQRT3;
-
-        sim_deriv(s, &x, v_ab, &k1);
-        sim_axpy(&x, 0.5 * h, &k1, &tmp);
-        sim_deriv(s, &tmp, v_ab, &k2);
-        sim_axpy(&x, 0.5 * h, &k2, &tmp);
-        sim_deriv(s, &tmp, v_ab, &k3);
-        sim_axpy(&x, h, &k3, &tmp);
-        sim_deriv(s, &tmp, v_ab, &k4);
-        s->id = x.id + h / 6.0 * (k1.id + 2.0 * k2.id + 2.0 * k3.id + k4.id);
-        s->iq = x.iq + h / 6.0 * (k1.iq + 2.0 * k2.iq + 2.0 * k3.iq + k4.iq);
-        s->w_m = x.w_m + h / 6.0 * (k1.w_m + 2.0 * k2.w_m + 2.0 * k3.w_m + k4.w_m);
-        s->theta_m = x.th_m + h / 6.0 * (k1.th_m + 2.0 * k2.th_m + 2.0 * k3.th_m + k4.th_m);
         if (!s->en_active && (s->extinct || hypot(s->id, s->iq) < 0.3)) {
             s->extinct = true;
             s->id = 0.0;

@@ -126,6 +126,31 @@ typedef struct {
     uint16_t vdc;  /**< DC bus, 0..4095 */
 } sim_adc_t;
 
+/**
+ * Faults of the sensing chain and of the windings, for the fault-injection campaign
+ * (sim/apps/faults.c, specs/fault-campaign.md; REQ-FINJ-001 .. REQ-FINJ-006).  sim_init()
+ * makes every one inactive, and the plant is then exactly the model above.
+ *  - sensing: each current channel's sample is gain x the true current plus an offset in
+ *    counts before the 12-bit conversion; any channel can be stuck at a code;
+ *  - open phases: an open phase carries no current.  With one phase open (a broken wire or
+ *    a failed connection on the motor side, star point not connected) the current of the
+ *    two others is i and -i: the stator current vector is confined to the axis at right
+ *    angles to the open phase's, e = (cos phi, sin phi) with phi = axis + 90 deg, and the
+ *    flux linkage along it, psi_e = L_e(theta) i + psi_f cos(theta - phi) with
+ *    L_e = L_d cos^2(theta - phi) + L_q sin^2(theta - phi), obeys d psi_e / dt = e . v - R_s i
+ *    (the alpha-beta model is exact for it: the zero-sequence current is still zero); the
+ *    open phase's pole voltage has no effect.  With two or three phases open no current
+ *    flows at all (no motor).  The phase opens at the next sub-step: the current along the
+ *    open phase's axis is cut.
+ */
+typedef struct {
+    bool sense;          /**< the sensing faults below are applied */
+    double gain[2];      /**< current channels u, v: sensed = gain x true (1 = exact) */
+    double offset[2];    /**< current channels u, v: offset added, counts */
+    int stuck[3];        /**< iu, iv, vdc: the code returned, or -1 (not stuck) */
+    unsigned open;       /**< open phases: bit 0 u, bit 1 v, bit 2 w (0 = none) */
+} sim_inj_t;
+
 /** Plant state (read the fields; change them only through the functions). */
 typedef struct {
     sim_cfg_t cfg;
@@ -142,6 +167,7 @@ typedef struct {
     bool en_pending;          /**< written this period, active from the next */
     bool extinct;             /**< switching off and the currents have died out */
     uint32_t rng;
+    sim_inj_t inj;            /**< injected faults (none after sim_init) */
 } sim_t;
 
 /** Initialise at standstill, zero currents, theta_m = 0, compare = period / 2. */
@@ -149,6 +175,10 @@ void sim_init(sim_t *s, const sim_cfg_t *cfg);
 
 /** Set the state: electrical angle and speed (rad, rad/s) and dq currents (A). */
 void sim_set_state(sim_t *s, double theta_e, double w_e, double id, double iq);
+
+/** Impose the stator current vector (alpha, beta, A) at the present angle: a
+    short-circuit current surge in the windings (fault injection). */
+void sim_set_current_ab(sim_t *s, const double i_ab[2]);
 
 /** ADC samples at the current instant (start of the period). */
 void sim_sample(sim_t *s, sim_adc_t *adc);

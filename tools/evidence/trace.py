@@ -28,7 +28,8 @@ names, contract documentation) and from the committed proof results:
              function) and the checking programs target_test.sh, tt_gen.c, tt_runner.c
              (their header); the rows of the bench report (tools/bench/count.py, row());
              the libFuzzer harnesses tests/fuzz/fuzz_*.c and their runner tests/fuzz/run.py
-             (their header; fuzz_tests())
+             (their header; fuzz_tests()); the fault-injection campaign sim/apps/faults.c
+             (its header; campaign_tests(); its result is the JUnit case faults.c)
   scenarios  the scenarios of sim/scenario.c (the IDs each one records), and those a
              test of tests/test_scenarios.c runs while naming the ID
   named_in   the headers naming the ID anywhere: include/qfoc/*.h, the tuning tool's
@@ -80,6 +81,8 @@ TT_CHECKERS = ("tools/target_test/target_test.sh", "tools/target_test/tt_gen.c",
 # The fuzz harnesses' runner, traced like a harness, and their shared header (an interface).
 FUZZ_RUNNER = ("tests/fuzz/run.py",)
 FUZZ_INTERFACE = "tests/fuzz/fuzz.h"
+# The fault-injection campaign (make faults): one test, traced by its header.
+CAMPAIGNS = ("sim/apps/faults.c",)
 # Files read for gate (b) besides the ones traced (text files of these trees).
 SCAN_TREES = ("include", "src", "specs", "tests", "tools", "proofs", "sim", "port_s32k",
               "misra", "tables", "mk")
@@ -532,12 +535,22 @@ def target_tests(defined):
     return tests
 
 
+def header_tests(paths, defined):
+    """Programs that are one test each, traced by the IDs of their header comment;
+    (file, name, ids)."""
+    return [(p, os.path.basename(p), ids(header_comment(read(p)), defined)) for p in paths]
+
+
 def fuzz_tests(defined):
-    """The libFuzzer harnesses (tests/fuzz/fuzz_*.c) and their runner (tests/fuzz/run.py):
-    each is one test, traced by the IDs of its header comment; (file, name, ids).
+    """The libFuzzer harnesses (tests/fuzz/fuzz_*.c) and their runner (tests/fuzz/run.py).
     FUZZ_INTERFACE, the header they share, names their requirements."""
     paths = sorted(glob.glob("tests/fuzz/fuzz_*.c")) + [p for p in FUZZ_RUNNER if os.path.exists(p)]
-    return [(p, os.path.basename(p), ids(header_comment(read(p)), defined)) for p in paths]
+    return header_tests(paths, defined)
+
+
+def campaign_tests(defined):
+    """The fault-injection campaign (CAMPAIGNS); sim/sim.h names its requirements."""
+    return header_tests([p for p in CAMPAIGNS if os.path.exists(p)], defined)
 
 
 def bench_rows(defined):
@@ -724,7 +737,8 @@ def main() -> int:
                  + [("pytest",) + t for t in with_names(py, defined)]
                  + [("target", f, n, i, i) for f, n, i in tt]
                  + [("bench", f, n, i, i) for f, n, i in bench]
-                 + [("fuzz", f, n, i, i) for f, n, i in fuzz_tests(defined)])
+                 + [("fuzz", f, n, i, i) for f, n, i in fuzz_tests(defined)]
+                 + [("campaign", f, n, i, i) for f, n, i in campaign_tests(defined)])
 
     lemma_rows = {}
     for fn, rows in wp.items():
@@ -898,7 +912,7 @@ def main() -> int:
             "requirements": "specs/requirements/*.md", "contracts": "include/qfoc/*.h",
             "acsl": "specs/*.acsl", "wp": "proofs/wp/results.md",
             "cbmc": "proofs/cbmc/*/harness.c, proofs/cbmc/results.md",
-            "tests": "tests/*.c, tools/*/tests/*.py, tools/target_test/, tools/bench/*.py, tests/fuzz/",
+            "tests": "tests/*.c, tools/*/tests/*.py, tools/target_test/, tools/bench/*.py, tests/fuzz/, sim/apps/faults.c",
             "scenarios": "sim/scenario.c, tests/test_scenarios.c",
         },
         "totals": totals,

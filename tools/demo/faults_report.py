@@ -1,0 +1,344 @@
+#!/usr/bin/env python3
+"""Report of the fault-injection campaign (make faults, make faults-check).
+
+usage: faults_report.py FAULTS_DIR [--junit FILE]
+
+Reads what build/host/qfoc_faults writes (FAULTS_DIR/results.json, flips.csv; the format is
+described in sim/apps/faults.c and specs/fault-campaign.md) and writes
+
+  FAULTS_DIR/results.md    the fault table, the FTTIs and their sources, the findings, the
+                           bit flips by field and every flip that failed
+  FAULTS_DIR/index.html    the same as a static page, with two plots (PNG beside it)
+  FILE (--junit)           JUnit XML: one test case per class, one for the model checks and
+                           one named faults.c for the whole campaign (the program the
+                           requirements name, specs/requirements/faults.md)
+
+It prints the fault table.  Exit status: 0 when every class passes, 1 when one fails (the
+report is still written), 2 on missing or malformed input.
+
+Requirements: REQ-FINJ-005.
+"""
+import argparse
+import json
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+from demo_report import badge, esc, fnum, page, plt, save
+
+FAULTS = ["OC", "OV", "UV", "OT_IPM", "OT_PCB", "STALL", "PHASE", "OFFSET", "LINK", "PARAM"]
+OUTCOMES = [("param", "PARAM in time"), ("other_fault", "other fault in time"),
+            ("masked", "no fault, harmless"), ("late_harmless", "fault after its FTTI, harmless"),
+            ("fail", "failed")]
+
+
+def load(fdir):
+    try:
+        with open(os.path.join(fdir, "results.json"), encoding="utf-8") as f:
+            d = json.load(f)
+        for key in ("classes", "injections", "flips", "mechanisms", "model_checks"):
+            d[key]  # noqa: B018 (presence check)
+        return d
+    except (OSError, ValueError, KeyError) as e:
+        print(f"faults_report: {fdir}/results.json: missing or malformed ({e})", file=sys.stderr)
+        sys.exit(2)
+
+
+def span(v, unit="ms"):
+    """'a .. b unit' of a [min, max] pair, '-' when empty."""
+    if not v or v[0] is None:
+        return "-"
+    a, b = fnum(v[0]), fnum(v[1])
+    return f"{a} {unit}" if a == b else f"{a} .. {b} {unit}"
+
+
+def ftti_text(c):
+    if c["ftti_ms"] is not None:
+        return f"{fnum(c['ftti_ms'])} ms"
+    return "no fault allowed" if c["within_limits"] else "of the fault raised"
+
+
+def bits_text(c):
+    per = c.get("per_bit") or {}
+    return ", ".join(f"{b} {per[b]}" for b in FAULTS if b in per) or "-"
+
+
+def region(field):
+    """Where a field lives: the drive's half and member (f.pll), the table's group."""
+    parts = field.split(".")
+    if parts[0] in ("f", "s"):
+        return ".".join(parts[:2])
+    return parts[0]
+
+
+def by_region(fl):
+    out = {}
+    for r in fl["fields"]:
+        g = out.setdefault(region(r["field"]), {"bytes": 0, **{k: 0 for k, _ in OUTCOMES}})
+        g["bytes"] += r["bytes"]
+        for k, _ in OUTCOMES:
+            g[k] += r[k]
+    return out
+
+
+def findings(d):
+    return [r for r in d["injections"] if not r["pass"]]
+
+
+def observations(d):
+    """Injections detected within their FTTI that were not harmless before the reaction."""
+    return [r for r in d["injections"] if r["pass"] and r["in_time"] and not r["harmless"]]
+
+
+def harm_text(r):
+    why = []
+    if r["oc_missed"]:
+        why.append(f"true current above i_trip with the inverter left switching (peak {fnum(r['i_peak_a'])} A)")
+    if r["over_full_scale"]:
+        why.append(f"true current above the sensing full scale (peak {fnum(r['i_peak_a'])} A)")
+    if r["state_bad"]:
+        why.append("state out of range or invalid drive object")
+    if r["pwm_outside_run"]:
+        why.append("PWM outside RUN")
+    if r["cmd_changed"]:
+        why.append("command changed")
+    if not why and r.get("rpm_peak") is not None:
+        why.append(f"speed {fnum(r['rpm_peak'])} rpm")
+    return "; ".join(why)
+
+
+def det_text(r):
+    if not r["faults"]:
+        return "not detected"
+    return (f"{'+'.join(r['first'])} after {fnum(r['t_det_ms'])} ms, PWM off after "
+            f"{fnum(r['t_react_ms'])} ms (FTTI {fnum(r['ftti_ms'])} ms)")
+
+
+# ------------------------------------------------------------------ markdown
+
+def write_md(d, path):
+    cl = d["classes"]
+    ok = all(c["verdict"] == "PASS" for c in cl)
+    out = [f"# Fault-injection campaign ({d['mode']})", "",
+           f"Table `{d['table']}` ({d['motor']}, {fnum(d['f_pwm_hz'])} Hz PWM); operating point "
+           f"{d['operating_point']['rpm']} rpm at {fnum(d['operating_point']['load_nm'])} N m, "
+           f"{fnum(d['operating_point']['vdc_v'])} V.  i_trip {fnum(d['limits']['i_trip_a'])} A, "
+           f"sensing full scale {fnum(d['limits']['i_full_scale_a'])} A, maximum speed "
+           f"{fnum(d['limits']['max_speed_rpm'])} rpm.  {sum(c['injected'] for c in cl)} injections, "
+           f"{d['drive_flips']} random drive-object flips (seed {d['seed']}), table bits every "
+           f"{d['table_step']}; {fnum(d['wall_s'])} s.  Verdict: **{'PASS' if ok else 'FAIL'}**.", "",
+           "Method, FTTIs and the verdict rule: `specs/fault-campaign.md`.", "",
+           "## Fault table", "",
+           "| class | injected | detected | bits raised | detection time | reaction time | FTTI | "
+           "in time | harmless | verdict |",
+           "|---|---:|---:|---|---|---|---|---:|---:|---|"]
+    for c in cl:
+        out.append(f"| {c['class']} | {c['injected']} | {c['detected']} | {bits_text(c)} | "
+                   f"{span(c['t_det_ms'])} | {span(c['t_react_ms'])} | {ftti_text(c)} | "
+                   f"{c['in_time']} | {c['harmless']} | {c['verdict']}"
+                   f"{'' if c['verdict'] == 'PASS' else ' (' + str(c['failed']) + ' failed)'} |")
+    out += ["", "What each class injects:", ""]
+    out += [f"- `{c['class']}`: {c['title']}." for c in cl]
+    out += ["", "## FTTIs", "", f"FTTI = {d['margin']} x the specified reaction time "
+            "(`specs/safety-manual.md` section 2.2, from the table's values).", "",
+            "| mechanism | specified reaction | FTTI | from |", "|---|---:|---:|---|"]
+    for m in d["mechanisms"]:
+        if m["ftti_ms"] is not None:
+            out.append(f"| {m['mechanism']} | {fnum(m['spec_ms'])} ms | {fnum(m['ftti_ms'])} ms | "
+                       f"{m['source']} |")
+    fnd = findings(d)
+    out += ["", f"## Findings: injections neither detected within their FTTI nor harmless ({len(fnd)})", ""]
+    out += [f"- `{r['class']}` {r['what']}: {det_text(r)}; {harm_text(r)}." for r in fnd] or ["None."]
+    obs = observations(d)
+    out += ["", f"## Detected within the FTTI, not harmless before the reaction ({len(obs)})", ""]
+    out += [f"- `{r['class']}` {r['what']}: {det_text(r)}; {harm_text(r)}." for r in obs] or ["None."]
+    for key, title in (("table_flip", "RAM table copy"), ("drive_flip", "drive object")):
+        fl = d["flips"][key]
+        tot = fl["totals"]
+        out += ["", f"## Bit flips: {title} ({fl['bytes']} bytes, {sum(tot.values())} flips)", "",
+                ", ".join(f"{lab}: {tot[k]}" for k, lab in OUTCOMES) + ".", "",
+                "| region | bytes | flips | " + " | ".join(lab for _k, lab in OUTCOMES) + " |",
+                "|---|---:|---:|" + "---:|" * len(OUTCOMES)]
+        for g, v in by_region(fl).items():
+            n = sum(v[k] for k, _ in OUTCOMES)
+            out.append(f"| {g} | {v['bytes']} | {n} | " + " | ".join(str(v[k]) for k, _ in OUTCOMES) + " |")
+        out += ["", f"Failed flips ({len(fl['failures'])}):", ""]
+        out += [f"- `{x['field']}` bit {x['bit']} ({fnum(x['delay_ms'])} ms after RUN): "
+                f"{det_text(x['record'])}; {harm_text(x['record'])}." for x in fl["failures"]] or ["None."]
+    out += ["", "## Model checks", ""]
+    out += [f"- {m['check']}: {fnum(m['value'])} ({'ok' if m['ok'] else 'FAILED'})" for m in d["model_checks"]]
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(out) + "\n")
+
+
+# ------------------------------------------------------------------ HTML
+
+def plot_times(d, path):
+    """Reaction time against the FTTI of every detected injection."""
+    cl = [c["class"] for c in d["classes"]]
+    fig, ax = plt.subplots(figsize=(11.0, 5.2))
+    for r in d["injections"]:
+        if r["t_react_ms"] is None or not r["faults"]:
+            continue
+        y = cl.index(r["class"])
+        t = max(r["t_react_ms"], 1e-2)
+        ax.plot(t, y, "o", ms=5, color=("tab:green" if r["pass"] else "tab:red"), alpha=0.7)
+        if r["ftti_ms"] is not None:
+            ax.plot(r["ftti_ms"], y, "|", ms=14, color="0.3")
+    ax.set_xscale("log")
+    ax.set_yticks(range(len(cl)))
+    ax.set_yticklabels(cl, fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlabel("time from the injection to PWM off, ms (bar: FTTI; red: failed)")
+    ax.grid(True, which="both", axis="x", alpha=0.3)
+    fig.tight_layout()
+    save(fig, path)
+
+
+def plot_flips(d, path):
+    """Outcome of the drive-object flips by region."""
+    reg = by_region(d["flips"]["drive_flip"])
+    names = list(reg)
+    fig, ax = plt.subplots(figsize=(11.0, 0.25 * len(names) + 1.4))
+    left = [0] * len(names)
+    colours = ["tab:blue", "tab:cyan", "tab:green", "tab:olive", "tab:red"]
+    for (k, lab), col in zip(OUTCOMES, colours):
+        vals = [reg[n][k] for n in names]
+        ax.barh(names, vals, left=left, color=col, label=lab)
+        left = [a + b for a, b in zip(left, vals)]
+    ax.invert_yaxis()
+    ax.tick_params(axis="y", labelsize=7)
+    ax.set_xlabel("flips")
+    ax.legend(fontsize=8, ncol=len(OUTCOMES), loc="lower center", bbox_to_anchor=(0.5, 1.0))
+    fig.tight_layout()
+    save(fig, path)
+
+
+def table_html(headers, rows, num=()):
+    out = ["<table><tr>" + "".join(f"<th>{esc(h)}</th>" for h in headers) + "</tr>"]
+    for r in rows:
+        cells = []
+        for i, v in enumerate(r):
+            if isinstance(v, tuple):
+                cells.append(f'<td class="{v[0]}">{v[1]}</td>')
+            else:
+                cells.append(f'<td{" class=num" if i in num else ""}>{esc(v)}</td>')
+        out.append("<tr>" + "".join(cells) + "</tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
+def write_html(d, fdir):
+    cl = d["classes"]
+    ok = all(c["verdict"] == "PASS" for c in cl)
+    plot_times(d, os.path.join(fdir, "times.png"))
+    plot_flips(d, os.path.join(fdir, "flips.png"))
+    rows = [[c["class"], c["injected"], c["detected"], bits_text(c), span(c["t_det_ms"]),
+             span(c["t_react_ms"]), ftti_text(c), c["in_time"], c["harmless"],
+             (c["verdict"].lower(), c["verdict"] + ("" if c["verdict"] == "PASS" else f" ({c['failed']})"))]
+            for c in cl]
+    body = [f"<h1>Fault-injection campaign {badge('PASS' if ok else 'FAIL')}</h1>",
+            f"<p>Mode {esc(d['mode'])}: {sum(c['injected'] for c in cl)} injections on table "
+            f"<code>{esc(d['table'])}</code> ({esc(d['motor'])}), {d['drive_flips']} random "
+            f"drive-object flips (seed {d['seed']}), table bits every {d['table_step']}; "
+            f"{fnum(d['wall_s'])} s.  i_trip {fnum(d['limits']['i_trip_a'])} A, full scale "
+            f"{fnum(d['limits']['i_full_scale_a'])} A, maximum speed "
+            f"{fnum(d['limits']['max_speed_rpm'])} rpm.  Method, FTTIs and the verdict rule: "
+            "<code>specs/fault-campaign.md</code>; figures in <a href=\"results.md\">results.md"
+            "</a>, <a href=\"results.json\">results.json</a>, <a href=\"flips.csv\">flips.csv</a>.</p>",
+            "<h2>Fault table</h2>",
+            table_html(["class", "injected", "detected", "bits raised", "detection time",
+                        "reaction time", "FTTI", "in time", "harmless", "verdict"], rows,
+                       num=(1, 2, 7, 8)),
+            "<ul>" + "".join(f"<li><code>{esc(c['class'])}</code>: {esc(c['title'])}.</li>" for c in cl)
+            + "</ul>",
+            '<figure><img src="times.png" alt="reaction times"><figcaption>Reaction time (injection '
+            'to PWM off) of every detected injection, with its FTTI.</figcaption></figure>',
+            "<h2>FTTIs</h2>", f"<p>FTTI = {d['margin']} x the specified reaction time.</p>",
+            table_html(["mechanism", "specified", "FTTI", "from"],
+                       [[m["mechanism"], f"{fnum(m['spec_ms'])} ms", f"{fnum(m['ftti_ms'])} ms",
+                         m["source"]] for m in d["mechanisms"] if m["ftti_ms"] is not None], num=(1, 2))]
+    for title, lst in (("Findings: neither detected within the FTTI nor harmless", findings(d)),
+                       ("Detected within the FTTI, not harmless before the reaction", observations(d))):
+        body.append(f"<h2>{esc(title)} ({len(lst)})</h2>")
+        body.append(table_html(["class", "injection", "detection", "harm"],
+                               [[r["class"], r["what"], det_text(r), harm_text(r)] for r in lst])
+                    if lst else "<p>None.</p>")
+    for key, title in (("table_flip", "RAM table copy"), ("drive_flip", "drive object")):
+        fl = d["flips"][key]
+        tot = fl["totals"]
+        body.append(f"<h2>Bit flips: {esc(title)} ({fl['bytes']} bytes, {sum(tot.values())} flips)</h2>")
+        body.append("<p>" + esc(", ".join(f"{lab}: {tot[k]}" for k, lab in OUTCOMES)) + ".</p>")
+        body.append(table_html(["region", "bytes", "flips"] + [lab for _k, lab in OUTCOMES],
+                               [[g, v["bytes"], sum(v[k] for k, _ in OUTCOMES)] + [v[k] for k, _ in OUTCOMES]
+                                for g, v in by_region(fl).items()], num=range(1, 8)))
+        if key == "drive_flip":
+            body.append('<figure><img src="flips.png" alt="flips by region"></figure>')
+        body.append(f"<p>Failed flips: {len(fl['failures'])}.</p>")
+        if fl["failures"]:
+            body.append(table_html(["field", "bit", "after RUN", "detection", "harm"],
+                                   [[x["field"], x["bit"], f"{fnum(x['delay_ms'])} ms", det_text(x["record"]),
+                                     harm_text(x["record"])] for x in fl["failures"]]))
+        body.append('<div class="wide">' + table_html(
+            ["field", "offset", "bytes"] + [lab for _k, lab in OUTCOMES],
+            [[r["field"], r["offset"], r["bytes"]] + [r[k] for k, _ in OUTCOMES]
+             for r in fl["fields"] if sum(r[k] for k, _ in OUTCOMES)], num=range(1, 8)) + "</div>")
+    body.append("<h2>Model checks</h2>")
+    body.append(table_html(["check", "value", "result"],
+                           [[m["check"], fnum(m["value"]), ("pass" if m["ok"] else "fail", "ok" if m["ok"] else "FAILED")]
+                            for m in d["model_checks"]]))
+    path = os.path.join(fdir, "index.html")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(page("qfoc fault-injection campaign", "\n".join(body)))
+    return path
+
+
+# ------------------------------------------------------------------ JUnit
+
+def write_junit(d, path):
+    cases = []
+    for c in d["classes"]:
+        bad = [r for r in d["injections"] if r["class"] == c["class"] and not r["pass"]]
+        if c["class"] in d["flips"]:
+            bad = [x["record"] for x in d["flips"][c["class"]]["failures"]]
+        msg = "; ".join(f"{r['what']}: {det_text(r)}; {harm_text(r)}" for r in bad[:20])
+        cases.append((c["class"], c["verdict"] == "PASS" and c["injected"] > 0,
+                      f"{c['failed']} of {c['injected']} failed: {msg}"))
+    mc = all(m["ok"] for m in d["model_checks"])
+    cases.append(("model_checks", mc, "a fault model of sim.h does not do what it is meant to"))
+    cases.append(("faults.c", all(ok for _n, ok, _m in cases),
+                  "the campaign has failing classes: " + ", ".join(n for n, ok, _m in cases if not ok)))
+    suite = ET.Element("testsuite", name="faults", tests=str(len(cases)),
+                       failures=str(sum(1 for _n, ok, _m in cases if not ok)), errors="0",
+                       time=f"{d['wall_s']:.1f}")
+    props = ET.SubElement(suite, "properties")
+    ET.SubElement(props, "property", name="mode", value=str(d["mode"]))
+    for name, ok, msg in cases:
+        tc = ET.SubElement(suite, "testcase", classname="faults", name=name)
+        if not ok:
+            ET.SubElement(tc, "failure", message=msg[:2000])
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    ET.ElementTree(suite).write(path, encoding="utf-8", xml_declaration=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description="Report of the qfoc fault-injection campaign.")
+    ap.add_argument("faults_dir")
+    ap.add_argument("--junit", metavar="FILE", help="write the JUnit XML there")
+    a = ap.parse_args()
+    d = load(a.faults_dir)
+    write_md(d, os.path.join(a.faults_dir, "results.md"))
+    path = write_html(d, a.faults_dir)
+    if a.junit:
+        write_junit(d, a.junit)
+    print(f"{'class':22} {'injected':>8} {'detected':>8} {'detection':>20} {'reaction':>22} "
+          f"{'FTTI':>20}  verdict")
+    for c in d["classes"]:
+        print(f"{c['class']:22} {c['injected']:8} {c['detected']:8} {span(c['t_det_ms']):>20} "
+              f"{span(c['t_react_ms']):>22} {ftti_text(c):>20}  {c['verdict']}")
+    print(f"report: {os.path.abspath(path)}")
+    return 0 if all(c["verdict"] == "PASS" for c in d["classes"]) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
