@@ -1281,21 +1281,30 @@ static qfoc_q15_t drv_utilisation(const qfoc_ab_t *v, qfoc_q15_t vdc, qfoc_q15_t
 /* The drive object in RAM against its invariant, at the start of every tick (REQ-DRV-019):
    a random hardware fault (a flipped RAM bit, a stray write) that breaks the invariant
    clears table_ok for good, so this same tick raises PARAM and enters ERROR and the next
-   fast step turns the PWM off.  Under the tick's precondition the check passes (WP: the
-   result is DriveValid); it is the run-time monitor of what the proof assumes of the
-   hardware.  Reading the fast step's half while it may pre-empt is sound: every relation
-   of DRV_FAST bounds one field the fast step writes by constants of the table or by
-   fields only the tick or the init write, so a mix of two periods' values is valid. */
+   fast step turns the PWM off.  Two relations the invariant does not state are checked
+   with it: the calibrated offsets lie within offset_window of mid-scale (drv_calibrate
+   stores no other), and the PLL's angle gain is the table's (only the init writes it).
+   Under the tick's precondition the invariant holds; the check is the run-time monitor of
+   what the proof assumes of the hardware.  Reading the fast step's half while it may
+   pre-empt is sound: every relation checked bounds one field the fast step writes by
+   constants of the table or by fields only the tick or the init write, so a mix of two
+   periods' values passes. */
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \separated(d, d->p);
   assigns d->s.table_ok;
   ensures kept: !\old(d->s.table_ok) ==> !d->s.table_ok;
-  ensures intact: DriveValid{Pre}(d) ==> d->s.table_ok == \old(d->s.table_ok);
   ensures detected: !DriveValid{Pre}(d) ==> !d->s.table_ok;
 */
 static void drv_object_check(qfoc_drive_t *d)
 {
-    if (!qfoc_drive_is_valid(d)) {
+    const qfoc_drive_slow_t *const s = &d->s;
+    const int32_t win = (int32_t)d->p->drive.offset_window;
+    const int32_t du = (int32_t)s->offset_u - (int32_t)QFOC_ADC_MID;
+    const int32_t dv = (int32_t)s->offset_v - (int32_t)QFOC_ADC_MID;
+    const bool offsets = (du <= win) && (du >= -win) && (dv <= win) && (dv >= -win);
+    const bool copies = (d->f.pll.k_theta == d->p->pll.k_theta);
+
+    if (!qfoc_drive_is_valid(d) || !offsets || !copies) {
         d->s.table_ok = false;
     } else {
         /* the drive object is intact */

@@ -909,16 +909,20 @@ static void test_req_drv_018_no_current(void **state)
 }
 
 /* REQ-DRV-019: a drive object that breaks its invariant in RAM (one field of either half
-   set outside what the invariant allows, as a flipped bit or a stray write would) is
-   seen by the next tick: ERROR with PARAM in that tick, the PWM off in the next period,
-   and the fault latched (a clear request changes nothing).  Each corruption is first
-   shown to break the invariant (qfoc_drive_is_valid), so the test cannot pass on a
-   corruption the check does not cover. */
+   set outside what the invariant allows, as a flipped bit or a stray write would), or one
+   of the relations checked with it (an offset outside offset_window of mid-scale, the PLL's
+   angle gain other than the table's), is seen by the next tick: ERROR with PARAM in that
+   tick, the PWM off in the next period, and the fault latched (a clear request changes
+   nothing).  Each corruption is first shown to break the invariant (qfoc_drive_is_valid),
+   or for the two relations to keep it, so the test cannot pass on a corruption the check
+   does not cover. */
 typedef enum {
     CORRUPT_PI_IQ, CORRUPT_PI_ID_PARAMS, CORRUPT_PLL_SPEED, CORRUPT_FLUX_PSI, CORRUPT_FLUX_GAIN,
     CORRUPT_FW_ID, CORRUPT_VDC_ALPHA, CORRUPT_PHASE_LPF, CORRUPT_MECH_TURN, CORRUPT_MECH_RECIP,
     CORRUPT_SM_STATE, CORRUPT_SM_FAULTS, CORRUPT_PI_SPEED, CORRUPT_TC_COEF, CORRUPT_LINK_CFG,
-    CORRUPT_LINK_LOST, CORRUPT_OFFSET, CORRUPT_OFF_SUM, CORRUPT_COUNT
+    CORRUPT_LINK_LOST, CORRUPT_OFFSET, CORRUPT_OFF_SUM,
+    /* inside the invariant, caught by the relations checked with it */
+    CORRUPT_OFFSET_WINDOW, CORRUPT_K_THETA, CORRUPT_COUNT
 } corrupt_t;
 
 static void corrupt(qfoc_drive_t *d, corrupt_t k)
@@ -941,7 +945,13 @@ static void corrupt(qfoc_drive_t *d, corrupt_t k)
     case CORRUPT_LINK_CFG:     d->s.link.cfg.timeout_ms = 0u; break;
     case CORRUPT_LINK_LOST:    d->s.link.lost = !d->s.link.lost; break;
     case CORRUPT_OFFSET:       d->s.offset_v = 4096u; break;
-    default:                   d->s.off_n = 1025u; break;
+    case CORRUPT_OFF_SUM:      d->s.off_n = 1025u; break;
+    case CORRUPT_OFFSET_WINDOW:
+        d->s.offset_u = (uint16_t)(QFOC_ADC_MID + d->p->drive.offset_window + 1u); break;
+    default:
+        d->f.pll.k_theta = (uint16_t)((d->f.pll.k_theta < 32767u) ? (d->f.pll.k_theta + 1u)
+                                                                  : (d->f.pll.k_theta - 1u));
+        break;
     }
 }
 
@@ -964,7 +974,8 @@ static void test_req_drv_019_object_check(void **state)
         rig_fast(&r);
         assert_true(r.pwm.enable);
         corrupt(&r.d, (corrupt_t)k);
-        assert_false(qfoc_drive_is_valid(&r.d));
+        /* out of the invariant, except the two relations checked beside it */
+        assert_int_equal(qfoc_drive_is_valid(&r.d), k >= (int)CORRUPT_OFFSET_WINDOW);
         in.t_ipm = r.t_ipm;
         in.t_pcb = r.t_pcb;
         in.rx = NULL;
