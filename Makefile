@@ -192,7 +192,7 @@ tune: deps-tune
 tune-check: deps-tune
 	@mkdir -p $(BUILD)/junit
 	@$(PYTHON) -m pytest -q --junitxml=$(BUILD)/junit/pytest.xml -o junit_suite_name=pytest \
-	    tools/tune/tests tools/evidence/tests tools/validation/tests
+	    tools/tune/tests tools/evidence/tests tools/validation/tests tools/demo/tests
 	@PYTHON=$(PYTHON) sh tools/tune/tables.sh check
 
 # ---------------------------------------------------------------- demo

@@ -44,6 +44,61 @@ def load(fdir):
         sys.exit(2)
 
 
+def load_findings(path):
+    """The open findings (specs/fault-findings.toml): each names the injection that fails
+    by class and `what` (or, for a bit flip, field and bit) and its finding ID."""
+    import tomllib
+    try:
+        with open(path, "rb") as f:
+            items = tomllib.load(f).get("finding", [])
+    except (OSError, ValueError) as e:
+        print(f"faults_report: {path}: {e}", file=sys.stderr)
+        sys.exit(2)
+    for it in items:
+        if not isinstance(it, dict) or "id" not in it or "class" not in it or \
+                not (("what" in it) != ("field" in it and "bit" in it)):
+            print(f"faults_report: {path}: a finding needs id, class and either what or field "
+                  f"and bit: {it!r}", file=sys.stderr)
+            sys.exit(2)
+    return items
+
+
+def apply_findings(d, findings):
+    """Mark the failures an open finding names (record["finding"] = its ID).  A class whose
+    every failure is named gets the verdict OPEN (reported, not a gate failure).  A finding
+    whose injection ran and passed is stale: the gate fails until it is removed, so the
+    list stays exact.  A bit flip's finding is not stale when its flip was not drawn or did
+    not fail at the instant it was drawn (the flips are random in time)."""
+    d["stale_findings"] = []
+    for fd in findings:
+        if "what" in fd:
+            runs = [r for r in d["injections"] if r["class"] == fd["class"] and r["what"] == fd["what"]]
+            for r in runs:
+                if not r["pass"]:
+                    r["finding"] = fd["id"]
+            if runs and all(r["pass"] for r in runs):
+                d["stale_findings"].append(f"{fd['id']} ({fd['class']}: {fd['what']}) passes now: "
+                                           "remove it from the open findings")
+        else:
+            for x in d["flips"].get(fd["class"], {}).get("failures", []):
+                if x.get("field") == fd["field"] and x.get("bit") == fd["bit"]:
+                    x["record"]["finding"] = fd["id"]
+    for c in d["classes"]:
+        if c["verdict"] == "PASS":
+            continue
+        bad = [r for r in d["injections"] if r["class"] == c["class"] and not r["pass"]]
+        if c["class"] in d["flips"]:
+            bad = [x["record"] for x in d["flips"][c["class"]]["failures"]]
+        if bad and all(r.get("finding") for r in bad):
+            c["verdict"] = "OPEN"
+            c["findings"] = sorted({r["finding"] for r in bad})
+
+
+def verdict_ok(c):
+    """PASS, or OPEN (every failure an open finding)."""
+    return c["verdict"] in ("PASS", "OPEN")
+
+
 def span(v, unit="ms"):
     """'a .. b unit' of a [min, max] pair, '-' when empty."""
     if not v or v[0] is None:
@@ -104,6 +159,8 @@ def harm_text(r):
         why.append("command changed")
     if not why and r.get("rpm_peak") is not None:
         why.append(f"speed {fnum(r['rpm_peak'])} rpm")
+    if r.get("finding"):
+        why.append(f"open finding {r['finding']}")
     return "; ".join(why)
 
 
@@ -118,7 +175,7 @@ def det_text(r):
 
 def write_md(d, path):
     cl = d["classes"]
-    ok = all(c["verdict"] == "PASS" for c in cl)
+    ok = all(verdict_ok(c) for c in cl)
     out = [f"# Fault-injection campaign ({d['mode']})", "",
            f"Table `{d['table']}` ({d['motor']}, {fnum(d['f_pwm_hz'])} Hz PWM); operating point "
            f"{d['operating_point']['rpm']} rpm at {fnum(d['operating_point']['load_nm'])} N m, "
@@ -230,7 +287,7 @@ def table_html(headers, rows, num=()):
 
 def write_html(d, fdir):
     cl = d["classes"]
-    ok = all(c["verdict"] == "PASS" for c in cl)
+    ok = all(verdict_ok(c) for c in cl)
     plot_times(d, os.path.join(fdir, "times.png"))
     plot_flips(d, os.path.join(fdir, "flips.png"))
     rows = [[c["class"], c["injected"], c["detected"], bits_text(c), span(c["t_det_ms"]),
@@ -302,10 +359,12 @@ def write_junit(d, path):
         if c["class"] in d["flips"]:
             bad = [x["record"] for x in d["flips"][c["class"]]["failures"]]
         msg = "; ".join(f"{r['what']}: {det_text(r)}; {harm_text(r)}" for r in bad[:20])
-        cases.append((c["class"], c["verdict"] == "PASS" and c["injected"] > 0,
+        bad = [r for r in bad if not r.get("finding")]
+        cases.append((c["class"], verdict_ok(c) and c["injected"] > 0,
                       f"{c['failed']} of {c['injected']} failed: {msg}"))
     mc = all(m["ok"] for m in d["model_checks"])
     cases.append(("model_checks", mc, "a fault model of sim.h does not do what it is meant to"))
+    cases.append(("findings_current", not d["stale_findings"], "; ".join(d["stale_findings"])))
     cases.append(("faults.c", all(ok for _n, ok, _m in cases),
                   "the campaign has failing classes: " + ", ".join(n for n, ok, _m in cases if not ok)))
     suite = ET.Element("testsuite", name="faults", tests=str(len(cases)),
@@ -325,8 +384,10 @@ def main():
     ap = argparse.ArgumentParser(description="Report of the qfoc fault-injection campaign.")
     ap.add_argument("faults_dir")
     ap.add_argument("--junit", metavar="FILE", help="write the JUnit XML there")
+    ap.add_argument("--findings", metavar="TOML", help="the open findings (specs/fault-findings.toml)")
     a = ap.parse_args()
     d = load(a.faults_dir)
+    apply_findings(d, load_findings(a.findings) if a.findings else [])
     write_md(d, os.path.join(a.faults_dir, "results.md"))
     path = write_html(d, a.faults_dir)
     if a.junit:
@@ -337,7 +398,9 @@ def main():
         print(f"{c['class']:22} {c['injected']:8} {c['detected']:8} {span(c['t_det_ms']):>20} "
               f"{span(c['t_react_ms']):>22} {ftti_text(c):>20}  {c['verdict']}")
     print(f"report: {os.path.abspath(path)}")
-    return 0 if all(c["verdict"] == "PASS" for c in d["classes"]) else 1
+    for msg in d["stale_findings"]:
+        print(f"faults: {msg}")
+    return 0 if all(verdict_ok(c) for c in d["classes"]) and not d["stale_findings"] else 1
 
 
 if __name__ == "__main__":

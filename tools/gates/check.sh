@@ -64,6 +64,7 @@ gate robust   make --no-print-directory robustness ROBUST_COUNT=24
 gate repro    make --no-print-directory repro
 gate cmake    make --no-print-directory cmake-check
 gate fuzz     make --no-print-directory fuzz-check
+gate faults   make --no-print-directory faults-check
 gate_wait eva
 
 # The evidence bundle last: it collects what the gates above wrote, and fails when one of
