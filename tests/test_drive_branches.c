@@ -955,6 +955,7 @@ static void corrupt(qfoc_drive_t *d, corrupt_t k)
     }
 }
 
+/* REQ-DRV-019: each corruption above, detected in the tick that follows it. */
 static void test_req_drv_019_object_check(void **state)
 {
     int k;

@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Report of the fault-injection campaign (make faults, make faults-check).
 
-usage: faults_report.py FAULTS_DIR [--junit FILE]
+usage: faults_report.py FAULTS_DIR [--findings TOML] [--junit FILE]
+
+TOML: the open findings (specs/fault-findings.toml, REQ-FINJ-007): the failures it names are
+reported as OPEN; any other failure, or a named injection that passes, is a failure.
 
 Reads what build/host/qfoc_faults writes (FAULTS_DIR/results.json, flips.csv; the format is
 described in sim/apps/faults.c and specs/fault-campaign.md) and writes

@@ -24,6 +24,7 @@ FINDINGS = [{"id": "FND-7", "class": "adc_stuck", "what": "iu stuck at 2048"},
             {"id": "FND-10", "class": "drive_flip", "field": "s.speed_ref", "bit": 14}]
 
 
+# REQ-FINJ-007
 def test_named_failures_are_open():
     d = campaign()
     fr.apply_findings(d, FINDINGS)
@@ -32,18 +33,21 @@ def test_named_failures_are_open():
     assert d["injections"][0]["finding"] == "FND-7"
 
 
+# REQ-FINJ-007
 def test_unnamed_failure_fails():
     d = campaign(flip_fail=("s.speed_ref", 13))
     fr.apply_findings(d, FINDINGS)
     assert d["classes"][1]["verdict"] == "FAIL" and not fr.verdict_ok(d["classes"][1])
 
 
+# REQ-FINJ-007
 def test_without_findings_every_failure_fails():
     d = campaign()
     fr.apply_findings(d, [])
     assert [c["verdict"] for c in d["classes"]] == ["FAIL", "FAIL"]
 
 
+# REQ-FINJ-007
 def test_finding_that_passes_is_stale():
     d = campaign(stuck_pass=True, flip_fail=None)
     fr.apply_findings(d, FINDINGS)
@@ -52,6 +56,7 @@ def test_finding_that_passes_is_stale():
     assert all("FND-10" not in m for m in d["stale_findings"])
 
 
+# REQ-FINJ-007
 def test_malformed_finding_refused(tmp_path, capsys):
     p = tmp_path / "f.toml"
     p.write_text('[[finding]]\nid = "FND-1"\nclass = "adc_stuck"\n')
@@ -60,6 +65,7 @@ def test_malformed_finding_refused(tmp_path, capsys):
     assert e.value.code == 2 and "either what or field" in capsys.readouterr().err
 
 
+# REQ-FINJ-007
 def test_repository_findings_load():
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")
     items = fr.load_findings(os.path.join(root, "specs", "fault-findings.toml"))
