@@ -1278,36 +1278,79 @@ static qfoc_q15_t drv_utilisation(const qfoc_ab_t *v, qfoc_q15_t vdc, qfoc_q15_t
     return (qfoc_q15_t)u;
 }
 
-/* The drive object in RAM against its invariant, at the start of every tick (REQ-DRV-019):
-   a random hardware fault (a flipped RAM bit, a stray write) that breaks the invariant
-   clears table_ok for good, so this same tick raises PARAM and enters ERROR and the next
-   fast step turns the PWM off.  Two relations the invariant does not state are checked
-   with it: the calibrated offsets lie within offset_window of mid-scale (drv_calibrate
-   stores no other), and the PLL's angle gain is the table's (only the init writes it).
-   Under the tick's precondition the invariant holds; the check is the run-time monitor of
-   what the proof assumes of the hardware.  Reading the fast step's half while it may
-   pre-empt is sound: every relation checked bounds one field the fast step writes by
-   constants of the table or by fields only the tick or the init write, so a mix of two
-   periods' values passes. */
+/* Ticks per pass of the RAM check: a quarter of the drive object a tick. */
+#define DRV_CHECK_SLICES ((uint8_t)4u)
+
+/* One quarter of the RAM check (REQ-DRV-019): slice k of the drive invariant, and in the
+   last slice two relations the invariant does not state: the calibrated offsets lie within
+   offset_window of mid-scale (drv_calibrate stores no other) and the PLL's angle gain is
+   the table's (only the init writes it). */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p) && \separated(d, d->p);
+  requires slice: k < DRV_CHECK_SLICES;
+  assigns \nothing;
+*/
+static bool drv_object_slice(const qfoc_drive_t *d, uint8_t k)
+{
+    bool ok;
+    if (k == 0u) {
+        const bool flux = qfoc_flux_is_valid(&d->f.flux);
+        const bool pll = qfoc_pll_is_valid(&d->f.pll);
+        const bool vdc = qfoc_lpf_is_valid(&d->f.vdc_lpf);
+        ok = flux && pll && vdc;
+    } else if (k == 1u) {
+        const bool pid = qfoc_pi_is_valid(&d->f.pi_id);
+        const bool piq = qfoc_pi_is_valid(&d->f.pi_iq);
+        const bool fw = qfoc_fw_is_valid(&d->f.fw);
+        const bool ph = qfoc_phase_mon_is_valid(&d->f.phase);
+        const bool mech = qfoc_mech_is_valid(&d->f.mech);
+        ok = pid && piq && fw && ph && mech;
+    } else if (k == 2u) {
+        const bool sm = qfoc_sm_is_valid(&d->s.sm);
+        const bool pis = qfoc_pi_is_valid(&d->s.pi_speed);
+        const bool tc = qfoc_trqcomp_is_valid(&d->s.tc);
+        const bool link = qfoc_link_is_valid(&d->s.link);
+        ok = sm && pis && tc && link;
+    } else {
+        const qfoc_drive_slow_t *const s = &d->s;
+        const int32_t win = (int32_t)d->p->drive.offset_window;
+        const int32_t du = (int32_t)s->offset_u - (int32_t)QFOC_ADC_MID;
+        const int32_t dv = (int32_t)s->offset_v - (int32_t)QFOC_ADC_MID;
+        /* off_n <= 1024 < 65536: 4095 x off_n fits in 32 bits */
+        const bool sums = (s->off_n <= 1024u) &&
+                          (s->off_sum_u <= (4095u * (uint32_t)s->off_n)) &&
+                          (s->off_sum_v <= (4095u * (uint32_t)s->off_n));
+        const bool offsets = (du <= win) && (du >= -win) && (dv <= win) && (dv >= -win);
+        const bool copies = (d->f.pll.k_theta == d->p->pll.k_theta);
+        ok = sums && offsets && copies;
+    }
+    return ok;
+}
+
+/* The drive object in RAM against its invariant, a quarter of it at the start of every
+   tick, the whole in 4 ticks (REQ-DRV-019): a random hardware fault (a flipped RAM bit, a
+   stray write) that breaks the invariant or the two relations checked with it clears
+   table_ok for good, so that tick raises PARAM and enters ERROR and the next fast step
+   turns the PWM off.  The window check of the last slice also covers the invariant's
+   offset_u, offset_v <= 4095 (offset_window is at most QFOC_DRIVE_OFFSET_WINDOW_MAX = 2047,
+   and 2048 + 2047 = 4095).  Under the tick's precondition the invariant holds; the check is the
+   run-time monitor of what the proof assumes of the hardware.  Reading the fast step's
+   half while it may pre-empt is sound: every relation checked bounds one field the fast
+   step writes by constants of the table or by fields only the tick or the init write, so
+   a mix of two periods' values passes. */
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \separated(d, d->p);
   assigns d->s.table_ok;
   ensures kept: !\old(d->s.table_ok) ==> !d->s.table_ok;
-  ensures detected: !DriveValid{Pre}(d) ==> !d->s.table_ok;
 */
 static void drv_object_check(qfoc_drive_t *d)
 {
-    const qfoc_drive_slow_t *const s = &d->s;
-    const int32_t win = (int32_t)d->p->drive.offset_window;
-    const int32_t du = (int32_t)s->offset_u - (int32_t)QFOC_ADC_MID;
-    const int32_t dv = (int32_t)s->offset_v - (int32_t)QFOC_ADC_MID;
-    const bool offsets = (du <= win) && (du >= -win) && (dv <= win) && (dv >= -win);
-    const bool copies = (d->f.pll.k_theta == d->p->pll.k_theta);
+    const uint8_t k = (uint8_t)(d->s.ms100 % DRV_CHECK_SLICES);
 
-    if (!qfoc_drive_is_valid(d) || !offsets || !copies) {
+    if (!drv_object_slice(d, k)) {
         d->s.table_ok = false;
     } else {
-        /* the drive object is intact */
+        /* this quarter of the drive object is intact */
     }
 }
 

@@ -911,8 +911,9 @@ static void test_req_drv_018_no_current(void **state)
 /* REQ-DRV-019: a drive object that breaks its invariant in RAM (one field of either half
    set outside what the invariant allows, as a flipped bit or a stray write would), or one
    of the relations checked with it (an offset outside offset_window of mid-scale, the PLL's
-   angle gain other than the table's), is seen by the next tick: ERROR with PARAM in that
-   tick, the PWM off in the next period, and the fault latched (a clear request changes
+   angle gain other than the table's), is seen by the tick that checks its quarter of the
+   object (one of 4 consecutive ticks): ERROR with PARAM in that tick, the PWM off in the
+   next period, and the fault latched (a clear request changes
    nothing).  Each corruption is first shown to break the invariant (qfoc_drive_is_valid),
    or for the two relations to keep it, so the test cannot pass on a corruption the check
    does not cover. */
@@ -922,7 +923,8 @@ typedef enum {
     CORRUPT_SM_STATE, CORRUPT_SM_FAULTS, CORRUPT_PI_SPEED, CORRUPT_TC_COEF, CORRUPT_LINK_CFG,
     CORRUPT_LINK_LOST, CORRUPT_OFFSET, CORRUPT_OFF_SUM,
     /* inside the invariant, caught by the relations checked with it */
-    CORRUPT_OFFSET_WINDOW, CORRUPT_K_THETA, CORRUPT_COUNT
+    CORRUPT_OFFSET_WINDOW, CORRUPT_OFFSET_WINDOW_LOW, CORRUPT_OFFSET_WINDOW_V,
+    CORRUPT_OFFSET_WINDOW_V_LOW, CORRUPT_K_THETA, CORRUPT_COUNT
 } corrupt_t;
 
 static void corrupt(qfoc_drive_t *d, corrupt_t k)
@@ -948,6 +950,12 @@ static void corrupt(qfoc_drive_t *d, corrupt_t k)
     case CORRUPT_OFF_SUM:      d->s.off_n = 1025u; break;
     case CORRUPT_OFFSET_WINDOW:
         d->s.offset_u = (uint16_t)(QFOC_ADC_MID + d->p->drive.offset_window + 1u); break;
+    case CORRUPT_OFFSET_WINDOW_LOW:
+        d->s.offset_u = (uint16_t)(QFOC_ADC_MID - d->p->drive.offset_window - 1u); break;
+    case CORRUPT_OFFSET_WINDOW_V:
+        d->s.offset_v = (uint16_t)(QFOC_ADC_MID + d->p->drive.offset_window + 1u); break;
+    case CORRUPT_OFFSET_WINDOW_V_LOW:
+        d->s.offset_v = (uint16_t)(QFOC_ADC_MID - d->p->drive.offset_window - 1u); break;
     default:
         d->f.pll.k_theta = (uint16_t)((d->f.pll.k_theta < 32767u) ? (d->f.pll.k_theta + 1u)
                                                                   : (d->f.pll.k_theta - 1u));
@@ -955,9 +963,15 @@ static void corrupt(qfoc_drive_t *d, corrupt_t k)
     }
 }
 
-/* REQ-DRV-019: each corruption above, detected in the tick that follows it. */
+/* REQ-DRV-019: each corruption above, detected by the tick that checks its quarter. */
 static void test_req_drv_019_object_check(void **state)
 {
+    /* the quarter of the check (drv_object_slice) that holds each corrupted field */
+    static const uint8_t slice_of[CORRUPT_COUNT] = {
+        1u, 1u, 0u, 0u, 0u, 1u, 0u, 1u, 1u, 1u,   /* pi_iq .. mech recip */
+        2u, 2u, 2u, 2u, 2u, 2u, 3u, 3u,           /* sm .. off_n */
+        3u, 3u, 3u, 3u, 3u                        /* windows, k_theta */
+    };
     int k;
     (void)state;
     for (k = 0; k < (int)CORRUPT_COUNT; k++) {
@@ -974,15 +988,21 @@ static void test_req_drv_019_object_check(void **state)
         assert_int_equal(st(&r), QFOC_STATE_RUN);
         rig_fast(&r);
         assert_true(r.pwm.enable);
-        corrupt(&r.d, (corrupt_t)k);
-        /* out of the invariant, except the two relations checked beside it */
-        assert_int_equal(qfoc_drive_is_valid(&r.d), k >= (int)CORRUPT_OFFSET_WINDOW);
         in.t_ipm = r.t_ipm;
         in.t_pcb = r.t_pcb;
         in.rx = NULL;
         in.rx_len = 0u;
+        /* the ticks before the one that checks the quarter holding the field */
+        while ((r.d.s.ms100 % 4u) != slice_of[k]) {
+            (void)qfoc_drive_tick(&r.d, &in);
+        }
+        assert_int_equal(r.d.s.sm.state, QFOC_STATE_RUN);
+        corrupt(&r.d, (corrupt_t)k);
+        /* out of the invariant, except the two relations checked beside it */
+        assert_int_equal(qfoc_drive_is_valid(&r.d), k >= (int)CORRUPT_OFFSET_WINDOW);
+        /* ERROR with PARAM in the tick that checks the corrupted quarter, the PWM off in
+           the next period */
         (void)qfoc_drive_tick(&r.d, &in);
-        /* ERROR with PARAM in this tick, the PWM off in the next period */
         assert_int_equal(r.d.s.sm.state, QFOC_STATE_ERROR);
         assert_true((qfoc_drive_faults(&r.d) & QFOC_FAULT_PARAM) != 0u);
         assert_false(r.d.s.table_ok);

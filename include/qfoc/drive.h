@@ -327,10 +327,11 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
  * @param[in]     in  temperatures and the received frame (any values)
  * @return the status frame and the CAN frame to send: a copy of d->s.out
  * Writes only d->s (the fast step's half d->f and the table are read only).
- * RAM check: each call first checks the whole drive object against its invariant
- * (qfoc_drive_is_valid); a violation (a flipped bit, a stray write) raises PARAM and
- * ERROR in the same call, the PWM goes off in the next period, and the drive stays in
- * ERROR until qfoc_drive_init() is called again (REQ-DRV-019).
+ * RAM check: each call first checks a quarter of the drive object against its invariant
+ * (the checks of qfoc_drive_is_valid, the offsets within their window, the PLL's angle
+ * gain against the table), the whole in 4 calls; a violation (a flipped bit, a stray
+ * write) raises PARAM and ERROR in that call, the PWM goes off in the next period, and
+ * the drive stays in ERROR until qfoc_drive_init() is called again (REQ-DRV-019).
  * Requirements: REQ-DRV-005 .. REQ-DRV-012, REQ-DRV-019.
  */
 /*@
