@@ -921,7 +921,7 @@ typedef enum {
     CORRUPT_PI_IQ, CORRUPT_PI_ID_PARAMS, CORRUPT_PLL_SPEED, CORRUPT_FLUX_PSI, CORRUPT_FLUX_GAIN,
     CORRUPT_FW_ID, CORRUPT_VDC_ALPHA, CORRUPT_PHASE_LPF, CORRUPT_MECH_TURN, CORRUPT_MECH_RECIP,
     CORRUPT_SM_STATE, CORRUPT_SM_FAULTS, CORRUPT_PI_SPEED, CORRUPT_TC_COEF, CORRUPT_LINK_CFG,
-    CORRUPT_LINK_LOST, CORRUPT_OFFSET, CORRUPT_OFF_SUM,
+    CORRUPT_LINK_LOST, CORRUPT_OFFSET, CORRUPT_OFF_SUM, CORRUPT_OFF_SUM_U, CORRUPT_OFF_SUM_V,
     /* inside the invariant, caught by the relations checked with it */
     CORRUPT_OFFSET_WINDOW, CORRUPT_OFFSET_WINDOW_LOW, CORRUPT_OFFSET_WINDOW_V,
     CORRUPT_OFFSET_WINDOW_V_LOW, CORRUPT_K_THETA, CORRUPT_COUNT
@@ -948,6 +948,8 @@ static void corrupt(qfoc_drive_t *d, corrupt_t k)
     case CORRUPT_LINK_LOST:    d->s.link.lost = !d->s.link.lost; break;
     case CORRUPT_OFFSET:       d->s.offset_v = 4096u; break;
     case CORRUPT_OFF_SUM:      d->s.off_n = 1025u; break;
+    case CORRUPT_OFF_SUM_U:    d->s.off_sum_u = (4095u * (uint32_t)d->s.off_n) + 1u; break;
+    case CORRUPT_OFF_SUM_V:    d->s.off_sum_v = (4095u * (uint32_t)d->s.off_n) + 1u; break;
     case CORRUPT_OFFSET_WINDOW:
         d->s.offset_u = (uint16_t)(QFOC_ADC_MID + d->p->drive.offset_window + 1u); break;
     case CORRUPT_OFFSET_WINDOW_LOW:
@@ -969,7 +971,7 @@ static void test_req_drv_019_object_check(void **state)
     /* the quarter of the check (drv_object_slice) that holds each corrupted field */
     static const uint8_t slice_of[CORRUPT_COUNT] = {
         1u, 1u, 0u, 0u, 0u, 1u, 0u, 1u, 1u, 1u,   /* pi_iq .. mech recip */
-        2u, 2u, 2u, 2u, 2u, 2u, 3u, 3u,           /* sm .. off_n */
+        2u, 2u, 2u, 2u, 2u, 2u, 3u, 3u, 3u, 3u,   /* sm .. sums */
         3u, 3u, 3u, 3u, 3u                        /* windows, k_theta */
     };
     int k;
