@@ -348,9 +348,9 @@ static void fttis(const qfoc_param_table_t *p)
     spec_ms[M_PARAM_TABLE] = 100.0 + (double)QFOC_PARAMS_SCAN_STEPS + t;
     snprintf(spec_text[M_PARAM_TABLE], sizeof spec_text[0], "100 ms re-check + its %u steps "
              "(REQ-DRV-010: within 105 ms) + 1 period to PWM off", (unsigned)QFOC_PARAMS_SCAN_STEPS);
-    spec_ms[M_PARAM_OBJ] = 1.0 + t;
-    snprintf(spec_text[M_PARAM_OBJ], sizeof spec_text[0], "the next tick's object check "
-             "(REQ-DRV-019: within 1 ms) + 1 period to PWM off");
+    spec_ms[M_PARAM_OBJ] = 4.0 + t;
+    snprintf(spec_text[M_PARAM_OBJ], sizeof spec_text[0], "the object check, a quarter a tick "
+             "(REQ-DRV-019: within 4 ms) + 1 period to PWM off");
     for (k = 0; k < M_N; k++) {
         ftti_ms[k] = (k == M_NONE || k == M_FIRST) ? NAN : MARGIN * spec_ms[k];
     }
