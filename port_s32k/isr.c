@@ -112,6 +112,15 @@ void qfoc_s32k_tick_isr(void)
         in.rx_len = qfoc_hal_lin_receive(rx, (uint8_t)QFOC_LIN_FRAME_MAX);
         in.rx = rx;
         out = qfoc_drive_tick(s_drive, &in);
+        if (out.pwm_off) {
+            /* the second path to the safe state (drive.h, REQ-DRV-021): outputs off now,
+               also when the fast step no longer runs; the fast step writes the same outside
+               RUN, so the two writers agree */
+            static const qfoc_pwm_t off = { { 0u, 0u, 0u }, false };
+            qfoc_hal_pwm_write(&off);
+        } else {
+            /* RUN: the fast step owns the outputs */
+        }
         if (out.tx_len > 0u) {
             if (!qfoc_hal_lin_transmit(out.tx, out.tx_len)) {
                 /* the previous frame is still being sent: this one is dropped, the

@@ -105,6 +105,10 @@ static void dsim_tick(dsim_t *ds)
         in.rx_len = dsim_garbage(ds, frame);
     }
     ds->out = qfoc_drive_tick(&ds->drv, &in);
+    if (ds->out.pwm_off) {
+        /* the port's second path to the safe state (drive.h, REQ-DRV-021) */
+        sim_set_enable(&ds->plant, false);
+    }
     if (ds->out.tx_len > 0u) {
         ds->status_frames++;
     }

@@ -441,13 +441,30 @@ static void drv_control_after(qfoc_drive_t *d, uint8_t sub)
     f->phase_k = (f->phase_k >= 2u) ? 0u : (uint8_t)(f->phase_k + 1u);
 }
 
+/* The count of samples in a row with the same code: one more, capped at 65535, or 0. */
+/*@
+  assigns \nothing;
+  ensures same: same ==> \result == ((n < 65535) ? n + 1 : 65535);
+  ensures moved: !same ==> \result == 0;
+*/
+static uint16_t drv_same(uint16_t n, bool same)
+{
+    uint16_t r = 0u;
+    if (same) {
+        r = (n < 65535u) ? (uint16_t)(n + 1u) : n;
+    } else {
+        /* the code moved */
+    }
+    return r;
+}
+
 /* Measurement and the over-current latch (REQ-DRV-003, REQ-DRV-004). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \valid_read(adc);
   requires sep: \separated(d, d->p) && \separated(d, adc);
   requires inv: DRV_FAST(&d->f);
-  assigns d->f.adc_iu, d->f.adc_iv, d->f.vdc, d->f.vdc_lpf.state, d->f.trip,
-          d->f.trip_count, d->f.clear_ack, d->f.i_abc;
+  assigns d->f.adc_iu, d->f.adc_iv, d->f.same_u, d->f.same_v, d->f.vdc, d->f.vdc_lpf.state,
+          d->f.trip, d->f.trip_count, d->f.clear_ack, d->f.i_abc;
   ensures inv: DRV_FAST(&d->f);
   ensures oc: DriveOverCurrent{Pre}(d, adc) ==> d->f.trip;
 */
@@ -456,9 +473,14 @@ static void drv_measure(qfoc_drive_t *d, const qfoc_adc_t *adc)
     qfoc_drive_fast_t *const f = &d->f;
     qfoc_abc_t *const i_abc = &f->i_abc;
     const uint8_t clear_seq = d->s.clear_seq;
+    const uint16_t code_u = drv_adc12(adc->iu);
+    const uint16_t code_v = drv_adc12(adc->iv);
     bool oc;
-    f->adc_iu = drv_adc12(adc->iu);
-    f->adc_iv = drv_adc12(adc->iv);
+    /* stuck-sample monitor (REQ-DRV-020): samples in a row with the same code */
+    f->same_u = drv_same(f->same_u, code_u == f->adc_iu);
+    f->same_v = drv_same(f->same_v, code_v == f->adc_iv);
+    f->adc_iu = code_u;
+    f->adc_iv = code_v;
     i_abc->u = drv_current(adc->iu, d->s.offset_u);
     i_abc->v = drv_current(adc->iv, d->s.offset_v);
     i_abc->w = qfoc_q15_sat(-((int32_t)i_abc->u + (int32_t)i_abc->v));
@@ -566,6 +588,8 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc)
     /* torque-compensation feed-forward at the mechanical angle of the last period */
     const qfoc_q15_t ff = qfoc_trqcomp_output(&d->s.tc, d->f.theta_m, d->f.speed_f);
     bool run;
+    /* fast steps so far, mod 2^16, for the tick's timing monitor (REQ-DRV-021) */
+    d->f.n_fast = (uint16_t)(((uint32_t)d->f.n_fast + 1u) & 0xFFFFu);
     drv_measure(d, adc);
     drv_inductance(&d->f, d->p, d->s.hs);
     run = (state == QFOC_STATE_RUN) && !d->f.trip;
@@ -808,7 +832,7 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
   requires inv: DRV_PHASE(&d->f.phase);
   assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall,
           d->s.db_phase, d->s.trip_seen;
-  ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET;
+  ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET - QFOC_FAULT_TIMING;
 */
 static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
 {
@@ -816,6 +840,59 @@ static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     const uint16_t w_motor = drv_faults_motor(d);
 
     return (uint16_t)(w_power + w_motor);
+}
+
+/* Samples of 2 ms of fast steps: a current code unchanged that long is stuck. */
+#define DRV_STUCK_MS 2u
+
+/* The stuck-sample monitor (REQ-DRV-020): in CLOSED_LOOP and STOPPING, while the stall
+   condition is false, one current code unchanged for DRV_STUCK_MS ms of fast steps while
+   the other's moved gives OFFSET.  Read while the fast step may pre-empt: each count is one
+   16-bit word. */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p);
+  assigns \nothing;
+*/
+static bool drv_sensor_fault(const qfoc_drive_t *d)
+{
+    const qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    const uint8_t sub = d->s.sm.sub;
+    const bool closed = (d->s.sm.state == QFOC_STATE_RUN) &&
+                        ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
+    /* f_pwm <= 65535: at most 65 x DRV_STUCK_MS samples */
+    const uint32_t n_stuck = ((uint32_t)p->f_pwm_hz / 1000u) * DRV_STUCK_MS;
+    const bool still_u = ((uint32_t)f->same_u >= n_stuck);
+    const bool still_v = ((uint32_t)f->same_v >= n_stuck);
+    /* one channel still while the other moves: where a healthy current is slowest (its
+       peak), the other phase's is near its steepest */
+    const bool stuck = (still_u && !still_v) || (still_v && !still_u);
+    /* not while the stall condition holds (db_stall counting): a rotor at standstill
+       carries a DC current, which STALL reports */
+    const bool rotating = (d->s.db_stall.count == 0u);
+    return closed && rotating && stuck;
+}
+
+/* The timing monitor (REQ-DRV-021): in RUN, the fast steps since the previous tick against
+   f_pwm / 1000 a tick, 2 either side for the phase of the two interrupts and their
+   latencies.  n_fast is one 16-bit word the fast step writes; the difference is taken
+   mod 2^16.  Records the count for the next tick. */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  assigns d->s.fast_seen;
+  ensures seen: d->s.fast_seen == d->f.n_fast;
+*/
+static bool drv_timing_fault(qfoc_drive_t *d)
+{
+    const uint32_t n = (uint32_t)d->f.n_fast;
+    const uint32_t steps = (n + 65536u - (uint32_t)d->s.fast_seen) & 0xFFFFu;
+    const uint32_t f_pwm = (uint32_t)d->p->f_pwm_hz;
+    const uint32_t lo = f_pwm / 1000u;
+    const uint32_t hi = (f_pwm + 999u) / 1000u;
+    const bool run = (d->s.sm.state == QFOC_STATE_RUN);
+    d->s.fast_seen = (uint16_t)n;
+    return run && (((steps + 2u) < lo) || (steps > (hi + 2u)));
 }
 
 /* Handover condition (REQ-DRV-006).  The I/f current lies on the q axis of the open-loop
@@ -1238,9 +1315,23 @@ static bool drv_tick_in(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_s
     s->speed_target = drv_rpm_to_speed(s->cmd.target_rpm, c->k_rpm, p->speed_max);
     /* faults and the offset calibration */
     faults = drv_faults(d, in);
-    faults = (uint16_t)(faults + drv_calibrate(s, &d->f, c,
-                                              (old_state == QFOC_STATE_PRECHARGE) &&
-                                              (old_sub == QFOC_SUB_CALIB)));
+    {
+        const uint16_t cal = drv_calibrate(s, &d->f, c,
+                                           (old_state == QFOC_STATE_PRECHARGE) &&
+                                           (old_sub == QFOC_SUB_CALIB));
+        const bool sensor = drv_sensor_fault(d);
+        const bool timing = drv_timing_fault(d);
+        if ((cal != 0u) || sensor) {
+            faults = (uint16_t)(faults + QFOC_FAULT_OFFSET);
+        } else {
+            /* the current sensors are plausible */
+        }
+        if (timing) {
+            faults = (uint16_t)(faults + QFOC_FAULT_TIMING);
+        } else {
+            /* the fast step runs at its rate */
+        }
+    }
     drv_sm_inputs(d, faults, old_state, old_sub);
     return accepted;
 }
@@ -1371,6 +1462,7 @@ static void drv_object_check(qfoc_drive_t *d)
       d->s.sm.state != QFOC_STATE_ERROR ==> d->s.sm.state == QFOC_STATE_STOP;
   ensures run_entry: old_state != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>
       old_state == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN;
+  ensures pwm_off: d->s.out.pwm_off == \true <==> d->s.sm.state != QFOC_STATE_RUN;
 */
 static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_state,
                          uint8_t old_sub, bool accepted)
@@ -1388,6 +1480,8 @@ static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_
     drv_status(d, in);
     drv_answer(s, accepted);
     drv_ms100(d);
+    /* the second path to the safe state: the port turns the inverter off at once */
+    s->out.pwm_off = (s->sm.state != QFOC_STATE_RUN);
 }
 
 qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
@@ -1498,6 +1592,9 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
     f->i_abc.u = 0;
     f->i_abc.v = 0;
     f->i_abc.w = 0;
+    f->same_u = 0u;
+    f->same_v = 0u;
+    f->n_fast = 0u;
     drv_pwm_off(&f->out);
 }
 
@@ -1509,7 +1606,7 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
   requires sep: \separated(s, c);
   assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->lead, s->util,
           s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done, s->hs,
-          s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
+          s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out, s->fast_seen;
 */
 static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
 {
@@ -1570,6 +1667,8 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
         s->out.can.data[k] = 0u;
     }
     s->out.can_send = false;
+    s->out.pwm_off = true;
+    s->fast_seen = 0u;
 }
 
 /* Tick data from the table (REQ-DRV-001). */

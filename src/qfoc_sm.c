@@ -115,7 +115,7 @@ static void sm_enter_error(qfoc_sm_t *sm, uint16_t faults)
 
 void qfoc_sm_fail(qfoc_sm_t *sm, uint16_t faults)
 {
-    uint16_t f = (uint16_t)(faults % 1024u);
+    uint16_t f = (uint16_t)(faults % 2048u);
     if (f == 0u) {
         f = SM_FAULT_PARAM;
     } else {
@@ -298,7 +298,7 @@ static uint16_t sm_set_bit(uint16_t w, uint16_t bit)
 */
 static uint16_t sm_faults(const qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_in_t *in)
 {
-    uint16_t f = (uint16_t)(in->faults % 1024u);
+    uint16_t f = (uint16_t)(in->faults % 2048u);
     const bool open_loop = (sm->state == QFOC_STATE_RUN) && (sm->sub == QFOC_SUB_OPEN_LOOP);
     const bool early = (sm->state == QFOC_STATE_RUN) &&
                        ((sm->sub == QFOC_SUB_ALIGN) || (sm->sub == QFOC_SUB_OPEN_LOOP));
@@ -319,7 +319,7 @@ static uint16_t sm_faults(const qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const q
 
 void qfoc_sm_step(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_in_t *in)
 {
-    const uint16_t drive_faults = (uint16_t)(in->faults % 1024u);
+    const uint16_t drive_faults = (uint16_t)(in->faults % 2048u);
     sm->t_state = sm_tick_time(sm->t_state);
     sm->t_sub = sm_tick_time(sm->t_sub);
     if (sm->state == QFOC_STATE_ERROR) {

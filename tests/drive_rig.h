@@ -37,7 +37,14 @@ typedef struct {
     bool motor_current;         /* before each tick the phase monitor reads, on all three
                                    phases, the current the drive imposes (|i_align| or
                                    |i_start|): a connected motor, for tests that feed zero
-                                   current samples; false: only what the samples give */
+                                   current samples; false: only what the samples give;
+                                   and, in the same way, current codes that move (the
+                                   stuck-sample counts at 0, REQ-DRV-020) */
+    uint16_t n_fast_seen;       /* the fast-step count at the last tick */
+    bool raw_count;             /* false: when fewer fast steps than f_pwm / 1000 ran since
+                                   the last tick (none when the test plays the fast step),
+                                   the rig adds the rest to the count (REQ-DRV-021); true:
+                                   the count the fast steps give */
 } rig_t;
 
 /* A drive on a copy of t: 320 V, zero currents, 40 / 35 degC, the master sending rpm. */
@@ -94,12 +101,24 @@ static inline void rig_tick_rx(rig_t *r, const uint8_t *rx, uint8_t len)
         for (k = 0; k < 3; k++) {
             r->d.f.phase.abs_lpf[k].state = i * 65536;
         }
+        r->d.f.same_u = 0u;
+        r->d.f.same_v = 0u;
+    }
+    if (!r->raw_count) {
+        /* fewer fast steps than a millisecond holds (none when the test plays the fast
+           step): the rig counts the rest */
+        const uint32_t per_ms = (uint32_t)r->table.f_pwm_hz / 1000u;
+        const uint32_t ran = ((uint32_t)r->d.f.n_fast + 65536u - (uint32_t)r->n_fast_seen) & 0xFFFFu;
+        if (ran < per_ms) {
+            r->d.f.n_fast = (uint16_t)(((uint32_t)r->n_fast_seen + per_ms) & 0xFFFFu);
+        }
     }
     in.t_ipm = r->t_ipm;
     in.t_pcb = r->t_pcb;
     in.rx = rx;
     in.rx_len = len;
     r->out = qfoc_drive_tick(&r->d, &in);
+    r->n_fast_seen = r->d.f.n_fast;
     r->ms++;
     assert_true(qfoc_drive_is_valid(&r->d));
 }

@@ -996,8 +996,10 @@ static void test_req_drv_019_object_check(void **state)
         in.rx_len = 0u;
         /* the ticks before the one that checks the quarter holding the field */
         while ((r.d.s.ms100 % 4u) != slice_of[k]) {
-            (void)qfoc_drive_tick(&r.d, &in);
+            rig_tick(&r, false);
         }
+        /* the fast steps of the millisecond before the corrupted tick (REQ-DRV-021) */
+        r.d.f.n_fast = (uint16_t)(r.d.f.n_fast + 8u);
         assert_int_equal(r.d.s.sm.state, QFOC_STATE_RUN);
         corrupt(&r.d, (corrupt_t)k);
         /* out of the invariant, except the two relations checked beside it */

@@ -28,7 +28,7 @@ static void test_fault_bits(void **state)
     static const uint16_t bits[] = { QFOC_FAULT_OC, QFOC_FAULT_OV, QFOC_FAULT_UV,
                                      QFOC_FAULT_OT_IPM, QFOC_FAULT_OT_PCB, QFOC_FAULT_STALL,
                                      QFOC_FAULT_PHASE, QFOC_FAULT_OFFSET, QFOC_FAULT_LINK,
-                                     QFOC_FAULT_PARAM };
+                                     QFOC_FAULT_PARAM, QFOC_FAULT_TIMING };
     uint16_t all = 0u;
     size_t k;
     (void)state;
@@ -38,7 +38,8 @@ static void test_fault_bits(void **state)
         all = (uint16_t)(all | bits[k]);
     }
     assert_int_equal(all, QFOC_FAULT_ALL);
-    assert_int_equal(QFOC_FAULT_ALL, 0x03FFu);
+    assert_int_equal(QFOC_FAULT_ALL, 0x07FFu);
+    assert_int_equal(QFOC_FAULT_TIMING, 0x0400u);
     assert_int_equal(QFOC_FAULT_OC, 0x0001u);
     assert_int_equal(QFOC_FAULT_PHASE, 0x0040u);
     assert_int_equal(QFOC_FAULT_PARAM, 0x0200u);

@@ -60,8 +60,8 @@ static void test_sm_001_init_and_validity(void **state)
     sm.state = QFOC_STATE_ERROR;
     sm.sub = QFOC_SUB_NONE;
     assert_false(qfoc_sm_is_valid(&sm));    /* ERROR without a cause */
-    sm.faults = 0x0400u;
-    sm.first_fault = 0x0400u;
+    sm.faults = 0x0800u;
+    sm.first_fault = 0x0800u;
     assert_false(qfoc_sm_is_valid(&sm));    /* undefined bit */
     sm.faults = 0x0001u;
     sm.first_fault = 0x0001u;
@@ -250,7 +250,7 @@ static void test_sm_002_fault_to_error(void **state)
             sm.t_sub = 5u;
             in.faults = f;
             qfoc_sm_step(&sm, &cfg, &in);
-            if (bit < 10u) {
+            if (bit < 11u) {
                 assert_int_equal(sm.state, QFOC_STATE_ERROR);
                 assert_int_equal(sm.faults, f);
                 assert_int_equal(sm.first_fault, f);
@@ -384,7 +384,7 @@ typedef struct {
 
 static void model_step(model_t *m, const qfoc_sm_in_t *in)
 {
-    const int f_in = in->faults & 0x3FF;
+    const int f_in = in->faults & 0x7FF;
     int f = f_in;
     m->t_state = (m->t_state < 65535) ? m->t_state + 1 : 65535;
     m->t_sub = (m->t_sub < 65535) ? m->t_sub + 1 : 65535;

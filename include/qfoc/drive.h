@@ -73,7 +73,16 @@
  *          filtered |phase current| below |i_align| / |i_start| (no motor, an open phase,
  *          stuck current sensors), for phase_ms: ERROR align_ms / 2 + phase_ms after
  *          the start, before the motor is accelerated (REQ-DRV-018);
- *   OFFSET offset calibration out of its window (PRECHARGE);
+ *   OFFSET offset calibration out of its window (PRECHARGE); and, in CLOSED_LOOP and
+ *          STOPPING while the stall condition is false (REQ-DRV-020): one current code
+ *          unchanged for 2 ms of fast steps while the other channel's code moved (a
+ *          stuck sample or a sensor stuck at any value: where a healthy phase current is
+ *          slowest, at its peak, the other phase's is near its steepest; a rotor at
+ *          standstill, whose DC currents hold both codes, is STALL's);
+ *   TIMING in RUN, fewer than floor(f_pwm / 1000) - 2 or more than ceil(f_pwm / 1000) + 2
+ *          fast steps since the previous tick (a lost or repeated PWM interrupt,
+ *          REQ-DRV-021); the tick that sees it sets out.pwm_off, so the port turns the
+ *          inverter off although the fast step does not run;
  *   LINK   no valid command frame for link_timeout_ms while running: the command
  *          becomes power-off (controlled ramp-down), then ERROR;
  *   PARAM  the parameter table fails its identity, CRC or range check, at
@@ -165,6 +174,9 @@ typedef struct {
     uint8_t tx_len;                  /**< its length, 0 = nothing to send */
     qfoc_can_frame_t can;            /**< CAN status frame */
     bool can_send;                   /**< true on the 100 ms job's tick */
+    bool pwm_off;                    /**< true when the drive is not in RUN after this tick: the
+                                          port turns the inverter off at once, without waiting
+                                          for the fast step (REQ-DRV-021) */
 } qfoc_tick_out_t;
 
 /** Data written by the fast step only. */
@@ -199,6 +211,10 @@ typedef struct {
     uint8_t phase_k;          /**< phase the monitor filters in this period (0, 1, 2) */
     qfoc_abc_t i_abc;         /**< this period's phase currents, offset-corrected, Q15 */
     qfoc_pwm_t out;           /**< this period's output (returned by the fast step) */
+    uint16_t same_u;          /**< consecutive samples with the i_u code unchanged (capped at
+                                   65535; REQ-DRV-020) */
+    uint16_t same_v;          /**< the same for i_v */
+    uint16_t n_fast;          /**< fast steps so far, mod 65536 (REQ-DRV-021) */
 } qfoc_drive_fast_t;
 
 /** Data written by the tick only. */
@@ -230,6 +246,7 @@ typedef struct {
     uint8_t clamp_seen;       /**< clamp_count at the last tick */
     uint8_t clear_seq;        /**< incremented when a fault clear is accepted */
     uint8_t ms100;            /**< ticks of the current 100 ms period, 0..99 */
+    uint16_t fast_seen;       /**< n_fast at the last tick (REQ-DRV-021) */
     bool table_ok;            /**< result of the last table check */
     uint32_t scan_crc;        /**< CRC register of the table check in progress */
     bool calib_done;          /**< offsets calibrated in range */
@@ -332,7 +349,11 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
  * gain against the table), the whole in 4 calls; a violation (a flipped bit, a stray
  * write) raises PARAM and ERROR in that call, the PWM goes off in the next period, and
  * the drive stays in ERROR until qfoc_drive_init() is called again (REQ-DRV-019).
- * Requirements: REQ-DRV-005 .. REQ-DRV-012, REQ-DRV-019.
+ * Sensor and timing monitors: the current-sensor and fast-step checks of OFFSET and
+ * TIMING above (REQ-DRV-020, REQ-DRV-021).  out.pwm_off is true whenever the state after
+ * the call is not RUN: the port turns the inverter off at once (a second path to the safe
+ * state beside the fast step's PWM off, for a fast step that no longer runs).
+ * Requirements: REQ-DRV-005 .. REQ-DRV-012, REQ-DRV-019 .. REQ-DRV-021.
  */
 /*@
   requires valid: \valid(d) && \valid_read(in);
@@ -344,6 +365,7 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
   ensures inv: DRV_VALID(d);
   ensures kept: \result == d->s.out;
   ensures tx: d->s.out.tx_len == 0 || d->s.out.tx_len == QFOC_LIN_STATUS_LEN;
+  ensures pwm_off: d->s.out.pwm_off == \true <==> d->s.sm.state != QFOC_STATE_RUN;
   ensures error_exit: \old(d->s.sm.state) == QFOC_STATE_ERROR &&
       d->s.sm.state != QFOC_STATE_ERROR ==> d->s.sm.state == QFOC_STATE_STOP;
   ensures run_entry: \old(d->s.sm.state) != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>

@@ -18,7 +18,8 @@
  *    while running, OT = qfoc_fault_over(temperature, t_max), PHASE =
  *    qfoc_phase_mon_imbalanced() (its low-pass fed by qfoc_phase_mon_update() in
  *    the fast step), STALL from the speed and flux errors with
- *    qfoc_fault_abs_over().
+ *    qfoc_fault_abs_over(); OFFSET while running and TIMING from the drive's
+ *    sensor and timing monitors (drive.h).
  *  - A fault sets its bit in the fault word (uint16_t, bits below); the drive
  *    clears the word only on an explicit fault-clear command.
  *
@@ -40,10 +41,14 @@
 #define QFOC_FAULT_OT_PCB ((uint16_t)0x0010u)  /**< PCB over-temperature */
 #define QFOC_FAULT_STALL  ((uint16_t)0x0020u)  /**< stall / loss of synchronisation */
 #define QFOC_FAULT_PHASE  ((uint16_t)0x0040u)  /**< phase loss (current imbalance) */
-#define QFOC_FAULT_OFFSET ((uint16_t)0x0080u)  /**< current-sensor offset out of window */
+#define QFOC_FAULT_OFFSET ((uint16_t)0x0080u)  /**< current sensor implausible: offset out of window at
+                                                   the calibration, or a stuck sample while running
+                                                   (REQ-DRV-020) */
 #define QFOC_FAULT_LINK   ((uint16_t)0x0100u)  /**< command-link timeout */
 #define QFOC_FAULT_PARAM  ((uint16_t)0x0200u)  /**< parameter table or drive object corrupted */
-#define QFOC_FAULT_ALL    ((uint16_t)0x03FFu)  /**< every fault bit above */
+#define QFOC_FAULT_TIMING ((uint16_t)0x0400u)  /**< fast steps per tick out of range in RUN
+                                                   (REQ-DRV-021) */
+#define QFOC_FAULT_ALL    ((uint16_t)0x07FFu)  /**< every fault bit above */
 
 /** Phase-monitor init status: coefficient accepted. */
 #define QFOC_FAULT_OK ((int32_t)0)

@@ -62,17 +62,20 @@
 /* Over-speed: above the motor's maximum speed by more than the overshoot the scenario targets
    accept for a step to it (specs/scenarios.toml, [speed_steps] max_overshoot_8000_pct). */
 #define OVERSPEED 1.05
+/* The fault.h bits (QFOC_FAULT_ALL) and the stuck-sample time of REQ-DRV-020 (drive.h). */
+#define N_BITS 11
+#define DRV_STUCK_MS_SIM 2u
 
 /* ------------------------------------------------------------------ classes */
 
 /* The mechanism whose reaction time gives an FTTI (ftti_ms[]). */
 enum { M_NONE, M_FIRST, M_OC, M_VDC, M_OT, M_STALL, M_STALL_OL, M_PHASE, M_PHASE_START, M_OFFSET,
-       M_LINK, M_PARAM_TABLE, M_PARAM_OBJ, M_N };
+       M_LINK, M_PARAM_TABLE, M_PARAM_OBJ, M_SENSOR, M_TIMING, M_N };
 
 static const char *const mech_name[M_N] = {
     "none (within limits)", "that of the first fault raised", "OC", "OV / UV", "OT", "STALL",
     "STALL (no handover)", "PHASE", "PHASE (ALIGN)", "OFFSET", "LINK", "PARAM (table re-check)",
-    "PARAM (object check)"
+    "PARAM (object check)", "OFFSET (running: stuck sample)", "TIMING"
 };
 
 /* Where an injection starts. */
@@ -351,21 +354,30 @@ static void fttis(const qfoc_param_table_t *p)
     spec_ms[M_PARAM_OBJ] = 4.0 + t;
     snprintf(spec_text[M_PARAM_OBJ], sizeof spec_text[0], "the object check, a quarter a tick "
              "(REQ-DRV-019: within 4 ms) + 1 period to PWM off");
+    spec_ms[M_SENSOR] = (double)DRV_STUCK_MS_SIM + 1.0;
+    snprintf(spec_text[M_SENSOR], sizeof spec_text[0], "in CLOSED_LOOP: a current code unchanged "
+             "for %u ms while the other moves + 1 ms tick (REQ-DRV-020)", (unsigned)DRV_STUCK_MS_SIM);
+    spec_ms[M_TIMING] = 1.0 + 4.0 * t;
+    snprintf(spec_text[M_TIMING], sizeof spec_text[0], "in RUN: the tick that ends the first tick "
+             "interval short of 3 fast steps, within 1 ms + 3 periods of the first missed one, "
+             "+ 1 period for the port's PWM off (REQ-DRV-021)");
     for (k = 0; k < M_N; k++) {
         ftti_ms[k] = (k == M_NONE || k == M_FIRST) ? NAN : MARGIN * spec_ms[k];
     }
     spec_ms[M_NONE] = spec_ms[M_FIRST] = NAN;
 }
 
-/* The FTTI of a fault word (its lowest bit), for a class without a mechanism of its own. */
-static double ftti_of_word(uint16_t w)
+/* The FTTI of a fault word (its lowest bit), for a class without a mechanism of its own;
+   OFFSET raised while running is the running sensor monitor's (REQ-DRV-020). */
+static double ftti_of_word(uint16_t w, bool running)
 {
-    static const int mech_of_bit[10] = { M_OC, M_VDC, M_VDC, M_OT, M_OT, M_STALL, M_PHASE, M_OFFSET,
-                                         M_LINK, M_PARAM_OBJ };
+    static const int mech_of_bit[N_BITS] = { M_OC, M_VDC, M_VDC, M_OT, M_OT, M_STALL, M_PHASE,
+                                             M_OFFSET, M_LINK, M_PARAM_OBJ, M_TIMING };
     int b;
-    for (b = 0; b < 10; b++) {
+    for (b = 0; b < N_BITS; b++) {
         if ((w & (1u << b)) != 0u) {
-            return ftti_ms[mech_of_bit[b]] * 1e-3;
+            const int m = (running && mech_of_bit[b] == M_OFFSET) ? M_SENSOR : mech_of_bit[b];
+            return ftti_ms[m] * 1e-3;
         }
     }
     return NAN;
@@ -575,7 +587,7 @@ static void verdict(const inj_t *in, res_t *r)
     const cls_t *c = &cls[in->cls];
     r->harmless = !r->oc_missed && !r->over_fs && r->rpm_peak <= OVERSPEED * motor.max_speed_rpm &&
                   !r->state_bad && !r->pwm_off_run && !r->cmd_changed;
-    r->ftti = (c->mech == M_FIRST) ? ftti_of_word(r->first) : ftti_ms[c->mech] * 1e-3;
+    r->ftti = (c->mech == M_FIRST) ? ftti_of_word(r->first, in->start == S_RUN) : ftti_ms[c->mech] * 1e-3;
     r->in_time = r->faults != 0u && !isnan(r->t_react) && !isnan(r->ftti) &&
                  r->t_react <= r->ftti + 1e-9;
     r->pass = (c->mech == M_NONE) ? (r->harmless && r->faults == 0u) : (r->in_time || r->harmless);
@@ -820,7 +832,7 @@ typedef struct {
     long harmless;
     long pass;
     uint16_t bits;
-    long per_bit[10];
+    long per_bit[N_BITS];
     double det_min, det_max, react_min, react_max;
     double i_peak;
     double rpm_peak;
@@ -859,7 +871,7 @@ static void aggregate(const inj_t *v, const res_t *r, int n, agg_t *a)
         g->harmless += r[k].harmless;
         g->pass += r[k].pass;
         g->bits = (uint16_t)(g->bits | r[k].faults);
-        for (b = 0; b < 10; b++) {
+        for (b = 0; b < N_BITS; b++) {
             g->per_bit[b] += ((r[k].faults >> b) & 1u);
         }
         if (!isnan(r[k].t_det)) {
@@ -901,15 +913,15 @@ static void jrange(FILE *f, const char *key, double lo, double hi, double scale)
     fputc(']', f);
 }
 
-static const char *const fault_names[10] = { "OC", "OV", "UV", "OT_IPM", "OT_PCB", "STALL", "PHASE",
-                                             "OFFSET", "LINK", "PARAM" };
+static const char *const fault_names[N_BITS] = { "OC", "OV", "UV", "OT_IPM", "OT_PCB", "STALL",
+                                                 "PHASE", "OFFSET", "LINK", "PARAM", "TIMING" };
 
 static void jbits(FILE *f, uint16_t w)
 {
     int b;
     int first = 1;
     fputc('[', f);
-    for (b = 0; b < 10; b++) {
+    for (b = 0; b < N_BITS; b++) {
         if ((w & (1u << b)) != 0u) {
             fprintf(f, "%s\"%s\"", first ? "" : ", ", fault_names[b]);
             first = 0;
@@ -1067,7 +1079,7 @@ static int write_results(const char *out, const inj_t *v, const res_t *r, int n,
                 g->harmless, g->pass, g->n - g->pass);
         jbits(f, g->bits);
         fputs(", \"per_bit\": {", f);
-        for (b = 0, first = 1; b < 10; b++) {
+        for (b = 0, first = 1; b < N_BITS; b++) {
             if (g->per_bit[b] > 0) {
                 fprintf(f, "%s\"%s\": %ld", first ? "" : ", ", fault_names[b], g->per_bit[b]);
                 first = 0;

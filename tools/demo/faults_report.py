@@ -29,7 +29,7 @@ import xml.etree.ElementTree as ET
 
 from demo_report import badge, esc, fnum, page, plt, save
 
-FAULTS = ["OC", "OV", "UV", "OT_IPM", "OT_PCB", "STALL", "PHASE", "OFFSET", "LINK", "PARAM"]
+FAULTS = ["OC", "OV", "UV", "OT_IPM", "OT_PCB", "STALL", "PHASE", "OFFSET", "LINK", "PARAM", "TIMING"]
 OUTCOMES = [("param", "PARAM in time"), ("other_fault", "other fault in time"),
             ("masked", "no fault, harmless"), ("late_harmless", "fault after its FTTI, harmless"),
             ("fail", "failed")]

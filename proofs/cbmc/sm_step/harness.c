@@ -63,7 +63,7 @@ int main(void)
     for (k = 0; k < TICKS; k++) {
         const qfoc_sm_in_t in = any_in();
         const qfoc_sm_t old = sm;
-        const uint16_t f = (uint16_t)(in.faults & 0x3FFu);
+        const uint16_t f = (uint16_t)(in.faults & 0x7FFu);
         const uint16_t t_old = (old.t_state < 65535u) ? (uint16_t)(old.t_state + 1u) : 65535u;
         const uint16_t ts_old = (old.t_sub < 65535u) ? (uint16_t)(old.t_sub + 1u) : 65535u;
         qfoc_sm_step(&sm, &cfg, &in);
