@@ -48,7 +48,10 @@ static int32_t qfoc_flt_pow2(uint8_t s)
         1, 2, 4, 8, 16, 32, 64, 128,
         256, 512, 1024, 2048, 4096, 8192, 16384, 32768
     };
-    return qfoc_flt_pow2_table[s];
+    /* s % 16: the contract's s <= 15 leaves it unchanged; a shift corrupted in RAM (a
+       random hardware fault the RAM check, REQ-DRV-019, reports within 4 ms) still
+       reads inside the table */
+    return qfoc_flt_pow2_table[s % 16u];
 }
 
 /**

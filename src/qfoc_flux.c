@@ -56,7 +56,10 @@ static uint32_t qfoc_flux_pow2(uint8_t s)
         1u, 2u, 4u, 8u, 16u, 32u, 64u, 128u,
         256u, 512u, 1024u, 2048u, 4096u, 8192u, 16384u, 32768u
     };
-    return qfoc_flux_pow2_table[s];
+    /* s % 16: the contract's s <= 15 leaves it unchanged; a shift corrupted in RAM (a
+       random hardware fault the RAM check, REQ-DRV-019, reports within 4 ms) still
+       reads inside the table */
+    return qfoc_flux_pow2_table[s % 16u];
 }
 
 /**

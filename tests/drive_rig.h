@@ -131,13 +131,15 @@ static inline void rig_tick(rig_t *r, bool frame)
     rig_tick_rx(r, f, len);
 }
 
-/* n ms of 8 fast steps and one tick, the master's frame every 10 ms while r->send */
+/* n ms of f_pwm / 1000 fast steps and one tick, the master's frame every 10 ms while
+   r->send */
 static inline void rig_ms(rig_t *r, int n)
 {
+    const int per_ms = (int)(r->table.f_pwm_hz / 1000u);
     int k;
     int j;
     for (k = 0; k < n; k++) {
-        for (j = 0; j < 8; j++) {
+        for (j = 0; j < per_ms; j++) {
             rig_fast(r);
         }
         rig_tick(r, r->send && ((r->ms % 10) == 0));

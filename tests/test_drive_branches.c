@@ -18,6 +18,7 @@
  * test verifies as well).  Expectations are recomputed here from the documented
  * formulas in double precision, or counted by hand from the documented timing.
  */
+#include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -30,6 +31,7 @@
 #include "test_util.h"
 #include "qfoc/drive.h"
 #include "reference_params.h"
+#include "reference16k_params.h"
 #include "drive_sim.h"
 
 #define PI_D 3.14159265358979323846
@@ -1187,6 +1189,191 @@ static void test_req_drv_005_run_time_saturates(void **state)
     assert_int_equal(r.d.s.run_ms, k);
 }
 
+/* ------------------------------------------------------ sensor and timing monitors */
+
+/* One tick in CLOSED_LOOP after fast steps that ran on test samples: the estimate on the
+   speed reference less speed_err, the flux magnitude on its expected value (so that the
+   stall condition holds only for speed_err beyond stall_err). */
+static void emu_closed_tick_any(rig_t *r, int32_t speed_err)
+{
+    const double dl = (double)r->table.ld - (double)r->table.lq;
+    const double psi = (double)r->table.psi_f + dl * (double)r->d.f.i_dq.d / 4096.0;
+    emu_est(r, (int32_t)r->d.s.speed_ref - speed_err, (int32_t)lround(psi), 0);
+    rig_tick(r, true);
+}
+
+/* n_ms milliseconds in CLOSED_LOOP, each of per_ms fast steps on the codes code(k) of
+   period k, then a tick; returns the millisecond whose tick entered ERROR, or -1. */
+typedef uint16_t (*code_fn)(long k, int ch);
+static int closed_ms(rig_t *r, code_fn code, int n_ms, int32_t speed_err)
+{
+    const long per_ms = (long)(r->table.f_pwm_hz / 1000u);
+    long k = 0;
+    int ms;
+    for (ms = 0; ms < n_ms; ms++) {
+        long j;
+        for (j = 0; j < per_ms; j++) {
+            r->adc.iu = code(k, 0);
+            r->adc.iv = code(k, 1);
+            rig_fast(r);
+            k++;
+        }
+        emu_closed_tick_any(r, speed_err);
+        if (st(r) == QFOC_STATE_ERROR) {
+            return ms;
+        }
+    }
+    return -1;
+}
+
+/* i_u held (a code the previous period did not have), i_v moving every period */
+static uint16_t code_u_stuck(long k, int ch)
+{
+    return (ch == 0) ? (uint16_t)(QFOC_ADC_MID + 37) : (uint16_t)(QFOC_ADC_MID + ((k & 1) ? 40 : -40));
+}
+/* the same with the channels exchanged */
+static uint16_t code_v_stuck(long k, int ch)
+{
+    return code_u_stuck(k, 1 - ch);
+}
+/* i_u in runs of per_ms x 2 equal codes (2 ms: one short of the stuck count), i_v moving */
+static long g_run = 16;
+static uint16_t code_u_runs(long k, int ch)
+{
+    return (ch == 0) ? (uint16_t)(QFOC_ADC_MID + (((k / g_run) & 1) ? 30 : -30))
+                     : code_u_stuck(k, 1);
+}
+/* both channels held: the DC currents of a rotor at standstill */
+static uint16_t code_both_held(long k, int ch)
+{
+    (void)k;
+    return (ch == 0) ? (uint16_t)(QFOC_ADC_MID + 60) : (uint16_t)(QFOC_ADC_MID - 25);
+}
+/* a healthy motor at the lowest speed the claim of drive.h covers: 50 Hz electrical, 20
+   codes amplitude, no noise, sampled at f_pwm (the codes rounded from double precision) */
+static double g_f_pwm = 8000.0;
+static uint16_t code_sine(long k, int ch)
+{
+    const double th = 2.0 * PI_D * 50.0 * (double)k / g_f_pwm - (double)ch * 2.0 * PI_D / 3.0;
+    return (uint16_t)lround((double)QFOC_ADC_MID + 20.0 * cos(th + 0.3));
+}
+
+/* REQ-DRV-020: one current code unchanged for 2 ms of fast steps (16 at 8 kHz, 32 at
+   16 kHz) while the other moves: OFFSET and ERROR at the first tick that sees it, the PWM
+   off in the next period; one run shorter, both held, the stall condition or a healthy
+   sampled sinusoid: no fault. */
+static void test_req_drv_020_stuck_sample(void **state)
+{
+    const qfoc_param_table_t *const tabs[2] = { &qfoc_params_reference, &qfoc_params_reference16k };
+    int t;
+    (void)state;
+    for (t = 0; t < 2; t++) {
+        rig_t base;
+        rig_t r;
+        const long per_ms = (long)(tabs[t]->f_pwm_hz / 1000u);
+        long max_run = 0;
+        long run = 0;
+        long k;
+        rig_closed_loop(&base, tabs[t], 0);
+        base.motor_current = false;
+        g_f_pwm = (double)tabs[t]->f_pwm_hz;
+        /* held from period 0 on: after millisecond m the code has been unchanged for
+           per_ms (m + 1) - 1 periods; 2 per_ms reached in millisecond 2 */
+        rig_clone(&r, &base);
+        assert_int_equal(closed_ms(&r, code_u_stuck, 10, 0), 2);
+        assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OFFSET);
+        assert_true(r.out.pwm_off);
+        rig_fast(&r);
+        assert_false(r.pwm.enable);
+        rig_clone(&r, &base);
+        assert_int_equal(closed_ms(&r, code_v_stuck, 10, 0), 2);
+        assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OFFSET);
+        /* runs of 2 per_ms equal codes: unchanged for 2 per_ms - 1 periods at most */
+        rig_clone(&r, &base);
+        g_run = 2 * per_ms;
+        assert_int_equal(closed_ms(&r, code_u_runs, 500, 0), -1);
+        /* runs one longer: stuck at the first tick that ends a run's 2 per_ms + 1st period
+           or later (the tick of millisecond m sees the run of periods up to per_ms (m+1)-1) */
+        rig_clone(&r, &base);
+        g_run = 2 * per_ms + per_ms;
+        assert_true(closed_ms(&r, code_u_runs, 500, 0) >= 0);
+        assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_OFFSET);
+        /* both held: a DC current, not a stuck channel */
+        rig_clone(&r, &base);
+        assert_int_equal(closed_ms(&r, code_both_held, 500, 0), -1);
+        /* the stall condition holds: STALL's, after stall_ms, not OFFSET */
+        rig_clone(&r, &base);
+        assert_int_equal(closed_ms(&r, code_u_stuck, 2000, (int32_t)tabs[t]->drive.stall_err + 1),
+                         (int)tabs[t]->drive.stall_ms - 1);
+        assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_STALL);
+        /* a healthy motor: the longest run of equal codes of the sinusoid, in double
+           precision, is shorter than the limit, and the drive raises nothing */
+        for (k = 0; k < 2L * (long)tabs[t]->f_pwm_hz; k++) {
+            run = (k > 0 && code_sine(k, 0) == code_sine(k - 1, 0)) ? run + 1 : 0;
+            max_run = (run > max_run) ? run : max_run;
+        }
+        assert_true(max_run < 2 * per_ms);
+        rig_clone(&r, &base);
+        assert_int_equal(closed_ms(&r, code_sine, 2000, 0), -1);
+    }
+}
+
+/* REQ-DRV-021: in RUN, a tick that counts fewer than f_pwm / 1000 - 2 or more than
+   f_pwm / 1000 + 2 fast steps since the previous tick raises TIMING and sets pwm_off;
+   counts within 2 of it, the count's wrap at 2^16 and any count outside RUN do not; the
+   tick's pwm_off is true exactly outside RUN. */
+static void test_req_drv_021_fast_steps_per_tick(void **state)
+{
+    const qfoc_param_table_t *const tabs[2] = { &qfoc_params_reference, &qfoc_params_reference16k };
+    int t;
+    (void)state;
+    for (t = 0; t < 2; t++) {
+        rig_t base;
+        rig_t r;
+        const int per_ms = (int)(tabs[t]->f_pwm_hz / 1000u);
+        int n;
+        int ms;
+        rig_init_table(&base, tabs[t], 1000u);
+        base.raw_count = true;
+        rig_to_stop(&base);
+        assert_true(base.out.pwm_off);
+        /* outside RUN: no fast step at all for 50 ms, no fault */
+        rig_clone(&r, &base);
+        for (ms = 0; ms < 50; ms++) {
+            rig_tick(&r, true);
+            assert_int_equal(r.d.s.sm.faults, 0u);
+            assert_true(r.out.pwm_off);
+        }
+        base.power_on = true;
+        for (ms = 0; (ms < 200) && (st(&base) != QFOC_STATE_RUN); ms++) {
+            rig_ms(&base, 1);
+        }
+        assert_int_equal(st(&base), QFOC_STATE_RUN);
+        assert_false(base.out.pwm_off);
+        for (n = 0; n <= per_ms + 4; n++) {
+            const bool bad = (n < per_ms - 2) || (n > per_ms + 2);
+            int j;
+            rig_clone(&r, &base);
+            rig_ms(&r, 5);
+            for (j = 0; j < n; j++) {
+                rig_fast(&r);
+            }
+            rig_tick(&r, false);
+            assert_int_equal(r.d.s.sm.faults, bad ? QFOC_FAULT_TIMING : 0u);
+            assert_int_equal(st(&r), bad ? QFOC_STATE_ERROR : QFOC_STATE_RUN);
+            assert_int_equal(r.out.pwm_off, bad);
+        }
+        /* the count wraps at 2^16 */
+        rig_clone(&r, &base);
+        r.d.f.n_fast = 65533u;
+        r.d.s.fast_seen = 65533u;
+        r.n_fast_seen = 65533u;
+        rig_ms(&r, 3);
+        assert_int_equal(r.d.s.sm.faults, 0u);
+        assert_true(r.d.f.n_fast < 65533u);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1205,6 +1392,8 @@ int main(void)
         cmocka_unit_test(test_req_drv_008_phase_loss),
         cmocka_unit_test(test_req_drv_018_no_current),
         cmocka_unit_test(test_req_drv_019_object_check),
+        cmocka_unit_test(test_req_drv_020_stuck_sample),
+        cmocka_unit_test(test_req_drv_021_fast_steps_per_tick),
         cmocka_unit_test(test_req_drv_009_rpm_to_speed_limit),
         cmocka_unit_test(test_req_drv_013_iq_reference_clamp),
         cmocka_unit_test(test_req_drv_013_tc_learning_held_when_clamped),

@@ -189,7 +189,7 @@ static const fld_t drive_fields[] = {
     D(f.i_dq.q), D(f.vdc), D(f.adc_iu), D(f.adc_iv), D(f.theta_est), D(f.theta_m), D(f.speed),
     D(f.speed_f), D(f.psi_mag), D(f.id_fw), D(f.trip_count), D(f.clamp_count), D(f.clear_ack),
     D(f.trip), D(f.active), D(f.hs), D(f.phase_k), D(f.i_abc.u), D(f.i_abc.v), D(f.i_abc.w),
-    D(f.out.cmp), D(f.out.enable),
+    D(f.out.cmp), D(f.out.enable), D(f.same_u), D(f.same_v), D(f.n_fast),
     D(s.sm.state), D(s.sm.sub), D(s.sm.faults), D(s.sm.first_fault), D(s.sm.t_state),
     D(s.sm.t_sub), F_PI(qfoc_drive_t, s.pi_speed), D(s.tc.params.gain), D(s.tc.params.amp_max),
     D(s.tc.params.speed_min), D(s.tc.params.speed_max), D(s.tc.params.pole_pairs), D(s.tc.a),
@@ -202,7 +202,7 @@ static const fld_t drive_fields[] = {
     D(s.db_ot_ipm.count), D(s.db_ot_pcb.count), D(s.db_stall.count), D(s.db_phase.count),
     D(s.db_ho.count), D(s.off_sum_u), D(s.off_sum_v), D(s.off_n), D(s.offset_u), D(s.offset_v),
     D(s.speed_target), D(s.speed_ref), D(s.ol_speed), D(s.id_ref), D(s.iq_ref), D(s.lead),
-    D(s.util), D(s.trip_seen), D(s.clamp_seen), D(s.clear_seq), D(s.ms100), D(s.table_ok),
+    D(s.util), D(s.trip_seen), D(s.clamp_seen), D(s.clear_seq), D(s.ms100), D(s.fast_seen), D(s.table_ok),
     D(s.scan_crc), D(s.calib_done), D(s.hs), D(s.run_ms), D(s.status.state),
     D(s.status.substate), D(s.status.faults), D(s.status.speed_rpm), D(s.status.vdc_dv),
     D(s.status.current_ca), D(s.status.temp_dc), D(s.cmd.power_on), D(s.cmd.fault_clear),
@@ -211,6 +211,7 @@ static const fld_t drive_fields[] = {
     D(s.sm_in.calib_done), D(s.sm_in.run_request), D(s.sm_in.link_lost), D(s.sm_in.fault_clear),
     D(s.sm_in.table_ok), D(s.sm_in.converged), D(s.sm_in.stop_reached), D(s.out.tx),
     D(s.out.tx_len), D(s.out.can.id), D(s.out.can.dlc), D(s.out.can.data), D(s.out.can_send),
+    D(s.out.pwm_off),
 };
 
 /* Every field of the parameter table (params.h), in order. */
@@ -1116,6 +1117,36 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* The injection a worker runs, in DIR/.curJ, so that a worker that dies (a crash in the
+   drive or the plant) is reported with the injection that killed it. */
+static void cur_write(const char *out, int j, int k)
+{
+    char path[700];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/.cur%d", out, j);
+    f = fopen(path, "w");
+    if (f != NULL) {
+        fprintf(f, "%d\n", k);
+        (void)fclose(f);
+    }
+}
+
+static long cur_read(const char *out, int j)
+{
+    char path[700];
+    long k = -1;
+    FILE *f;
+    snprintf(path, sizeof path, "%s/.cur%d", out, j);
+    f = fopen(path, "r");
+    if (f != NULL) {
+        if (fscanf(f, "%ld", &k) != 1) {
+            k = -1;
+        }
+        (void)fclose(f);
+    }
+    return k;
+}
+
 /* jobs processes, injection k in process k % jobs; each writes its results to a file */
 static int run_all(const char *out, const inj_t *v, res_t *r, int n, int jobs)
 {
@@ -1130,6 +1161,7 @@ static int run_all(const char *out, const inj_t *v, res_t *r, int n, int jobs)
             f = fopen(path, "wb");
             for (k = j; k < n && f != NULL; k += jobs) {
                 res_t x;
+                cur_write(out, j, k);
                 run(&v[k], &x);
                 fwrite(&x, sizeof x, 1, f);
                 if (j == 0 && (k / jobs) % 50 == 0) {
@@ -1144,8 +1176,19 @@ static int run_all(const char *out, const inj_t *v, res_t *r, int n, int jobs)
     }
     for (j = 0; j < jobs; j++) {
         int st;
-        if (wait(&st) < 0 || !WIFEXITED(st) || WEXITSTATUS(st) != 0) {
-            fprintf(stderr, "\nqfoc_faults: a worker failed\n");
+        const pid_t pid = wait(&st);
+        if (pid < 0 || !WIFEXITED(st) || WEXITSTATUS(st) != 0) {
+            int w;
+            fprintf(stderr, "\nqfoc_faults: a worker failed%s%s\n",
+                    (pid >= 0 && WIFSIGNALED(st)) ? " on signal " : "",
+                    (pid >= 0 && WIFSIGNALED(st)) ? strsignal(WTERMSIG(st)) : "");
+            for (w = 0; w < jobs; w++) {
+                const long c = cur_read(out, w);
+                if (c >= 0 && c < n) {
+                    fprintf(stderr, "qfoc_faults: worker %d was running injection %ld: %s, %s "
+                            "(bit %d)\n", w, c, cls[v[c].cls].id, v[c].what, v[c].ch);
+                }
+            }
             return -1;
         }
     }
@@ -1164,6 +1207,8 @@ static int run_all(const char *out, const inj_t *v, res_t *r, int n, int jobs)
             return -1;
         }
         fclose(f);
+        remove(path);
+        snprintf(path, sizeof path, "%s/.cur%d", out, j);
         remove(path);
     }
     return 0;
