@@ -1679,7 +1679,8 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
           s->db_stall, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
           s->iq_ref, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
-          s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out;
+          s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out,
+          s->fast_seen;
   ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
                s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);
   ensures accepted: st == QFOC_PARAMS_OK ==>
