@@ -1316,6 +1316,21 @@ static void test_req_drv_020_stuck_sample(void **state)
         rig_clone(&r, &base);
         assert_int_equal(closed_ms(&r, code_sine, 2000, 0), -1);
     }
+    /* the counts stop at 65535: held codes in STOP for more than 65536 periods */
+    {
+        rig_t r;
+        rig_init(&r);
+        r.motor_current = false;
+        rig_to_stop(&r);
+        rig_ms(&r, 8200);
+        assert_int_equal(st(&r), QFOC_STATE_STOP);
+        assert_int_equal(r.d.f.same_u, 65535u);
+        assert_int_equal(r.d.f.same_v, 65535u);
+        r.adc.iu = (uint16_t)(QFOC_ADC_MID + 1);
+        rig_fast(&r);
+        assert_int_equal(r.d.f.same_u, 0u);
+        assert_int_equal(r.d.f.same_v, 65535u);
+    }
 }
 
 /* REQ-DRV-021: in RUN, a tick that counts fewer than f_pwm / 1000 - 2 or more than

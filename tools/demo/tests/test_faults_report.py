@@ -69,4 +69,4 @@ def test_malformed_finding_refused(tmp_path, capsys):
 def test_repository_findings_load():
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")
     items = fr.load_findings(os.path.join(root, "specs", "fault-findings.toml"))
-    assert {it["id"] for it in items} == {"FND-7", "FND-8", "FND-9", "FND-10"}
+    assert {it["id"] for it in items} == {"FND-8", "FND-10"}
