@@ -119,11 +119,42 @@ static void eva_table(qfoc_param_table_t *t)
     t->crc = eva_u32;
 }
 
-/* PiParamsValid, condition by condition */
+/* The table accepted by the drive, group by group: identity (ParamsIdOk) and every
+   range of ParamsValid (specs/params.acsl and the predicates it uses).  Each group is a
+   function whose contract states that it is exactly its predicate (proved by WP, in
+   tools/gates/eva.sh before the analysis); each condition is a test of its own, so that
+   EVA reduces the table's fields on the path where the group holds, and the
+   accepted and the refused states of each group are kept apart at its return
+   (-eva-split-return-function).  No table that qfoc_params_check() accepts is left out
+   of the analysis. */
+
+/*@
+  requires valid_t: \valid_read(t);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> ParamsScalingOk(t);
+*/
+static bool eva_scaling_ok(const qfoc_param_table_t *t)
+{
+    return (t->f_pwm_hz >= QFOC_PARAMS_F_PWM_MIN) && (t->f_pwm_hz <= QFOC_PARAMS_F_PWM_MAX)
+           && (t->v_base_mv > 0u) && (t->i_base_ma > 0u) && (t->f_base_mhz > 0u);
+}
+
+/*@
+  requires valid_s: \valid_read(s);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> SvpwmCfgValid(s->period, s->dt_comp, s->i_deadband,
+                                                s->vdc_min);
+*/
+static bool eva_svpwm_ok(const qfoc_svpwm_cfg_t *s)
+{
+    return (s->period >= 100u) && (s->period <= 32767u) && (s->dt_comp <= (s->period / 4u))
+           && (s->i_deadband >= 0) && (s->vdc_min > 0);
+}
+
 /*@
   requires valid_p: \valid_read(p);
   assigns \nothing;
-  ensures valid: \result != 0 <==> PiParamsValid(p);
+  ensures ok: \result != 0 <==> PiParamsValid(p);
 */
 static bool eva_pi_ok(const qfoc_pi_params_t *p)
 {
@@ -131,12 +162,130 @@ static bool eva_pi_ok(const qfoc_pi_params_t *p)
            && (p->out_min >= -32767) && (p->out_min <= p->out_max);
 }
 
-/* The table accepted by the drive, condition by condition: identity (ParamsIdOk) and
-   every range of ParamsValid (specs/params.acsl and the predicates it uses), each as
-   its own test so that EVA reduces the table's fields on the path where it holds.
-   The contract states that this is exactly the predicate of an accepted table; it is
-   proved by WP (tools/gates/eva.sh, before the analysis): no table that
-   qfoc_params_check() accepts is left out of the analysis. */
+/*@
+  requires valid_f: \valid_read(f);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> FluxParamsValid(f);
+*/
+static bool eva_flux_ok(const qfoc_flux_params_t *f)
+{
+    return (f->gain >= 0) && (f->gain_shift <= 15u) && (f->r >= 0) && (f->l >= 0)
+           && (f->kg >= 0);
+}
+
+/*@
+  requires valid_p: \valid_read(p);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> (p->err_clamp >= 1 && p->mag_min >= 1 &&
+                                  1 <= p->k_theta <= 32767 && p->speed_alpha >= 1);
+*/
+static bool eva_pll_ok(const qfoc_pll_params_t *p)
+{
+    return (p->err_clamp >= 1) && (p->mag_min >= 1) && (p->k_theta >= 1u)
+           && (p->k_theta <= 32767u) && (p->speed_alpha >= 1);
+}
+
+/*@
+  requires valid_t: \valid_read(t);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> ParamsLimitsOk(t);
+*/
+static bool eva_limits_ok(const qfoc_param_table_t *t)
+{
+    const int32_t i_max = (int32_t)t->i_max;
+    return (t->alpha_vdc >= 1) && (t->ld >= 0) && (t->lq >= 0) && (t->psi_f >= 0)
+           && (t->i_max >= 1) && (t->i_trip >= t->i_max) && (t->speed_max >= 1)
+           && (t->vdc_uv >= 1) && (t->vdc_ov > t->vdc_uv) && (t->v_max >= 1)
+           && ((int32_t)t->pi_speed.out_min >= -i_max) && (t->pi_speed.out_max <= t->i_max)
+           && ((int32_t)t->pi_fw.out_min >= -i_max) && (t->pi_fw.out_max <= 0);
+}
+
+/*@
+  requires valid_c: \valid_read(c);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> DriveCfgSpeedOk(c);
+*/
+static bool eva_cfg_speed_ok(const qfoc_drive_cfg_t *c)
+{
+    return (c->pole_pairs >= 1u) && (c->pole_pairs <= QFOC_DRIVE_POLE_PAIRS_MAX)
+           && (c->k_rpm >= 1u) && (c->k_speed_rpm >= 1u) && (c->rpm_min >= 1u)
+           && (c->rpm_max >= c->rpm_min) && (c->speed_ramp >= 1);
+}
+
+/*@
+  requires valid_c: \valid_read(c);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> DriveCfgStartOk(c);
+*/
+static bool eva_cfg_start_ok(const qfoc_drive_cfg_t *c)
+{
+    return (c->precharge_ms >= 1u) && (c->precharge_ms <= QFOC_DRIVE_MS_MAX)
+           && (c->offset_shift >= QFOC_DRIVE_OFFSET_SHIFT_MIN)
+           && (c->offset_shift <= QFOC_DRIVE_OFFSET_SHIFT_MAX)
+           && (c->offset_window <= QFOC_DRIVE_OFFSET_WINDOW_MAX) && (c->i_align >= 1)
+           && (c->align_ms >= 2u) && (c->align_ms <= QFOC_DRIVE_MS_MAX)
+           && (c->i_start >= 1) && (c->of_accel >= 1) && (c->of_speed >= 1)
+           && (c->ho_angle >= 1u) && (c->ho_angle <= QFOC_DRIVE_HO_ANGLE_MAX)
+           && (c->ho_dwell_ms >= 1u) && (c->ho_dwell_ms <= QFOC_DRIVE_MS_MAX)
+           && (c->ol_timeout_ms >= 1u) && (c->ol_timeout_ms <= QFOC_DRIVE_MS_MAX)
+           && (c->cl_hold_ms <= QFOC_DRIVE_MS_MAX);
+}
+
+/*@
+  requires valid_c: \valid_read(c);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> DriveCfgProtOk(c);
+*/
+static bool eva_cfg_prot_ok(const qfoc_drive_cfg_t *c)
+{
+    return (c->t_ipm_max >= QFOC_DRIVE_TEMP_MIN) && (c->t_ipm_max <= QFOC_DRIVE_TEMP_MAX)
+           && (c->t_pcb_max >= QFOC_DRIVE_TEMP_MIN) && (c->t_pcb_max <= QFOC_DRIVE_TEMP_MAX)
+           && (c->vdc_ms >= 1u) && (c->vdc_ms <= QFOC_DRIVE_DEBOUNCE_MAX)
+           && (c->temp_ms >= 1u) && (c->temp_ms <= QFOC_DRIVE_DEBOUNCE_MAX)
+           && (c->stall_err >= 1) && (c->flux_tol >= 1)
+           && (c->stall_ms >= 1u) && (c->stall_ms <= QFOC_DRIVE_MS_MAX)
+           && (c->phase_alpha >= 1) && (c->phase_i_min >= 1) && (c->phase_ratio >= 0)
+           && (c->phase_ms >= 1u) && (c->phase_ms <= QFOC_DRIVE_MS_MAX)
+           && (c->link_timeout_ms >= 1u) && (c->link_timeout_ms <= QFOC_DRIVE_MS_MAX)
+           && (c->clear_ms >= 1u) && (c->clear_ms <= QFOC_DRIVE_MS_MAX);
+}
+
+/*@
+  requires valid_c: \valid_read(c);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> DriveCfgFeatOk(c);
+*/
+static bool eva_cfg_feat_ok(const qfoc_drive_cfg_t *c)
+{
+    return (c->fw_level >= 1) && (c->fw_alpha >= 1) && (c->tc_gain >= 0)
+           && (c->tc_amp_max >= 0) && (c->tc_speed_min >= 0)
+           && (c->tc_speed_max >= c->tc_speed_min) && (c->para_speed >= 1)
+           && (c->ld_hs >= 0) && (c->lq_hs >= 0)
+           && (c->lin_id_cmd <= QFOC_DRIVE_LIN_ID_MAX)
+           && (c->lin_id_status <= QFOC_DRIVE_LIN_ID_MAX)
+           && (c->lin_id_status != c->lin_id_cmd)
+           && (c->can_id_a <= QFOC_DRIVE_CAN_ID_MAX) && (c->can_id_b <= QFOC_DRIVE_CAN_ID_MAX);
+}
+
+/*@
+  requires valid_t: \valid_read(t);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> ParamsDriveCrossOk(t);
+*/
+static bool eva_cross_ok(const qfoc_param_table_t *t)
+{
+    const qfoc_drive_cfg_t *const c = &t->drive;
+    const uint32_t rpm_max = (uint32_t)c->rpm_max;
+    const uint32_t k_rpm = (uint32_t)c->k_rpm;
+    uint32_t prod;
+
+    /*@ assert prod_bound: rpm_max * k_rpm <= 65535 * 65535; */
+    prod = rpm_max * k_rpm;
+    return (c->i_align <= t->i_max) && (c->i_start <= t->i_max)
+           && (c->tc_amp_max <= t->i_max) && (c->of_speed <= t->speed_max)
+           && ((int32_t)((prod + 2048u) / 4096u) <= (int32_t)t->speed_max);
+}
+
 /*@
   requires valid_t: \valid_read(t);
   assigns \nothing;
@@ -144,78 +293,13 @@ static bool eva_pi_ok(const qfoc_pi_params_t *p)
 */
 static bool eva_table_ok(const qfoc_param_table_t *t)
 {
-    bool ok = false;
-    const int32_t i_max = (int32_t)t->i_max;
-    const qfoc_drive_cfg_t *const c = &t->drive;
-
-    if ((t->magic != QFOC_PARAMS_MAGIC) || (t->version != QFOC_PARAMS_VERSION)) {
-        /* foreign table */
-    } else if ((t->f_pwm_hz < QFOC_PARAMS_F_PWM_MIN) || (t->f_pwm_hz > QFOC_PARAMS_F_PWM_MAX)
-               || (t->v_base_mv == 0u) || (t->i_base_ma == 0u) || (t->f_base_mhz == 0u)) {
-        /* ParamsScalingOk */
-    } else if ((t->svpwm.period < 100u) || (t->svpwm.period > 32767u)
-               || (t->svpwm.dt_comp > (t->svpwm.period / 4u))
-               || (t->svpwm.i_deadband < 0) || (t->svpwm.vdc_min <= 0)) {
-        /* SvpwmCfgValid */
-    } else if (!eva_pi_ok(&t->pi_id) || !eva_pi_ok(&t->pi_iq) || !eva_pi_ok(&t->pi_speed)
-               || !eva_pi_ok(&t->pi_fw) || !eva_pi_ok(&t->pll.pi)) {
-        /* PiParamsValid */
-    } else if ((t->flux.gain < 0) || (t->flux.gain_shift > 15u) || (t->flux.r < 0)
-               || (t->flux.l < 0) || (t->flux.kg < 0)) {
-        /* FluxParamsValid */
-    } else if ((t->pll.err_clamp < 1) || (t->pll.mag_min < 1) || (t->pll.k_theta < 1u)
-               || (t->pll.k_theta > 32767u) || (t->pll.speed_alpha < 1)) {
-        /* PllParamsValid */
-    } else if ((t->alpha_vdc < 1) || (t->ld < 0) || (t->lq < 0) || (t->psi_f < 0)
-               || (t->i_max < 1) || (t->i_trip < t->i_max) || (t->speed_max < 1)
-               || (t->vdc_uv < 1) || (t->vdc_ov <= t->vdc_uv) || (t->v_max < 1)
-               || ((int32_t)t->pi_speed.out_min < -i_max) || (t->pi_speed.out_max > t->i_max)
-               || ((int32_t)t->pi_fw.out_min < -i_max) || (t->pi_fw.out_max > 0)) {
-        /* ParamsLimitsOk */
-    } else if ((c->pole_pairs < 1u) || (c->pole_pairs > QFOC_DRIVE_POLE_PAIRS_MAX)
-               || (c->k_rpm < 1u) || (c->k_speed_rpm < 1u) || (c->rpm_min < 1u)
-               || (c->rpm_max < c->rpm_min) || (c->speed_ramp < 1)) {
-        /* DriveCfgSpeedOk */
-    } else if ((c->precharge_ms < 1u) || (c->precharge_ms > QFOC_DRIVE_MS_MAX)
-               || (c->offset_shift < QFOC_DRIVE_OFFSET_SHIFT_MIN)
-               || (c->offset_shift > QFOC_DRIVE_OFFSET_SHIFT_MAX)
-               || (c->offset_window > QFOC_DRIVE_OFFSET_WINDOW_MAX) || (c->i_align < 1)
-               || (c->align_ms < 2u) || (c->align_ms > QFOC_DRIVE_MS_MAX)
-               || (c->i_start < 1) || (c->of_accel < 1) || (c->of_speed < 1)
-               || (c->ho_angle < 1u) || (c->ho_angle > QFOC_DRIVE_HO_ANGLE_MAX)
-               || (c->ho_dwell_ms < 1u) || (c->ho_dwell_ms > QFOC_DRIVE_MS_MAX)
-               || (c->ol_timeout_ms < 1u) || (c->ol_timeout_ms > QFOC_DRIVE_MS_MAX)
-               || (c->cl_hold_ms > QFOC_DRIVE_MS_MAX)) {
-        /* DriveCfgStartOk */
-    } else if ((c->t_ipm_max < QFOC_DRIVE_TEMP_MIN) || (c->t_ipm_max > QFOC_DRIVE_TEMP_MAX)
-               || (c->t_pcb_max < QFOC_DRIVE_TEMP_MIN) || (c->t_pcb_max > QFOC_DRIVE_TEMP_MAX)
-               || (c->vdc_ms < 1u) || (c->vdc_ms > QFOC_DRIVE_DEBOUNCE_MAX)
-               || (c->temp_ms < 1u) || (c->temp_ms > QFOC_DRIVE_DEBOUNCE_MAX)
-               || (c->stall_err < 1) || (c->flux_tol < 1)
-               || (c->stall_ms < 1u) || (c->stall_ms > QFOC_DRIVE_MS_MAX)
-               || (c->phase_alpha < 1) || (c->phase_i_min < 1) || (c->phase_ratio < 0)
-               || (c->phase_ms < 1u) || (c->phase_ms > QFOC_DRIVE_MS_MAX)
-               || (c->link_timeout_ms < 1u) || (c->link_timeout_ms > QFOC_DRIVE_MS_MAX)
-               || (c->clear_ms < 1u) || (c->clear_ms > QFOC_DRIVE_MS_MAX)) {
-        /* DriveCfgProtOk */
-    } else if ((c->fw_level < 1) || (c->fw_alpha < 1) || (c->tc_gain < 0)
-               || (c->tc_amp_max < 0) || (c->tc_speed_min < 0)
-               || (c->tc_speed_max < c->tc_speed_min) || (c->para_speed < 1)
-               || (c->ld_hs < 0) || (c->lq_hs < 0)
-               || (c->lin_id_cmd > QFOC_DRIVE_LIN_ID_MAX)
-               || (c->lin_id_status > QFOC_DRIVE_LIN_ID_MAX)
-               || (c->lin_id_status == c->lin_id_cmd)
-               || (c->can_id_a > QFOC_DRIVE_CAN_ID_MAX) || (c->can_id_b > QFOC_DRIVE_CAN_ID_MAX)) {
-        /* DriveCfgFeatOk */
-    } else if ((c->i_align > t->i_max) || (c->i_start > t->i_max)
-               || (c->tc_amp_max > t->i_max) || (c->of_speed > t->speed_max)
-               || ((int32_t)((((uint32_t)c->rpm_max * (uint32_t)c->k_rpm) + 2048u) / 4096u)
-                   > (int32_t)t->speed_max)) {
-        /* ParamsDriveCrossOk */
-    } else {
-        ok = true;
-    }
-    return ok;
+    return (t->magic == QFOC_PARAMS_MAGIC) && (t->version == QFOC_PARAMS_VERSION)
+           && eva_scaling_ok(t) && eva_svpwm_ok(&t->svpwm)
+           && eva_pi_ok(&t->pi_id) && eva_pi_ok(&t->pi_iq) && eva_pi_ok(&t->pi_speed)
+           && eva_pi_ok(&t->pi_fw) && eva_flux_ok(&t->flux) && eva_pi_ok(&t->pll.pi)
+           && eva_pll_ok(&t->pll) && eva_limits_ok(t) && eva_cfg_speed_ok(&t->drive)
+           && eva_cfg_start_ok(&t->drive) && eva_cfg_prot_ok(&t->drive)
+           && eva_cfg_feat_ok(&t->drive) && eva_cross_ok(t);
 }
 
 int main(void)

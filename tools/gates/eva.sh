@@ -29,14 +29,17 @@
 #     quotient MechCount / pole_pairs) is proved by WP; it reads *m and writes nothing.
 #
 # eva-all keeps the table where it is accepted by a filter in the harness, eva_table_ok():
-# each condition of ParamsIdOk and ParamsValid tested on its own, so that EVA reduces the
-# table's fields on the path where the table is accepted (-eva-split-return-function keeps
-# the accepted and the refused states apart at its return and at eva_pi_ok's; a slevel on
-# both keeps the paths apart inside them).  The filter leaves out no accepted table: its
-# contract, \result != 0 <==> ParamsIdOk(t) && ParamsValid(t), is proved by WP here first
-# (build/eva/eva-all-filter.log); the analysis is not run, and the gate fails, unless every
-# goal is proved.  Only the intervals of the fields are kept: relations between fields
-# (i_max <= i_trip, out_min <= out_max, ...) are not, which over-approximates.
+# the identity (ParamsIdOk) and the groups of ParamsValid, one function per group, each
+# condition tested on its own, so that EVA reduces the table's fields on the path where
+# the table is accepted (-eva-split-return-function keeps the accepted and the refused
+# states of each filter function apart at its return, a slevel of 50 keeps the paths
+# apart inside it).  The filter leaves out no accepted table: the contract of each of its
+# functions states that it is exactly its predicate (eva_table_ok: \result != 0 <==>
+# ParamsIdOk(t) && ParamsValid(t)), proved by WP here first (build/eva/eva-all-filter.log;
+# without -wp-rte: the runtime errors of the harness are EVA's alarms); the analysis is
+# not run, and the gate fails, unless every goal is proved.  Only the intervals of the
+# fields are kept: relations between fields (i_max <= i_trip, out_min <= out_max, ...)
+# are not, which over-approximates the accepted tables.
 #
 # EVA_EXTRA (eva) and EVA_ALL_EXTRA (eva-all) replace these options, EVA_PRECISION (default
 # 4) sets -eva-precision of both; EVA_RUN (default "eva eva-all") selects the analyses.
@@ -50,7 +53,11 @@ mkdir -p "$OUT"
 max=${EVA_MAX_ALARMS:-0}
 precision=${EVA_PRECISION:-4}
 WARN="-warn-signed-overflow -warn-signed-downcast -warn-unsigned-overflow -warn-unsigned-downcast"
-FILTER="eva_table_ok,eva_pi_ok"
+FILTER="eva_table_ok,eva_scaling_ok,eva_svpwm_ok,eva_pi_ok,eva_flux_ok,eva_pll_ok,eva_limits_ok,eva_cfg_speed_ok,eva_cfg_start_ok,eva_cfg_prot_ok,eva_cfg_feat_ok,eva_cross_ok"
+# the default options of eva-all: every filter function split at its return, with a slevel
+ALL_DEFAULT="-eva-domains octagon,equality -eva-use-spec qfoc_isqrt32,qfoc_mech_scale \
+-eva-split-return-function $(echo "$FILTER" | sed 's/,/:0,/g'):0 \
+-eva-slevel-function $(echo "$FILTER" | sed 's/,/:50,/g'):50"
 t0=$(date +%s)
 
 report() {  # report NAME TITLE FRAMA_C_EXIT SECONDS: NAME.json and NAME.md from NAME.log
@@ -119,7 +126,7 @@ for name in ${EVA_RUN:-eva eva-all}; do
         # the filter of the harness: exactly the accepted tables (WP, every goal proved)
         # shellcheck disable=SC2086
         frama-c -cpp-extra-args="-Iinclude -Ispecs" proofs/eva/eva_all_tables.c \
-            -wp -wp-rte -wp-fct "$FILTER" $WARN -wp-prover cvc4,z3 \
+            -wp -wp-fct "$FILTER" -wp-prover cvc4,z3 \
             -wp-timeout "${WP_TIMEOUT:-60}" -wp-par 1 > "$OUT/eva-all-filter.log" 2>&1
         r=$?
         goals=$(sed -n 's/.*Proved goals: *//p' "$OUT/eva-all-filter.log")
@@ -133,7 +140,7 @@ for name in ${EVA_RUN:-eva eva-all}; do
             # shellcheck disable=SC2086
             frama-c -cpp-extra-args="-Iinclude -Ispecs" src/*.c proofs/eva/eva_all_tables.c \
                 -eva -eva-precision "$precision" \
-                ${EVA_ALL_EXTRA:--eva-domains octagon,equality -eva-use-spec qfoc_isqrt32,qfoc_mech_scale -eva-split-return-function eva_table_ok:0,eva_pi_ok:0 -eva-slevel-function eva_table_ok:400,eva_pi_ok:20} \
+                ${EVA_ALL_EXTRA:-$ALL_DEFAULT} \
                 $WARN -eva-no-show-progress > "$OUT/eva-all.log" 2>&1
             r=$?
             report eva-all "$title" "$r" "$(($(date +%s) - s0))" || rc=1
