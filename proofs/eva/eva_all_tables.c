@@ -2,11 +2,37 @@
  * @file eva_all_tables.c
  * @brief Whole-program abstract interpretation of the drive (Frama-C EVA) over every
  *        parameter table the drive accepts: every field of the table (the CRC included)
- *        any value of its type, then qfoc_drive_init(); on the path where the table was
- *        accepted (QFOC_PARAMS_OK), fast steps and ticks with every input over its full
- *        range, as proofs/eva/eva_main.c does for the reference table.
+ *        any value of its type, kept where the table is accepted, then qfoc_drive_init()
+ *        and, on the path where it returned QFOC_PARAMS_OK, fast steps and ticks with
+ *        every input over its full range, in any number and order, as
+ *        proofs/eva/eva_main.c does for the reference table (tools/gates/eva.sh, eva-all).
  *
- * REDUCTION (see tools/gates/eva.sh)
+ * What makes the analysis tractable (the reduction), and why it is sound:
+ *  1. The table is filtered before qfoc_drive_init() by eva_table_ok(): the identity
+ *     (ParamsIdOk) and each group of ParamsValid (specs/params.acsl) tested condition by
+ *     condition, one function per group.  EVA cannot reduce the table's fields from the
+ *     boolean that qfoc_params_check() returns (the fields are tested in callees, the
+ *     verdict is a value); tested here, each condition reduces the fields on the path
+ *     where it holds, and -eva-split-return-function (with a slevel of 50 inside each
+ *     filter function) keeps the accepted states apart from the refused ones.  The filter
+ *     leaves out no accepted table: eva_table_ok() returns true exactly when ParamsIdOk
+ *     and ParamsValid hold (its contract and those of the group functions, proved by WP
+ *     in tools/gates/eva.sh before the analysis runs), and qfoc_params_check() returns
+ *     QFOC_PARAMS_OK only when they hold (its contract, proved by make prove).  The
+ *     library itself still checks the filtered table (qfoc_drive_init() calls
+ *     qfoc_params_check(), CRC included), and only its QFOC_PARAMS_OK path is followed.
+ *  2. Only the interval of each field is kept, not the relations between fields
+ *     (i_max <= i_trip, out_min <= out_max, rpm_min <= rpm_max, ...): the analysed set
+ *     of tables contains every accepted table, and more.
+ *  3. qfoc_mech_scale (src/qfoc_trqcomp.c) is analysed by its contract
+ *     (-eva-use-spec): its quotient is below 65536 because turn < pole_pairs, a relation
+ *     with the reciprocal ceil(2^28 / pole_pairs) that intervals lose when pole_pairs
+ *     ranges over 1 .. 16; the contract is proved by WP with every runtime-error check
+ *     (make prove), and the function reads *m only.  qfoc_isqrt32 likewise, as in
+ *     eva_main.c.
+ * The tables the drive refuses are outside this analysis: with one, qfoc_drive_init()
+ * puts the drive in ERROR (the invariant of the drive, and the absence of runtime
+ * errors, are proved by WP for any table).
  */
 #include "qfoc/drive.h"
 
