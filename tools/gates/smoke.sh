@@ -15,7 +15,8 @@
 # A unit not done within SMOKE_UNIT_LIMIT seconds (default 300) is stopped and reported.
 # Writes build/smoke/UNIT.log and build/smoke/results.md (per unit: smoke goals, all
 # passed yes/no, the findings, the time); exits non-zero on a finding or a failed run.
-# Usage: smoke.sh [UNIT.c ...]
+# Usage: smoke.sh [UNIT.c ...]; smoke.sh --report [UNIT.c ...] writes results.md again from
+# the logs of the last run, and lists the units given that it did not run.
 set -u
 PY=/usr/bin/python3
 [ -x "$PY" ] || PY=python3
@@ -26,10 +27,17 @@ TIMEOUT=${WP_TIMEOUT:-60}
 # a unit not done within this time is stopped and reported as not finished
 LIMIT=${SMOKE_UNIT_LIMIT:-300}
 mkdir -p "$OUT"
+REPORT_ONLY=0
+if [ "${1:-}" = "--report" ]; then
+    # the results file again from the logs of earlier runs (build/smoke/units.txt)
+    REPORT_ONLY=1
+    shift
+fi
 [ $# -gt 0 ] || set -- src/*.c
-: > "$OUT/units.txt"
-echo "smoke: Frama-C WP smoke tests (cvc4,z3, timeout ${TIMEOUT} s) over $# units"
+[ "$REPORT_ONLY" = 1 ] || : > "$OUT/units.txt"
+[ "$REPORT_ONLY" = 1 ] || echo "smoke: Frama-C WP smoke tests (cvc4,z3, timeout ${TIMEOUT} s) over $# units"
 for unit in "$@"; do
+    [ "$REPORT_ONLY" = 0 ] || break
     name=$(basename "$unit" .c)
     fcts=$("$PY" tools/gates/c_functions.py "$unit")
     if [ -z "$fcts" ]; then
@@ -51,7 +59,7 @@ for unit in "$@"; do
          "$(sed -n 's/.*\[Failed\] Smoke-test //p' "$OUT/$name.log" | sort -u | wc -l) proved (findings)" \
          "($secs s, frama-c exit $rc)"
 done
-"$PY" - "$OUT" "$TIMEOUT" "$LIMIT" <<'PY'
+"$PY" - "$OUT" "$TIMEOUT" "$LIMIT" "$@" <<'PY'
 import datetime, re, subprocess, sys
 out, timeout, limit = sys.argv[1], sys.argv[2], sys.argv[3]
 rows, bad = [], 0
@@ -74,16 +82,23 @@ for line in open(f"{out}/units.txt", encoding="utf-8"):
                     break
     found = [f"{g} ({st}{', ' + where[g] if g in where else ''})"
              for g, st in sorted(smoke.items()) if st != "Passed"]
-    if rc == "124":
-        bad += 1
-        rows.append(f"| {unit} | - | - | not finished within {limit} s (skipped) | - | {secs} |")
-        continue
     m = re.search(r"Proved goals:\s*(\d+) / (\d+)", text)
     goals = f"{m.group(1)} / {m.group(2)}" if m else "no result"
+    if rc == "124":
+        bad += 1
+        rows.append(f"| {unit} | {len(smoke)} done | {'no' if found else 'none proved so far'} | "
+                    f"not finished within {limit} s (stopped){': ' + '; '.join(found) if found else ''} "
+                    f"| - | {secs} |")
+        continue
     ok = rc == "0" and m is not None and not found
     bad += not ok
     what = "; ".join(found) if found else ("none" if rc == "0" and m else f"frama-c exit {rc}")
     rows.append(f"| {unit} | {len(smoke)} | {'yes' if not found else 'no'} | {what} | {goals} | {secs} |")
+ran = {l.split()[1] for l in open(f"{out}/units.txt", encoding="utf-8") if l.strip()}
+for unit in sys.argv[4:]:
+    if unit not in ran:
+        bad += 1
+        rows.append(f"| {unit} | - | - | not run | - | - |")
 ver = subprocess.run(["frama-c", "-version"], capture_output=True, text=True).stdout.strip()
 md = ["# Frama-C WP smoke tests", "",
       f"Run: {datetime.datetime.utcnow().strftime('%Y-%m-%d %H:%M')} UTC; Frama-C {ver}; "
