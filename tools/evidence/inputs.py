@@ -94,10 +94,22 @@ def _cbmc_flags(env):
 
 def _eva_flags(env):
     extra = env.get("EVA_EXTRA") or "-eva-domains octagon,equality -eva-use-spec qfoc_isqrt32"
+    extra_all = env.get("EVA_ALL_EXTRA") or (
+        "-eva-domains octagon,equality -eva-use-spec qfoc_isqrt32,qfoc_mech_scale "
+        "-eva-split-return-function eva_table_ok:0,eva_scaling_ok:0,eva_svpwm_ok:0,eva_pi_ok:0,eva_flux_ok:0,eva_pll_ok:0,eva_limits_ok:0,eva_cfg_speed_ok:0,eva_cfg_start_ok:0,eva_cfg_prot_ok:0,eva_cfg_feat_ok:0,eva_cross_ok:0 "
+        "-eva-slevel-function eva_table_ok:50,eva_scaling_ok:50,eva_svpwm_ok:50,eva_pi_ok:50,eva_flux_ok:50,eva_pll_ok:50,eva_limits_ok:50,eva_cfg_speed_ok:50,eva_cfg_start_ok:50,eva_cfg_prot_ok:50,eva_cfg_feat_ok:50,eva_cross_ok:50")
+    precision = env.get("EVA_PRECISION") or 4
+    warn = ("-warn-signed-overflow -warn-signed-downcast -warn-unsigned-overflow "
+            "-warn-unsigned-downcast")
     return ("frama-c -cpp-extra-args=-Iinclude -Ispecs -Itables src/*.c tables/reference_params.c "
-            f"proofs/eva/eva_main.c -eva -eva-precision {env.get('EVA_PRECISION') or 4} {extra} "
-            "-warn-signed-overflow -warn-signed-downcast -warn-unsigned-overflow "
-            f"-warn-unsigned-downcast; EVA_MAX_ALARMS={env.get('EVA_MAX_ALARMS') or 0}")
+            f"proofs/eva/eva_main.c -eva -eva-precision {precision} {extra} {warn}; "
+            "frama-c -cpp-extra-args=-Iinclude -Ispecs proofs/eva/eva_all_tables.c -wp "
+            "-wp-fct eva_table_ok,eva_scaling_ok,eva_svpwm_ok,eva_pi_ok,eva_flux_ok,eva_pll_ok,eva_limits_ok,eva_cfg_speed_ok,eva_cfg_start_ok,eva_cfg_prot_ok,eva_cfg_feat_ok,eva_cross_ok -wp-prover cvc4,z3 "
+            f"-wp-timeout {env.get('WP_TIMEOUT') or 60} -wp-par 1; "
+            "frama-c -cpp-extra-args=-Iinclude -Ispecs src/*.c proofs/eva/eva_all_tables.c -eva "
+            f"-eva-precision {precision} {extra_all} {warn}; "
+            f"EVA_MAX_ALARMS={env.get('EVA_MAX_ALARMS') or 0}; "
+            f"EVA_RUN={env.get('EVA_RUN') or 'eva eva-all'}")
 
 
 def _misra_flags(env):
@@ -162,7 +174,8 @@ GATES = {
     "eva": {
         "what": "Frama-C EVA (make eva: tools/gates/eva.sh)",
         "files": HEADERS + SOURCES + ACSL + [
-            "tables/reference_params.c", "tables/*.h", "proofs/eva/*", "tools/gates/eva.sh"],
+            "tables/reference_params.c", "tables/*.h", "proofs/eva/eva_main.c",
+            "proofs/eva/eva_all_tables.c", "proofs/eva/*", "tools/gates/eva.sh"],
         "flags": _eva_flags,
         "tools": [("frama-c", lambda env, root: ["frama-c", "-version"])],
     },

@@ -1,20 +1,49 @@
 #!/bin/sh
-# tools/gates/eva.sh -- Frama-C EVA over the whole drive (proofs/eva/eva_main.c): the reference
-# table, then any number of fast steps and ticks with every input over its full range.
-# Counts the runtime-error alarms (the '... assert ...' alarms of the -warn-* checks and
-# of memory accesses) apart from the ACSL properties EVA leaves unknown (those are proved
-# by WP, make prove), writes build/eva/eva.log, eva.md and eva.json, and exits non-zero
-# when a runtime-error alarm remains and EVA_MAX_ALARMS (default 0) is exceeded.
+# tools/gates/eva.sh -- Frama-C EVA over the whole drive, two analyses:
+#
+#   eva      proofs/eva/eva_main.c: the reference table (tables/reference_params.c), then
+#            any number of fast steps and ticks with every input over its full range;
+#   eva-all  proofs/eva/eva_all_tables.c: every table the drive accepts (every field any
+#            value of its type, kept where ParamsIdOk and ParamsValid hold), then the same
+#            fast steps and ticks.
+#
+# Each analysis counts its runtime-error alarms (the '... assert ...' alarms of the -warn-*
+# checks and of memory accesses) apart from the ACSL properties EVA leaves unknown (those
+# are proved by WP, make prove), writes build/eva/NAME.log, NAME.md and NAME.json, and the
+# script exits non-zero when a runtime-error alarm of either analysis remains and
+# EVA_MAX_ALARMS (default 0) is exceeded.
 #
 # Domains: octagons and equalities beside the default intervals, so that relations
-# between two variables (a clamp and its bound) are kept.  One function is analysed by
-# its contract instead of its code (-eva-use-spec): qfoc_isqrt32, whose Newton steps and loop
-# the intervals cannot follow (the remainder and the root are bounded only together);
-# its contract (include/qfoc/vector.h: the result is the floor of the square root, at
-# most 65535) is proved by WP with every runtime-error check (make prove), and its code
-# has no memory access beyond its locals, so the two analyses together cover it.
-# EVA_EXTRA replaces these options, EVA_PRECISION (default 4) sets -eva-precision.
-# eva.json and eva.md are stamped with the run's UTC time and the SHA-256 of their inputs
+# between two variables (a clamp and its bound) are kept.  Functions analysed by their
+# contract instead of their code (-eva-use-spec), each contract proved by WP with every
+# runtime-error check (make prove), so the two analyses together cover the code:
+#   qfoc_isqrt32 (both analyses), whose Newton steps and loop the intervals cannot follow
+#     (the remainder and the root are bounded only together); its contract
+#     (include/qfoc/vector.h: the result is the floor of the square root, at most 65535);
+#     no memory access beyond its locals;
+#   qfoc_mech_scale (src/qfoc_trqcomp.c, eva-all only): the mechanical angle
+#     (turn x 65536 + theta_e) / pole_pairs through the reciprocal ceil(2^28 / pole_pairs);
+#     the quotient is below 65536 because turn < pole_pairs, a relation between the count
+#     and the reciprocal that intervals lose when pole_pairs ranges over 1 .. 16 (with the
+#     reference table's single pole-pair count they keep it); its contract (the exact
+#     quotient MechCount / pole_pairs) is proved by WP; it reads *m and writes nothing.
+#
+# eva-all keeps the table where it is accepted by a filter in the harness, eva_table_ok():
+# the identity (ParamsIdOk) and the groups of ParamsValid, one function per group, each
+# condition tested on its own, so that EVA reduces the table's fields on the path where
+# the table is accepted (-eva-split-return-function keeps the accepted and the refused
+# states of each filter function apart at its return, a slevel of 50 keeps the paths
+# apart inside it).  The filter leaves out no accepted table: the contract of each of its
+# functions states that it is exactly its predicate (eva_table_ok: \result != 0 <==>
+# ParamsIdOk(t) && ParamsValid(t)), proved by WP here first (build/eva/eva-all-filter.log;
+# without -wp-rte: the runtime errors of the harness are EVA's alarms); the analysis is
+# not run, and the gate fails, unless every goal is proved.  Only the intervals of the
+# fields are kept: relations between fields (i_max <= i_trip, out_min <= out_max, ...)
+# are not, which over-approximates the accepted tables.
+#
+# EVA_EXTRA (eva) and EVA_ALL_EXTRA (eva-all) replace these options, EVA_PRECISION (default
+# 4) sets -eva-precision of both; EVA_RUN (default "eva eva-all") selects the analyses.
+# Every .json and .md is stamped with the run's UTC time and the SHA-256 of the inputs
 # (tools/evidence/inputs.py eva; the list of the inputs in build/eva/inputs-eva.sha256).
 set -u
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
@@ -22,17 +51,21 @@ cd "$TOP"
 OUT=build/eva
 mkdir -p "$OUT"
 max=${EVA_MAX_ALARMS:-0}
+precision=${EVA_PRECISION:-4}
+WARN="-warn-signed-overflow -warn-signed-downcast -warn-unsigned-overflow -warn-unsigned-downcast"
+FILTER="eva_table_ok,eva_scaling_ok,eva_svpwm_ok,eva_pi_ok,eva_flux_ok,eva_pll_ok,eva_limits_ok,eva_cfg_speed_ok,eva_cfg_start_ok,eva_cfg_prot_ok,eva_cfg_feat_ok,eva_cross_ok"
+# the default options of eva-all: every filter function split at its return, with a slevel
+ALL_DEFAULT="-eva-domains octagon,equality -eva-use-spec qfoc_isqrt32,qfoc_mech_scale \
+-eva-split-return-function $(echo "$FILTER" | sed 's/,/:0,/g'):0 \
+-eva-slevel-function $(echo "$FILTER" | sed 's/,/:50,/g'):50"
 t0=$(date +%s)
-frama-c -cpp-extra-args="-Iinclude -Ispecs -Itables" src/*.c tables/reference_params.c \
-    proofs/eva/eva_main.c -eva -eva-precision "${EVA_PRECISION:-4}" ${EVA_EXTRA:--eva-domains octagon,equality -eva-use-spec qfoc_isqrt32} \
-    -warn-signed-overflow -warn-signed-downcast -warn-unsigned-overflow -warn-unsigned-downcast \
-    -eva-no-show-progress > "$OUT/eva.log" 2>&1
-rc=$?
-t1=$(date +%s)
-/usr/bin/python3 - "$OUT" "$rc" "$((t1 - t0))" "$max" <<'PY'
+
+report() {  # report NAME TITLE FRAMA_C_EXIT SECONDS: NAME.json and NAME.md from NAME.log
+    /usr/bin/python3 - "$OUT" "$1" "$2" "$3" "$4" "$max" <<'PY'
 import json, re, sys
-out, rc, secs, mx = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
-lines = open(f"{out}/eva.log", encoding="utf-8", errors="replace").read().splitlines()
+out, name, title = sys.argv[1], sys.argv[2], sys.argv[3]
+rc, secs, mx = int(sys.argv[4]), int(sys.argv[5]), int(sys.argv[6])
+lines = open(f"{out}/{name}.log", encoding="utf-8", errors="replace").read().splitlines()
 rte, props = [], []
 for i, l in enumerate(lines):
     m = re.match(r"^\[eva:alarm\] (\S+):(\d+): Warning: ?(.*)$", l)
@@ -41,21 +74,84 @@ for i, l in enumerate(lines):
     msg = m.group(3).strip() or (lines[i + 1].strip() if i + 1 < len(lines) else "")
     rec = {"file": m.group(1), "line": int(m.group(2)), "message": msg}
     (rte if ". assert " in " " + msg else props).append(rec)
-with open(f"{out}/eva.json", "w") as f:
+with open(f"{out}/{name}.json", "w") as f:
     json.dump({"frama_c_exit": rc, "seconds": secs, "rte_alarms": rte,
                "unknown_properties": len(props)}, f, indent=1)
-md = ["# Frama-C EVA over the whole drive", "",
+md = [f"# {title}", "",
       f"Runtime-error alarms: **{len(rte)}**; ACSL properties EVA leaves unknown (proved by WP): "
       f"{len(props)}; {secs} s.", "", "| file | line | alarm |", "|---|---:|---|"]
 md += [f"| {a['file']} | {a['line']} | {a['message']} |" for a in rte]
-open(f"{out}/eva.md", "w").write("\n".join(md) + "\n")
-print(f"eva: {len(rte)} runtime-error alarms (limit {mx}), {len(props)} ACSL properties left "
-      f"to WP, {secs} s; build/eva/eva.md")
+open(f"{out}/{name}.md", "w").write("\n".join(md) + "\n")
+print(f"{name}: {len(rte)} runtime-error alarms (limit {mx}), {len(props)} ACSL properties left "
+      f"to WP, {secs} s; {out}/{name}.md")
 sys.exit(0 if rc == 0 and len(rte) <= mx else 1)
 PY
-rc=$?
-for f in "$OUT/eva.json" "$OUT/eva.md"; do
-    /usr/bin/python3 tools/evidence/inputs.py --stamp "$f" eva --started "$t0" > /dev/null ||
-        { echo "eva: could not stamp $f with its inputs"; rc=1; }
+}
+
+failed() {  # failed NAME TITLE REASON: a result that says the analysis did not run
+    /usr/bin/python3 - "$OUT" "$1" "$2" "$3" <<'PY'
+import json, sys
+out, name, title, why = sys.argv[1:5]
+with open(f"{out}/{name}.json", "w") as f:
+    json.dump({"frama_c_exit": -1, "seconds": 0, "rte_alarms": [], "unknown_properties": 0,
+               "not_run": why}, f, indent=1)
+open(f"{out}/{name}.md", "w").write(f"# {title}\n\nNot run: {why}.\n")
+print(f"{name}: not run: {why}")
+PY
+}
+
+stamp() {  # stamp NAME
+    for f in "$OUT/$1.json" "$OUT/$1.md"; do
+        /usr/bin/python3 tools/evidence/inputs.py --stamp "$f" eva --started "$t0" > /dev/null ||
+            { echo "eva: could not stamp $f with its inputs"; return 1; }
+    done
+}
+
+rc=0
+for name in ${EVA_RUN:-eva eva-all}; do
+    s0=$(date +%s)
+    case "$name" in
+    eva)
+        title="Frama-C EVA over the whole drive"
+        # shellcheck disable=SC2086
+        frama-c -cpp-extra-args="-Iinclude -Ispecs -Itables" src/*.c tables/reference_params.c \
+            proofs/eva/eva_main.c -eva -eva-precision "$precision" \
+            ${EVA_EXTRA:--eva-domains octagon,equality -eva-use-spec qfoc_isqrt32} \
+            $WARN -eva-no-show-progress > "$OUT/eva.log" 2>&1
+        r=$?
+        report eva "$title" "$r" "$(($(date +%s) - s0))" || rc=1
+        ;;
+    eva-all)
+        title="Frama-C EVA over the whole drive, every accepted parameter table"
+        # the filter of the harness: exactly the accepted tables (WP, every goal proved)
+        # shellcheck disable=SC2086
+        frama-c -cpp-extra-args="-Iinclude -Ispecs" proofs/eva/eva_all_tables.c \
+            -wp -wp-fct "$FILTER" -wp-prover cvc4,z3 \
+            -wp-timeout "${WP_TIMEOUT:-60}" -wp-par 1 > "$OUT/eva-all-filter.log" 2>&1
+        r=$?
+        goals=$(sed -n 's/.*Proved goals: *//p' "$OUT/eva-all-filter.log")
+        p=${goals%% /*}
+        n=${goals##*/ }
+        if [ "$r" != 0 ] || [ -z "$goals" ] || [ "$p" != "$n" ]; then
+            failed eva-all "$title" "the filter eva_table_ok of proofs/eva/eva_all_tables.c is not proved (WP: ${goals:-no result}; $OUT/eva-all-filter.log)"
+            rc=1
+        else
+            echo "eva-all: filter eva_table_ok proved by WP ($goals goals)"
+            # shellcheck disable=SC2086
+            frama-c -cpp-extra-args="-Iinclude -Ispecs" src/*.c proofs/eva/eva_all_tables.c \
+                -eva -eva-precision "$precision" \
+                ${EVA_ALL_EXTRA:-$ALL_DEFAULT} \
+                $WARN -eva-no-show-progress > "$OUT/eva-all.log" 2>&1
+            r=$?
+            report eva-all "$title" "$r" "$(($(date +%s) - s0))" || rc=1
+        fi
+        ;;
+    *)
+        echo "eva: no analysis '$name' (EVA_RUN: eva, eva-all)"
+        rc=1
+        continue
+        ;;
+    esac
+    stamp "$name" || rc=1
 done
 exit "$rc"

@@ -24,7 +24,8 @@ import inputs  # noqa: E402
 def fixed_tools(monkeypatch):
     """The tools' version lines of the inputs stamps, fixed (no tool is run)."""
     monkeypatch.setattr(inputs, "tool_line", lambda name, argv: name + " 1.0")
-    for var in ("WP_TIMEOUT", "CBMC_SAT", "EVA_EXTRA", "EVA_PRECISION", "EVA_MAX_ALARMS"):
+    for var in ("WP_TIMEOUT", "CBMC_SAT", "EVA_EXTRA", "EVA_ALL_EXTRA", "EVA_PRECISION",
+                "EVA_MAX_ALARMS", "EVA_RUN"):
         monkeypatch.delenv(var, raising=False)
 
 # Requirement IDs of the made-up matrix, written so that the trace gate does not read them

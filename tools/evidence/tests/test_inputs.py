@@ -29,7 +29,8 @@ VERSIONS = {"frama-c": "25.0 (Manganese)", "why3": "Why3 platform, version 1.5.1
 def fixed_tools(monkeypatch):
     versions = dict(VERSIONS)
     monkeypatch.setattr(inputs, "tool_line", lambda name, argv: versions.get(name, name + " 1.0"))
-    for var in ("WP_TIMEOUT", "CBMC_SAT", "EVA_EXTRA", "EVA_PRECISION", "EVA_MAX_ALARMS"):
+    for var in ("WP_TIMEOUT", "CBMC_SAT", "EVA_EXTRA", "EVA_ALL_EXTRA", "EVA_PRECISION",
+                "EVA_MAX_ALARMS", "EVA_RUN"):
         monkeypatch.delenv(var, raising=False)
     return versions
 
