@@ -87,6 +87,7 @@ TRACE = {"requirements": [
 # The result files the gates stamp, with their gate (tools/evidence/inputs.py)
 STAMPED = (("proofs/wp/results.md", "wp"), ("build/wp/wp-summary.json", "wp"),
            ("proofs/cbmc/results.md", "cbmc"), ("build/eva/eva.json", "eva"),
+           ("build/eva/eva-all.json", "eva"),
            ("build/misra/compliance-summary.json", "misra"), ("build/coverage/coverage.xml", "coverage"),
            ("build/bench/bench.json", "bench"))
 
@@ -127,6 +128,8 @@ def full_inputs(root):
     write(root, "proofs/cbmc/results.md", CBMC_RESULTS)
     write(root, "build/eva/eva.json", {"frama_c_exit": 0, "seconds": 9, "rte_alarms": [],
                                        "unknown_properties": 4})
+    write(root, "build/eva/eva-all.json", {"frama_c_exit": 0, "seconds": 20, "rte_alarms": [],
+                                           "unknown_properties": 7})
     write(root, "build/trace/trace.json", TRACE)
     write(root, "build/misra/compliance-summary.json",
           {"framework": "MISRA Compliance:2020",
@@ -323,6 +326,23 @@ def test_wp_function_without_result_is_red(tmp_path):
     assert rows["wp"]["status"] == "FAIL"
     assert data["sections"]["wp"]["functions_without_result"] == ["qfoc_x:qfoc_x_extra"]
     assert data["sections"]["wp"]["units_without_result"] == ["qfoc_z"]
+
+
+def test_eva_all_tables_alarm_or_missing_is_red(tmp_path):
+    """REQ-EVD-004: the EVA row is green only when both analyses of make eva (the reference
+    table and every accepted table) report no alarm; a missing second analysis is red."""
+    full_inputs(tmp_path)
+    _rc, _data, rows = run(tmp_path)
+    assert rows["eva"]["status"] == "PASS" and "every accepted table: 0 alarms" in rows["eva"]["figure"]
+    write(tmp_path, "build/eva/eva-all.json", {"frama_c_exit": 0, "seconds": 20, "rte_alarms": [
+        {"file": "src/x.c", "line": 3, "message": "signed overflow. assert a + b <= 32767;"}],
+        "unknown_properties": 7})
+    stamp(tmp_path)
+    _rc, _data, rows = run(tmp_path)
+    assert rows["eva"]["status"] == "FAIL" and "every accepted table: 1 alarm," in rows["eva"]["figure"]
+    os.remove(tmp_path / "build" / "eva" / "eva-all.json")
+    _rc, _data, rows = run(tmp_path)
+    assert rows["eva"]["status"] == "FAIL" and "every accepted table: not run" in rows["eva"]["figure"]
 
 
 def test_eva_alarm_and_cbmc_failure_are_red(tmp_path):
