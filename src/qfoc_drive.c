@@ -1418,6 +1418,28 @@ static bool drv_object_slice(const qfoc_drive_t *d, uint8_t k)
     return ok;
 }
 
+/* Bias of the reference guard (REQ-DRV-022, DRV_REF_GUARD of specs/drive.acsl): it makes
+   the sum of the five references non-negative (5 x 32768 <= 173477) and the guard of an
+   object of zeros (42405) other than 0. */
+#define DRV_GUARD_BIAS ((int32_t)173477)
+/* The guard of five references at 0 (the reset values): 173477 modulo 2^16. */
+#define DRV_GUARD_ZERO ((uint16_t)42405u)
+
+/* The guard word of the tick's five references (REQ-DRV-022): their sum with the bias,
+   modulo 2^16, which a single flipped bit of any of them changes. */
+/*@
+  requires valid: \valid_read(s);
+  assigns \nothing;
+  ensures guard: \result == DRV_REF_GUARD(s);
+*/
+static uint16_t drv_ref_guard(const qfoc_drive_slow_t *s)
+{
+    /* five terms in [-32768, 32767]: the sum with the bias in [9637, 337312] */
+    const int32_t sum = (int32_t)s->speed_target + (int32_t)s->speed_ref + (int32_t)s->ol_speed +
+                        (int32_t)s->id_ref + (int32_t)s->iq_ref + DRV_GUARD_BIAS;
+    return (uint16_t)((uint32_t)sum % 65536u);
+}
+
 /* The drive object in RAM against its invariant, a quarter of it at the start of every
    tick, the whole in 4 ticks (REQ-DRV-019): a random hardware fault (a flipped RAM bit, a
    stray write) that breaks the invariant or the two relations checked with it clears
@@ -1428,17 +1450,24 @@ static bool drv_object_slice(const qfoc_drive_t *d, uint8_t k)
    run-time monitor of what the proof assumes of the hardware.  Reading the fast step's
    half while it may pre-empt is sound: every relation checked bounds one field the fast
    step writes by constants of the table or by fields only the tick or the init write, so
-   a mix of two periods' values passes. */
+   a mix of two periods' values passes.  Every tick also checks the guard word of the
+   five references against their values (REQ-DRV-022): only the tick and the init write
+   them, and both leave the guard matching (ensures guard), so a mismatch at the start of
+   a tick is a change since the last tick that no code made; it clears table_ok the same
+   way, before any of the five is used. */
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \separated(d, d->p);
   assigns d->s.table_ok;
   ensures kept: !\old(d->s.table_ok) ==> !d->s.table_ok;
+  ensures guard: !DriveRefGuardOk(d) ==> !d->s.table_ok;
 */
 static void drv_object_check(qfoc_drive_t *d)
 {
     const uint8_t k = (uint8_t)(d->s.ms100 % DRV_CHECK_SLICES);
+    const bool refs = (d->s.ref_guard == drv_ref_guard(&d->s));
+    const bool slice = drv_object_slice(d, k);
 
-    if (!drv_object_slice(d, k)) {
+    if (!(refs && slice)) {
         d->s.table_ok = false;
     } else {
         /* this quarter of the drive object is intact */
@@ -1463,6 +1492,7 @@ static void drv_object_check(qfoc_drive_t *d)
   ensures run_entry: old_state != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>
       old_state == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN;
   ensures pwm_off: d->s.out.pwm_off == \true <==> d->s.sm.state != QFOC_STATE_RUN;
+  ensures guard: DriveRefGuardOk(d);
 */
 static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_state,
                          uint8_t old_sub, bool accepted)
@@ -1482,6 +1512,8 @@ static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_
     drv_ms100(d);
     /* the second path to the safe state: the port turns the inverter off at once */
     s->out.pwm_off = (s->sm.state != QFOC_STATE_RUN);
+    /* the references of this tick under their guard, checked at the next tick */
+    s->ref_guard = drv_ref_guard(s);
 }
 
 qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
@@ -1606,7 +1638,8 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
   requires sep: \separated(s, c);
   assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->lead, s->util,
           s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done, s->hs,
-          s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out, s->fast_seen;
+          s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out, s->fast_seen, s->ref_guard;
+  ensures guard: s->ref_guard == DRV_REF_GUARD(s);
 */
 static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
 {
@@ -1669,6 +1702,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->out.can_send = false;
     s->out.pwm_off = true;
     s->fast_seen = 0u;
+    s->ref_guard = DRV_GUARD_ZERO;
 }
 
 /* Tick data from the table (REQ-DRV-001). */
@@ -1680,7 +1714,8 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
           s->iq_ref, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
           s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out,
-          s->fast_seen;
+          s->fast_seen, s->ref_guard;
+  ensures guard: s->ref_guard == DRV_REF_GUARD(s);
   ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
                s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);
   ensures accepted: st == QFOC_PARAMS_OK ==>

@@ -89,6 +89,21 @@ static inline void rig_fast(rig_t *r)
     assert_true(!r->pwm.enable || (r->d.s.sm.state == QFOC_STATE_RUN));
 }
 
+/* REQ-DRV-022: the guard word of the tick's five references (DRV_REF_GUARD of
+   specs/drive.acsl): their sum plus 173477, modulo 2^16. */
+static inline uint16_t rig_guard(const qfoc_drive_t *d)
+{
+    const long sum = (long)d->s.speed_target + (long)d->s.speed_ref + (long)d->s.ol_speed +
+                     (long)d->s.id_ref + (long)d->s.iq_ref + 173477L;
+    return (uint16_t)(sum % 65536L);
+}
+
+/* after a test writes one of the five references: the guard a tick would have left */
+static inline void rig_reguard(rig_t *r)
+{
+    r->d.s.ref_guard = rig_guard(&r->d);
+}
+
 /* one tick with the bytes rx[0 .. len-1] received */
 static inline void rig_tick_rx(rig_t *r, const uint8_t *rx, uint8_t len)
 {
@@ -121,6 +136,7 @@ static inline void rig_tick_rx(rig_t *r, const uint8_t *rx, uint8_t len)
     r->n_fast_seen = r->d.f.n_fast;
     r->ms++;
     assert_true(qfoc_drive_is_valid(&r->d));
+    assert_int_equal(r->d.s.ref_guard, rig_guard(&r->d));
 }
 
 /* one tick, with the master's command frame when `frame` */

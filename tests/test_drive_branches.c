@@ -569,6 +569,7 @@ static void test_req_drv_013_tc_learning_held_when_clamped(void **state)
     (void)state;
     rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
     r.d.s.iq_ref = (int16_t)(qfoc_params_reference.i_max + 1);
+    rig_reguard(&r);
     r.d.f.speed_f = 0;
     rig_fast(&r);
     assert_int_not_equal(r.d.f.clamp_count, r.d.s.clamp_seen);
@@ -1389,6 +1390,81 @@ static void test_req_drv_021_fast_steps_per_tick(void **state)
     }
 }
 
+/* REQ-DRV-022: every single-bit flip of the five references (speed_target, speed_ref,
+   ol_speed, id_ref, iq_ref) or of their guard word between two ticks, each an admissible
+   value the drive invariant accepts, gives ERROR with PARAM in the next tick (in RUN,
+   OPEN_LOOP and CLOSED_LOOP, and in STOP), pwm_off at once and the PWM off in the next
+   period, and the references back at 0; the same ticks without a flip raise nothing.
+   The guard after init and after every tick of the rig is the equation's (rig_guard). */
+static void test_req_drv_022_reference_guard(void **state)
+{
+    int phase;
+    (void)state;
+    for (phase = 0; phase < 3; phase++) {
+        rig_t base;
+        int field;
+        if (phase == 0) {
+            rig_init(&base);
+            assert_int_equal(base.d.s.ref_guard, rig_guard(&base.d));
+            rig_to_stop(&base);
+            assert_int_equal(st(&base), QFOC_STATE_STOP);
+        } else if (phase == 1) {
+            int ms;
+            rig_init(&base);
+            rig_to_stop(&base);
+            base.motor_current = true;
+            base.power_on = true;
+            for (ms = 0; (ms < 2000) && (sub(&base) != QFOC_SUB_OPEN_LOOP); ms++) {
+                rig_ms(&base, 1);
+            }
+            rig_ms(&base, 5);
+            assert_int_equal(sub(&base), QFOC_SUB_OPEN_LOOP);
+            assert_true(base.d.s.ol_speed > 0);
+            assert_true(base.d.s.iq_ref > 0);
+        } else {
+            rig_closed_loop(&base, &qfoc_params_reference, deg_counts(-30.0));
+            assert_int_equal(sub(&base), QFOC_SUB_CLOSED_LOOP);
+            assert_true(base.d.s.speed_ref > 0);
+        }
+        {
+            /* no flip: the next tick raises nothing */
+            rig_t r;
+            rig_clone(&r, &base);
+            rig_tick(&r, false);
+            assert_int_equal(r.d.s.sm.faults, 0u);
+            assert_true(r.d.s.table_ok);
+        }
+        for (field = 0; field < 6; field++) {
+            int bit;
+            for (bit = 0; bit < 16; bit++) {
+                rig_t r;
+                uint16_t *w;
+                rig_clone(&r, &base);
+                switch (field) {
+                case 0:  w = (uint16_t *)(void *)&r.d.s.speed_target; break;
+                case 1:  w = (uint16_t *)(void *)&r.d.s.speed_ref; break;
+                case 2:  w = (uint16_t *)(void *)&r.d.s.ol_speed; break;
+                case 3:  w = (uint16_t *)(void *)&r.d.s.id_ref; break;
+                case 4:  w = (uint16_t *)(void *)&r.d.s.iq_ref; break;
+                default: w = &r.d.s.ref_guard; break;
+                }
+                *w = (uint16_t)(*w ^ (1u << bit));
+                /* an admissible value: the invariant's check does not see it */
+                assert_true(qfoc_drive_is_valid(&r.d));
+                rig_tick(&r, false);
+                assert_int_equal(st(&r), QFOC_STATE_ERROR);
+                assert_true((r.d.s.sm.faults & QFOC_FAULT_PARAM) != 0u);
+                assert_false(r.d.s.table_ok);
+                assert_true(r.out.pwm_off);
+                assert_int_equal(r.d.s.speed_ref, 0);
+                assert_int_equal(r.d.s.iq_ref, 0);
+                rig_fast(&r);
+                assert_false(r.pwm.enable);
+            }
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1409,6 +1485,7 @@ int main(void)
         cmocka_unit_test(test_req_drv_019_object_check),
         cmocka_unit_test(test_req_drv_020_stuck_sample),
         cmocka_unit_test(test_req_drv_021_fast_steps_per_tick),
+        cmocka_unit_test(test_req_drv_022_reference_guard),
         cmocka_unit_test(test_req_drv_009_rpm_to_speed_limit),
         cmocka_unit_test(test_req_drv_013_iq_reference_clamp),
         cmocka_unit_test(test_req_drv_013_tc_learning_held_when_clamped),

@@ -251,6 +251,7 @@ typedef struct {
     uint32_t scan_crc;        /**< CRC register of the table check in progress */
     bool calib_done;          /**< offsets calibrated in range */
     bool hs;                  /**< request: high-speed inductances (motorParaChange) */
+    uint16_t ref_guard;       /**< guard word of speed_target .. iq_ref (REQ-DRV-022) */
     uint32_t run_ms;          /**< time in RUN, ms, saturating (Motor_Run_Time) */
     qfoc_status_t status;     /**< last status (LIN and CAN) */
     qfoc_cmd_t cmd;           /**< effective command of this tick (after the link rules) */
@@ -309,6 +310,7 @@ bool qfoc_drive_is_valid(const qfoc_drive_t *d);
       d->s.sm.state == QFOC_STATE_ERROR && !d->s.table_ok;
   ensures accepted: \result == QFOC_PARAMS_OK ==>
       d->s.sm.state == QFOC_STATE_PRECHARGE && d->s.table_ok;
+  ensures guard: DriveRefGuardOk(d);
 */
 int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table);
 
@@ -349,11 +351,16 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
  * gain against the table), the whole in 4 calls; a violation (a flipped bit, a stray
  * write) raises PARAM and ERROR in that call, the PWM goes off in the next period, and
  * the drive stays in ERROR until qfoc_drive_init() is called again (REQ-DRV-019).
+ * Reference guard: each call also first compares the guard word of the five references
+ * (speed_target, speed_ref, ol_speed, id_ref, iq_ref) with their values; only the init and
+ * the tick write them and both leave the guard matching (ensures guard), so a flipped bit
+ * that leaves a reference admissible is PARAM in the same way, before it is used
+ * (REQ-DRV-022).
  * Sensor and timing monitors: the current-sensor and fast-step checks of OFFSET and
  * TIMING above (REQ-DRV-020, REQ-DRV-021).  out.pwm_off is true whenever the state after
  * the call is not RUN: the port turns the inverter off at once (a second path to the safe
  * state beside the fast step's PWM off, for a fast step that no longer runs).
- * Requirements: REQ-DRV-005 .. REQ-DRV-012, REQ-DRV-019 .. REQ-DRV-021.
+ * Requirements: REQ-DRV-005 .. REQ-DRV-012, REQ-DRV-019 .. REQ-DRV-022.
  */
 /*@
   requires valid: \valid(d) && \valid_read(in);
@@ -366,6 +373,7 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
   ensures kept: \result == d->s.out;
   ensures tx: d->s.out.tx_len == 0 || d->s.out.tx_len == QFOC_LIN_STATUS_LEN;
   ensures pwm_off: d->s.out.pwm_off == \true <==> d->s.sm.state != QFOC_STATE_RUN;
+  ensures guard: DriveRefGuardOk(d);
   ensures error_exit: \old(d->s.sm.state) == QFOC_STATE_ERROR &&
       d->s.sm.state != QFOC_STATE_ERROR ==> d->s.sm.state == QFOC_STATE_STOP;
   ensures run_entry: \old(d->s.sm.state) != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>

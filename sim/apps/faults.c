@@ -203,7 +203,7 @@ static const fld_t drive_fields[] = {
     D(s.db_ho.count), D(s.off_sum_u), D(s.off_sum_v), D(s.off_n), D(s.offset_u), D(s.offset_v),
     D(s.speed_target), D(s.speed_ref), D(s.ol_speed), D(s.id_ref), D(s.iq_ref), D(s.lead),
     D(s.util), D(s.trip_seen), D(s.clamp_seen), D(s.clear_seq), D(s.ms100), D(s.fast_seen), D(s.table_ok),
-    D(s.scan_crc), D(s.calib_done), D(s.hs), D(s.run_ms), D(s.status.state),
+    D(s.ref_guard), D(s.scan_crc), D(s.calib_done), D(s.hs), D(s.run_ms), D(s.status.state),
     D(s.status.substate), D(s.status.faults), D(s.status.speed_rpm), D(s.status.vdc_dv),
     D(s.status.current_ca), D(s.status.temp_dc), D(s.cmd.power_on), D(s.cmd.fault_clear),
     D(s.cmd.target_rpm), D(s.sm_cfg.precharge_ms), D(s.sm_cfg.align_ms), D(s.sm_cfg.ol_timeout_ms),
