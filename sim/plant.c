@@ -137,6 +137,7 @@ void sim_init(sim_t *s, const sim_cfg_t *cfg)
     s->en_pending = true;
     s->extinct = false;
     s->inj.gain[0] = s->inj.gain[1] = 1.0;
+    s->inj.vdc_gain = 1.0;
     s->inj.stuck[0] = s->inj.stuck[1] = s->inj.stuck[2] = -1;
     if (s->cfg.speed_locked) {
         s->w_m = s->cfg.locked_speed_e / s->cfg.motor.pole_pairs;
@@ -180,6 +181,7 @@ void sim_sample(sim_t *s, sim_adc_t *adc)
         const sim_inj_t *f = &s->inj;
         adc->iu = sim_adc(2048.0 + f->gain[0] * iu * cps + s->cfg.adc_offset_counts + f->offset[0]);
         adc->iv = sim_adc(2048.0 + f->gain[1] * iv * cps + s->cfg.adc_offset_counts + f->offset[1]);
+        adc->vdc = sim_adc(f->vdc_gain * vdc / s->cfg.motor.vdc_full_scale_v * 4096.0);
         adc->iu = (f->stuck[0] >= 0) ? sim_adc((double)f->stuck[0]) : adc->iu;
         adc->iv = (f->stuck[1] >= 0) ? sim_adc((double)f->stuck[1]) : adc->iv;
         adc->vdc = (f->stuck[2] >= 0) ? sim_adc((double)f->stuck[2]) : adc->vdc;

@@ -131,7 +131,8 @@ typedef struct {
  * (sim/apps/faults.c, specs/fault-campaign.md; REQ-FINJ-001 .. REQ-FINJ-007).  sim_init()
  * makes every one inactive, and the plant is then exactly the model above.
  *  - sensing: each current channel's sample is gain x the true current plus an offset in
- *    counts before the 12-bit conversion; any channel can be stuck at a code;
+ *    counts before the 12-bit conversion, the DC-bus sample vdc_gain x the true bus; any
+ *    channel can be stuck at a code;
  *  - open phases: an open phase carries no current.  With one phase open (a broken wire or
  *    a failed connection on the motor side, star point not connected) the current of the
  *    two others is i and -i: the stator current vector is confined to the axis at right
@@ -147,6 +148,7 @@ typedef struct {
     bool sense;          /**< the sensing faults below are applied */
     double gain[2];      /**< current channels u, v: sensed = gain x true (1 = exact) */
     double offset[2];    /**< current channels u, v: offset added, counts */
+    double vdc_gain;     /**< DC-bus channel: sensed = vdc_gain x true (1 = exact) */
     int stuck[3];        /**< iu, iv, vdc: the code returned, or -1 (not stuck) */
     unsigned open;       /**< open phases: bit 0 u, bit 1 v, bit 2 w (0 = none) */
 } sim_inj_t;

@@ -757,13 +757,23 @@ static uint16_t drv_faults_power(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     return w;
 }
 
-/* Tick-evaluated faults of the motor and the table: stall, phase loss, table re-check
-   (fault.h; reaction times in drive.h, REQ-DRV-008, REQ-DRV-010). */
+/* The fast flux plausibility check (REQ-DRV-023): the band, |psi - psi_exp| at most
+   3/10 of psi_exp, the ticks of CLOSED_LOOP before it applies (the handover's transient),
+   and the ticks in a row outside the band that raise STALL.  The speed gate is 1.5 times
+   the handover speed of_speed. */
+#define DRV_FLUX_BAND_NUM ((int32_t)3)
+#define DRV_FLUX_BAND_DEN ((int32_t)10)
+#define DRV_FLUX_BLANK_MS 100u
+#define DRV_FLUX_TICKS ((uint16_t)2u)
+
+/* Tick-evaluated faults of the motor and the table: stall and flux plausibility, phase
+   loss, table re-check (fault.h; reaction times in drive.h, REQ-DRV-008, REQ-DRV-010,
+   REQ-DRV-023). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
   requires inv: DRV_PHASE(&d->f.phase);
-  assigns d->s.db_stall, d->s.db_phase;
+  assigns d->s.db_stall, d->s.db_flux, d->s.db_phase;
   ensures bits: \result <= QFOC_FAULT_STALL + QFOC_FAULT_PHASE + QFOC_FAULT_PARAM;
 */
 static uint16_t drv_faults_motor(qfoc_drive_t *d)
@@ -793,9 +803,12 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
                             (((int32_t)qfoc_phase_mon_peak(&f->phase) * 4) < i_imposed);
     uint16_t w = 0u;
     bool stall;
+    bool implausible;
 
     /* stall / loss of synchronisation: speed error or flux magnitude off its expectation
-       psi_f + (L_d - L_q) i_d (the active flux the observer estimates) */
+       psi_f + (L_d - L_q) i_d (the active flux the observer estimates); and the fast flux
+       plausibility check (REQ-DRV-023): in steady CLOSED_LOOP, the flux magnitude off its
+       expectation by more than DRV_FLUX_BAND_NUM / DRV_FLUX_BAND_DEN of it */
     {
         const qfoc_q15_t e_speed = qfoc_q15_sub(s->speed_ref, f->speed_f);
         const qfoc_q15_t psi_exp = qfoc_q15_add(p->psi_f,
@@ -804,12 +817,24 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
         const qfoc_q15_t e_psi = qfoc_q15_sub(f->psi_mag, psi_exp);
         const bool bad_speed = qfoc_fault_abs_over(e_speed, c->stall_err);
         const bool bad_flux = qfoc_fault_abs_over(e_psi, c->flux_tol);
+        /* |e_psi| <= 32768 and psi_exp <= 32767: both products fit in 32 bits */
+        const int32_t dev = (int32_t)qfoc_q15_abs(e_psi);
+        const bool steady = run && (sub == QFOC_SUB_CLOSED_LOOP) &&
+                            ((uint32_t)s->sm.t_sub >= DRV_FLUX_BLANK_MS) &&
+                            (((int32_t)qfoc_q15_abs(f->speed_f) * 2) >
+                             ((int32_t)qfoc_q15_abs(c->of_speed) * 3));
         stall = closed && (bad_speed || bad_flux);
+        implausible = steady && (psi_exp > 0) &&
+                      ((dev * DRV_FLUX_BAND_DEN) > ((int32_t)psi_exp * DRV_FLUX_BAND_NUM));
     }
-    if (qfoc_debounce_step(&s->db_stall, stall, c->stall_ms)) {
-        w = (uint16_t)(w + QFOC_FAULT_STALL);
-    } else {
-        /* synchronised */
+    {
+        const bool slow = qfoc_debounce_step(&s->db_stall, stall, c->stall_ms);
+        const bool fast = qfoc_debounce_step(&s->db_flux, implausible, DRV_FLUX_TICKS);
+        if (slow || fast) {
+            w = (uint16_t)(w + QFOC_FAULT_STALL);
+        } else {
+            /* synchronised, the flux plausible */
+        }
     }
     if (qfoc_debounce_step(&s->db_phase, (rotating && imbalanced) || align_imbalanced || no_current,
                            c->phase_ms)) {
@@ -830,7 +855,7 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
   requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
   requires sep: \separated(&d->s, d->p) && \separated(&d->s, in);
   requires inv: DRV_PHASE(&d->f.phase);
-  assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall,
+  assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall, d->s.db_flux,
           d->s.db_phase, d->s.trip_seen;
   ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET - QFOC_FAULT_TIMING;
 */
@@ -1710,7 +1735,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
   requires valid: \valid(s) && \valid_read(p);
   requires sep: \separated(s, p);
   assigns s->sm, s->pi_speed, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
-          s->db_stall, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
+          s->db_stall, s->db_flux, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
           s->iq_ref, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
           s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out,
@@ -1745,6 +1770,7 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int
     qfoc_debounce_reset(&s->db_ot_ipm);
     qfoc_debounce_reset(&s->db_ot_pcb);
     qfoc_debounce_reset(&s->db_stall);
+    qfoc_debounce_reset(&s->db_flux);
     qfoc_debounce_reset(&s->db_phase);
     qfoc_debounce_reset(&s->db_ho);
     s->off_sum_u = 0u;

@@ -762,7 +762,9 @@ static void test_req_drv_006_speed_hold_before_cl_hold(void **state)
 
 /* REQ-DRV-008: STALL in CLOSED_LOOP when |speed ref - estimate| > stall_err, or the
    flux magnitude differs from psi_f + (L_d - L_q) i_d by more than flux_tol, for
-   stall_ms ticks; at the tolerance itself no fault. */
+   stall_ms ticks; at the tolerance itself no fault.  A flux error beyond flux_tol is also
+   beyond the fast check's band (REQ-DRV-023): those cases run with the speed estimate
+   below its gate (1.5 of_speed), where only this slow criterion applies. */
 static void test_req_drv_008_stall_speed_and_flux(void **state)
 {
     rig_t r;
@@ -770,7 +772,7 @@ static void test_req_drv_008_stall_speed_and_flux(void **state)
     int cas;
     (void)state;
     rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
-    for (cas = 0; cas < 4; cas++) {
+    for (cas = 0; cas < 5; cas++) {
         rig_t x;
         long k;
         int32_t es = 0;
@@ -784,15 +786,19 @@ static void test_req_drv_008_stall_speed_and_flux(void **state)
         case 0: es = c->stall_err; ep = c->flux_tol; break;          /* at the bounds */
         case 1: es = -(c->stall_err + 1); break;                    /* speed error */
         case 2: ep = -(c->flux_tol + 1); break;                     /* flux too small */
-        default: es = -c->stall_err; ep = -c->flux_tol; break;      /* at the bounds */
+        case 3: es = -c->stall_err; break;                          /* at the bound */
+        default: es = c->stall_err; ep = -c->flux_tol; break;       /* at the bounds */
         }
+        /* the flux cases below the fast check's speed gate */
+        assert_true((ep == 0) ||
+                    (2 * abs((int32_t)x.d.s.speed_ref - es) <= 3 * (int32_t)c->of_speed));
         for (k = 1; k <= 2L * (long)c->stall_ms; k++) {
             emu_closed_tick(&x, es, ep);
             if (st(&x) == QFOC_STATE_ERROR) {
                 break;
             }
         }
-        if ((cas == 0) || (cas == 3)) {
+        if ((cas == 0) || (cas >= 3)) {
             assert_int_equal(st(&x), QFOC_STATE_RUN);
             assert_int_equal(sub(&x), QFOC_SUB_CLOSED_LOOP);
         } else {
@@ -1465,6 +1471,122 @@ static void test_req_drv_022_reference_guard(void **state)
     }
 }
 
+/* REQ-DRV-023: the fast flux plausibility check.  In CLOSED_LOOP from 100 ticks after its
+   entry, with |speed estimate| above 1.5 of_speed and psi_exp = psi_f + (L_d - L_q) i_d > 0,
+   a flux magnitude off psi_exp by more than 3/10 of it (10 |psi - psi_exp| > 3 psi_exp) in
+   2 ticks in a row raises STALL in the second.  At the band, alternating in and out, at
+   the speed gate, in the blank after the handover, in STOPPING and with psi_exp = 0 it does
+   not; the slow criterion (flux_tol, stall_ms) does not act in any of these cases. */
+static void test_req_drv_023_flux_plausibility(void **state)
+{
+    const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
+    /* the largest |speed| the gate keeps closed: 2 |speed| <= 3 of_speed */
+    const int32_t gate = (3 * (int32_t)c->of_speed) / 2;
+    rig_t base;
+    rig_t x;
+    int32_t pe;
+    int32_t band;
+    long k;
+    int sign;
+    (void)state;
+    rig_closed_loop(&base, &qfoc_params_reference, deg_counts(-30.0));
+    base.d.f.i_dq.d = 0;
+    base.rpm = 3000u;
+    for (k = 0; (k < 5000) && ((base.d.s.speed_ref != base.d.s.speed_target) ||
+                               (base.d.s.sm.t_sub < 200u)); k++) {
+        emu_closed_tick(&base, 0, 0);
+    }
+    assert_int_equal(sub(&base), QFOC_SUB_CLOSED_LOOP);
+    assert_int_equal(base.d.s.sm.faults, 0u);
+    assert_int_equal(base.d.s.speed_ref, base.d.s.speed_target);
+    pe = psi_expected(&base);
+    assert_int_equal(pe, qfoc_params_reference.psi_f);
+    band = (3 * pe) / 10;   /* the largest |psi - psi_exp| inside the band */
+    assert_true(band + 1 <= c->flux_tol);
+    for (sign = -1; sign <= 1; sign += 2) {
+        /* at the band: no fault */
+        rig_clone(&x, &base);
+        for (k = 0; k < 1000; k++) {
+            emu_closed_tick(&x, 0, sign * band);
+            assert_int_equal(x.d.s.sm.faults, 0u);
+        }
+        /* one count beyond: STALL in the second tick */
+        rig_clone(&x, &base);
+        for (k = 1; k <= 10; k++) {
+            emu_closed_tick(&x, 0, sign * (band + 1));
+            if (st(&x) == QFOC_STATE_ERROR) {
+                break;
+            }
+        }
+        assert_int_equal(k, 2);
+        assert_int_equal(x.d.s.sm.faults, QFOC_FAULT_STALL);
+        assert_true(x.out.pwm_off);
+        rig_fast(&x);
+        assert_false(x.pwm.enable);
+        /* beyond the band every other tick: never */
+        rig_clone(&x, &base);
+        for (k = 0; k < 1000; k++) {
+            emu_closed_tick(&x, 0, ((k % 2) == 0) ? (sign * (band + 1)) : 0);
+            assert_int_equal(x.d.s.sm.faults, 0u);
+        }
+    }
+    {
+        /* the speed gate: closed at `gate`, open one count above it, either sign */
+        const int32_t speeds[3] = { gate, gate + 1, -(gate + 1) };
+        int n;
+        for (n = 0; n < 3; n++) {
+            rig_clone(&x, &base);
+            for (k = 1; k <= 50; k++) {
+                emu_est(&x, speeds[n], pe + band + 1, 0);
+                rig_tick(&x, true);
+                if (st(&x) == QFOC_STATE_ERROR) {
+                    break;
+                }
+            }
+            if (n == 0) {
+                assert_int_equal(st(&x), QFOC_STATE_RUN);
+                assert_int_equal(x.d.s.sm.faults, 0u);
+            } else {
+                assert_int_equal(k, 2);
+                assert_int_equal(x.d.s.sm.faults, QFOC_FAULT_STALL);
+            }
+        }
+    }
+    /* the blank: from the handover on, estimate above the gate, flux beyond the band */
+    rig_closed_loop(&x, &qfoc_params_reference, deg_counts(-30.0));
+    x.d.f.i_dq.d = 0;
+    assert_true(x.d.s.sm.t_sub < 2u);
+    for (k = 1; k <= 300; k++) {
+        const uint16_t t_sub = x.d.s.sm.t_sub;
+        emu_closed_tick(&x, -(gate + 200 - (int32_t)x.d.s.speed_ref), band + 1);
+        if (st(&x) == QFOC_STATE_ERROR) {
+            /* the tick's check reads the time in CLOSED_LOOP of the ticks before it:
+               outside the band at 100 and 101, STALL in the second */
+            assert_int_equal(t_sub, 101u);
+            break;
+        }
+    }
+    assert_int_equal(x.d.s.sm.faults, QFOC_FAULT_STALL);
+    /* STOPPING: not checked */
+    rig_clone(&x, &base);
+    x.power_on = false;
+    for (k = 0; k < 100; k++) {
+        emu_closed_tick(&x, 0, band + 1);
+        assert_int_equal(x.d.s.sm.faults, 0u);
+    }
+    assert_int_equal(sub(&x), QFOC_SUB_STOPPING);
+    /* psi_exp = 0 (a table with psi_f = 0 and i_d = 0): the check is off */
+    rig_clone(&x, &base);
+    x.table.psi_f = 0;
+    table_seal(&x.table);
+    assert_int_equal(psi_expected(&x), 0);
+    for (k = 0; k < 100; k++) {
+        emu_closed_tick(&x, 0, band + 1);
+        assert_int_equal(x.d.s.sm.faults, 0u);
+    }
+    assert_true(x.d.s.table_ok);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1486,6 +1608,7 @@ int main(void)
         cmocka_unit_test(test_req_drv_020_stuck_sample),
         cmocka_unit_test(test_req_drv_021_fast_steps_per_tick),
         cmocka_unit_test(test_req_drv_022_reference_guard),
+        cmocka_unit_test(test_req_drv_023_flux_plausibility),
         cmocka_unit_test(test_req_drv_009_rpm_to_speed_limit),
         cmocka_unit_test(test_req_drv_013_iq_reference_clamp),
         cmocka_unit_test(test_req_drv_013_tc_learning_held_when_clamped),

@@ -65,7 +65,13 @@
  *   OT_IPM, OT_PCB  temperature above its limit for temp_ms;
  *   STALL  in CLOSED_LOOP, |speed ref - estimate| > stall_err or the observer's flux
  *          magnitude off its expected value by more than flux_tol, for stall_ms; or
- *          no handover within ol_timeout_ms of OPEN_LOOP;
+ *          no handover within ol_timeout_ms of OPEN_LOOP; and the fast flux check
+ *          (REQ-DRV-023): in CLOSED_LOOP from 100 ms after its entry, above 1.5 of_speed,
+ *          the flux magnitude off its expected value psi_f + (L_d - L_q) i_d by more than
+ *          3/10 of it in 2 ticks in a row (a current-sensor offset or gain, a DC-bus
+ *          reading off the true bus, an open phase: the observer integrates the measured
+ *          voltage and current; the table's psi_f, L_d and L_q must hold within that band
+ *          over the magnet's temperature range, safety manual AoU-15);
  *   PHASE  in OPEN_LOOP, CLOSED_LOOP and STOPPING, the smallest filtered |phase
  *          current| below phase_ratio x the largest, the largest above phase_i_min, for
  *          phase_ms; in ALIGN from align_ms / 2 on, the same with phase_ratio / 2; and
@@ -117,7 +123,9 @@
  * REQ-DRV-011 status and CAN, REQ-DRV-012 motorParaChange, REQ-DRV-013 field weakening
  * and torque compensation, REQ-DRV-014 start on the plant, REQ-DRV-015 malformed frames,
  * REQ-DRV-016 command without frames, REQ-DRV-017 status readers, REQ-DRV-018 current
- * response in ALIGN and OPEN_LOOP.
+ * response in ALIGN and OPEN_LOOP, REQ-DRV-019 RAM check, REQ-DRV-020 stuck sample,
+ * REQ-DRV-021 fast steps per tick, REQ-DRV-022 reference guard, REQ-DRV-023 fast flux
+ * plausibility.
  *
  * Behaviour on the plant, end to end (specs/requirements/scenarios.md, targets in
  * specs/scenarios.toml, shown by make demo): REQ-SCN-001 cold start, REQ-SCN-002 speed
@@ -228,6 +236,7 @@ typedef struct {
     qfoc_debounce_t db_ot_ipm;
     qfoc_debounce_t db_ot_pcb;
     qfoc_debounce_t db_stall;
+    qfoc_debounce_t db_flux;  /**< the fast flux plausibility check (REQ-DRV-023) */
     qfoc_debounce_t db_phase;
     qfoc_debounce_t db_ho;    /**< handover condition dwell */
     uint32_t off_sum_u;       /**< offset calibration sums */

@@ -18,7 +18,7 @@
  *    while running, OT = qfoc_fault_over(temperature, t_max), PHASE =
  *    qfoc_phase_mon_imbalanced() (its low-pass fed by qfoc_phase_mon_update() in
  *    the fast step), STALL from the speed and flux errors with
- *    qfoc_fault_abs_over(); OFFSET while running and TIMING from the drive's
+ *    qfoc_fault_abs_over() and from the drive's fast flux plausibility check; OFFSET while running and TIMING from the drive's
  *    sensor and timing monitors (drive.h).
  *  - A fault sets its bit in the fault word (uint16_t, bits below); the drive
  *    clears the word only on an explicit fault-clear command.
@@ -39,7 +39,10 @@
 #define QFOC_FAULT_UV     ((uint16_t)0x0004u)  /**< DC-bus under-voltage (while running) */
 #define QFOC_FAULT_OT_IPM ((uint16_t)0x0008u)  /**< IPM over-temperature */
 #define QFOC_FAULT_OT_PCB ((uint16_t)0x0010u)  /**< PCB over-temperature */
-#define QFOC_FAULT_STALL  ((uint16_t)0x0020u)  /**< stall / loss of synchronisation */
+#define QFOC_FAULT_STALL  ((uint16_t)0x0020u)  /**< stall / loss of synchronisation, or the
+                                                   estimated flux implausible in steady closed
+                                                   loop: a sensing fault such as a current
+                                                   offset or a DC-bus gain (REQ-DRV-023) */
 #define QFOC_FAULT_PHASE  ((uint16_t)0x0040u)  /**< phase loss (current imbalance) */
 #define QFOC_FAULT_OFFSET ((uint16_t)0x0080u)  /**< current sensor implausible: offset out of window at
                                                    the calibration, or a stuck sample while running

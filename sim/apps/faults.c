@@ -83,7 +83,7 @@ enum { S_RUN, S_STOP, S_COLD, S_N };
 
 /* What is injected. */
 enum { K_NONE, K_SPEEDS, K_GARBAGE, K_SURGE, K_BUS, K_T_IPM, K_T_PCB, K_SEIZE, K_LOCK, K_STUCK,
-       K_OPEN, K_OFFSET, K_GAIN, K_LINK_STOP, K_LINK_BAD, K_SKIP_FAST, K_SKIP_TICK, K_FLIP_TABLE,
+       K_OPEN, K_OFFSET, K_GAIN, K_VDC_GAIN, K_LINK_STOP, K_LINK_BAD, K_SKIP_FAST, K_SKIP_TICK, K_FLIP_TABLE,
        K_FLIP_DRIVE };
 
 typedef struct {
@@ -96,7 +96,7 @@ typedef struct {
 
 enum { C_CONTROL, C_GARBAGE, C_OC, C_OV, C_UV, C_BUS_IN, C_OT_IPM, C_OT_PCB, C_TEMP_IN, C_STALL,
        C_LOCKED, C_NO_CURRENT, C_OPEN_RUN, C_OPEN_START, C_OFFSET, C_OFFSET_IN, C_LINK, C_STUCK,
-       C_DRIFT, C_GAIN, C_SKIP_FAST, C_SKIP_TICK, C_FLIP_TABLE, C_FLIP_DRIVE, C_N };
+       C_DRIFT, C_GAIN, C_VDC_GAIN, C_SKIP_FAST, C_SKIP_TICK, C_FLIP_TABLE, C_FLIP_DRIVE, C_N };
 
 static const cls_t cls[C_N] = {
     { "control", "fault-free runs: the cold start to 3000 rpm, 2 s steady at 3000 rpm, speed "
@@ -144,6 +144,8 @@ static const cls_t cls[C_N] = {
       "counts on iu and on iv, at 3000 rpm", M_FIRST, 0u, false },
     { "gain_error", "current-sensor gain error: 0.5, 0.8, 1.25 and 2.0 on iu and on iv, at "
       "3000 rpm", M_FIRST, 0u, false },
+    { "vdc_gain", "DC-bus sensor gain error: the reading 0.75, 0.8, 1.25 and 1.35 times the "
+      "true 320 V bus (inside the UV and OV thresholds), at 3000 rpm", M_FIRST, 0u, false },
     { "missed_fast_steps", "the fast step not called for 1, 2, 3, 8, 16, 40 and 80 periods "
       "while the inverter goes on with its last compare values and enable, at 3000 rpm",
       M_FIRST, 0u, false },
@@ -199,7 +201,7 @@ static const fld_t drive_fields[] = {
     D(s.link.silent_ms), D(s.link.cfg_ok), D(s.link.seen), D(s.link.lost), D(s.link.can_b),
     D(s.link.n_ok), D(s.link.n_len), D(s.link.n_sync), D(s.link.n_id), D(s.link.n_checksum),
     D(s.link.n_reserved), D(s.link.n_range), D(s.db_ov.count), D(s.db_uv.count),
-    D(s.db_ot_ipm.count), D(s.db_ot_pcb.count), D(s.db_stall.count), D(s.db_phase.count),
+    D(s.db_ot_ipm.count), D(s.db_ot_pcb.count), D(s.db_stall.count), D(s.db_flux.count), D(s.db_phase.count),
     D(s.db_ho.count), D(s.off_sum_u), D(s.off_sum_v), D(s.off_n), D(s.offset_u), D(s.offset_v),
     D(s.speed_target), D(s.speed_ref), D(s.ol_speed), D(s.id_ref), D(s.iq_ref), D(s.lead),
     D(s.util), D(s.trip_seen), D(s.clamp_seen), D(s.clear_seq), D(s.ms100), D(s.fast_seen), D(s.table_ok),
@@ -553,6 +555,7 @@ static void inject(dsim_t *ds, const inj_t *in)
     case K_OPEN: f->open = (unsigned)in->ch; break;
     case K_OFFSET: f->sense = true; f->offset[in->ch] = in->a; break;
     case K_GAIN: f->sense = true; f->gain[in->ch] = in->a; break;
+    case K_VDC_GAIN: f->sense = true; f->vdc_gain = in->a; break;
     case K_LINK_STOP: ds->link_alive = false; break;
     case K_GARBAGE: ds->garbage = (uint32_t)in->a; break;
     case K_SKIP_FAST: ds->skip_fast = (int)in->a; break;
@@ -736,6 +739,7 @@ static const sweep_t sweeps[] = {
     { C_DRIFT, S_RUN, K_OFFSET, 1, 2, 1.0, 0.0, "%s offset drift %+.0f counts", 6,
       { 50.0, -50.0, 200.0, -200.0, 600.0, -600.0 } },
     { C_GAIN, S_RUN, K_GAIN, 1, 2, 1.0, 0.0, "%s gain %.2f", 4, { 0.5, 0.8, 1.25, 2.0 } },
+    { C_VDC_GAIN, S_RUN, K_VDC_GAIN, 0, 0, 1.0, 0.0, "vdc gain %.2f", 4, { 0.75, 0.8, 1.25, 1.35 } },
     { C_SKIP_FAST, S_RUN, K_SKIP_FAST, 0, 0, 0.5, 1.25e-4, "%.0f fast steps missed", 7,
       { 1.0, 2.0, 3.0, 8.0, 16.0, 40.0, 80.0 } },
     { C_SKIP_TICK, S_RUN, K_SKIP_TICK, 0, 0, 0.5, 1e-3, "no tick for %.0f ms", 5,
