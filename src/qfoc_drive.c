@@ -1484,7 +1484,7 @@ static uint16_t drv_ref_guard(const qfoc_drive_slow_t *s)
   requires valid: \valid(d) && \valid_read(d->p) && \separated(d, d->p);
   assigns d->s.table_ok;
   ensures kept: !\old(d->s.table_ok) ==> !d->s.table_ok;
-  ensures guard: !DriveRefGuardOk(d) ==> !d->s.table_ok;
+  ensures guard: !DRV_GUARD_OK(d) ==> !d->s.table_ok;
 */
 static void drv_object_check(qfoc_drive_t *d)
 {
@@ -1517,7 +1517,7 @@ static void drv_object_check(qfoc_drive_t *d)
   ensures run_entry: old_state != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>
       old_state == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN;
   ensures pwm_off: d->s.out.pwm_off == \true <==> d->s.sm.state != QFOC_STATE_RUN;
-  ensures guard: DriveRefGuardOk(d);
+  ensures guard: DRV_GUARD_OK(d);
 */
 static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_state,
                          uint8_t old_sub, bool accepted)
@@ -1664,7 +1664,8 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
   assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->lead, s->util,
           s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done, s->hs,
           s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out, s->fast_seen, s->ref_guard;
-  ensures guard: s->ref_guard == DRV_REF_GUARD(s);
+  ensures refs: s->speed_target == 0 && s->speed_ref == 0 && s->ol_speed == 0 &&
+                s->id_ref == 0 && s->iq_ref == 0 && s->ref_guard == 42405;
 */
 static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
 {
@@ -1740,7 +1741,8 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
           s->iq_ref, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
           s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out,
           s->fast_seen, s->ref_guard;
-  ensures guard: s->ref_guard == DRV_REF_GUARD(s);
+  ensures refs: s->speed_target == 0 && s->speed_ref == 0 && s->ol_speed == 0 &&
+                s->id_ref == 0 && s->iq_ref == 0 && s->ref_guard == 42405;
   ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
                s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);
   ensures accepted: st == QFOC_PARAMS_OK ==>

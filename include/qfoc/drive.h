@@ -319,7 +319,7 @@ bool qfoc_drive_is_valid(const qfoc_drive_t *d);
       d->s.sm.state == QFOC_STATE_ERROR && !d->s.table_ok;
   ensures accepted: \result == QFOC_PARAMS_OK ==>
       d->s.sm.state == QFOC_STATE_PRECHARGE && d->s.table_ok;
-  ensures guard: DriveRefGuardOk(d);
+  ensures guard: DRV_GUARD_OK(d);
 */
 int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table);
 
@@ -382,7 +382,7 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
   ensures kept: \result == d->s.out;
   ensures tx: d->s.out.tx_len == 0 || d->s.out.tx_len == QFOC_LIN_STATUS_LEN;
   ensures pwm_off: d->s.out.pwm_off == \true <==> d->s.sm.state != QFOC_STATE_RUN;
-  ensures guard: DriveRefGuardOk(d);
+  ensures guard: DRV_GUARD_OK(d);
   ensures error_exit: \old(d->s.sm.state) == QFOC_STATE_ERROR &&
       d->s.sm.state != QFOC_STATE_ERROR ==> d->s.sm.state == QFOC_STATE_STOP;
   ensures run_entry: \old(d->s.sm.state) != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>
