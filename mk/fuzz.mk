@@ -24,7 +24,8 @@
 #
 # FUZZ_TIME is the time per target: 6 targets x 400 s x 2 processes made 1.62 x 10^8
 # executions in all (the goal: at least 10^8) in 41 minutes on the 2-core development machine
-# under load (README.md, "Fuzzing").
+# under a load of about 5; 6 x 600 s x 1 process made 2.18 x 10^8 in 60 minutes beside one
+# other job (README.md, "Fuzzing").
 # Override any of them: make fuzz FUZZ_TIME=60 FUZZ_WORKERS=1, make fuzz FUZZ_TARGETS="link_decode".
 # Minimise the committed corpus after a campaign with make fuzz-corpus.
 
