@@ -229,8 +229,8 @@ static void scn_refs(const dsim_t *ds, double *id_ref, double *iq_ref)
             iq = d->s.iq_ref;
         } else {
             const double ff = qfoc_trqcomp_output(&d->s.tc, d->f.theta_m, d->f.speed_f);
-            const double lim = fabs((double)d->p->i_max);
-            id = d->f.id_fw;
+            const double lim = (double)((d->s.iq_lim > 0) ? d->s.iq_lim : 0);
+            id = d->s.id_ref;
             iq = fmax(-lim, fmin(lim, (double)d->s.iq_ref + ff));
         }
     }

@@ -8,6 +8,7 @@
  * drive may run.
  */
 #include "qfoc/drive.h"
+#include "qfoc/iref.h"
 #include "qfoc/q15.h"
 #include "qfoc/trig.h"
 #include "qfoc/transforms.h"
@@ -208,12 +209,11 @@ static void drv_restart_current(qfoc_drive_fast_t *f)
   requires valid: \valid(f) && \valid_read(p);
   requires sep: \separated(f, p);
   requires inv: DRV_FAST(f);
-  assigns f->fw, f->phase, f->mech;
+  assigns f->phase, f->mech;
   ensures inv: DRV_FAST(f);
 */
 static void drv_restart_monitors(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 {
-    qfoc_fw_reset(&f->fw);
     qfoc_phase_mon_reset(&f->phase);
     (void)qfoc_mech_init(&f->mech, p->drive.pole_pairs, 0u);
 }
@@ -225,7 +225,7 @@ static void drv_restart_monitors(qfoc_drive_fast_t *f, const qfoc_param_table_t 
   assigns f->flux.psi_alpha, f->flux.psi_beta, f->flux.i_prev, f->pll.pi.integ,
           f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed,
           f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited,
-          f->fw, f->phase, f->mech, f->u_last, f->u_applied, f->theta_ol, f->id_fw;
+          f->phase, f->mech, f->u_last, f->u_applied, f->theta_ol;
   ensures inv: DRV_FAST(f);
 */
 static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
@@ -237,7 +237,6 @@ static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
     f->u_last = zero;
     f->u_applied = zero;
     f->theta_ol = 0u;
-    f->id_fw = 0;
 }
 
 /* Estimator: flux observer and PLL on this period's currents and the voltage applied
@@ -268,7 +267,7 @@ static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab, qfoc_angle
 
 /* Current references of the sub-state (REQ-DRV-006, REQ-DRV-013); returns true when the
    closed-loop q reference (speed PI + torque-compensation feed-forward ff) was clamped to
-   +-i_max. */
+   +-iq_lim, the q limit the tick left with its d reference (REQ-IREF-002). */
 /*@
   requires valid: \valid_read(d) && \valid_read(d->p) && \valid(ref);
   requires sep: \separated(ref, d) && \separated(ref, d->p);
@@ -278,7 +277,7 @@ static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab, qfoc_angle
 */
 static bool drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff, qfoc_dq_t *ref)
 {
-    const qfoc_q15_t i_max = qfoc_q15_abs(d->p->i_max);
+    const qfoc_q15_t lim = (d->s.iq_lim > 0) ? d->s.iq_lim : (qfoc_q15_t)0;
     bool clamped = false;
     if (sub == QFOC_SUB_ALIGN) {
         ref->d = qfoc_q15_sat((int32_t)d->s.id_ref);
@@ -288,12 +287,12 @@ static bool drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff, qf
         ref->q = qfoc_q15_sat((int32_t)d->s.iq_ref);
     } else {
         const int32_t q = (int32_t)d->s.iq_ref + (int32_t)ff;
-        ref->d = qfoc_q15_sat((int32_t)d->f.id_fw);
-        if (q > (int32_t)i_max) {
-            ref->q = i_max;
+        ref->d = qfoc_q15_sat((int32_t)d->s.id_ref);
+        if (q > (int32_t)lim) {
+            ref->q = lim;
             clamped = true;
-        } else if (q < -(int32_t)i_max) {
-            ref->q = (qfoc_q15_t)(-i_max);
+        } else if (q < -(int32_t)lim) {
+            ref->q = (qfoc_q15_t)(-lim);
             clamped = true;
         } else {
             ref->q = (qfoc_q15_t)q;
@@ -412,22 +411,18 @@ static uint32_t drv_ol_increment(qfoc_q15_t w_ol, uint16_t k_theta)
     return w * k;
 }
 
-/* The rest of a controlled period: field weakening from the utilisation (formerly
-   FireldWeakeningControl), the open-loop angle, the mechanical angle and the phase
-   monitor. */
+/* The rest of a controlled period: the open-loop angle, the mechanical angle and the
+   phase monitor (field weakening runs in the tick, drv_iref). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->f, d->p);
   requires inv: DRV_FAST(&d->f);
-  assigns d->f.fw, d->f.id_fw, d->f.theta_ol, d->f.mech, d->f.theta_m, d->f.phase,
-          d->f.phase_k;
+  assigns d->f.theta_ol, d->f.mech, d->f.theta_m, d->f.phase, d->f.phase_k;
   ensures inv: DRV_FAST(&d->f);
 */
 static void drv_control_after(qfoc_drive_t *d, uint8_t sub)
 {
     qfoc_drive_fast_t *const f = &d->f;
-    const bool fw_on = (sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING);
-    f->id_fw = qfoc_fw_step(&f->fw, d->s.util, fw_on);
     if (sub == QFOC_SUB_OPEN_LOOP) {
         f->theta_ol = drv_angle_add(f->theta_ol, drv_ol_increment(d->s.ol_speed,
                                                                   d->p->pll.k_theta));
@@ -994,10 +989,11 @@ static qfoc_q15_t drv_bumpless_iq(const qfoc_drive_t *d)
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
-  requires inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
-  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref, d->s.clear_seq, d->s.run_ms, d->s.calib_done;
-  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
+  requires inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
+  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.fw.pi.integ, d->s.fw.pi.limited,
+          d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.clear_seq, d->s.run_ms, d->s.calib_done;
+  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
 */
 static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_sub)
 {
@@ -1018,8 +1014,10 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         s->ol_speed = 0;
         s->id_ref = 0;
         s->iq_ref = 0;
+        s->iq_lim = 0;
         s->run_ms = 0u;
         qfoc_pi_reset(&s->pi_speed, 0);
+        qfoc_fw_reset(&s->fw);
         qfoc_trqcomp_reset(&s->tc);
     } else if (sub == QFOC_SUB_OPEN_LOOP) {
         /* OPEN_LOOP is entered from ALIGN only (sm.h, to_open_loop) */
@@ -1030,6 +1028,8 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         s->speed_ref = qfoc_ramp_toward(0, (d->f.speed_f > 0) ? d->f.speed_f : (qfoc_q15_t)0,
                                         qfoc_q15_abs(p->speed_max));
         s->iq_ref = drv_bumpless_iq(d);
+        /* the whole current limit until the tick's first MTPA / field-weakening step */
+        s->iq_lim = qfoc_q15_abs(p->i_max);
         qfoc_pi_reset(&s->pi_speed, s->iq_ref);
     } else {
         /* no action */
@@ -1041,15 +1041,58 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
     }
 }
 
+/* The closed loop's current references (REQ-DRV-006, REQ-IREF-001 .. REQ-IREF-004): field
+   weakening on the utilisation of the last command, MTPA of the speed loop's q current with
+   the inductance set in use, the d reference clamped to [-i_max, 0], and the q limit of the
+   current vector, to which the q reference is clamped; the fast step keeps the q reference
+   plus the torque-compensation feed-forward within the same limit. */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  requires inv: DRV_FW(&d->s.fw);
+  assigns d->s.fw.pi.integ, d->s.fw.pi.limited, d->s.fw.util_lpf.state, d->s.fw.id_ref,
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim;
+  ensures inv: DRV_FW(&d->s.fw);
+  ensures circle: d->s.id_ref * d->s.id_ref + d->s.iq_ref * d->s.iq_ref <=
+                  \abs(d->p->i_max) * \abs(d->p->i_max);
+*/
+static void drv_iref(qfoc_drive_t *d)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_param_table_t *const p = d->p;
+    qfoc_iref_in_t in;
+    qfoc_iref_out_t out;
+    in.i_max = p->i_max;
+    in.iq_dem = s->iq_ref;
+    in.id_fw = qfoc_fw_step(&s->fw, s->util, true);
+    in.psi_f = p->psi_f;
+    in.ld = s->hs ? p->drive.ld_hs : p->ld;
+    in.lq = s->hs ? p->drive.lq_hs : p->lq;
+    /* MTPA acts where L_q > L_d (qfoc_iref_mtpa gives 0 otherwise) */
+    in.mtpa = true;
+    qfoc_iref_step(&in, &out);
+    s->id_ref = out.id;
+    s->iq_lim = out.iq_lim;
+    if (s->iq_ref > out.iq_lim) {
+        s->iq_ref = out.iq_lim;
+    } else if (s->iq_ref < (qfoc_q15_t)(-out.iq_lim)) {
+        s->iq_ref = (qfoc_q15_t)(-out.iq_lim);
+    } else {
+        /* inside the q limit */
+    }
+}
+
 /* References of the running sub-states, speed loop and torque compensation
    (REQ-DRV-006, REQ-DRV-009). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
-  requires inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
-  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref, d->s.clamp_seen;
-  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
+  requires inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
+  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.pi_speed.params.out_min,
+          d->s.pi_speed.params.out_max, d->s.fw.pi.integ, d->s.fw.pi.limited,
+          d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.clamp_seen;
+  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
 */
 static void drv_run(qfoc_drive_t *d)
 {
@@ -1079,7 +1122,10 @@ static void drv_run(qfoc_drive_t *d)
         }
         s->speed_ref = qfoc_ramp_toward(s->speed_ref, target, c->speed_ramp);
         const uint8_t clamps = d->f.clamp_count;
+        /* the speed loop within the q limit of the last tick's d reference */
+        qfoc_pi_set_limit(&s->pi_speed, s->iq_lim);
         s->iq_ref = qfoc_pi_step(&s->pi_speed, qfoc_q15_sub(s->speed_ref, d->f.speed_f));
+        drv_iref(d);
         if (clamps == s->clamp_seen) {
             /* no period of the last millisecond hit the current limit: learn (a clamped
                feed-forward would wind the coefficients up, trqcomp.h) */
@@ -1191,10 +1237,11 @@ static void drv_sm_step(qfoc_drive_slow_t *s)
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
-  requires inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
-  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref, d->s.clear_seq, d->s.run_ms, d->s.calib_done;
-  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
+  requires inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
+  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.fw.pi.integ, d->s.fw.pi.limited,
+          d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.clear_seq, d->s.run_ms, d->s.calib_done;
+  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
 */
 static void drv_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_sub)
 {
@@ -1315,7 +1362,8 @@ static void drv_sm_inputs(qfoc_drive_t *d, uint16_t faults, uint8_t old_state,
   assigns d->s;
   ensures inv_table: DrvTableOk(d);
   ensures inv_fast: DRV_FAST(&d->f);
-  ensures inv_modules: DRV_SM(&d->s.sm) && DRV_PI(&d->s.pi_speed) && DRV_TC(&d->s.tc);
+  ensures inv_modules: DRV_SM(&d->s.sm) && DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) &&
+                       DRV_TC(&d->s.tc);
   ensures inv_link: DRV_LINK(&d->s.link);
   ensures inv_offsets: d->s.offset_u <= 4095 && d->s.offset_v <= 4095 && DRV_OFF_SUMS(&d->s);
   ensures table: d->p == \old(d->p);
@@ -1417,16 +1465,16 @@ static bool drv_object_slice(const qfoc_drive_t *d, uint8_t k)
     } else if (k == 1u) {
         const bool pid = qfoc_pi_is_valid(&d->f.pi_id);
         const bool piq = qfoc_pi_is_valid(&d->f.pi_iq);
-        const bool fw = qfoc_fw_is_valid(&d->f.fw);
         const bool ph = qfoc_phase_mon_is_valid(&d->f.phase);
         const bool mech = qfoc_mech_is_valid(&d->f.mech);
-        ok = pid && piq && fw && ph && mech;
+        ok = pid && piq && ph && mech;
     } else if (k == 2u) {
         const bool sm = qfoc_sm_is_valid(&d->s.sm);
         const bool pis = qfoc_pi_is_valid(&d->s.pi_speed);
+        const bool fw = qfoc_fw_is_valid(&d->s.fw);
         const bool tc = qfoc_trqcomp_is_valid(&d->s.tc);
         const bool link = qfoc_link_is_valid(&d->s.link);
-        ok = sm && pis && tc && link;
+        ok = sm && pis && fw && tc && link;
     } else {
         const qfoc_drive_slow_t *const s = &d->s;
         const int32_t win = (int32_t)d->p->drive.offset_window;
@@ -1444,13 +1492,13 @@ static bool drv_object_slice(const qfoc_drive_t *d, uint8_t k)
 }
 
 /* Bias of the reference guard (REQ-DRV-022, DRV_REF_GUARD of specs/drive.acsl): it makes
-   the sum of the five references non-negative (5 x 32768 <= 173477) and the guard of an
+   the sum of the six references non-negative (6 x 32768 <= 239013) and the guard of an
    object of zeros (42405) other than 0. */
-#define DRV_GUARD_BIAS ((int32_t)173477)
-/* The guard of five references at 0 (the reset values): 173477 modulo 2^16. */
+#define DRV_GUARD_BIAS ((int32_t)239013)
+/* The guard of six references at 0 (the reset values): 239013 modulo 2^16. */
 #define DRV_GUARD_ZERO ((uint16_t)42405u)
 
-/* The guard word of the tick's five references (REQ-DRV-022): their sum with the bias,
+/* The guard word of the tick's six references (REQ-DRV-022): their sum with the bias,
    modulo 2^16, which a single flipped bit of any of them changes. */
 /*@
   requires valid: \valid_read(s);
@@ -1459,9 +1507,10 @@ static bool drv_object_slice(const qfoc_drive_t *d, uint8_t k)
 */
 static uint16_t drv_ref_guard(const qfoc_drive_slow_t *s)
 {
-    /* five terms in [-32768, 32767]: the sum with the bias in [9637, 337312] */
+    /* six terms in [-32768, 32767]: the sum with the bias in [42405, 435615] */
     const int32_t sum = (int32_t)s->speed_target + (int32_t)s->speed_ref + (int32_t)s->ol_speed +
-                        (int32_t)s->id_ref + (int32_t)s->iq_ref + DRV_GUARD_BIAS;
+                        (int32_t)s->id_ref + (int32_t)s->iq_ref + (int32_t)s->iq_lim +
+                        DRV_GUARD_BIAS;
     return (uint16_t)((uint32_t)sum % 65536u);
 }
 
@@ -1476,10 +1525,10 @@ static uint16_t drv_ref_guard(const qfoc_drive_slow_t *s)
    half while it may pre-empt is sound: every relation checked bounds one field the fast
    step writes by constants of the table or by fields only the tick or the init write, so
    a mix of two periods' values passes.  Every tick also checks the guard word of the
-   five references against their values (REQ-DRV-022): only the tick and the init write
+   six references against their values (REQ-DRV-022): only the tick and the init write
    them, and both leave the guard matching (ensures guard), so a mismatch at the start of
    a tick is a change since the last tick that no code made; it clears table_ok the same
-   way, before any of the five is used. */
+   way, before any of the six is used. */
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \separated(d, d->p);
   assigns d->s.table_ok;
@@ -1585,16 +1634,11 @@ static void drv_init_current(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 /*@
   requires valid: \valid(f) && \valid_read(p);
   requires sep: \separated(f, p);
-  assigns f->fw, f->vdc_lpf;
-  ensures inv: DRV_FW(&f->fw) && DRV_LPF(&f->vdc_lpf);
+  assigns f->vdc_lpf;
+  ensures inv: DRV_LPF(&f->vdc_lpf);
 */
-static void drv_init_fw(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+static void drv_init_vdc(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 {
-    qfoc_fw_params_t fwp;
-    fwp.pi = p->pi_fw;
-    fwp.level = p->drive.fw_level;
-    fwp.alpha = p->drive.fw_alpha;
-    (void)qfoc_fw_init(&f->fw, &fwp);
     (void)qfoc_lpf_init(&f->vdc_lpf, p->alpha_vdc);
 }
 
@@ -1624,7 +1668,7 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
     const qfoc_ab_t zero = { 0, 0 };
     drv_init_estimator(f, p);
     drv_init_current(f, p);
-    drv_init_fw(f, p);
+    drv_init_vdc(f, p);
     drv_init_monitors(f, p);
     f->u_last = zero;
     f->u_applied = zero;
@@ -1639,7 +1683,6 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
     f->speed = 0;
     f->speed_f = 0;
     f->psi_mag = 0;
-    f->id_fw = 0;
     f->trip_count = 0u;
     f->clamp_count = 0u;
     f->clear_ack = 0u;
@@ -1661,11 +1704,12 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 /*@
   requires valid: \valid(s) && \valid_read(c);
   requires sep: \separated(s, c);
-  assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->lead, s->util,
-          s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done, s->hs,
-          s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out, s->fast_seen, s->ref_guard;
+  assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->iq_lim, s->lead,
+          s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done,
+          s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out, s->fast_seen,
+          s->ref_guard;
   ensures refs: s->speed_target == 0 && s->speed_ref == 0 && s->ol_speed == 0 &&
-                s->id_ref == 0 && s->iq_ref == 0 && s->ref_guard == 42405;
+                s->id_ref == 0 && s->iq_ref == 0 && s->iq_lim == 0 && s->ref_guard == 42405;
 */
 static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
 {
@@ -1676,6 +1720,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->ol_speed = 0;
     s->id_ref = 0;
     s->iq_ref = 0;
+    s->iq_lim = 0;
     s->lead = 0u;
     s->util = 0;
     s->trip_seen = 0u;
@@ -1731,19 +1776,36 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->ref_guard = DRV_GUARD_ZERO;
 }
 
+/* Field weakening from the table (REQ-DRV-001): a refused block gets fw.h's safe values
+   (no field weakening). */
+/*@
+  requires valid: \valid(s) && \valid_read(p);
+  requires sep: \separated(s, p);
+  assigns s->fw;
+  ensures inv: DRV_FW(&s->fw);
+*/
+static void drv_init_fw(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
+{
+    qfoc_fw_params_t fwp;
+    fwp.pi = p->pi_fw;
+    fwp.level = p->drive.fw_level;
+    fwp.alpha = p->drive.fw_alpha;
+    (void)qfoc_fw_init(&s->fw, &fwp);
+}
+
 /* Tick data from the table (REQ-DRV-001). */
 /*@
   requires valid: \valid(s) && \valid_read(p);
   requires sep: \separated(s, p);
-  assigns s->sm, s->pi_speed, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
+  assigns s->sm, s->pi_speed, s->fw, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
           s->db_stall, s->db_flux, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
-          s->iq_ref, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
+          s->iq_ref, s->iq_lim, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
           s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out,
           s->fast_seen, s->ref_guard;
   ensures refs: s->speed_target == 0 && s->speed_ref == 0 && s->ol_speed == 0 &&
-                s->id_ref == 0 && s->iq_ref == 0 && s->ref_guard == 42405;
-  ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_TC(&s->tc) &&
+                s->id_ref == 0 && s->iq_ref == 0 && s->iq_lim == 0 && s->ref_guard == 42405;
+  ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_FW(&s->fw) && DRV_TC(&s->tc) &&
                s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);
   ensures accepted: st == QFOC_PARAMS_OK ==>
       s->sm.state == QFOC_STATE_PRECHARGE && s->table_ok;
@@ -1766,6 +1828,7 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int
         /* the table passed its check: PRECHARGE */
     }
     (void)qfoc_pi_init(&s->pi_speed, &p->pi_speed);
+    drv_init_fw(s, p);
     (void)qfoc_trqcomp_init(&s->tc, &tcp);
     qfoc_debounce_reset(&s->db_ov);
     qfoc_debounce_reset(&s->db_uv);
@@ -1820,7 +1883,7 @@ bool qfoc_drive_is_valid(const qfoc_drive_t *d)
     const bool pll = qfoc_pll_is_valid(&d->f.pll);
     const bool pid = qfoc_pi_is_valid(&d->f.pi_id);
     const bool piq = qfoc_pi_is_valid(&d->f.pi_iq);
-    const bool fw = qfoc_fw_is_valid(&d->f.fw);
+    const bool fw = qfoc_fw_is_valid(&d->s.fw);
     const bool vdc = qfoc_lpf_is_valid(&d->f.vdc_lpf);
     const bool ph = qfoc_phase_mon_is_valid(&d->f.phase);
     const bool mech = qfoc_mech_is_valid(&d->f.mech);

@@ -49,7 +49,7 @@ const qfoc_param_table_t qfoc_params_reference16k = {
     .pi_fw = {
         .kp = 4524, /* kp 0.138053 = 1 / (zero_ratio G_fw) = 1 / (4 x 1.8109); stored 0.138062, error +0.006 % */
         .kp_shift = 0u, /* kp_real = kp / 32768 x 2^0 */
-        .ki = 603, /* ki T 0.0184071 = w_fw / G_fw T = 533.333 / 1.8109 x 6.25e-05; stored 0.0184021, error -0.027 % */
+        .ki = 3619, /* ki T 0.110442 = w_fw / G_fw T_tick = 200 / 1.8109 x 0.001; stored 0.110443, error +0.001 % */
         .ki_shift = 0u, /* kiT_real = ki / 32768 x 2^0 */
         .out_min = (int16_t)-16384, /* -0.5 pu: i_d reference in [-i_max, 0] */
         .out_max = 0 /* 0 pu: i_d reference in [-i_max, 0] */
@@ -118,7 +118,7 @@ const qfoc_param_table_t qfoc_params_reference16k = {
         .link_timeout_ms = 500u, /* 500 ms (drive.link_timeout_ms, default) */
         .clear_ms = 5000u, /* 5000 ms (drive.clear_ms, default) */
         .fw_level = 30147, /* 0.92 = FWK_LVL, design.fw_v_max (default); stored 0.920013, error +0.00 % */
-        .fw_alpha = 643, /* 0.019635 = 2 pi f_c / f_pwm = 2 pi x 50 / 16000 (2-34); stored 0.0196228, error -0.06 % */
+        .fw_alpha = 10294, /* 0.314159 = 2 pi f_c T_tick = 2 pi x 50 x 0.001 (2-34; the 1 ms tick); stored 0.314148, error -0.00 % */
         .tc_gain = 492, /* 0.0150146 = drive.tc_gain_q15 / 32768 (trqcomp.md) */
         .tc_amp_max = 8192, /* 0.25 = 10 A / I_base = 10 / 40; stored 0.25, error +0.00 % */
         .tc_speed_min = 1966, /* 0.06 = 600 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.0599976, error -0.00 % */
@@ -131,5 +131,5 @@ const qfoc_param_table_t qfoc_params_reference16k = {
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
         .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
     },
-    .crc = 0xEF6B147Cu /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0xA7EA5CC9u /* CRC-32/ISO-HDLC of every field above */
 };

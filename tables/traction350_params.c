@@ -48,7 +48,7 @@ const qfoc_param_table_t qfoc_params_traction350 = {
     .pi_fw = {
         .kp = 958, /* kp 0.0292468 = 1 / (zero_ratio G_fw) = 1 / (4 x 8.54794); stored 0.0292358, error -0.037 % */
         .kp_shift = 0u, /* kp_real = kp / 32768 x 2^0 */
-        .ki = 128, /* ki T 0.00389957 = w_fw / G_fw T = 533.333 / 8.54794 x 6.25e-05; stored 0.00390625, error +0.171 % */
+        .ki = 767, /* ki T 0.0233974 = w_fw / G_fw T_tick = 200 / 8.54794 x 0.001; stored 0.023407, error +0.041 % */
         .ki_shift = 0u, /* kiT_real = ki / 32768 x 2^0 */
         .out_min = (int16_t)-18022, /* -0.549988 pu: i_d reference in [-i_max, 0] */
         .out_max = 0 /* 0 pu: i_d reference in [-i_max, 0] */
@@ -117,7 +117,7 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .link_timeout_ms = 500u, /* 500 ms (drive.link_timeout_ms, default) */
         .clear_ms = 5000u, /* 5000 ms (drive.clear_ms, default) */
         .fw_level = 30147, /* 0.92 = FWK_LVL, design.fw_v_max (default); stored 0.920013, error +0.00 % */
-        .fw_alpha = 643, /* 0.019635 = 2 pi f_c / f_pwm = 2 pi x 50 / 16000 (2-34); stored 0.0196228, error -0.06 % */
+        .fw_alpha = 10294, /* 0.314159 = 2 pi f_c T_tick = 2 pi x 50 x 0.001 (2-34; the 1 ms tick); stored 0.314148, error -0.00 % */
         .tc_gain = 492, /* 0.0150146 = drive.tc_gain_q15 / 32768 (trqcomp.md) */
         .tc_amp_max = 9011, /* 0.275 = 165 A / I_base = 165 / 600; stored 0.274994, error -0.00 % */
         .tc_speed_min = 2621, /* 0.08 = 600 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.0799866, error -0.02 % */
@@ -130,5 +130,5 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
         .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
     },
-    .crc = 0x6075A518u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x77F7F612u /* CRC-32/ISO-HDLC of every field above */
 };

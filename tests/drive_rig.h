@@ -89,12 +89,12 @@ static inline void rig_fast(rig_t *r)
     assert_true(!r->pwm.enable || (r->d.s.sm.state == QFOC_STATE_RUN));
 }
 
-/* REQ-DRV-022: the guard word of the tick's five references (DRV_REF_GUARD of
-   specs/drive.acsl): their sum plus 173477, modulo 2^16. */
+/* REQ-DRV-022: the guard word of the tick's six references (DRV_REF_GUARD of
+   specs/drive.acsl): their sum plus 239013, modulo 2^16. */
 static inline uint16_t rig_guard(const qfoc_drive_t *d)
 {
     const long sum = (long)d->s.speed_target + (long)d->s.speed_ref + (long)d->s.ol_speed +
-                     (long)d->s.id_ref + (long)d->s.iq_ref + 173477L;
+                     (long)d->s.id_ref + (long)d->s.iq_ref + (long)d->s.iq_lim + 239013L;
     return (uint16_t)(sum % 65536L);
 }
 

@@ -30,6 +30,7 @@
 #define TEST_SEED 0xD21E0B05u
 #include "test_util.h"
 #include "qfoc/drive.h"
+#include "qfoc/iref.h"
 #include "reference_params.h"
 #include "reference16k_params.h"
 #include "drive_sim.h"
@@ -181,7 +182,7 @@ static void test_req_drv_001_is_valid_rejects_each_part(void **state)
         case 1: c.d.f.pll.k_theta = 0u; break;                         /* 1 <= k_theta */
         case 2: c.d.f.pi_id.integ = (int32_t)c.d.f.pi_id.params.out_max * 65536 + 1; break;
         case 3: c.d.f.pi_iq.integ = (int32_t)c.d.f.pi_iq.params.out_min * 65536 - 1; break;
-        case 4: c.d.f.fw.id_ref = 1; break;                            /* i_d ref <= 0 */
+        case 4: c.d.s.fw.id_ref = 1; break;                            /* i_d ref <= 0 */
         case 5: c.d.f.vdc_lpf.alpha = 0; break;                        /* alpha > 0 */
         case 6: c.d.f.phase.abs_lpf[1].state = -1; break;              /* |i| >= 0 */
         case 7: c.d.f.mech.pole_pairs = 0u; break;                     /* 1 .. 16 */
@@ -689,44 +690,55 @@ static void test_req_drv_006_stopping_ramp_down(void **state)
     assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_LINK);
 }
 
-/* REQ-DRV-013: the field-weakening loop runs in STOPPING as in CLOSED_LOOP (the same
-   fast step, bit for bit) and is released (i_d reference, filter and integrator 0)
-   in OPEN_LOOP. */
+/* REQ-DRV-013, REQ-DRV-006: the field-weakening loop runs in the tick, in STOPPING as in
+   CLOSED_LOOP: each tick steps it once on the utilisation the last tick left (the same
+   result as the module stepped alone on the same inputs), and the d reference is the
+   MTPA current plus its output; it is released when the drive leaves RUN. */
 static void test_req_drv_013_field_weakening_in_stopping(void **state)
 {
     rig_t r;
-    rig_t cl;
-    rig_t ol;
+    qfoc_fw_t model;
     int n;
     (void)state;
     rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
     r.power_on = false;
     emu_closed_tick(&r, 0, 0);
     assert_int_equal(sub(&r), QFOC_SUB_STOPPING);
-    rig_clone(&cl, &r);
-    rig_clone(&ol, &r);
-    cl.d.s.sm.sub = QFOC_SUB_CLOSED_LOOP;
-    ol.d.s.sm.sub = QFOC_SUB_OPEN_LOOP;
-    /* the tick's utilisation of the last command (the ticks here are emulated): above
-       the field-weakening level */
-    r.d.s.util = 32000;
-    cl.d.s.util = 32000;
-    ol.d.s.util = 32000;
+    model = r.d.s.fw;
     for (n = 0; n < 16; n++) {
-        rig_fast(&r);
-        rig_fast(&cl);
-        rig_fast(&ol);
-        assert_true(r.pwm.enable);
-        assert_memory_equal(r.pwm.cmp, cl.pwm.cmp, sizeof r.pwm.cmp);
-        assert_int_equal(r.d.f.id_fw, cl.d.f.id_fw);
-        assert_int_equal(r.d.f.fw.util_lpf.state, cl.d.f.fw.util_lpf.state);
-        assert_int_equal(r.d.f.fw.pi.integ, cl.d.f.fw.pi.integ);
-        assert_int_equal(ol.d.f.id_fw, 0);
-        assert_int_equal(ol.d.f.fw.util_lpf.state, 0);
-        assert_int_equal(ol.d.f.fw.pi.integ, 0);
+        qfoc_q15_t id_model;
+        qfoc_q15_t mtpa;
+        /* the utilisation of the last command (the ticks here are emulated): above the
+           field-weakening level */
+        r.d.s.util = 32000;
+        id_model = qfoc_fw_step(&model, 32000, true);
+        emu_closed_tick(&r, 0, 0);
+        assert_int_equal(sub(&r), QFOC_SUB_STOPPING);
+        assert_int_equal(r.d.s.fw.id_ref, id_model);
+        assert_int_equal(r.d.s.fw.pi.integ, model.pi.integ);
+        assert_int_equal(r.d.s.fw.util_lpf.state, model.util_lpf.state);
+        mtpa = qfoc_iref_mtpa(r.d.s.iq_ref, r.table.psi_f, r.table.ld, r.table.lq);
+        /* the q reference was not clamped: the d reference is MTPA + FW within [-i_max, 0] */
+        if (abs((int)r.d.s.iq_ref) < (int)r.d.s.iq_lim) {
+            int want = (int)mtpa + (int)id_model;
+            if (want < -(int)r.table.i_max) {
+                want = -(int)r.table.i_max;
+            }
+            assert_int_equal(r.d.s.id_ref, want);
+        }
     }
-    assert_true(r.d.f.fw.util_lpf.state > 0);   /* active: filtering the utilisation */
-    /* released although the utilisation is above the level: checked in the loop */
+    assert_true(r.d.s.fw.id_ref < 0);            /* active: weakening */
+    /* leaving RUN releases it */
+    r.d.s.sm.state = QFOC_STATE_RUN;
+    r.d.s.speed_ref = 0;
+    for (n = 0; (n < 100) && (st(&r) == QFOC_STATE_RUN); n++) {
+        emu_closed_tick(&r, 0, 0);
+    }
+    assert_int_equal(st(&r), QFOC_STATE_STOP);
+    assert_int_equal(r.d.s.fw.id_ref, 0);
+    assert_int_equal(r.d.s.fw.pi.integ, 0);
+    assert_int_equal(r.d.s.fw.util_lpf.state, 0);
+    assert_int_equal(r.d.s.iq_lim, 0);
 }
 
 /* REQ-DRV-006 (drive_cfg.h cl_hold_ms): the speed reference is not ramped to the
@@ -944,7 +956,7 @@ static void corrupt(qfoc_drive_t *d, corrupt_t k)
     case CORRUPT_PLL_SPEED:    d->f.pll.speed = (qfoc_q15_t)(d->f.pll.pi.params.out_max + 1); break;
     case CORRUPT_FLUX_PSI:     d->f.flux.psi_alpha = INT32_MIN; break;
     case CORRUPT_FLUX_GAIN:    d->f.flux.params.gain = -1; break;
-    case CORRUPT_FW_ID:        d->f.fw.id_ref = 1; break;
+    case CORRUPT_FW_ID:        d->s.fw.id_ref = 1; break;
     case CORRUPT_VDC_ALPHA:    d->f.vdc_lpf.alpha = 0; break;
     case CORRUPT_PHASE_LPF:    d->f.phase.abs_lpf[2].state = -1; break;
     case CORRUPT_MECH_TURN:    d->f.mech.turn = d->f.mech.pole_pairs; break;

@@ -193,7 +193,6 @@ typedef struct {
     qfoc_pll_t pll;           /**< PLL (specs/equations.md E2-27, E2-28, E2-34) */
     qfoc_pi_t pi_id;          /**< d-current PI */
     qfoc_pi_t pi_iq;          /**< q-current PI */
-    qfoc_fw_t fw;             /**< field weakening */
     qfoc_lpf_t vdc_lpf;       /**< DC-bus low-pass */
     qfoc_phase_mon_t phase;   /**< phase-loss monitor */
     qfoc_mech_t mech;         /**< mechanical angle */
@@ -209,9 +208,8 @@ typedef struct {
     qfoc_q15_t speed;         /**< PLL speed, unfiltered */
     qfoc_q15_t speed_f;       /**< PLL speed after the low-pass (specs/equations.md E2-34) */
     qfoc_q15_t psi_mag;       /**< observer flux magnitude */
-    qfoc_q15_t id_fw;         /**< field-weakening d-current reference */
     uint8_t trip_count;       /**< over-current events (mod 256) */
-    uint8_t clamp_count;      /**< periods with the q reference clamped to +-i_max (mod 256) */
+    uint8_t clamp_count;      /**< periods with the q reference clamped to +-iq_lim (mod 256) */
     uint8_t clear_ack;        /**< last clear_seq acknowledged */
     bool trip;                /**< over-current latch: PWM held off */
     bool active;              /**< the control ran in the last period */
@@ -228,7 +226,8 @@ typedef struct {
 /** Data written by the tick only. */
 typedef struct {
     qfoc_sm_t sm;             /**< state machine */
-    qfoc_pi_t pi_speed;       /**< speed PI (1 ms) */
+    qfoc_pi_t pi_speed;       /**< speed PI (1 ms); its limits follow iq_lim (REQ-IREF-002) */
+    qfoc_fw_t fw;             /**< field weakening (1 ms, REQ-DRV-006) */
     qfoc_trqcomp_t tc;        /**< torque compensation */
     qfoc_link_t link;         /**< command link */
     qfoc_debounce_t db_ov;    /**< debounce of each tick-evaluated fault */
@@ -247,8 +246,11 @@ typedef struct {
     qfoc_q15_t speed_target;  /**< commanded speed, Q15 electrical */
     qfoc_q15_t speed_ref;     /**< ramped speed reference */
     qfoc_q15_t ol_speed;      /**< open-loop frame speed */
-    qfoc_q15_t id_ref;        /**< ALIGN d-current reference */
+    qfoc_q15_t id_ref;        /**< d-current reference: ALIGN's ramp, 0 in OPEN_LOOP, MTPA plus
+                                   field weakening in CLOSED_LOOP and STOPPING (iref.h) */
     qfoc_q15_t iq_ref;        /**< q-current reference (speed PI, or i_start in OPEN_LOOP) */
+    qfoc_q15_t iq_lim;        /**< q-current limit of the closed loop, sqrt(i_max^2 - id_ref^2)
+                                   (iref.h); 0 outside CLOSED_LOOP and STOPPING */
     qfoc_angle_t lead;        /**< observer phase lead at the filtered speed (qfoc_flux_lead) */
     qfoc_q15_t util;          /**< voltage utilisation of the last command, |v| / (V_dc / sqrt 3) */
     uint8_t trip_seen;        /**< trip_count already reported */
@@ -260,7 +262,7 @@ typedef struct {
     uint32_t scan_crc;        /**< CRC register of the table check in progress */
     bool calib_done;          /**< offsets calibrated in range */
     bool hs;                  /**< request: high-speed inductances (motorParaChange) */
-    uint16_t ref_guard;       /**< guard word of speed_target .. iq_ref (REQ-DRV-022) */
+    uint16_t ref_guard;       /**< guard word of speed_target .. iq_lim (REQ-DRV-022) */
     uint32_t run_ms;          /**< time in RUN, ms, saturating (Motor_Run_Time) */
     qfoc_status_t status;     /**< last status (LIN and CAN) */
     qfoc_cmd_t cmd;           /**< effective command of this tick (after the link rules) */

@@ -129,7 +129,7 @@ static const char *op_point(const dsim_t *ds, double rpm, int need_tc)
         why = "not in RUN / CLOSED_LOOP";
     } else if (fabs(dsim_rpm(ds) - rpm) > 0.02 * rpm) {
         why = "speed not within 2 % of the command";
-    } else if (d->f.id_fw >= 0) {
+    } else if (d->s.fw.id_ref >= 0) {
         why = "field weakening inactive (id_fw >= 0)";
     } else if (need_tc && (w < d->s.tc.params.speed_min || w > d->s.tc.params.speed_max)) {
         why = "speed outside the torque-compensation window";
@@ -146,7 +146,7 @@ static void probe(const qfoc_drive_t *d, int32_t out[8])
 {
     out[0] = d->s.sm.state;
     out[1] = d->s.sm.sub;
-    out[2] = d->f.id_fw;
+    out[2] = d->s.fw.id_ref;
     out[3] = d->s.util;
     out[4] = d->f.speed_f;
     out[5] = d->s.tc.a[0];
@@ -312,7 +312,7 @@ int main(int argc, char **argv)
     printf("gen_replay: %s: %.3f s warm-up (%u periods), %ld ms measured; %.0f rpm at %.0f V, "
            "load %.2f N m %+.0f %%; id_fw %.2f A, utilisation %.3f, tc a1 %.3f A b1 %.3f A\n",
            out, warm_ms * 1e-3, h.warm_periods, measure_ms, dsim_rpm(&ds), vdc, load,
-           100.0 * pulse, ds.drv.f.id_fw / 32768.0 * m.i_full_scale_a,
+           100.0 * pulse, ds.drv.s.fw.id_ref / 32768.0 * m.i_full_scale_a,
            ds.drv.s.util / 32768.0, ds.drv.s.tc.a[0] / 2147483648.0 * m.i_full_scale_a,
            ds.drv.s.tc.b[0] / 2147483648.0 * m.i_full_scale_a);
     free(r.per);

@@ -141,7 +141,7 @@ void bench_probe(void)
 {
     bench_probe_out[0] = (int32_t)bench_drive.s.sm.state;
     bench_probe_out[1] = (int32_t)bench_drive.s.sm.sub;
-    bench_probe_out[2] = (int32_t)bench_drive.f.id_fw;
+    bench_probe_out[2] = (int32_t)bench_drive.s.fw.id_ref;
     bench_probe_out[3] = (int32_t)bench_drive.s.util;
     bench_probe_out[4] = (int32_t)bench_drive.f.speed_f;
     bench_probe_out[5] = bench_drive.s.tc.a[0];

@@ -1309,7 +1309,7 @@ qfoc_pwm_t __wrap_qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc)
         const uint32_t k = g_rec.fast.n - 1u;
         g_rec.fast_exp = grow(g_rec.fast_exp, &g_rec.fast_cap, k);
         g_rec.fast_exp[k] = tt_drive_fast_digest(d, &out);
-        if (out.enable && (d->f.id_fw < 0)) {
+        if (out.enable && (d->s.fw.id_ref < 0)) {
             g_rec.fw_periods++;
         }
         if (out.enable && d->f.hs) {

@@ -1300,7 +1300,7 @@ uint32_t tt_drive_fast_digest(const qfoc_drive_t *d, const qfoc_pwm_t *out)
     tt_d_i16(&g, d->f.speed_f);
     tt_d_i16(&g, d->f.psi_mag);
     tt_d_u16(&g, (uint16_t)d->f.phase_k);
-    tt_d_i16(&g, d->f.id_fw);
+    tt_d_i16(&g, d->s.id_ref);
     tt_d_i16(&g, d->f.vdc);
     tt_d_dq(&g, &d->f.i_dq);
     tt_d_abc(&g, &d->f.i_abc);
@@ -1310,7 +1310,7 @@ uint32_t tt_drive_fast_digest(const qfoc_drive_t *d, const qfoc_pwm_t *out)
     tt_d_u32(&g, d->f.pll.theta_acc);
     tt_d_i32(&g, d->f.pi_id.integ);
     tt_d_i32(&g, d->f.pi_iq.integ);
-    tt_d_i32(&g, d->f.fw.pi.integ);
+    tt_d_i32(&g, d->s.fw.pi.integ);
     tt_d_u8(&g, d->f.trip_count);
     tt_d_u8(&g, d->f.clamp_count);
     return tt_d_final(&g);

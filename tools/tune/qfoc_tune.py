@@ -72,6 +72,10 @@ FLUX_STATE_MAX_Q15 = 524287        # (2^31 - 1) / 4096: flux state Q4.27 range i
 PM_MIN_DEG = 45.0                  # required phase margin of every discrete loop
 COARSE_GAIN_PCT = 1.0              # rounding errors above this are listed as warnings
 SQRT3 = math.sqrt(3.0)
+# The drive's tick period (qfoc_drive_tick, 1 kHz): field weakening and the speed loop run in it.
+T_TICK_S = 1e-3
+# The largest field-weakening crossover in units of 1 / T_tick (0.2: 200 rad/s, 32 Hz).
+FW_TICK_WT = 0.2
 
 
 class InputError(Exception):
@@ -1101,17 +1105,20 @@ def design_loops(cfg: dict, b: Bases) -> Design:
     # d(utilisation)/d(i_d) <= w_max L_d / (V_dc,min / sqrt 3) (largest at top speed and
     # lowest bus); crossover w_fw = ratio x 1/(2 T_sigma) (current-loop crossover), PI zero at
     # zero_ratio x w_fw (integral-dominant): ki = w_fw / G, kp = ki / (zero_ratio w_fw).
+    # The loop runs in the drive's 1 ms tick (REQ-DRV-006): its integral gain per sample is
+    # ki T_tick, and its crossover is at most FW_TICK_WT / T_tick, where the tick's hold and
+    # its one-tick delay (1.5 T_tick) cost at most 1.5 FW_TICK_WT rad = 17 degrees of phase.
     w_max_e = lim["speed_max_rpm"] * n_p * 2.0 * math.pi / 60.0
     g_fw = w_max_e * m["ld_h"] / (inv["vdc_min_v"] / SQRT3) * b.i_base
     w_ci = 1.0 / (2.0 * ds.t_sigma)
-    w_fw = d["fw_crossover_ratio"] * w_ci
+    w_fw = min(d["fw_crossover_ratio"] * w_ci, FW_TICK_WT / T_TICK_S)
     ki_fw = w_fw / g_fw
     kp_fw = ki_fw / (d["fw_zero_ratio"] * w_fw)
     ph.update(G_fw=g_fw, w_fw=w_fw, w_ci=w_ci, ki_fw=ki_fw, kp_fw=kp_fw, w_max_e=w_max_e)
     g["pi_fw.kp"] = g_left("pi_fw.kp", kp_fw,
                            f"1 / (zero_ratio G_fw) = 1 / ({fmt(d['fw_zero_ratio'])} x {fmt(g_fw)})")
-    g["pi_fw.ki"] = g_left("pi_fw.ki", ki_fw * t_s,
-                           f"w_fw / G_fw T = {fmt(w_fw)} / {fmt(g_fw)} x {fmt(t_s)}")
+    g["pi_fw.ki"] = g_left("pi_fw.ki", ki_fw * T_TICK_S,
+                           f"w_fw / G_fw T_tick = {fmt(w_fw)} / {fmt(g_fw)} x {fmt(T_TICK_S)}")
     g["v_max"] = g_q15("v_max", d["fw_v_max"], "design.fw_v_max")
 
     # PLL (2-27, 2-28) exactly as est_tune(): kp = 2 zeta wn / w_base, ki T = wn^2 T / w_base.
@@ -1574,8 +1581,9 @@ def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
         q15_field("fw_level", dr["fw_level"], "FWK_LVL, " + (
             "design.fw_v_max (default)" if "drive.fw_level" in cfg["defaulted"] else
             "drive.fw_level")),
-        q15_field("fw_alpha", 2.0 * math.pi * dr["fw_fc_hz"] / b.f_pwm,
-                  f"2 pi f_c / f_pwm = 2 pi x {fmt(dr['fw_fc_hz'])} / {fmt(b.f_pwm)} (2-34)"),
+        q15_field("fw_alpha", 2.0 * math.pi * dr["fw_fc_hz"] * T_TICK_S,
+                  f"2 pi f_c T_tick = 2 pi x {fmt(dr['fw_fc_hz'])} x {fmt(T_TICK_S)} (2-34; the "
+                  "1 ms tick)"),
         Field("tc_gain", "i16", int(dr["tc_gain_q15"]),
               f"{fmt(dr['tc_gain_q15'] / 32768.0)} = drive.tc_gain_q15 / 32768 (trqcomp.md)"),
         q15_field("tc_amp_max", dr["tc_amp_max_a"] / b.i_base,
@@ -1942,11 +1950,14 @@ def build_loops(cfg: dict, ds: Design) -> dict[str, tuple[LoopModel, LoopModel]]
     kp_f = g["pi_fw.kp"].quantised
     kit_f = g["pi_fw.ki"].quantised
     gfw = ph["G_fw"]
-    cont = LoopModel(pmul([kp_f, kit_f / t], [gfw]), pmul([1.0, 0.0], [2.0 * ds.t_sigma, 1.0]),
-                     one, one, None)
+    # Discrete at the tick (T_tick): the PI as qfoc_pi_step at T_tick, one tick of delay (the
+    # utilisation of the last command, computed at the end of the tick before), the closed d
+    # current loop as its continuous equivalent 1 / (2 T_sigma s + 1) held at T_tick.
+    cont = LoopModel(pmul([kp_f, kit_f / T_TICK_S], [gfw]),
+                     pmul([1.0, 0.0], [2.0 * ds.t_sigma, 1.0]), one, one, None)
     cn, cd = pi_z(kp_f, kit_f)
-    dn, dd = current_cl["d"]
-    disc = LoopModel(pmul(cn, delay[0], dn, [gfw]), pmul(cd, delay[1], dd), one, one, t)
+    fn, fd = zoh([gfw], [2.0 * ds.t_sigma, 1.0], T_TICK_S)
+    disc = LoopModel(pmul(cn, [1.0], fn), pmul(cd, [1.0, 0.0], fd), one, one, T_TICK_S)
     loops["field weakening"] = (cont, disc)
 
     # PLL (2-27, 2-28): error ~ theta_r - theta (rad), speed (pu) -> theta += speed w_base T.
