@@ -158,6 +158,21 @@ void qfoc_pi_reset(qfoc_pi_t *pi, qfoc_q15_t preset)
     qfoc_pi_preset(pi, preset);
 }
 
+void qfoc_pi_set_limit(qfoc_pi_t *pi, qfoc_q15_t lim)
+{
+    const int32_t hi = (lim > 0) ? (int32_t)lim : 0;
+    const int32_t hi31 = hi * 65536;
+    pi->params.out_max = (qfoc_q15_t)hi;
+    pi->params.out_min = (qfoc_q15_t)(-hi);
+    if (pi->integ > hi31) {
+        pi->integ = hi31;
+    } else if (pi->integ < -hi31) {
+        pi->integ = -hi31;
+    } else {
+        /* the integrator is inside the new limits */
+    }
+}
+
 qfoc_q15_t qfoc_pi_step(qfoc_pi_t *pi, qfoc_q15_t error)
 {
     const int32_t integ_old = pi->integ;

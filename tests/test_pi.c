@@ -192,6 +192,46 @@ static void test_pi_limit_flag(void **state)
     assert_false(pi.limited);
 }
 
+/* REQ-PI-009: moving symmetric limits; the integrator follows a limit that falls, the
+   gains and the flag stay. */
+static void test_pi_set_limit(void **state)
+{
+    static const int16_t lims[] = { (int16_t)-32768, -5, 0, 1, 700, 20000, 32767 };
+    qfoc_pi_t pi;
+    qfoc_pi_params_t p = make_params(3000, 1u, 16384, 0u, -30000, 30000);
+    size_t i;
+    (void)state;
+    assert_int_equal(qfoc_pi_init(&pi, &p), QFOC_PI_OK);
+    /* integrator at +25000 (x 65536): 100 samples of the error 500 with ki T = 0.5 */
+    qfoc_pi_reset(&pi, 25000);
+    for (i = 0u; i < sizeof lims / sizeof lims[0]; i++) {
+        qfoc_pi_t q = pi;
+        const int32_t want = (lims[i] > 0) ? lims[i] : 0;
+        const int32_t old = q.integ;
+        q.limited = true;
+        qfoc_pi_set_limit(&q, lims[i]);
+        assert_int_equal(q.params.out_max, want);
+        assert_int_equal(q.params.out_min, -want);
+        assert_int_equal(q.integ, (old > want * 65536) ? want * 65536
+                                  : ((old < -want * 65536) ? -want * 65536 : old));
+        assert_int_equal(q.params.kp, 3000);
+        assert_int_equal(q.params.kp_shift, 1);
+        assert_int_equal(q.params.ki, 16384);
+        assert_true(q.limited);
+        assert_true(qfoc_pi_is_valid(&q));
+        /* the output stays inside the new limits */
+        assert_true(qfoc_pi_step(&q, 32767) <= want);
+        assert_true(qfoc_pi_step(&q, (int16_t)-32768) >= -want);
+    }
+    /* a negative integrator is clamped from below */
+    qfoc_pi_reset(&pi, -25000);
+    qfoc_pi_set_limit(&pi, 1000);
+    assert_int_equal(pi.integ, -1000 * 65536);
+    /* the limit rises again: the integrator stays where it is */
+    qfoc_pi_set_limit(&pi, 32767);
+    assert_int_equal(pi.integ, -1000 * 65536);
+}
+
 /* REQ-PI-005: after a long saturation the output leaves the limit in the first
    sample in which the error changes sign (no stored windup). */
 static void test_pi_windup_recovery(void **state)
@@ -419,6 +459,7 @@ int main(void)
         cmocka_unit_test(test_pi_invalid_params),
         cmocka_unit_test(test_pi_is_valid),
         cmocka_unit_test(test_pi_reset),
+        cmocka_unit_test(test_pi_set_limit),
         cmocka_unit_test(test_pi_corners),
         cmocka_unit_test(test_pi_full_span),
     };

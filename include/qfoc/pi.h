@@ -190,6 +190,33 @@ int32_t qfoc_pi_init(qfoc_pi_t *pi, const qfoc_pi_params_t *p);
 void qfoc_pi_reset(qfoc_pi_t *pi, qfoc_q15_t preset);
 
 /**
+ * @brief Set symmetric output limits [-lim, lim] on a running controller (a limit that
+ *        moves with the operating point: the speed loop's q current under the
+ *        current-vector limit, iref.h).
+ * @param[in,out] pi  valid instance (qfoc_pi_is_valid())
+ * @param[in]     lim the new limit, Q15, any int16_t: clamped to [0, 32767]
+ *
+ * The integrator is clamped into the new limits (it holds the output the controller
+ * would give with a zero error, so a limit that falls takes it down with it: no windup);
+ * the gains and the limit flag are unchanged.
+ *
+ * Scaling and overflow: the limit in Q15, x 65536 exact in 32 bits (|lim| <= 32767).
+ *
+ * Requirements: REQ-PI-009.
+ */
+/*@
+  requires valid_pi: \valid(pi);
+  requires pi_valid: PiValid(pi);
+  assigns pi->params.out_min, pi->params.out_max, pi->integ;
+  ensures valid: PiValid(pi);
+  ensures limits: pi->params.out_max == QfocClamp(lim, 0, 32767) &&
+                  pi->params.out_min == -pi->params.out_max;
+  ensures integ: pi->integ == QfocClamp(\old(pi->integ), pi->params.out_min * 65536,
+                                        pi->params.out_max * 65536);
+*/
+void qfoc_pi_set_limit(qfoc_pi_t *pi, qfoc_q15_t lim);
+
+/**
  * @brief One PI sample: integrate the error, return the limited output.
  * @param[in,out] pi    valid instance (qfoc_pi_is_valid())
  * @param[in]     error control error e(k) = reference - feedback, Q15, any
