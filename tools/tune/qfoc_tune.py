@@ -14,7 +14,10 @@ What it does (every equation number is the source document's, chapter 2 unless n
    validates presence, type, sign and range of every key; refuses unknown keys, and the
    files that break a rule between keys (check_rules(): the f_base rule of
    specs/scaling.md section 2, protection thresholds their sensors cannot read, [drive]
-   speeds and currents outside the motor's range), naming the key as section.key.
+   speeds and currents outside the motor's range), naming the key as section.key;
+   refuses the values of the physical keys outside their plausible ranges (PLAUSIBLE: a
+   unit slip such as mH typed as H), with the value x 1e-3 or x 1e3 inside the range as
+   "did you mean"; warns when L_q < L_d (an IPM motor has L_q > L_d).
 2. Derives the per-unit bases and every scale factor of specs/scaling.md.
 3. Designs the loops:
    - current loops d and q (pole cancellation tau_c = L / R, K T = 0.5, so
@@ -369,6 +372,105 @@ SCHEMA: tuple = (
        "sim/scenario.c (make demo); not in the table"),
 )
 
+# Plausible ranges of the physical keys (load_config() refuses a value outside, with the value
+# x 1e-3 or x 1e3 that falls inside as "did you mean"): each range holds every real
+# compressor and traction PMSM and its inverter from 100 W (a 12 V pump or fan motor) to
+# 400 kW (a heavy-duty traction machine), and is at most about four decades wide, so that
+# a value typed in the wrong unit (mH as H, mOhm as ohm, mWb as Wb, ms as s: a factor 1000)
+# falls outside it for most machines.  A range of 1 uH .. 1 H, for instance, would accept a
+# compressor's 4.2 mH typed as 4.2 mH = 0.0042 and as 4.2 H alike.  name: (low, high,
+# reason); a key whose range is ">= 0" accepts 0 as well.
+PLAUSIBLE = {
+    "motor.rs_ohm": (0.5e-3, 2.0,
+                     "phase resistance: about 1 .. 10 mOhm for 100 .. 400 kW traction machines, "
+                     "20 .. 200 mOhm for 12 V motors of 100 W, 0.2 .. 1 ohm for high-voltage "
+                     "compressors; a value in mOhm typed as ohm (35 for 0.035) is above 2 ohm"),
+    "motor.ld_h": (5e-6, 50e-3,
+                   "inductance: about 50 uH .. 3 mH for traction machines, 20 .. 200 uH for "
+                   "12 V motors, 1 .. 30 mH for high-voltage compressors; a value in mH "
+                   "typed as H (2.6 for 2.6e-3) is above 50 mH"),
+    "motor.psi_f_wb": (1e-3, 1.0,
+                       "magnet flux linkage: about 3 .. 10 mWb for 12 V motors of 100 W, "
+                       "0.03 .. 0.2 Wb for compressors, 0.05 .. 0.3 Wb for traction machines; "
+                       "a value in mWb typed as Wb (65 for 0.065) is above 1 Wb"),
+    "motor.j_kgm2": (1e-6, 10.0,
+                     "inertia of rotor and load: about 1e-6 .. 1e-5 kg m^2 for a 100 W rotor, "
+                     "0.01 .. 0.3 kg m^2 for a traction rotor, a few kg m^2 with a reflected "
+                     "load"),
+    "motor.b_nms": (1e-7, 1.0,
+                    "viscous friction: the torque B w at top speed is a small fraction of the "
+                    "rated torque (about 1e-7 N m s for a 100 W motor, 0.01 .. 0.1 N m s for a "
+                    "traction machine)"),
+    "motor.rated_speed_rpm": (100.0, 100000.0,
+                              "mechanical speeds of compressors and traction machines: "
+                              "1000 .. 20000 rpm; a speed in krpm (6 for 6000) is below "
+                              "100 rpm"),
+    "motor.rated_current_a": (0.5, 3000.0,
+                              "peak phase current: about 5 .. 20 A for 100 W at 12 V or 1 kW "
+                              "at 400 V, up to 1500 A for 400 kW; a current in mA is above "
+                              "3000 A"),
+    "inverter.vdc_nominal_v": (6.0, 1500.0,
+                               "DC bus: 12 V, 48 V, 400 V and 800 V classes; a bus in kV "
+                               "(0.65 for 650) is below 6 V"),
+    "inverter.f_timer_hz": (1e6, 1e9,
+                            "PWM counter clock of a microcontroller timer: about 8 MHz .. "
+                            "300 MHz"),
+    "inverter.dead_time_s": (10e-9, 10e-6,
+                             "dead time: about 100 ns (GaN, SiC) .. 5 us (IGBT); a time in us "
+                             "typed as s (1 for 1e-6) is above 10 us"),
+    "design.t_filter_current_s": (100e-9, 1e-3,
+                                  "current-sensing filter: a few us, far below the current "
+                                  "loop's T_sigma; a time in us or ms typed as s is above 1 ms"),
+    "design.speed_t_sam_s": (20e-6, 20e-3,
+                             "speed-loop sample time: one PWM period (25 us at 40 kHz) .. a "
+                             "few ms (the drive's tick is 1 ms); a time in ms typed as s (1 "
+                             "for 0.001) is above 20 ms"),
+    "design.speed_tau_s": (1e-3, 10.0,
+                           "speed PI integral time: tens to hundreds of ms; a time in ms typed "
+                           "as s (80 for 0.08) is above 10 s"),
+}
+for _n, _o in (("motor.lq_h", "motor.ld_h"), ("motor.ld_hs_h", "motor.ld_h"),
+               ("motor.lq_hs_h", "motor.ld_h"), ("inverter.vdc_min_v", "inverter.vdc_nominal_v"),
+               ("inverter.vdc_max_v", "inverter.vdc_nominal_v"),
+               ("motor.max_speed_rpm", "motor.rated_speed_rpm")):
+    PLAUSIBLE[_n] = PLAUSIBLE[_o]
+del _n, _o
+# The unit slips the "did you mean" names: factor from the typed to the meant value.
+UNIT_SLIPS = {"ohm": {1e-3: "mOhm typed as ohm", 1e3: "kOhm typed as ohm"},
+              "H": {1e-3: "mH typed as H", 1e-6: "uH typed as H", 1e3: "H typed as mH"},
+              "Wb": {1e-3: "mWb typed as Wb", 1e3: "Wb typed as mWb"},
+              "kg m^2": {1e-3: "g m^2 typed as kg m^2", 1e-4: "kg cm^2 typed as kg m^2"},
+              "N m s": {1e-3: "mN m s typed as N m s", 1e3: "N m s typed as mN m s"},
+              "rpm": {1e3: "krpm typed as rpm"},
+              "A": {1e-3: "mA typed as A", 1e3: "kA typed as A"},
+              "V": {1e-3: "mV typed as V", 1e3: "kV typed as V"},
+              "Hz": {1e3: "kHz typed as Hz", 1e6: "MHz typed as Hz"},
+              "s": {1e-3: "ms typed as s", 1e-6: "us typed as s", 1e-9: "ns typed as s"}}
+
+
+def plausibility_error(k: "Key", value: float) -> str | None:
+    """The refusal text of a value outside the plausible range of its key, or None."""
+    if k.name not in PLAUSIBLE or (value == 0 and k.rng[0] == 0 and k.rng[2][0] == "["):
+        return None
+    lo, hi, why = PLAUSIBLE[k.name]
+    if lo <= value <= hi:
+        return None
+    u = unit_text(k)
+    text = (f"{k.name} = {fmt(value)}{u}: outside the plausible range {fmt(lo)} .. {fmt(hi)}{u} "
+            "of a compressor or traction PMSM drive")
+    why = f" (plausible range: {why})"
+    slips = UNIT_SLIPS.get(k.unit, {})
+    # x 1e-3 or x 1e3 first (the unit slips of the SI prefixes), then the key's other slips
+    factors = [1e-3, 1e3] + \
+        sorted((f for f in slips if f not in (1e-3, 1e3)), key=lambda f: abs(math.log10(f)))
+    for f in factors:
+        cand = float(f"{value * f:.12g}")
+        if lo <= cand <= hi:
+            slip = slips.get(f, f"the value x {fmt(f)}")
+            return text + f"; did you mean {k.name} = {fmt(cand)}{u} ({slip})?" + why
+    return text + why
+
+
 SECTIONS = ("motor", "inverter", "sensing", "scaling", "design", "limits", "drive", "demo")
 SECTION_TEXT = {
     "motor": "the machine (required)",
@@ -527,6 +629,7 @@ def load_config(path: Path, overrides: list[str]) -> dict:
             if key not in known_keys(section):
                 raise unknown_key_error(f"{path}: ", section, key)
     cfg: dict = {s: {} for s in SECTIONS}
+    implausible: list[str] = []
     for k in SCHEMA:
         sec = raw.get(k.section, {})
         if k.key not in sec:
@@ -544,11 +647,32 @@ def load_config(path: Path, overrides: list[str]) -> dict:
             rule = rule.replace("rule '", "docs/motor-file.md rule '")
             raise Refusal(f"{path}: {k.name} = {fmt(val)}{unit_text(k)}: {want} (rule: {rule})")
         cfg[k.section][k.key] = val
+        if k.kind == "num":
+            bad = plausibility_error(k, val)
+            if bad:
+                implausible.append(f"{path}: {bad}")
+    if implausible:
+        raise Refusal("\n".join(implausible))
     resolve_defaults(cfg)
+    cfg["warnings"] = input_warnings(cfg)
     refusals = check_rules(cfg)
     if refusals:
         raise Refusal("\n".join(f"{path}: {r}" for r in refusals))
     return cfg
+
+
+def input_warnings(cfg: dict) -> list[str]:
+    """Values the tool accepts but that look wrong: an interior-magnet motor has L_q > L_d."""
+    m = cfg["motor"]
+    pairs = [("lq_h", "ld_h", m["lq_h"], m["ld_h"])]
+    if m["lq_hs_h"] is not None or m["ld_hs_h"] is not None:
+        pairs.append(("lq_hs_h", "ld_hs_h",
+                      m["lq_hs_h"] if m["lq_hs_h"] is not None else m["lq_h"],
+                      m["ld_hs_h"] if m["ld_hs_h"] is not None else m["ld_h"]))
+    return [f"motor.{q} = {fmt(lq)} H is below motor.{d} = {fmt(ld)} H: an interior-magnet "
+            "(IPM) motor has L_q > L_d (L_q = L_d for a surface-magnet motor); are the two "
+            "values swapped? The table is made with the values as given"
+            for q, d, lq, ld in pairs if lq < ld]
 
 
 def unit_text(k: Key) -> str:
@@ -809,7 +933,8 @@ def motor_file_doc() -> str:
         "`--set section.key=value` overrides one key on the command line.",
         "",
         "The tool refuses (exit code 1, no table written) a key it does not know, a value "
-        "outside its range, and a file that breaks one of the rules below; a file it cannot "
+        "outside its range or its plausible range (below), and a file that breaks one of the "
+        "rules below; a file it cannot "
         "read as a motor file (TOML syntax, a missing required key, a wrong type or sign) "
         "ends with exit code 2.  Every message names the key as `section.key`, its value "
         "and the rule.",
@@ -837,7 +962,29 @@ def motor_file_doc() -> str:
         "chapter 4 and the field ranges of params.h and drive_cfg.h (exit code 1, report "
         "marked FAILED).",
         "",
+        "## Plausible values and warnings",
+        "",
+        "The physical keys below must also lie within a plausible range: every real compressor "
+        "and traction PMSM and its inverter from 100 W (a 12 V pump or fan motor) to 400 kW "
+        "(a heavy-duty traction machine) lies inside it, and each range is at most about four "
+        "decades wide, so that a value typed in the wrong unit (mH as H, mOhm as ohm, mWb as "
+        "Wb, ms or us as s: a factor of 1000) falls outside it; a range of 1 uH .. 1 H would "
+        "accept a compressor's 4.2 mH typed as 4.2 as well.  The tool refuses a value outside "
+        "(exit code 1, no table written) and names the key, the value typed, the plausible "
+        "range and, as \"did you mean\", the value x 1e-3 or x 1e3 (or the key's other unit "
+        "slip) that lies inside it.  A key whose range is \">= 0\" accepts 0 as well.",
+        "",
+        "It warns (and makes the table) when motor.lq_h < motor.ld_h (or motor.lq_hs_h < "
+        "motor.ld_hs_h): an interior-magnet (IPM) motor has L_q > L_d, a surface-magnet "
+        "motor L_q = L_d; the two values may be swapped.",
+        "",
     ]
+    prow = []
+    for k in SCHEMA:
+        if k.name in PLAUSIBLE:
+            lo, hi, why = PLAUSIBLE[k.name]
+            prow.append([f"`{k.name}`", f"{fmt(lo)} .. {fmt(hi)}", k.unit, why])
+    lines += md_table(["key", "plausible range", "unit", "reasoning"], prow) + [""]
     for section in SECTIONS:
         lines += [f"## [{section}]", "", f"{SECTION_TEXT[section][0].upper()}"
                   f"{SECTION_TEXT[section][1:]}.", ""]
@@ -2055,8 +2202,9 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
     if failures:
         lines += ["## Failures", ""] + [f"- {f}" for f in failures] + [""]
     coarse = [gn for gn in ds.gains.values() if abs(gn.rel_err) > COARSE_GAIN_PCT / 100.0]
-    if coarse:
+    if coarse or cfg.get("warnings"):
         lines += ["## Warnings", ""]
+        lines += [f"- {w}" for w in cfg.get("warnings", [])]
         lines += [f"- {gn.name}: rounding error {gn.rel_err * 100:+.2f} % (raw {gn.raw}): the "
                   "value is close to the resolution of its representation" for gn in coarse]
         lines.append("")
@@ -2215,6 +2363,8 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+    for w in cfg["warnings"]:
+        print(f"warning: {w}", file=sys.stderr)
     name = c_name(args.name if args.name else args.motor.stem)
     toml_rel = rel_to_repo(args.motor)
     out_dir = args.out_dir if args.out_dir else Path("build") / "tune" / name
