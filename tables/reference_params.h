@@ -10,7 +10,7 @@
 
 #include "qfoc/params.h"
 
-/** Parameter table of qfoc reference compressor IPM (CRC 0xEFD5B641). */
+/** Parameter table of qfoc reference compressor IPM (CRC 0xF03E7A6C). */
 extern const qfoc_param_table_t qfoc_params_reference;
 
 #endif /* QFOC_PARAMS_REFERENCE_H */
