@@ -39,9 +39,9 @@ const qfoc_param_table_t qfoc_params_reference16k = {
         .out_max = 15892 /* 0.484985 pu: V_dc,max / sqrt 3 / V_base = 420 / sqrt 3 / 500 */
     },
     .pi_speed = {
-        .kp = 24052, /* kp 1.46804 = ksp = 1 / (2 T_ssigma K_t b) = 1 / (2 x 0.00914525 x 0.2925 x 3333.33) = 0.0560751 A s/rad (mech); / n_p x w_base / I_base; stored 1.46802, error -0.002 % */
+        .kp = 24052, /* kp 1.46804 = ksp = w_sc / (K_t b) = 2 pi x 8.70151 / (0.2925 x 3333.33) = 0.0560751 A s/rad (mech); / n_p x w_base / I_base; stored 1.46802, error -0.002 % */
         .kp_shift = 1u, /* kp_real = kp / 32768 x 2^1 */
-        .ki = 601, /* ki T 0.0183505 = kp T_sam / tau_s = 1.46804 x 0.001 / 0.08; stored 0.0183411, error -0.052 % */
+        .ki = 526, /* ki T 0.0160525 = kp T_sam / tau_s = 1.46804 x 0.001 / 0.0914525; stored 0.0160522, error -0.002 % */
         .ki_shift = 0u, /* kiT_real = ki / 32768 x 2^0 */
         .out_min = (int16_t)-16384, /* -0.5 pu: +-i_max (i_q reference) */
         .out_max = 16384 /* 0.5 pu: +-i_max (i_q reference) */
@@ -131,5 +131,5 @@ const qfoc_param_table_t qfoc_params_reference16k = {
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
         .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
     },
-    .crc = 0xA7EA5CC9u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0xB8BE713Bu /* CRC-32/ISO-HDLC of every field above */
 };

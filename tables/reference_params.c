@@ -38,9 +38,9 @@ const qfoc_param_table_t qfoc_params_reference = {
         .out_max = 15892 /* 0.484985 pu: V_dc,max / sqrt 3 / V_base = 420 / sqrt 3 / 500 */
     },
     .pi_speed = {
-        .kp = 23569, /* kp 1.43855 = ksp = 1 / (2 T_ssigma K_t b) = 1 / (2 x 0.00933275 x 0.2925 x 3333.33) = 0.0549485 A s/rad (mech); / n_p x w_base / I_base; stored 1.43854, error -0.001 % */
+        .kp = 23569, /* kp 1.43855 = ksp = w_sc / (K_t b) = 2 pi x 8.52669 / (0.2925 x 3333.33) = 0.0549485 A s/rad (mech); / n_p x w_base / I_base; stored 1.43854, error -0.001 % */
         .kp_shift = 1u, /* kp_real = kp / 32768 x 2^1 */
-        .ki = 589, /* ki T 0.0179819 = kp T_sam / tau_s = 1.43855 x 0.001 / 0.08; stored 0.0179749, error -0.039 % */
+        .ki = 505, /* ki T 0.015414 = kp T_sam / tau_s = 1.43855 x 0.001 / 0.0933275; stored 0.0154114, error -0.017 % */
         .ki_shift = 0u, /* kiT_real = ki / 32768 x 2^0 */
         .out_min = (int16_t)-16384, /* -0.5 pu: +-i_max (i_q reference) */
         .out_max = 16384 /* 0.5 pu: +-i_max (i_q reference) */
@@ -130,5 +130,5 @@ const qfoc_param_table_t qfoc_params_reference = {
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
         .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
     },
-    .crc = 0xDDFFAA63u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0xC214664Eu /* CRC-32/ISO-HDLC of every field above */
 };

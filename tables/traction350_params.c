@@ -38,9 +38,9 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .out_max = 2365 /* 0.0721741 pu: V_dc,max / sqrt 3 / V_base = 750 / sqrt 3 / 6000 */
     },
     .pi_speed = {
-        .kp = 30535, /* kp 3.72745 = ksp = 1 / (2 T_ssigma K_t b) = 1 / (2 x 0.00914525 x 2.88 x 6.66667) = 2.84756 A s/rad (mech); / n_p x w_base / I_base; stored 3.72742, error -0.001 % */
+        .kp = 30535, /* kp 3.72745 = ksp = w_sc / (K_t b) = 2 pi x 8.70151 / (2.88 x 6.66667) = 2.84756 A s/rad (mech); / n_p x w_base / I_base; stored 3.72742, error -0.001 % */
         .kp_shift = 2u, /* kp_real = kp / 32768 x 2^2 */
-        .ki = 1221, /* ki T 0.0372745 = kp T_sam / tau_s = 3.72745 x 0.001 / 0.1; stored 0.037262, error -0.034 % */
+        .ki = 1336, /* ki T 0.0407583 = kp T_sam / tau_s = 3.72745 x 0.001 / 0.0914525; stored 0.0407715, error +0.032 % */
         .ki_shift = 0u, /* kiT_real = ki / 32768 x 2^0 */
         .out_min = (int16_t)-18022, /* -0.549988 pu: +-i_max (i_q reference) */
         .out_max = 18022 /* 0.549988 pu: +-i_max (i_q reference) */
@@ -130,5 +130,5 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
         .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
     },
-    .crc = 0x77F7F612u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x93300BEBu /* CRC-32/ISO-HDLC of every field above */
 };

@@ -79,6 +79,8 @@ static double ref_derate(int hi, int lo, int t, int t0, int t1)
 
 /* ---- q limit --------------------------------------------------------------- */
 
+/* REQ-IREF-002: every corner of both arguments; the floor of the exact limit, inside the
+   circle and less than 1 LSB below it. */
 static void test_iref_q_limit_corners(void **state)
 {
     static const int lim[] = { -32768, -1, 0, 1, 2, 100, 16384, 32766, 32767 };
@@ -109,6 +111,7 @@ static void test_iref_q_limit_corners(void **state)
     assert_int_equal(qfoc_iref_q_limit(25000, -15000), 20000);
 }
 
+/* REQ-IREF-002: 200000 random pairs against the double-precision limit. */
 static void test_iref_q_limit_random(void **state)
 {
     int k;
@@ -123,6 +126,7 @@ static void test_iref_q_limit_random(void **state)
 
 /* ---- MTPA ------------------------------------------------------------------ */
 
+/* REQ-IREF-001: 200000 random inputs against the textbook formula in double precision. */
 static void test_iref_mtpa_vs_formula(void **state)
 {
     int k;
@@ -155,7 +159,7 @@ static void test_iref_mtpa_vs_formula(void **state)
 
 /* the reference motor's numbers (specs/motors/reference.toml): L_d = 2.6 mH, L_q = 4.2 mH,
    psi_f = 0.065 Wb, in the bases of its table (500 V, 40 A, 500 Hz); the library's i_d
-   maximises the torque on the current circle */
+   maximises the torque on the current circle (REQ-IREF-001) */
 static void test_iref_mtpa_is_optimal(void **state)
 {
     const double v_base = 500.0;
@@ -190,6 +194,8 @@ static void test_iref_mtpa_is_optimal(void **state)
     }
 }
 
+/* REQ-IREF-001: no saliency, inverse saliency, no current, no magnet, either sign, the
+   extremes of the types. */
 static void test_iref_mtpa_corners(void **state)
 {
     (void)state;
@@ -211,6 +217,7 @@ static void test_iref_mtpa_corners(void **state)
 
 /* ---- derating -------------------------------------------------------------- */
 
+/* REQ-IREF-003: the window, its ends, an empty window, lo above hi, random inputs. */
 static void test_iref_derate(void **state)
 {
     int k;
@@ -242,6 +249,7 @@ static void test_iref_derate(void **state)
 
 /* ---- the step -------------------------------------------------------------- */
 
+/* REQ-IREF-004: the step against its definition on random inputs; the circle. */
 static void test_iref_step(void **state)
 {
     int k;

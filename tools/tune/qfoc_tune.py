@@ -14,13 +14,19 @@ What it does (every equation number is the source document's, chapter 2 unless n
    validates presence, type, sign and range of every key; refuses unknown keys, and the
    files that break a rule between keys (check_rules(): the f_base rule of
    specs/scaling.md section 2, protection thresholds their sensors cannot read, [drive]
-   speeds and currents outside the motor's range), naming the key as section.key.
+   speeds and currents outside the motor's range), naming the key as section.key;
+   refuses the values of the physical keys outside their plausible ranges (PLAUSIBLE: a
+   unit slip such as mH typed as H), with the value x 1e-3 or x 1e3 inside the range as
+   "did you mean"; warns when L_q < L_d (an IPM motor has L_q > L_d).
 2. Derives the per-unit bases and every scale factor of specs/scaling.md.
 3. Designs the loops:
    - current loops d and q (pole cancellation tau_c = L / R, K T = 0.5, so
      k_cp = L / (2 T_sigma), k_ci = R / (2 T_sigma), "Current Loop"),
-   - speed loop (tau_s = 1 / a = J / B, ksp = K / (2 K_t b) with K = 1 / T_ssigma,
-     T_ssigma = 2 T_sigma + T_filter + T_sam, "Speed Loop"),
+   - speed loop from a bandwidth target: crossover w_sc = the smaller of
+     design.speed_crossover_ratio x 1 / (2 T_sigma) and 1 / (2 T_ssigma), T_ssigma =
+     2 T_sigma + T_filter + T_sam ("Speed Loop"); ksp = w_sc / (K_t b) (= K / (2 K_t b), K =
+     1 / T_ssigma, at the default); PI zero design.speed_zero_ratio below the crossover,
+     tau_s = ratio / w_sc (formerly J / B, seconds on a compressor),
    - field-weakening PI (integral-dominant, crossover a decade below the current loop),
    - PLL (2-27, 2-28) and flux observer (2-19 .. 2-24) exactly as sim/estim.c est_tune(),
    - low-pass coefficients alpha = omega_c / f (2-33, 2-34),
@@ -32,7 +38,9 @@ What it does (every equation number is the source document's, chapter 2 unless n
 5. Analyses the loops (chapter 4) with scipy.signal: continuous models as the
    document writes them and discrete models (ZOH at T_s plus one sample of
    computation delay z^-1) with the quantised gains; phase and gain margins,
-   closed-loop -3 dB bandwidth, step responses; Bode/step PNGs.
+   closed-loop -3 dB bandwidth, step responses; Bode/step PNGs.  The speed-loop check
+   (speed_check()) simulates the ramp from the hand-over speed with a load step and the
+   stored speed PI; more than 1 % speed error 1 s after the ramp's end fails the design.
 6. Derives the drive configuration (include/qfoc/drive_cfg.h, table layout version 2:
    start-up, protection, link and feature settings) from [drive] and its defaults
    (drive_fields()), checks every field's range and the cross-field conditions of
@@ -71,6 +79,10 @@ PARAMS_VERSION = 2                 # params.h QFOC_PARAMS_VERSION (2: drive conf
 FLUX_STATE_MAX_Q15 = 524287        # (2^31 - 1) / 4096: flux state Q4.27 range in Q15 counts
 PM_MIN_DEG = 45.0                  # required phase margin of every discrete loop
 COARSE_GAIN_PCT = 1.0              # rounding errors above this are listed as warnings
+SPEED_ZERO_RATIO = 5.0             # default design.speed_zero_ratio
+SPEED_CHECK_ERR_PCT = 1.0          # the speed-loop check: largest |speed error|, % of target,
+SPEED_CHECK_AFTER_S = 1.0          # from this long after the ramp's end,
+SPEED_CHECK_SPAN_S = 1.0           # over this long
 SQRT3 = math.sqrt(3.0)
 # The drive's tick period (qfoc_drive_tick, 1 kHz): field weakening and the speed loop run in it.
 T_TICK_S = 1e-3
@@ -170,9 +182,9 @@ SCHEMA: tuple = (
     _k("motor", "psi_f_wb", "num", "Wb", POS, REQUIRED, "magnet flux linkage (peak)",
        "K_t = 3/2 n_p psi_f (speed loop); psi_f; flux bounds 2-25, 2-26"),
     _k("motor", "j_kgm2", "num", "kg m^2", POS, REQUIRED, "inertia (rotor and load)",
-       "speed loop b = 1 / J; default of design.speed_tau_s"),
+       "speed loop b = 1 / J, pi_speed.kp = w_sc J / K_t; the speed-loop check"),
     _k("motor", "b_nms", "num", "N m s", POS, REQUIRED, "viscous friction",
-       "speed loop a = B / J; default of design.speed_tau_s"),
+       "speed loop a = B / J; the speed-loop check"),
     _k("motor", "rated_speed_rpm", "num", "rpm", POS, REQUIRED, "rated speed (mechanical)",
        "<= motor.max_speed_rpm; defaults of drive.tc_speed_max_rpm, drive.stall_err_rpm, "
        "design.observer_min_speed_rpm"),
@@ -222,8 +234,30 @@ SCHEMA: tuple = (
     # [design]: loop-design choices
     _k("design", "t_filter_current_s", "num", "s", NONNEG, 0.0,
        "current-sensing filter time constant T_filter of T_sigma", "current and speed loops"),
-    _k("design", "speed_tau_s", "num", "s", POS, "motor.j_kgm2 / motor.b_nms",
-       "speed PI time constant tau_s (document: tau_s = 1/a)", "pi_speed.ki"),
+    _k("design", "speed_crossover_ratio", "num", "", POS, 0.1,
+       "largest speed-loop crossover / current-loop crossover 1 / (2 T_sigma) (cascade "
+       "separation)", "default of design.speed_crossover_hz"),
+    _k("design", "speed_crossover_hz", "num", "Hz", POS,
+       "the smaller of design.speed_crossover_ratio x 1 / (2 pi 2 T_sigma) (the current-loop "
+       "crossover) and 1 / (2 pi 2 T_ssigma) (K T = 0.5 on the speed path's lag T_ssigma)",
+       "speed-loop crossover (bandwidth target) w_sc = 2 pi f",
+       "pi_speed.kp = w_sc J / K_t; default of design.speed_tau_s"),
+    _k("design", "speed_zero_ratio", "num", "", POS, SPEED_ZERO_RATIO,
+       "speed-loop crossover / speed PI zero: the zero 1 / tau_s lies this factor below the "
+       "crossover (symmetric optimum: 2 .. 4 on a pure lag; 5 leaves a discrete phase margin "
+       "of about 49 deg with the speed filter's lag and the tick's delay, 4 about 46 deg)",
+       "default of design.speed_tau_s"),
+    _k("design", "speed_tau_s", "num", "s", POS,
+       "design.speed_zero_ratio / (2 pi design.speed_crossover_hz)",
+       "speed PI integral time tau_s = kp / ki (the PI zero at 1 / tau_s); formerly "
+       "J / B", "pi_speed.ki = kp T_sam / tau_s; the speed-loop check"),
+    _k("design", "speed_check_rpm", "num", "rpm", POS, "0.5 x motor.rated_speed_rpm",
+       "speed-loop check: target of the ramp from drive.of_speed_rpm (the hand-over)",
+       f"the speed-loop check: |speed error| <= {SPEED_CHECK_ERR_PCT:g} % of the target from "
+       f"{SPEED_CHECK_AFTER_S:g} s after the ramp's end"),
+    _k("design", "speed_check_load_nm", "num", "N m", NONNEG, "motor.nominal_torque_nm",
+       "speed-loop check: load torque, a step when the ramp starts (the loop holds the "
+       "start speed unloaded before)", "the speed-loop check"),
     _k("design", "speed_t_sam_s", "num", "s", POS, 1.0e-3,
        "speed-loop sample time T_sam (the speed PI runs in the drive's 1 ms tick)",
        "speed loop T_ssigma and pi_speed.ki"),
@@ -372,6 +406,105 @@ SCHEMA: tuple = (
        "load torque of the demonstration's cold start",
        "sim/scenario.c (make demo); not in the table"),
 )
+
+# Plausible ranges of the physical keys (load_config() refuses a value outside, with the value
+# x 1e-3 or x 1e3 that falls inside as "did you mean"): each range holds every real
+# compressor and traction PMSM and its inverter from 100 W (a 12 V pump or fan motor) to
+# 400 kW (a heavy-duty traction machine), and is at most about four decades wide, so that
+# a value typed in the wrong unit (mH as H, mOhm as ohm, mWb as Wb, ms as s: a factor 1000)
+# falls outside it for most machines.  A range of 1 uH .. 1 H, for instance, would accept a
+# compressor's 4.2 mH typed as 4.2 mH = 0.0042 and as 4.2 H alike.  name: (low, high,
+# reason); a key whose range is ">= 0" accepts 0 as well.
+PLAUSIBLE = {
+    "motor.rs_ohm": (0.5e-3, 2.0,
+                     "phase resistance: about 1 .. 10 mOhm for 100 .. 400 kW traction machines, "
+                     "20 .. 200 mOhm for 12 V motors of 100 W, 0.2 .. 1 ohm for high-voltage "
+                     "compressors; a value in mOhm typed as ohm (35 for 0.035) is above 2 ohm"),
+    "motor.ld_h": (5e-6, 50e-3,
+                   "inductance: about 50 uH .. 3 mH for traction machines, 20 .. 200 uH for "
+                   "12 V motors, 1 .. 30 mH for high-voltage compressors; a value in mH "
+                   "typed as H (2.6 for 2.6e-3) is above 50 mH"),
+    "motor.psi_f_wb": (1e-3, 1.0,
+                       "magnet flux linkage: about 3 .. 10 mWb for 12 V motors of 100 W, "
+                       "0.03 .. 0.2 Wb for compressors, 0.05 .. 0.3 Wb for traction machines; "
+                       "a value in mWb typed as Wb (65 for 0.065) is above 1 Wb"),
+    "motor.j_kgm2": (1e-6, 10.0,
+                     "inertia of rotor and load: about 1e-6 .. 1e-5 kg m^2 for a 100 W rotor, "
+                     "0.01 .. 0.3 kg m^2 for a traction rotor, a few kg m^2 with a reflected "
+                     "load"),
+    "motor.b_nms": (1e-7, 1.0,
+                    "viscous friction: the torque B w at top speed is a small fraction of the "
+                    "rated torque (about 1e-7 N m s for a 100 W motor, 0.01 .. 0.1 N m s for a "
+                    "traction machine)"),
+    "motor.rated_speed_rpm": (100.0, 100000.0,
+                              "mechanical speeds of compressors and traction machines: "
+                              "1000 .. 20000 rpm; a speed in krpm (6 for 6000) is below "
+                              "100 rpm"),
+    "motor.rated_current_a": (0.5, 3000.0,
+                              "peak phase current: about 5 .. 20 A for 100 W at 12 V or 1 kW "
+                              "at 400 V, up to 1500 A for 400 kW; a current in mA is above "
+                              "3000 A"),
+    "inverter.vdc_nominal_v": (6.0, 1500.0,
+                               "DC bus: 12 V, 48 V, 400 V and 800 V classes; a bus in kV "
+                               "(0.65 for 650) is below 6 V"),
+    "inverter.f_timer_hz": (1e6, 1e9,
+                            "PWM counter clock of a microcontroller timer: about 8 MHz .. "
+                            "300 MHz"),
+    "inverter.dead_time_s": (10e-9, 10e-6,
+                             "dead time: about 100 ns (GaN, SiC) .. 5 us (IGBT); a time in us "
+                             "typed as s (1 for 1e-6) is above 10 us"),
+    "design.t_filter_current_s": (100e-9, 1e-3,
+                                  "current-sensing filter: a few us, far below the current "
+                                  "loop's T_sigma; a time in us or ms typed as s is above 1 ms"),
+    "design.speed_t_sam_s": (20e-6, 20e-3,
+                             "speed-loop sample time: one PWM period (25 us at 40 kHz) .. a "
+                             "few ms (the drive's tick is 1 ms); a time in ms typed as s (1 "
+                             "for 0.001) is above 20 ms"),
+    "design.speed_tau_s": (1e-3, 10.0,
+                           "speed PI integral time: tens to hundreds of ms; a time in ms typed "
+                           "as s (80 for 0.08) is above 10 s"),
+}
+for _n, _o in (("motor.lq_h", "motor.ld_h"), ("motor.ld_hs_h", "motor.ld_h"),
+               ("motor.lq_hs_h", "motor.ld_h"), ("inverter.vdc_min_v", "inverter.vdc_nominal_v"),
+               ("inverter.vdc_max_v", "inverter.vdc_nominal_v"),
+               ("motor.max_speed_rpm", "motor.rated_speed_rpm")):
+    PLAUSIBLE[_n] = PLAUSIBLE[_o]
+del _n, _o
+# The unit slips the "did you mean" names: factor from the typed to the meant value.
+UNIT_SLIPS = {"ohm": {1e-3: "mOhm typed as ohm", 1e3: "kOhm typed as ohm"},
+              "H": {1e-3: "mH typed as H", 1e-6: "uH typed as H", 1e3: "H typed as mH"},
+              "Wb": {1e-3: "mWb typed as Wb", 1e3: "Wb typed as mWb"},
+              "kg m^2": {1e-3: "g m^2 typed as kg m^2", 1e-4: "kg cm^2 typed as kg m^2"},
+              "N m s": {1e-3: "mN m s typed as N m s", 1e3: "N m s typed as mN m s"},
+              "rpm": {1e3: "krpm typed as rpm"},
+              "A": {1e-3: "mA typed as A", 1e3: "kA typed as A"},
+              "V": {1e-3: "mV typed as V", 1e3: "kV typed as V"},
+              "Hz": {1e3: "kHz typed as Hz", 1e6: "MHz typed as Hz"},
+              "s": {1e-3: "ms typed as s", 1e-6: "us typed as s", 1e-9: "ns typed as s"}}
+
+
+def plausibility_error(k: "Key", value: float) -> str | None:
+    """The refusal text of a value outside the plausible range of its key, or None."""
+    if k.name not in PLAUSIBLE or (value == 0 and k.rng[0] == 0 and k.rng[2][0] == "["):
+        return None
+    lo, hi, why = PLAUSIBLE[k.name]
+    if lo <= value <= hi:
+        return None
+    u = unit_text(k)
+    text = (f"{k.name} = {fmt(value)}{u}: outside the plausible range {fmt(lo)} .. {fmt(hi)}{u} "
+            "of a compressor or traction PMSM drive")
+    why = f" (plausible range: {why})"
+    slips = UNIT_SLIPS.get(k.unit, {})
+    # x 1e-3 or x 1e3 first (the unit slips of the SI prefixes), then the key's other slips
+    factors = [1e-3, 1e3] + \
+        sorted((f for f in slips if f not in (1e-3, 1e3)), key=lambda f: abs(math.log10(f)))
+    for f in factors:
+        cand = float(f"{value * f:.12g}")
+        if lo <= cand <= hi:
+            slip = slips.get(f, f"the value x {fmt(f)}")
+            return text + f"; did you mean {k.name} = {fmt(cand)}{u} ({slip})?" + why
+    return text + why
+
 
 SECTIONS = ("motor", "inverter", "sensing", "scaling", "design", "limits", "drive", "demo")
 SECTION_TEXT = {
@@ -531,6 +664,7 @@ def load_config(path: Path, overrides: list[str]) -> dict:
             if key not in known_keys(section):
                 raise unknown_key_error(f"{path}: ", section, key)
     cfg: dict = {s: {} for s in SECTIONS}
+    implausible: list[str] = []
     for k in SCHEMA:
         sec = raw.get(k.section, {})
         if k.key not in sec:
@@ -548,16 +682,45 @@ def load_config(path: Path, overrides: list[str]) -> dict:
             rule = rule.replace("rule '", "docs/motor-file.md rule '")
             raise Refusal(f"{path}: {k.name} = {fmt(val)}{unit_text(k)}: {want} (rule: {rule})")
         cfg[k.section][k.key] = val
+        if k.kind == "num":
+            bad = plausibility_error(k, val)
+            if bad:
+                implausible.append(f"{path}: {bad}")
+    if implausible:
+        raise Refusal("\n".join(implausible))
     resolve_defaults(cfg)
+    cfg["warnings"] = input_warnings(cfg)
     refusals = check_rules(cfg)
     if refusals:
         raise Refusal("\n".join(f"{path}: {r}" for r in refusals))
     return cfg
 
 
+def input_warnings(cfg: dict) -> list[str]:
+    """Values the tool accepts but that look wrong: an interior-magnet motor has L_q > L_d."""
+    m = cfg["motor"]
+    pairs = [("lq_h", "ld_h", m["lq_h"], m["ld_h"])]
+    if m["lq_hs_h"] is not None or m["ld_hs_h"] is not None:
+        pairs.append(("lq_hs_h", "ld_hs_h",
+                      m["lq_hs_h"] if m["lq_hs_h"] is not None else m["lq_h"],
+                      m["ld_hs_h"] if m["ld_hs_h"] is not None else m["ld_h"]))
+    return [f"motor.{q} = {fmt(lq)} H is below motor.{d} = {fmt(ld)} H: an interior-magnet "
+            "(IPM) motor has L_q > L_d (L_q = L_d for a surface-magnet motor); are the two "
+            "values swapped? The table is made with the values as given"
+            for q, d, lq, ld in pairs if lq < ld]
+
+
 def unit_text(k: Key) -> str:
     """' V', ' rpm', ... after a value; '' for a quantity without a unit."""
     return f" {k.unit}" if k.unit and k.unit not in ("bits", "ADC codes", "Q15 counts") else ""
+
+
+def loop_lags(cfg: dict) -> tuple[float, float]:
+    """(T_sigma, T_ssigma) of the current and speed loops (design_loops())."""
+    d = cfg["design"]
+    t_s = 1.0 / cfg["inverter"]["f_pwm_hz"]
+    t_sigma = 0.5 * t_s + t_s + d["t_filter_current_s"]
+    return t_sigma, 2.0 * t_sigma + 1.0 / (2.0 * math.pi * d["speed_fc_hz"]) + d["speed_t_sam_s"]
 
 
 def resolve_defaults(cfg: dict) -> None:
@@ -571,8 +734,16 @@ def resolve_defaults(cfg: dict) -> None:
     dr = cfg["drive"]
     cfg["defaulted"] |= {f"drive.{k}" for k, (dflt, _c, _s) in DRIVE_KEYS.items()
                          if dr[k] is None or dr[k] == dflt}
+    t_sigma, t_ssigma = loop_lags(cfg)
+    if d["speed_crossover_hz"] is None:
+        d["speed_crossover_hz"] = min(d["speed_crossover_ratio"] / (2.0 * t_sigma),
+                                      1.0 / (2.0 * t_ssigma)) / (2.0 * math.pi)
     if d["speed_tau_s"] is None:
-        d["speed_tau_s"] = m["j_kgm2"] / m["b_nms"]
+        d["speed_tau_s"] = d["speed_zero_ratio"] / (2.0 * math.pi * d["speed_crossover_hz"])
+    if d["speed_check_rpm"] is None:
+        d["speed_check_rpm"] = 0.5 * m["rated_speed_rpm"]
+    if d["speed_check_load_nm"] is None:
+        d["speed_check_load_nm"] = m["nominal_torque_nm"]
     if d["deadband_a"] is None:
         d["deadband_a"] = i_base / 80.0
     if d["i_offset_a"] is None:
@@ -813,7 +984,8 @@ def motor_file_doc() -> str:
         "`--set section.key=value` overrides one key on the command line.",
         "",
         "The tool refuses (exit code 1, no table written) a key it does not know, a value "
-        "outside its range, and a file that breaks one of the rules below; a file it cannot "
+        "outside its range or its plausible range (below), and a file that breaks one of the "
+        "rules below; a file it cannot "
         "read as a motor file (TOML syntax, a missing required key, a wrong type or sign) "
         "ends with exit code 2.  Every message names the key as `section.key`, its value "
         "and the rule.",
@@ -838,10 +1010,36 @@ def motor_file_doc() -> str:
         "- inverter.vdc_min_v <= inverter.vdc_nominal_v <= inverter.vdc_max_v; "
         "motor.max_speed_rpm >= motor.rated_speed_rpm; drive.lin_id_status != drive.lin_id_cmd.",
         "- Then the table itself: the fixed-point bounds of chapter 2, the loop margins of "
-        "chapter 4 and the field ranges of params.h and drive_cfg.h (exit code 1, report "
+        "chapter 4, the speed-loop check (the stored speed PI, the current loop as a lag, the "
+        "mechanics J, B and the speed filter simulated in double precision: from drive.of_speed_rpm "
+        "the drive's ramp to design.speed_check_rpm with the load step design.speed_check_load_nm; "
+        f"|speed error| <= {SPEED_CHECK_ERR_PCT:g} % of the target from {SPEED_CHECK_AFTER_S:g} s "
+        "after the ramp's end) and the field ranges of params.h and drive_cfg.h (exit code 1, report "
         "marked FAILED).",
         "",
+        "## Plausible values and warnings",
+        "",
+        "The physical keys below must also lie within a plausible range: every real compressor "
+        "and traction PMSM and its inverter from 100 W (a 12 V pump or fan motor) to 400 kW "
+        "(a heavy-duty traction machine) lies inside it, and each range is at most about four "
+        "decades wide, so that a value typed in the wrong unit (mH as H, mOhm as ohm, mWb as "
+        "Wb, ms or us as s: a factor of 1000) falls outside it; a range of 1 uH .. 1 H would "
+        "accept a compressor's 4.2 mH typed as 4.2 as well.  The tool refuses a value outside "
+        "(exit code 1, no table written) and names the key, the value typed, the plausible "
+        "range and, as \"did you mean\", the value x 1e-3 or x 1e3 (or the key's other unit "
+        "slip) that lies inside it.  A key whose range is \">= 0\" accepts 0 as well.",
+        "",
+        "It warns (and makes the table) when motor.lq_h < motor.ld_h (or motor.lq_hs_h < "
+        "motor.ld_hs_h): an interior-magnet (IPM) motor has L_q > L_d, a surface-magnet "
+        "motor L_q = L_d; the two values may be swapped.",
+        "",
     ]
+    prow = []
+    for k in SCHEMA:
+        if k.name in PLAUSIBLE:
+            lo, hi, why = PLAUSIBLE[k.name]
+            prow.append([f"`{k.name}`", f"{fmt(lo)} .. {fmt(hi)}", k.unit, why])
+    lines += md_table(["key", "plausible range", "unit", "reasoning"], prow) + [""]
     for section in SECTIONS:
         lines += [f"## [{section}]", "", f"{SECTION_TEXT[section][0].upper()}"
                   f"{SECTION_TEXT[section][1:]}.", ""]
@@ -1059,7 +1257,7 @@ def design_loops(cfg: dict, b: Bases) -> Design:
     # Current loops ("Current Loop"): T_sigma = T_pwm + T_sam + T_filter, with the PWM
     # (zero-order hold) delay T_s / 2 and one sample of computation delay T_s: the
     # voltage computed from the sample at t_k is applied during [t_k+1, t_k+2].
-    ds.t_sigma = 0.5 * t_s + t_s + d["t_filter_current_s"]
+    ds.t_sigma = loop_lags(cfg)[0]
     ph["T_sigma"] = ds.t_sigma
     v_lim = inv["vdc_max_v"] / SQRT3
     ph["v_lim"] = v_lim
@@ -1086,14 +1284,17 @@ def design_loops(cfg: dict, b: Bases) -> Design:
     ds.k_t = 1.5 * n_p * m["psi_f_wb"]
     b_mech = 1.0 / m["j_kgm2"]
     a_mech = m["b_nms"] / m["j_kgm2"]
-    ksp = 1.0 / (2.0 * ds.t_ssigma * ds.k_t * b_mech)          # A per rad/s (mechanical)
+    # Crossover w_sc (design.speed_crossover_hz): |kp K_t b / s| = 1 there, kp = w_sc / (K_t b);
+    # the default w_sc = 1 / (2 T_ssigma) is the document's ksp = K / (2 K_t b), K = 1 / T_ssigma.
+    w_sc = 2.0 * math.pi * d["speed_crossover_hz"]
+    ksp = w_sc / (ds.k_t * b_mech)                              # A per rad/s (mechanical)
     tau_s = d["speed_tau_s"]
     ph.update(T_ssigma=ds.t_ssigma, T_filter_speed=t_filter_speed, K_t=ds.k_t, b=b_mech,
-              a=a_mech, ksp=ksp, tau_s=tau_s)
+              a=a_mech, ksp=ksp, tau_s=tau_s, w_sc=w_sc)
     kp_speed = ksp / n_p * b.w_base / b.i_base
     g["pi_speed.kp"] = g_left(
         "pi_speed.kp", kp_speed,
-        f"ksp = 1 / (2 T_ssigma K_t b) = 1 / (2 x {fmt(ds.t_ssigma)} x {fmt(ds.k_t)} x "
+        f"ksp = w_sc / (K_t b) = 2 pi x {fmt(d['speed_crossover_hz'])} / ({fmt(ds.k_t)} x "
         f"{fmt(b_mech)}) = {fmt(ksp)} A s/rad (mech); / n_p x w_base / I_base")
     g["pi_speed.ki"] = g_left(
         "pi_speed.ki", kp_speed * d["speed_t_sam_s"] / tau_s,
@@ -1982,6 +2183,109 @@ def run_analysis(cfg: dict, ds: Design) -> dict[str, tuple[LoopResult, LoopResul
             for name, (c, dm) in build_loops(cfg, ds).items()}
 
 
+@dataclass
+class SpeedCheck:
+    """The speed-loop check: the ramp response simulated with the stored speed PI."""
+    start_rpm: float
+    target_rpm: float
+    load_nm: float
+    ramp_rpm_s: float
+    t_ramp_end: float
+    err_end_pct: float          # speed error at the ramp's end, % of the target
+    overshoot_pct: float        # largest speed above the target after the ramp's end
+    err_pct: float              # largest |error| over the check window
+    iq_load_a: float            # i_q that holds the load at the target
+    i_max_a: float
+    t: np.ndarray
+    rpm: np.ndarray
+    failure: str | None
+
+
+def speed_check(cfg: dict, ds: Design) -> SpeedCheck:
+    """Simulate, in double precision, the speed loop's response to the drive's speed ramp.
+
+    From steady state at drive.of_speed_rpm (the hand-over: the loop carries the load) the
+    reference ramps at the stored drive.speed_ramp to design.speed_check_rpm against the
+    constant load design.speed_check_load_nm.  The speed PI is qfoc_pi_step with the stored
+    gains and limits (+-i_max, clamping anti-windup) at T_sam, its output applied one T_sam
+    later; the closed current loop is the lag 1 / (2 T_sigma s + 1); the mechanics
+    J dw/dt = K_t i_q - B w - T_load; the fed-back speed passes the speed low-pass
+    1 / (T_filter s + 1).  The continuous part is integrated exactly over each T_sam (matrix
+    exponential).  The check fails when the speed error exceeds SPEED_CHECK_ERR_PCT % of the
+    target anywhere from SPEED_CHECK_AFTER_S after the ramp's end over SPEED_CHECK_SPAN_S.
+    """
+    from scipy.linalg import expm
+    m, d, dr = cfg["motor"], cfg["design"], cfg["drive"]
+    b, g, ph = ds.b, ds.gains, ds.phys
+    n_p = m["pole_pairs"]
+    rpm = 2.0 * math.pi / 60.0                          # rad/s (mechanical) per rpm
+    pu = b.i_base / b.w_base * n_p                     # A per rad/s mech of a speed-PI gain
+    kp, kit = g["pi_speed.kp"].quantised * pu, g["pi_speed.ki"].quantised * pu
+    i_lim = g["i_max"].quantised * b.i_base
+    t_sam = d["speed_t_sam_s"]
+    # the drive's ramp: drive.speed_ramp Q15 of w_base (electrical) per 1 ms tick
+    ramp_raw = max(1, q15(dr["accel_rpm_s"] * 1e-3 * n_p / 60.0 / b.f_base))
+    ramp = ramp_raw / 32768.0 * b.w_base / n_p / 1e-3    # rad/s^2 (mechanical)
+    w0, w1 = dr["of_speed_rpm"] * rpm, d["speed_check_rpm"] * rpm
+    load, j, bb, kt = d["speed_check_load_nm"], m["j_kgm2"], m["b_nms"], ds.k_t
+    t_i, t_f = 2.0 * ds.t_sigma, ph["T_filter_speed"]
+    a = np.array([[-1.0 / t_i, 0.0, 0.0], [kt / j, -bb / j, 0.0], [0.0, 1.0 / t_f, -1.0 / t_f]])
+    bm = np.array([[1.0 / t_i, 0.0], [0.0, -1.0 / j], [0.0, 0.0]])
+    big = np.zeros((5, 5))
+    big[:3, :3], big[:3, 3:] = a, bm
+    e = expm(big * t_sam)
+    ad, bd = e[:3, :3], e[:3, 3:]
+    iq0 = bb * w0 / kt                                  # unloaded until the ramp starts
+    x = np.array([iq0, w0, w0])
+    integ = min(max(iq0, -i_lim), i_lim)
+    u_prev = integ
+    t_ramp = abs(w1 - w0) / ramp
+    n = int(math.ceil((t_ramp + SPEED_CHECK_AFTER_S + SPEED_CHECK_SPAN_S) / t_sam)) + 2
+    ref = w0
+    ws = np.empty(n + 1)
+    ws[0] = w0
+    k_end = 0 if w1 == w0 else None
+    for k in range(n):
+        step = ramp * t_sam
+        ref = min(ref + step, w1) if w1 >= ref else max(ref - step, w1)
+        if k_end is None and ref == w1:
+            k_end = k + 1
+        err = ref - x[2]
+        integ = min(max(integ + kit * err, -i_lim), i_lim)
+        u = min(max(kp * err + integ, -i_lim), i_lim)
+        x = ad @ x + bd @ np.array([u_prev, load])
+        u_prev = u
+        ws[k + 1] = x[1]
+    t = np.arange(n + 1) * t_sam
+    t_end = (k_end if k_end is not None else n) * t_sam
+    e_pct = (ws - w1) / w1 * 100.0
+    after = t >= t_end - 1e-12
+    win = (t >= t_end + SPEED_CHECK_AFTER_S - 1e-12) &         (t <= t_end + SPEED_CHECK_AFTER_S + SPEED_CHECK_SPAN_S + 1e-12)
+    err_pct = float(np.max(np.abs(e_pct[win])))
+    k0 = int(round(t_end / t_sam))
+    iq_load = (load + bb * w1) / kt
+    res = SpeedCheck(dr["of_speed_rpm"], d["speed_check_rpm"], load, ramp * 60.0 / (2 * math.pi),
+                     t_end, float(e_pct[k0]), max(0.0, float(np.max(e_pct[after]))), err_pct,
+                     iq_load, i_lim, t, ws / rpm, None)
+    if iq_load > i_lim or iq0 > i_lim:
+        res.failure = (f"speed-loop check failed: the load {typed(cfg, 'design.speed_check_load_nm')} "
+                       f"needs i_q = {fmt(max(iq_load, iq0), 4)} A, above i_max = "
+                       f"{fmt(i_lim, 4)} A")
+    elif not err_pct <= SPEED_CHECK_ERR_PCT:
+        res.failure = (
+            f"speed-loop check failed: the speed error {fmt(err_pct, 3)} % of the target is above "
+            f"{fmt(SPEED_CHECK_ERR_PCT)} % {fmt(SPEED_CHECK_AFTER_S)} s after the ramp's end "
+            f"(ramp {fmt(res.start_rpm)} -> {fmt(res.target_rpm)} rpm at "
+            f"{fmt(res.ramp_rpm_s, 4)} rpm/s, ends at {fmt(t_end, 3)} s; load "
+            f"{fmt(load)} N m; error at the ramp's end {fmt(res.err_end_pct, 3)} %, overshoot "
+            f"{fmt(res.overshoot_pct, 3)} %): the speed PI's integral time "
+            f"{typed(cfg, 'design.speed_tau_s')} is too long for its crossover "
+            f"design.speed_crossover_hz = {fmt(d['speed_crossover_hz'])} Hz (tau_s w_sc = "
+            f"{fmt(d['speed_tau_s'] * ph['w_sc'], 3)}; design.speed_zero_ratio, default "
+            f"{fmt(SPEED_ZERO_RATIO)}); the integral action needs seconds to remove the error")
+    return res
+
+
 def plot_loops(results: dict, out_dir: Path) -> list[str]:
     """One PNG per loop: open-loop Bode (continuous and discrete) and closed-loop step."""
     import matplotlib
@@ -2053,7 +2357,7 @@ def drive_rows(cfg: dict, ds: Design) -> list[list[str]]:
 
 def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds: Design,
                  bounds: list[Bound], results: dict | None, pngs: list[str],
-                 failures: list[str], crc: int | None) -> None:
+                 failures: list[str], crc: int | None, sc: SpeedCheck | None = None) -> None:
     """Write report.md."""
     b, ph = ds.b, ds.phys
     status = "FAILED" if failures else "PASSED"
@@ -2066,8 +2370,9 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
     if failures:
         lines += ["## Failures", ""] + [f"- {f}" for f in failures] + [""]
     coarse = [gn for gn in ds.gains.values() if abs(gn.rel_err) > COARSE_GAIN_PCT / 100.0]
-    if coarse:
+    if coarse or cfg.get("warnings"):
         lines += ["## Warnings", ""]
+        lines += [f"- {w}" for w in cfg.get("warnings", [])]
         lines += [f"- {gn.name}: rounding error {gn.rel_err * 100:+.2f} % (raw {gn.raw}): the "
                   "value is close to the resolution of its representation" for gn in coarse]
         lines.append("")
@@ -2155,6 +2460,19 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
         lines += md_table(["loop", "PM deg (cont / disc)", "GM dB (cont / disc)",
                            "crossover Hz (cont / disc)", "bandwidth -3 dB Hz (cont / disc)",
                            "step overshoot % (cont / disc)", "discrete stable"], rows)
+    if sc is not None:
+        lines += ["", "Speed-loop check (double precision: the stored speed PI at T_sam with its "
+                  "limits, one T_sam of delay, the current loop as 1 / (2 T_sigma s + 1), the "
+                  "mechanics J, B, the speed low-pass in the feedback): from steady state at "
+                  f"drive.of_speed_rpm = {fmt(sc.start_rpm)} rpm the drive's ramp "
+                  f"({fmt(sc.ramp_rpm_s, 4)} rpm/s as stored) to design.speed_check_rpm = "
+                  f"{fmt(sc.target_rpm)} rpm against design.speed_check_load_nm = "
+                  f"{fmt(sc.load_nm)} N m; the ramp ends at {fmt(sc.t_ramp_end, 4)} s.  Error at "
+                  f"the ramp's end {sc.err_end_pct:+.3f} % of the target, overshoot "
+                  f"{sc.overshoot_pct:.3f} %, largest |error| from {fmt(SPEED_CHECK_AFTER_S)} s to "
+                  f"{fmt(SPEED_CHECK_AFTER_S + SPEED_CHECK_SPAN_S)} s after the ramp's end "
+                  f"{sc.err_pct:.3f} % (required <= {fmt(SPEED_CHECK_ERR_PCT)} %): "
+                  + ("FAILED." if sc.failure else "met.")]
     if pngs:
         lines += ["", "## 8. Figures", ""]
         lines += [f"![{p}]({p})" for p in pngs]
@@ -2226,6 +2544,8 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+    for w in cfg["warnings"]:
+        print(f"warning: {w}", file=sys.stderr)
     name = c_name(args.name if args.name else args.motor.stem)
     toml_rel = rel_to_repo(args.motor)
     out_dir = args.out_dir if args.out_dir else Path("build") / "tune" / name
@@ -2257,6 +2577,17 @@ def main(argv: list[str] | None = None) -> int:
         failures.append("loop check failed: the loop models leave the floating-point range "
                         f"({type(exc).__name__}: {exc}) for " + ", ".join(
                             typed(cfg, k) for k in LOOP_KEYS))
+    sc = None
+    try:
+        with np.errstate(divide="raise", over="raise", invalid="raise"), \
+                warnings.catch_warnings():
+            warnings.simplefilter("error")
+            sc = speed_check(cfg, ds)
+    except (ArithmeticError, ValueError, Warning, np.linalg.LinAlgError) as exc:
+        failures.append("speed-loop check failed: the simulation leaves the floating-point range "
+                        f"({type(exc).__name__}: {exc})")
+    if sc is not None and sc.failure:
+        failures.append(sc.failure)
     for lname, (_rc, rd) in results.items():
         if not rd.stable:
             failures.append(f"loop check failed: {lname} loop: discrete closed loop unstable")
@@ -2288,6 +2619,13 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  {lname:16s} {rc.pm_deg:6.1f} / {rd.pm_deg:6.1f}   {fmt(rc.gm_db, 4):>6s} / "
               f"{fmt(rd.gm_db, 4):>6s}   {fmt(rc.bw_hz, 4):>7s} / {fmt(rd.bw_hz, 4):>7s}")
 
+    if sc is not None:
+        print(f"speed-loop check (ramp {fmt(sc.start_rpm)} -> {fmt(sc.target_rpm)} rpm at "
+              f"{fmt(sc.ramp_rpm_s, 4)} rpm/s, load {fmt(sc.load_nm)} N m): error at the ramp's "
+              f"end {sc.err_end_pct:+.3f} %, overshoot {sc.overshoot_pct:.3f} %, largest |error| "
+              f"{fmt(SPEED_CHECK_AFTER_S)} .. {fmt(SPEED_CHECK_AFTER_S + SPEED_CHECK_SPAN_S)} s "
+              f"after the ramp {sc.err_pct:.3f} % (limit {fmt(SPEED_CHECK_ERR_PCT)} %)")
+
     out_dir.mkdir(parents=True, exist_ok=True)
     pngs = [] if args.no_plots else plot_loops(results, out_dir)
     crc = None
@@ -2301,7 +2639,7 @@ def main(argv: list[str] | None = None) -> int:
             tmp.write_text(text, encoding="utf-8")
             os.replace(tmp, args.table_dir / f"{name}_params.{ext}")
     write_report(out_dir / "report.md", cfg, toml_rel, args.overrides, ds, bounds,
-                 results, pngs, failures, crc)
+                 results, pngs, failures, crc, sc)
     for gn in ds.gains.values():
         if abs(gn.rel_err) > COARSE_GAIN_PCT / 100.0:
             print(f"warning: {gn.name}: rounding error {gn.rel_err * 100:+.2f} % (raw {gn.raw})",

@@ -192,7 +192,7 @@ def test_tc_speed_max_default_rated(tmp_path, capsys):
 @pytest.mark.parametrize("override, message", [
     ("motor.pole_pairs=500", "refused: " + str(REFERENCE) + ": motor.pole_pairs = 500: "
                              "outside 1 .. 16"),
-    ("motor.rs_ohm=1e6", "loop check failed: the loop models leave the floating-point range"),
+    ("motor.rs_ohm=1e6", "motor.rs_ohm = 1e+06 ohm: outside the plausible range"),
     ("motor.j_kgm2=1e-12", "motor.j_kgm2 = 1e-12 kg m^2"),
 ])
 def test_no_python_warning(tmp_path, override, message):
@@ -204,6 +204,110 @@ def test_no_python_warning(tmp_path, override, message):
     assert message in proc.stderr
     assert "Warning" not in proc.stderr and "Traceback" not in proc.stderr
     assert not (tmp_path / "tables").exists()
+
+
+# REQ-TUNE-001: values beyond the plausible ranges (PLAUSIBLE) reach the loop models only when
+# the ranges are lifted; the models then leave the floating-point range, and the loop check
+# fails naming the keys the loops are made from, without a Python warning.
+def test_loop_models_float_range(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(qt, "PLAUSIBLE", {})
+    rc = qt.main([str(REFERENCE), "--out-dir", str(tmp_path / "out"), "--table-dir",
+                  str(tmp_path / "tables"), "--no-plots", "--set", "motor.rs_ohm=1e6"])
+    err = capsys.readouterr().err
+    assert rc == 1
+    assert "loop check failed: the loop models leave the floating-point range" in err
+    assert "motor.rs_ohm = 1e+06 ohm" in err
+    assert not (tmp_path / "tables").exists()
+
+
+# REQ-TUNE-001: a value implausible by orders of magnitude (a unit slip: mH typed as H, mOhm
+# as ohm, mWb as Wb, ms or us as s, krpm as rpm) is refused with the key, the value typed, the
+# plausible range and the value x 1e-3 or x 1e3 inside the range as "did you mean".
+@pytest.mark.parametrize("override, message", [
+    ("motor.ld_h=2.6", "motor.ld_h = 2.6 H: outside the plausible range 5e-06 .. 0.05 H of a "
+                       "compressor or traction PMSM drive; did you mean motor.ld_h = 0.0026 H "
+                       "(mH typed as H)?"),
+    ("motor.lq_h=4.2", "motor.lq_h = 4.2 H: outside the plausible range 5e-06 .. 0.05 H"),
+    ("motor.rs_ohm=35", "motor.rs_ohm = 35 ohm: outside the plausible range 0.0005 .. 2 ohm of "
+                        "a compressor or traction PMSM drive; did you mean motor.rs_ohm = "
+                        "0.035 ohm (mOhm typed as ohm)?"),
+    ("motor.psi_f_wb=65", "motor.psi_f_wb = 65 Wb: outside the plausible range 0.001 .. 1 Wb of "
+                          "a compressor or traction PMSM drive; did you mean motor.psi_f_wb = "
+                          "0.065 Wb (mWb typed as Wb)?"),
+    ("design.speed_t_sam_s=1", "design.speed_t_sam_s = 1 s: outside the plausible range 2e-05 .. "
+                               "0.02 s of a compressor or traction PMSM drive; did you mean "
+                               "design.speed_t_sam_s = 0.001 s (ms typed as s)?"),
+    ("design.speed_tau_s=80", "did you mean design.speed_tau_s = 0.08 s (ms typed as s)?"),
+    ("inverter.dead_time_s=1", "inverter.dead_time_s = 1 s: outside the plausible range 1e-08 .. "
+                               "1e-05 s"),
+    ("motor.rated_speed_rpm=6", "did you mean motor.rated_speed_rpm = 6000 rpm (krpm typed as "
+                                "rpm)?"),
+    ("inverter.vdc_max_v=0.42", "did you mean inverter.vdc_max_v = 420 V (kV typed as V)?"),
+    ("motor.rated_current_a=20000", "did you mean motor.rated_current_a = 20 A (mA typed as A)?"),
+])
+def test_refused_implausible(tmp_path, capsys, override, message):
+    err = refused(tmp_path, capsys, REFERENCE, "--set", override)
+    key, value = override.split("=")
+    assert f"refused: {REFERENCE}: {key} = " in err
+    assert message in err
+    assert "outside the plausible range" in err and "(plausible range: " in err
+
+
+# REQ-TUNE-001: the same in a motor file, every implausible value named at once; a value
+# without a factor-1000 neighbour inside the range has no "did you mean".
+def test_refused_implausible_in_file(tmp_path, capsys):
+    path = with_text(tmp_path, REFERENCE, "ld_h = 2.6e-3", "ld_h = 2.6")
+    path.write_text(path.read_text().replace("rs_ohm = 0.35 ", "rs_ohm = 350 "))
+    path.write_text(path.read_text().replace("j_kgm2 = 3.0e-4", "j_kgm2 = 1e-12"))
+    err = refused(tmp_path, capsys, path)
+    assert "motor.ld_h = 2.6 H: outside the plausible range" in err
+    assert "did you mean motor.ld_h = 0.0026 H (mH typed as H)?" in err
+    assert "did you mean motor.rs_ohm = 0.35 ohm (mOhm typed as ohm)?" in err
+    line = next(ln for ln in err.splitlines() if "motor.j_kgm2 = 1e-12" in ln)
+    assert "outside the plausible range 1e-06 .. 10 kg m^2" in line and "did you mean" not in line
+
+
+# REQ-TUNE-001: every plausible range belongs to a number key of the schema and holds the
+# values of both committed motor files (and their defaults); 0 stays accepted where the key
+# allows it (no dead time, no current filter).
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
+def test_plausible_ranges_accept_committed_motors(tmp_path, motor):
+    for name in qt.PLAUSIBLE:
+        assert qt.SCHEMA_BY_NAME[name].kind == "num"
+    cfg = qt.load_config(motor, [])
+    for name, (lo, hi, _why) in qt.PLAUSIBLE.items():
+        section, key = name.split(".")
+        if cfg[section][key] is not None and cfg[section][key] != 0:
+            assert lo <= cfg[section][key] <= hi, name
+    assert qt.load_config(motor, ["inverter.dead_time_s=0", "design.t_filter_current_s=0"])
+    assert not cfg["warnings"]
+
+
+# REQ-TUNE-001: L_q < L_d is warned about (an IPM motor has L_q > L_d), naming both keys and
+# values; the table is made all the same.
+def test_warns_lq_below_ld(tmp_path, capsys):
+    rc = qt.main([str(REFERENCE), "--out-dir", str(tmp_path / "out"), "--table-dir",
+                  str(tmp_path / "tables"), "--no-plots", "--set", "motor.ld_h=4.2e-3",
+                  "--set", "motor.lq_h=2.6e-3"])
+    err = capsys.readouterr().err
+    assert rc == 0, err
+    text = ("motor.lq_h = 0.0026 H is below motor.ld_h = 0.0042 H: an interior-magnet (IPM) "
+            "motor has L_q > L_d")
+    assert "warning: " + text in err
+    assert "refused" not in err
+    assert (tmp_path / "tables" / "reference_params.c").exists()
+    assert "- " + text in (tmp_path / "out" / "report.md").read_text()
+
+
+# REQ-TUNE-001: the high-speed inductances are checked the same way; L_q = L_d (a surface
+# magnet motor) is no warning.
+def test_warns_lq_hs_below_ld_hs(tmp_path):
+    cfg = qt.load_config(REFERENCE, ["motor.ld_hs_h=3e-3", "motor.lq_hs_h=2e-3"])
+    assert cfg["warnings"] == [
+        "motor.lq_hs_h = 0.002 H is below motor.ld_hs_h = 0.003 H: an interior-magnet (IPM) "
+        "motor has L_q > L_d (L_q = L_d for a surface-magnet motor); are the two values "
+        "swapped? The table is made with the values as given"]
+    assert qt.load_config(REFERENCE, ["motor.lq_h=2.6e-3"])["warnings"] == []
 
 
 # REQ-TUNE-001: docs/motor-file.md is the tool's schema (--motor-file-doc), every section and

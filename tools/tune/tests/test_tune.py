@@ -128,8 +128,9 @@ def test_simple_motor_gains_by_hand(tmp_path):
     assert g["pi_speed.kp"].real == pytest.approx(kp)
     assert g["pi_speed.kp"].shift == 4                      # 11.31 / 16 = 0.707 < 1
     assert g["pi_speed.kp"].raw == math.floor(kp / 16 * 32768 + 0.5)
-    # tau_s = J / B = 1 s: ki T = kp T_sam / tau_s
-    assert g["pi_speed.ki"].real == pytest.approx(kp * 1e-3 / 1.0)
+    # tau_s = speed_zero_ratio / w_sc = 5 x 2 T_ssigma = 0.10258 s (no longer J / B = 1 s):
+    # ki T = kp T_sam / tau_s
+    assert g["pi_speed.ki"].real == pytest.approx(kp * 1e-3 / (5 * 2 * t_ss))
     # PLL: w_n = 2 pi 100 = 628.32; kp = 2 x 0.9 x 628.32 / 628.32 = 1.8 -> shift 1,
     # 0.9 x 32768 = 29491.2; ki T = w_n^2 T / w_base = 628.32 x 1e-4 = 0.062832 -> 2058.9
     assert (g["pll.kp"].raw, g["pll.kp"].shift) == (29491, 1)
@@ -425,3 +426,57 @@ def test_report_lists_drive(tmp_path):
     assert "| drive.rpm_max | 8000u |" in report
     assert "<= i_max = 16384" in report
     assert "drive.accel_rpm_s" in report                  # the [drive] keys in section 1
+
+
+# REQ-TUNE-003: the speed PI from a bandwidth target: crossover w_sc the smaller of
+# speed_crossover_ratio x 1 / (2 T_sigma) and 1 / (2 T_ssigma), kp = w_sc J / K_t, the PI zero
+# speed_zero_ratio below the crossover: tau_s = speed_zero_ratio / w_sc (no longer J / B).
+# Reference motor, 8 kHz: T_sigma = 1.5 / 8000 = 187.5 us; T_ssigma = 2 x 187.5 us +
+# 1 / (2 pi 20) + 1 ms = 9.333 ms; 0.1 / (2 T_sigma) = 266.7 rad/s > 1 / (2 T_ssigma) =
+# 53.57 rad/s = 8.527 Hz; tau_s = 5 / 53.57 = 93.3 ms; ksp = 53.57 x 3e-4 / (1.5 x 3 x 0.065)
+# = 0.05494 A s/rad.
+def test_speed_pi_from_bandwidth():
+    cfg = qt.load_config(REFERENCE, [])
+    d = cfg["design"]
+    t_ssigma = 2 * 1.5 / 8000 + 1 / (2 * math.pi * 20) + 1e-3
+    assert d["speed_crossover_hz"] == pytest.approx(1 / (2 * t_ssigma) / (2 * math.pi))
+    assert d["speed_crossover_hz"] == pytest.approx(8.527, abs=1e-3)
+    assert d["speed_tau_s"] == pytest.approx(5 / (1 / (2 * t_ssigma)))
+    assert d["speed_tau_s"] == pytest.approx(0.0933, abs=1e-4)
+    assert {"design.speed_crossover_hz", "design.speed_tau_s"} <= cfg["defaulted"]
+    ds = qt.design_loops(cfg, qt.make_bases(cfg))
+    assert ds.phys["ksp"] == pytest.approx(0.05494, rel=1e-3)
+    # the ratio limits the crossover when the speed path is fast
+    cfg = qt.load_config(REFERENCE, ["design.speed_crossover_ratio=0.01"])
+    assert cfg["design"]["speed_crossover_hz"] == pytest.approx(0.01 / (2 * 1.5 / 8000) /
+                                                                (2 * math.pi))
+    # the old key still sets the integral time
+    assert qt.load_config(REFERENCE, ["design.speed_tau_s=0.08"])["design"]["speed_tau_s"] == 0.08
+
+
+# REQ-TUNE-005: the speed-loop check of a good design: the simulated ramp 1000 -> 3000 rpm
+# with the load step of 4.5 N m leaves less than 1 % error from 1 s after the ramp's end.
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
+def test_speed_check_passes(tmp_path, capsys, motor):
+    assert run(tmp_path, motor) == 0
+    out = capsys.readouterr().out
+    line = next(ln for ln in out.splitlines() if ln.startswith("speed-loop check"))
+    assert float(line.split("after the ramp ")[1].split(" %")[0]) <= 1.0
+    cfg = qt.load_config(motor, [])
+    sc = qt.speed_check(cfg, qt.design_loops(cfg, qt.make_bases(cfg)))
+    assert sc.failure is None and sc.err_pct < 0.1
+    assert "Speed-loop check" in (tmp_path / "out" / "report.md").read_text()
+
+
+# REQ-TUNE-005: an integral time of J / B = 3 s (the former default) forced through the
+# override leaves the speed far from its target 1 s after the ramp: refused with exit code
+# 1, the reason and the figures, no table written.
+@pytest.mark.parametrize("motor, tau", [(REFERENCE, 3.0), (SECOND, 3.0), (REFERENCE, 1.0)])
+def test_speed_check_refuses_long_integral_time(tmp_path, capsys, motor, tau):
+    assert run(tmp_path, motor, "--set", f"design.speed_tau_s={tau}") == 1
+    err = capsys.readouterr().err
+    assert "speed-loop check failed: the speed error" in err
+    assert "% of the target is above 1 % 1 s after the ramp's end" in err
+    assert f"design.speed_tau_s = {tau:g} s is too long for its crossover" in err
+    assert not (tmp_path / "tables").exists()
+    assert "Status: **FAILED**" in (tmp_path / "out" / "report.md").read_text()
