@@ -818,9 +818,18 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
                             ((uint32_t)s->sm.t_sub >= DRV_FLUX_BLANK_MS) &&
                             (((int32_t)qfoc_q15_abs(f->speed_f) * 2) >
                              ((int32_t)qfoc_q15_abs(c->of_speed) * 3));
+        /* the rotor lost: in CLOSED_LOOP after the blank, the estimate below a quarter of
+           the handover speed and of the reference (far below where the observer's angle is
+           used at start-up); a seized compressor's estimate falls there within
+           milliseconds, before the lost angle unsettles the current loops */
+        const int32_t w2 = (int32_t)qfoc_q15_abs(f->speed_f) * 4;
+        const bool lost = run && (sub == QFOC_SUB_CLOSED_LOOP) &&
+                          ((uint32_t)s->sm.t_sub >= DRV_FLUX_BLANK_MS) &&
+                          (w2 < (int32_t)qfoc_q15_abs(c->of_speed)) &&
+                          (w2 < (int32_t)qfoc_q15_abs(s->speed_ref));
         stall = closed && (bad_speed || bad_flux);
-        implausible = steady && (psi_exp > 0) &&
-                      ((dev * DRV_FLUX_BAND_DEN) > ((int32_t)psi_exp * DRV_FLUX_BAND_NUM));
+        implausible = lost || (steady && (psi_exp > 0) &&
+                               ((dev * DRV_FLUX_BAND_DEN) > ((int32_t)psi_exp * DRV_FLUX_BAND_NUM)));
     }
     {
         const bool slow = qfoc_debounce_step(&s->db_stall, stall, c->stall_ms);
@@ -1068,8 +1077,10 @@ static void drv_iref(qfoc_drive_t *d)
     in.psi_f = p->psi_f;
     in.ld = s->hs ? p->drive.ld_hs : p->ld;
     in.lq = s->hs ? p->drive.lq_hs : p->lq;
-    /* MTPA acts where L_q > L_d (qfoc_iref_mtpa gives 0 otherwise) */
-    in.mtpa = true;
+    /* MTPA acts where L_q > L_d (qfoc_iref_mtpa gives 0 otherwise) and where the angle
+       estimate is trusted: above the handover speed, as the flux checks (a stalled or
+       slowing rotor falls back to i_d = 0) */
+    in.mtpa = drv_abs_over(d->f.speed_f, qfoc_q15_abs(p->drive.of_speed));
     qfoc_iref_step(&in, &out);
     s->id_ref = out.id;
     s->iq_lim = out.iq_lim;

@@ -704,6 +704,9 @@ static void test_req_drv_013_field_weakening_in_stopping(void **state)
     r.power_on = false;
     emu_closed_tick(&r, 0, 0);
     assert_int_equal(sub(&r), QFOC_SUB_STOPPING);
+    /* STOPPING from three times the handover speed (the guard word follows) */
+    r.d.s.speed_ref = (qfoc_q15_t)(3 * r.table.drive.of_speed);
+    r.d.s.ref_guard = rig_guard(&r.d);
     model = r.d.s.fw;
     for (n = 0; n < 16; n++) {
         qfoc_q15_t id_model;
@@ -728,10 +731,9 @@ static void test_req_drv_013_field_weakening_in_stopping(void **state)
         }
     }
     assert_true(r.d.s.fw.id_ref < 0);            /* active: weakening */
-    /* leaving RUN releases it */
-    r.d.s.sm.state = QFOC_STATE_RUN;
-    r.d.s.speed_ref = 0;
-    for (n = 0; (n < 100) && (st(&r) == QFOC_STATE_RUN); n++) {
+    /* the end of STOPPING (the reference down to the handover speed) leaves RUN and
+       releases it */
+    for (n = 0; (n < 20000) && (st(&r) == QFOC_STATE_RUN); n++) {
         emu_closed_tick(&r, 0, 0);
     }
     assert_int_equal(st(&r), QFOC_STATE_STOP);
@@ -991,7 +993,7 @@ static void test_req_drv_019_object_check(void **state)
 {
     /* the quarter of the check (drv_object_slice) that holds each corrupted field */
     static const uint8_t slice_of[CORRUPT_COUNT] = {
-        1u, 1u, 0u, 0u, 0u, 1u, 0u, 1u, 1u, 1u,   /* pi_iq .. mech recip */
+        1u, 1u, 0u, 0u, 0u, 2u, 0u, 1u, 1u, 1u,   /* pi_iq .. mech recip (fw: the tick's) */
         2u, 2u, 2u, 2u, 2u, 2u, 3u, 3u, 3u, 3u,   /* sm .. sums */
         3u, 3u, 3u, 3u, 3u                        /* windows, k_theta */
     };

@@ -573,7 +573,8 @@ static void test_par_006_reference_drive_defaults(void **state)
     assert_int_equal(d->link_timeout_ms, 500u);
     assert_int_equal(d->clear_ms, 5000u);
     assert_int_equal(d->fw_level, (int16_t)floor(0.92 * 32768.0 + 0.5));
-    assert_int_equal(d->fw_alpha, (int16_t)floor(pi2 * 50.0 / fpwm * 32768.0 + 0.5));
+    /* the utilisation filter runs in the 1 ms tick */
+    assert_int_equal(d->fw_alpha, (int16_t)floor(pi2 * 50.0 * 1e-3 * 32768.0 + 0.5));
     assert_int_equal(d->tc_gain, 492);
     assert_int_equal(d->tc_amp_max, (int16_t)floor(0.5 * 20.0 / ib * 32768.0 + 0.5));
     assert_int_equal(d->tc_speed_min, (int16_t)floor(600.0 * rpm_pu * 32768.0 + 0.5));
