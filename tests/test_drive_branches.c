@@ -510,44 +510,58 @@ static void test_req_drv_006_bumpless_transfer(void **state)
     }
 }
 
-/* REQ-DRV-013: in CLOSED_LOOP the q reference (speed PI + feed-forward) is limited to
-   +-i_max: a reference above it runs exactly as one at it, and the period is counted
-   as clamped; at the limit it is not. */
+/* REQ-DRV-013, REQ-IREF-002: in CLOSED_LOOP the q reference (speed PI + feed-forward) is
+   limited to +-iq_lim, the q limit the tick left with its d reference: sqrt(i_max^2 - i_d^2)
+   (double precision here); a reference above it runs exactly as one at it, and the period is
+   counted as clamped; at the limit it is not.  With i_d = 0 the limit is i_max; with
+   i_d = -0.6 i_max it is 0.8 i_max, and the current vector stays on the circle. */
 static void test_req_drv_013_iq_reference_clamp(void **state)
 {
-    rig_t r;
+    rig_t r0;
     int sign;
+    int cas;
     (void)state;
-    rig_closed_loop(&r, &qfoc_params_reference, deg_counts(-30.0));
-    for (sign = -1; sign <= 1; sign += 2) {
-        const int32_t lim = sign * (int32_t)qfoc_params_reference.i_max;
-        const int32_t over[2] = { lim + sign, (sign < 0) ? -32768 : 32767 };
-        rig_t at;
-        rig_t in;
-        int o;
-        rig_clone(&at, &r);
-        rig_clone(&in, &r);
-        at.d.s.iq_ref = (int16_t)lim;
-        in.d.s.iq_ref = (int16_t)(lim - (sign * 500));
-        at.d.f.speed_f = 0;   /* below the torque compensation's window: no feed-forward */
-        in.d.f.speed_f = 0;
-        rig_fast(&at);
-        rig_fast(&in);
-        assert_int_equal(at.d.f.clamp_count, r.d.f.clamp_count);
-        assert_int_equal(in.d.f.clamp_count, r.d.f.clamp_count);
-        assert_true(at.pwm.enable);
-        /* the reference matters: 500 counts less gives another integrator */
-        assert_int_not_equal(at.d.f.pi_iq.integ, in.d.f.pi_iq.integ);
-        for (o = 0; o < 2; o++) {
-            rig_t x;
-            rig_clone(&x, &r);
-            x.d.s.iq_ref = (int16_t)over[o];
-            x.d.f.speed_f = 0;
-            rig_fast(&x);
-            assert_int_equal(x.d.f.clamp_count, (uint8_t)(r.d.f.clamp_count + 1u));
-            assert_int_equal(x.d.f.pi_iq.integ, at.d.f.pi_iq.integ);
-            assert_memory_equal(x.pwm.cmp, at.pwm.cmp, sizeof x.pwm.cmp);
-            assert_true(x.pwm.enable);
+    rig_closed_loop(&r0, &qfoc_params_reference, deg_counts(-30.0));
+    for (cas = 0; cas < 2; cas++) {
+        rig_t r;
+        const double imax = (double)qfoc_params_reference.i_max;
+        const int32_t id = (cas == 0) ? 0 : -(int32_t)lround(0.6 * imax);
+        const int32_t qlim = (int32_t)floor(sqrt(imax * imax - (double)id * (double)id) + 1e-9);
+        rig_clone(&r, &r0);
+        r.d.s.id_ref = (qfoc_q15_t)id;
+        r.d.s.iq_lim = (qfoc_q15_t)qlim;
+        assert_int_equal(qfoc_iref_q_limit(qfoc_params_reference.i_max, (qfoc_q15_t)id), qlim);
+        assert_true((double)id * id + (double)qlim * qlim <= imax * imax);
+        for (sign = -1; sign <= 1; sign += 2) {
+            const int32_t lim = sign * qlim;
+            const int32_t over[2] = { lim + sign, (sign < 0) ? -32768 : 32767 };
+            rig_t at;
+            rig_t in;
+            int o;
+            rig_clone(&at, &r);
+            rig_clone(&in, &r);
+            at.d.s.iq_ref = (int16_t)lim;
+            in.d.s.iq_ref = (int16_t)(lim - (sign * 500));
+            at.d.f.speed_f = 0;   /* below the torque compensation's window: no feed-forward */
+            in.d.f.speed_f = 0;
+            rig_fast(&at);
+            rig_fast(&in);
+            assert_int_equal(at.d.f.clamp_count, r.d.f.clamp_count);
+            assert_int_equal(in.d.f.clamp_count, r.d.f.clamp_count);
+            assert_true(at.pwm.enable);
+            /* the reference matters: 500 counts less gives another integrator */
+            assert_int_not_equal(at.d.f.pi_iq.integ, in.d.f.pi_iq.integ);
+            for (o = 0; o < 2; o++) {
+                rig_t x;
+                rig_clone(&x, &r);
+                x.d.s.iq_ref = (int16_t)over[o];
+                x.d.f.speed_f = 0;
+                rig_fast(&x);
+                assert_int_equal(x.d.f.clamp_count, (uint8_t)(r.d.f.clamp_count + 1u));
+                assert_int_equal(x.d.f.pi_iq.integ, at.d.f.pi_iq.integ);
+                assert_memory_equal(x.pwm.cmp, at.pwm.cmp, sizeof x.pwm.cmp);
+                assert_true(x.pwm.enable);
+            }
         }
     }
 }
@@ -1485,6 +1499,160 @@ static void test_req_drv_022_reference_guard(void **state)
     }
 }
 
+/* REQ-DRV-006, REQ-IREF-001, REQ-IREF-002: in CLOSED_LOOP the tick's d reference is the
+   MTPA current of its q reference (field weakening idle at a low utilisation) while the
+   estimate is above the handover speed, 0 at it; the speed PI's limits and the fast step's
+   q limit are sqrt(i_max^2 - i_d^2), and |(i_d, i_q)| <= i_max. */
+static void test_req_drv_006_mtpa_and_vector_limit(void **state)
+{
+    const qfoc_param_table_t *const t = &qfoc_params_reference;
+    const double imax = (double)t->i_max;
+    rig_t base;
+    rig_t x;
+    long k;
+    int n;
+    (void)state;
+    rig_closed_loop(&base, t, deg_counts(-30.0));
+    base.rpm = 3000u;
+    for (k = 0; (k < 5000) && ((base.d.s.speed_ref != base.d.s.speed_target) ||
+                               (base.d.s.sm.t_sub < 200u)); k++) {
+        emu_closed_tick(&base, 0, 0);
+    }
+    assert_int_equal(sub(&base), QFOC_SUB_CLOSED_LOOP);
+    for (n = 0; n < 4; n++) {
+        /* a speed error that asks for a large q current (the PI's limit at the end) */
+        const int32_t err[4] = { 300, 1500, 6000, 20000 };
+        rig_clone(&x, &base);
+        for (k = 0; k < 40; k++) {
+            double mt;
+            const int32_t prev = x.d.s.iq_lim;
+            x.d.s.util = 0;
+            emu_closed_tick(&x, err[n], 0);
+            assert_int_equal(x.d.s.sm.faults, 0u);
+            assert_int_equal(x.d.s.fw.id_ref, 0);
+            /* MTPA of the q current the speed PI asked for (before the q limit) */
+            mt = (double)qfoc_iref_mtpa(x.d.s.iq_ref, t->psi_f, t->ld, t->lq);
+            if (abs((int)x.d.s.iq_ref) < (int)x.d.s.iq_lim) {
+                assert_int_equal(x.d.s.id_ref, (int)mt);
+            }
+            assert_true(x.d.s.id_ref < 0);
+            assert_int_equal(x.d.s.iq_lim,
+                             (int)floor(sqrt(imax * imax - (double)x.d.s.id_ref * x.d.s.id_ref)
+                                        + 1e-9));
+            /* the speed PI ran within the limit the last tick left */
+            assert_int_equal(x.d.s.pi_speed.params.out_max, prev);
+            assert_int_equal(x.d.s.pi_speed.params.out_min, -prev);
+            assert_true(abs((int)x.d.s.iq_ref) <= (int)x.d.s.iq_lim);
+            assert_true((double)x.d.s.id_ref * x.d.s.id_ref +
+                        (double)x.d.s.iq_ref * x.d.s.iq_ref <= imax * imax);
+        }
+    }
+    /* the estimate at the handover speed: no MTPA current; one count above: MTPA */
+    for (n = 0; n < 2; n++) {
+        rig_clone(&x, &base);
+        x.d.s.util = 0;
+        emu_est(&x, (int32_t)t->drive.of_speed + n, psi_expected(&x), 0);
+        rig_tick(&x, true);
+        if (n == 0) {
+            assert_int_equal(x.d.s.id_ref, 0);
+        } else {
+            if (abs((int)x.d.s.iq_ref) < (int)x.d.s.iq_lim) {
+                assert_int_equal(x.d.s.id_ref,
+                                 qfoc_iref_mtpa(x.d.s.iq_ref, t->psi_f, t->ld, t->lq));
+            }
+            assert_true(x.d.s.id_ref < 0);
+        }
+    }
+}
+
+/* REQ-DRV-023: the lost rotor.  In CLOSED_LOOP after the 100 ms blank, an estimate with
+   4 |speed| below both of_speed and |speed_ref| in 2 ticks in a row raises STALL in the
+   second; at the bound, every other tick, in STOPPING, in the blank and below a reference
+   under of_speed that the estimate follows: never. */
+static void test_req_drv_023_rotor_lost(void **state)
+{
+    const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
+    rig_t base;
+    rig_t x;
+    long k;
+    int32_t lim;
+    int sign;
+    (void)state;
+    rig_closed_loop(&base, &qfoc_params_reference, deg_counts(-30.0));
+    base.d.f.i_dq.d = 0;
+    base.rpm = 3000u;
+    for (k = 0; (k < 5000) && ((base.d.s.speed_ref != base.d.s.speed_target) ||
+                               (base.d.s.sm.t_sub < 200u)); k++) {
+        emu_closed_tick(&base, 0, 0);
+    }
+    assert_int_equal(sub(&base), QFOC_SUB_CLOSED_LOOP);
+    assert_int_equal(base.d.s.sm.faults, 0u);
+    /* the smallest |speed| that 4 |speed| < of_speed leaves out */
+    lim = ((int32_t)c->of_speed + 3) / 4;
+    for (sign = -1; sign <= 1; sign += 2) {
+        /* at the bound: never */
+        rig_clone(&x, &base);
+        for (k = 0; k < 200; k++) {
+            emu_est(&x, sign * lim, psi_expected(&x), 0);
+            rig_tick(&x, true);
+            assert_int_equal(x.d.s.sm.faults, 0u);
+        }
+        /* one count below: STALL in the second tick */
+        rig_clone(&x, &base);
+        for (k = 1; k <= 10; k++) {
+            emu_est(&x, sign * (lim - 1), psi_expected(&x), 0);
+            rig_tick(&x, true);
+            if (st(&x) == QFOC_STATE_ERROR) {
+                break;
+            }
+        }
+        assert_int_equal(k, 2);
+        assert_int_equal(x.d.s.sm.faults, QFOC_FAULT_STALL);
+        assert_true(x.out.pwm_off);
+        rig_fast(&x);
+        assert_false(x.pwm.enable);
+        /* every other tick: never */
+        rig_clone(&x, &base);
+        for (k = 0; k < 200; k++) {
+            emu_est(&x, ((k % 2) == 0) ? 0 : (int32_t)x.d.s.speed_ref, psi_expected(&x), 0);
+            rig_tick(&x, true);
+            assert_int_equal(x.d.s.sm.faults, 0u);
+        }
+    }
+    /* STOPPING: not checked */
+    rig_clone(&x, &base);
+    x.power_on = false;
+    for (k = 0; k < 50; k++) {
+        emu_est(&x, 0, psi_expected(&x), 0);
+        rig_tick(&x, true);
+        assert_true((x.d.s.sm.faults & QFOC_FAULT_STALL) == 0u);
+    }
+    /* the blank after the handover: the estimate at 0 from the handover on, STALL when the
+       ticks before have spent 100 and 101 ms in CLOSED_LOOP */
+    rig_closed_loop(&x, &qfoc_params_reference, deg_counts(-30.0));
+    x.d.f.i_dq.d = 0;
+    for (k = 1; k <= 300; k++) {
+        const uint16_t t_sub = x.d.s.sm.t_sub;
+        emu_est(&x, 0, psi_expected(&x), 0);
+        rig_tick(&x, true);
+        if (st(&x) == QFOC_STATE_ERROR) {
+            assert_int_equal(t_sub, 101u);
+            break;
+        }
+    }
+    assert_int_equal(x.d.s.sm.faults, QFOC_FAULT_STALL);
+    /* a reference below the handover speed that the estimate follows: 4 |speed| is not
+       below |speed_ref| (a low target of a table whose rpm_min is below of_speed) */
+    rig_clone(&x, &base);
+    for (k = 0; k < 200; k++) {
+        x.d.s.speed_ref = (qfoc_q15_t)(lim / 2);
+        x.d.s.ref_guard = rig_guard(&x.d);
+        emu_est(&x, lim / 2, psi_expected(&x), 0);
+        rig_tick(&x, true);
+        assert_true((x.d.s.sm.faults & QFOC_FAULT_STALL) == 0u);
+    }
+}
+
 /* REQ-DRV-023: the fast flux plausibility check.  In CLOSED_LOOP from 100 ticks after its
    entry, with |speed estimate| above 1.5 of_speed and psi_exp = psi_f + (L_d - L_q) i_d > 0,
    a flux magnitude off psi_exp by more than 3/10 of it (10 |psi - psi_exp| > 3 psi_exp) in
@@ -1623,6 +1791,8 @@ int main(void)
         cmocka_unit_test(test_req_drv_021_fast_steps_per_tick),
         cmocka_unit_test(test_req_drv_022_reference_guard),
         cmocka_unit_test(test_req_drv_023_flux_plausibility),
+        cmocka_unit_test(test_req_drv_023_rotor_lost),
+        cmocka_unit_test(test_req_drv_006_mtpa_and_vector_limit),
         cmocka_unit_test(test_req_drv_009_rpm_to_speed_limit),
         cmocka_unit_test(test_req_drv_013_iq_reference_clamp),
         cmocka_unit_test(test_req_drv_013_tc_learning_held_when_clamped),

@@ -48,10 +48,13 @@
  *     (2 s, specs/equations.md section 8.3).  The speed PI is preset to the q current that gives, with
  *     i_d = 0, the torque the rotor carries, for a bumpless transfer.
  *   - CLOSED_LOOP: speed reference ramps at speed_ramp to the target; speed PI every
- *     1 ms on the filtered estimate; torque compensation (trqcomp.h) adds its
- *     feed-forward q current; field weakening (fw.h) drives i_d negative when the
- *     voltage utilisation exceeds fw_level; current PIs with decoupling feed-forward,
- *     voltage circle limit V_dc / sqrt 3, SVPWM with dead-time compensation.
+ *     1 ms on the filtered estimate; the tick turns its q current into the current
+ *     references (iref.h): the MTPA d current of a salient motor above of_speed, plus
+ *     field weakening (fw.h, in the tick), which drives i_d negative when the voltage
+ *     utilisation exceeds fw_level, and the q limit sqrt(i_max^2 - i_d^2) of the current
+ *     vector; torque compensation (trqcomp.h) adds its feed-forward q current within that
+ *     limit; current PIs with decoupling feed-forward, voltage circle limit
+ *     V_dc / sqrt 3, SVPWM with dead-time compensation.
  *   - power-off in CLOSED_LOOP: STOPPING ramps the speed reference down to of_speed,
  *     then PWM off and STOP.  Power-off in ALIGN or OPEN_LOOP: PWM off at once.
  *   - ERROR: PWM off at once; the fault word and the first-fault record latch; left
@@ -71,7 +74,9 @@
  *          3/10 of it in 2 ticks in a row (a current-sensor offset or gain, a DC-bus
  *          reading off the true bus, an open phase: the observer integrates the measured
  *          voltage and current; the table's psi_f, L_d and L_q must hold within that band
- *          over the magnet's temperature range, safety manual AoU-15);
+ *          over the magnet's temperature range, safety manual AoU-15); and the lost
+ *          rotor (REQ-DRV-023): in CLOSED_LOOP from 100 ms after its entry, 4 |estimate|
+ *          below both of_speed and the speed reference in 2 ticks in a row;
  *   PHASE  in OPEN_LOOP, CLOSED_LOOP and STOPPING, the smallest filtered |phase
  *          current| below phase_ratio x the largest, the largest above phase_i_min, for
  *          phase_ms; in ALIGN from align_ms / 2 on, the same with phase_ratio / 2; and
@@ -362,9 +367,9 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
  * gain against the table), the whole in 4 calls; a violation (a flipped bit, a stray
  * write) raises PARAM and ERROR in that call, the PWM goes off in the next period, and
  * the drive stays in ERROR until qfoc_drive_init() is called again (REQ-DRV-019).
- * Reference guard: each call also first compares the guard word of the five references
- * (speed_target, speed_ref, ol_speed, id_ref, iq_ref) with their values; only the init and
- * the tick write them and both leave the guard matching (ensures guard), so a flipped bit
+ * Reference guard: each call also first compares the guard word of the six references
+ * (speed_target, speed_ref, ol_speed, id_ref, iq_ref, iq_lim) with their values; only the
+ * init and the tick write them and both leave the guard matching (ensures guard), so a flipped bit
  * that leaves a reference admissible is PARAM in the same way, before it is used
  * (REQ-DRV-022).
  * Sensor and timing monitors: the current-sensor and fast-step checks of OFFSET and
