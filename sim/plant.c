@@ -142,6 +142,7 @@ void sim_init(sim_t *s, const sim_cfg_t *cfg)
     if (s->cfg.speed_locked) {
         s->w_m = s->cfg.locked_speed_e / s->cfg.motor.pole_pairs;
     }
+    s->held = !s->cfg.speed_locked && s->cfg.load.t_break > 0.0;
 }
 
 void sim_set_state(sim_t *s, double theta_e, double w_e, double id, double iq)
@@ -154,6 +155,7 @@ void sim_set_state(sim_t *s, double theta_e, double w_e, double id, double iq)
     s->w_m = w_e / s->cfg.motor.pole_pairs;
     s->id = id;
     s->iq = iq;
+    s->held = !s->cfg.speed_locked && s->cfg.load.t_break > 0.0 && w_e == 0.0;
 }
 
 void sim_sample(sim_t *s, sim_adc_t *adc)
@@ -253,7 +255,7 @@ typedef void (*sim_deriv_fn)(const sim_t *s, const sim_x_t *x, const double v_ab
 static double sim_accel(const sim_t *s, double id, double iq, double th_m, double w_m)
 {
     const sim_motor_t *m = &s->cfg.motor;
-    if (s->cfg.speed_locked) {
+    if (s->cfg.speed_locked || s->held) {
         return 0.0;
     }
     return (sim_te(m, id, iq) - sim_tl(&s->cfg.load, th_m, w_m) - m->b_nms * w_m) / m->j_kgm2;
@@ -408,6 +410,28 @@ static void sim_phase_v(const sim_t *s, double a, double h, double T, const doub
     v_ab[1] = ((vp[1] - vn0) - (vp[2] - vn0)) * SIM_INV_SQRT3;
 }
 
+/* Breakaway torque: a held rotor starts when the torque on it exceeds t_break. */
+static void sim_break_release(sim_t *s)
+{
+    if (s->held) {
+        const double net = sim_te(&s->cfg.motor, s->id, s->iq) - sim_tl(&s->cfg.load, s->theta_m, 0.0);
+        if (fabs(net) > s->cfg.load.t_break) {
+            s->held = false;
+        }
+    }
+}
+
+/* ... and a turning rotor whose speed passes through zero (w0 before the sub-step) is
+   held again. */
+static void sim_break_catch(sim_t *s, double w0)
+{
+    if (!s->held && !s->cfg.speed_locked && s->cfg.load.t_break > 0.0 && w0 != 0.0 &&
+        (w0 * s->w_m < 0.0 || s->w_m == 0.0)) {
+        s->w_m = 0.0;
+        s->held = true;
+    }
+}
+
 void sim_step_period(sim_t *s)
 {
     const double T = s->bases.t_s;
@@ -424,7 +448,9 @@ void sim_step_period(sim_t *s)
     }
     for (k = 0; k < n; k++) {
         double v_ab[2];
+        const double w0 = s->w_m;
         sim_phase_v(s, (double)k * h, h, T, tx, v_ab);
+        sim_break_release(s);
         if (s->inj.open == 0u) {
             const sim_x_t x = { s->id, s->iq, s->w_m, s->theta_m };
             sim_x_t y;
@@ -436,6 +462,7 @@ void sim_step_period(sim_t *s)
         } else {
             sim_step_open(s, v_ab, h);
         }
+        sim_break_catch(s, w0);
         if (!s->en_active && (s->extinct || hypot(s->id, s->iq) < 0.3)) {
             s->extinct = true;
             s->id = 0.0;

@@ -1172,6 +1172,8 @@ int scn_run(const char *scenario, const scn_table_t *tab, const scn_opts_t *o, s
 int scn_run_start(const scn_table_t *tab, const scn_start_t *st, const scn_opts_t *o,
                   scn_result_t *r)
 {
+    static const scn_start_ext_t none = { 1.0, 0.0 };
+    const scn_start_ext_t *x = (o->start_ext != NULL) ? o->start_ext : &none;
     scn_ctx_t c;
     sim_motor_t m;
     int rc = scn_begin(&c, "robust_start", o, r);
@@ -1180,21 +1182,35 @@ int scn_run_start(const scn_table_t *tab, const scn_start_t *st, const scn_opts_
     }
     if (rc == 0) {
         const double target = 10.0 * floor(m.rated_speed_rpm / 20.0 + 0.5);
+        /* the table's compensation in seconds: one compare count is 2 timer ticks */
+        const double t_comp = 2.0 * (double)tab->table->svpwm.dt_comp / m.f_timer_hz;
         m.rs_ohm *= 1.0 + st->rs_err;
         m.ld_h *= 1.0 + st->ld_err;
         m.lq_h *= 1.0 + st->lq_err;
         m.psi_f_wb *= 1.0 + st->psi_err;
         rc = scn_rig(&c, tab, tab->table, &m, st->vdc_v, st->load_nm, 0.0, st->seed, st->noise_a);
         if (rc == 0) {
-            char text[600];
-            sim_set_state(&c.ds->plant, st->theta0_deg * SIM_PI / 180.0, 0.0, 0.0, 0.0);
+            char text[800];
+            char more[200] = "";
+            sim_t *p = &c.ds->plant;
+            if (x->dead_time_ratio != 1.0) {
+                p->cfg.dead_time_s = x->dead_time_ratio * t_comp;
+            }
+            p->cfg.load.t_break = x->t_break_nm;
+            sim_set_state(p, st->theta0_deg * SIM_PI / 180.0, 0.0, 0.0, 0.0);
+            if (x->dead_time_ratio != 1.0 || x->t_break_nm > 0.0) {
+                snprintf(more, sizeof more,
+                         " Inverter dead time %.2f us (%.2f x the table's compensation of %.2f us); "
+                         "breakaway torque %.2f N m.",
+                         p->cfg.dead_time_s * 1e6, x->dead_time_ratio, t_comp * 1e6, x->t_break_nm);
+            }
             snprintf(c.r->title, sizeof c.r->title, "Robustness: cold start, seed %u", (unsigned)st->seed);
             snprintf(text, sizeof text,
-                     "Cold start to %.0f rpm with the plant's parameters off the table's: R_s %+.1f %%, "
-                     "L_d %+.1f %%, L_q %+.1f %%, psi_f %+.1f %%; load %.2f N m, bus %.0f V, current "
-                     "noise %.3f A rms, initial rotor angle %.0f deg (electrical).",
-                     target, st->rs_err * 100.0, st->ld_err * 100.0, st->lq_err * 100.0,
-                     st->psi_err * 100.0, st->load_nm, st->vdc_v, st->noise_a, st->theta0_deg);
+                     "Cold start to %.0f rpm (table %s) with the plant's parameters off the table's: "
+                     "R_s %+.1f %%, L_d %+.1f %%, L_q %+.1f %%, psi_f %+.1f %%; load %.2f N m, bus %.0f V, "
+                     "current noise %.3f A rms, initial rotor angle %.0f deg (electrical).%s",
+                     target, tab->name, st->rs_err * 100.0, st->ld_err * 100.0, st->lq_err * 100.0,
+                     st->psi_err * 100.0, st->load_nm, st->vdc_v, st->noise_a, st->theta0_deg, more);
             snprintf(c.r->description, sizeof c.r->description, "%s", text);
             snprintf(c.r->requirements, sizeof c.r->requirements, "REQ-SCN-011");
             c.r->zoom_t0_s = 6.0;

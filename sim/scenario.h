@@ -54,6 +54,13 @@ typedef struct {
     char label[64];
 } scn_event_t;
 
+/** Further start conditions of the campaign's axes (scn_opts_t.start_ext). */
+typedef struct {
+    double dead_time_ratio;  /**< plant dead time = ratio x the table's dead-time compensation
+                                  (svpwm.dt_comp) */
+    double t_break_nm;       /**< breakaway torque (static friction) of the plant, N m (0: none) */
+} scn_start_ext_t;
+
 /** Run options. */
 typedef struct {
     const char *out_dir;       /**< NULL: no files; else metrics.json, trace.csv, zoom.csv */
@@ -62,6 +69,9 @@ typedef struct {
     bool progress;             /**< progress line on stderr */
     int index;                 /**< this run's number, for the progress line (1-based) */
     int count;                 /**< runs in the batch */
+    const scn_start_ext_t *start_ext;  /**< scn_run_start(): the plant's dead time and
+                                            breakaway torque; NULL: the motor file's dead
+                                            time, no breakaway torque */
 } scn_opts_t;
 
 /** Result of one scenario run. */
@@ -111,7 +121,8 @@ int scn_run(const char *scenario, const scn_table_t *tab, const scn_opts_t *o, s
 
 /**
  * @brief One cold start of the robustness campaign: cold_start with the start
- *        conditions st (parameter errors in the plant, load, bus, noise, initial angle).
+ *        conditions st (parameter errors in the plant, load, bus, noise, initial angle)
+ *        and o->start_ext (dead time, breakaway torque).
  */
 int scn_run_start(const scn_table_t *tab, const scn_start_t *st, const scn_opts_t *o,
                   scn_result_t *r);

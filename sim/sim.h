@@ -11,7 +11,9 @@
  *    comments), one file per motor under specs/motors/;
  *  - salient-pole PMSM in the rotor (dq) frame, document chapter 1, integrated
  *    with classical RK4 at a fixed number of sub-steps per PWM period;
- *  - mechanics J dw/dt = T_e - T_L - B w, or a locked (imposed) speed;
+ *  - mechanics J dw/dt = T_e - T_L - B w, or a locked (imposed) speed; an optional
+ *    breakaway torque (static friction) holds the rotor at standstill while
+ *    |T_e - T_L| does not exceed it;
  *  - compressor load T_L = T_mean + T_1 sin(theta_m + phi_1) + T_2 sin(2 theta_m + phi_2);
  *  - two-level inverter on a centre-aligned up-down PWM counter, with dead time:
  *    the pole voltage follows the current sign while both switches are off;
@@ -101,6 +103,12 @@ typedef struct {
                          dynamometer); > 0: a passive load (a compressor): it opposes the
                          motion and fades in linearly over +-knee_rpm, so it never drives
                          the rotor backwards at standstill */
+    double t_break; /**< breakaway torque (static friction), N m, >= 0 (0: none): at
+                         standstill the rotor is held while |T_e - T_L| <= t_break (T_L at
+                         zero speed) and starts at the first sub-step where it is exceeded;
+                         once turning there is no friction torque beyond B w; when the
+                         speed passes through zero the rotor is held again (the release is
+                         then checked at the next sub-step) */
 } sim_load_t;
 
 /** Scenario settings of a plant instance. */
@@ -168,6 +176,7 @@ typedef struct {
     bool en_active;           /**< inverter switching in the current period */
     bool en_pending;          /**< written this period, active from the next */
     bool extinct;             /**< switching off and the currents have died out */
+    bool held;                /**< rotor held at standstill by load.t_break */
     uint32_t rng;
     sim_inj_t inj;            /**< injected faults (none after sim_init) */
 } sim_t;

@@ -265,6 +265,99 @@ static void test_mechanics(void **state)
     assert_true(fabs(s.w_m - w_ref) < 0.001 * w_ref);
 }
 
+/* One period under the ideal current controller at a torque command. */
+static void ctrl_period(sim_t *s, sim_ctrl_t *c)
+{
+    sim_adc_t a;
+    uint16_t cmp[3];
+    sim_sample(s, &a);
+    sim_ctrl_step(c, &a, sim_theta_e(s), sim_w_e(s), cmp);
+    sim_set_compare(s, cmp);
+    sim_step_period(s);
+}
+
+/* Breakaway torque (static friction) t_b: at standstill the rotor does not move while
+   |T_e| <= t_b, starts in the period in which T_e exceeds t_b and then follows
+   J dw/dt = T_e - B w (no friction torque while it turns); braked by a torque below t_b it
+   stops when that equation reaches zero speed and is held there. */
+static void test_breakaway(void **state)
+{
+    /* REQ-SIM-005 */
+    sim_cfg_t cfg;
+    sim_t s;
+    sim_ctrl_t c;
+    const double j = g_motor.j_kgm2;
+    const double b = g_motor.b_nms;
+    const double t_b = 0.5;
+    double w_ref = 0.0;
+    long k;
+    long k_start = -1;
+    long k_stop = -1;
+    long k_ref = -1;
+    (void)state;
+    base_cfg(&cfg, 320.0, 0.0, false, 0.0);
+    cfg.load.t_break = t_b;
+    sim_init(&s, &cfg);
+    sim_ctrl_init(&c, &g_motor, 1000.0);
+    /* 0.4 N m < t_b for 50 ms: held, not a single step of motion */
+    sim_ctrl_torque_ref(&c, 0.4, 0.0, 320.0);
+    sim_set_state(&s, 1.0, 0.0, c.id_ref, c.iq_ref);
+    for (k = 0; k < 400; k++) {
+        ctrl_period(&s, &c);
+        assert_true(s.w_m == 0.0);
+        assert_true(s.held);
+    }
+    assert_true(fabs(s.torque_avg - 0.4) < 0.01);
+    assert_true(fabs(sim_theta_e(&s) - 1.0) < 1e-12);
+    /* 0.8 N m > t_b: starts in the first period whose torque exceeds t_b, then
+       J dw/dt = T_e - B w (the reference starts one period early: within one period's
+       gain of speed, 0.8 / J x 125 us = 0.33 rad/s) */
+    sim_ctrl_torque_ref(&c, 0.8, 0.0, 320.0);
+    for (k = 0; k < 800; k++) { /* 0.1 s */
+        const double t_prev = sim_torque(&s);
+        ctrl_period(&s, &c);
+        if (k_start < 0 && s.w_m != 0.0) {
+            k_start = k;
+            assert_true(t_prev <= t_b + 1e-9);
+            assert_true(sim_torque(&s) > t_b);
+            assert_false(s.held);
+        }
+        if (k_start >= 0) {
+            w_ref += (s.torque_avg - b * w_ref) / j * s.bases.t_s;
+        }
+    }
+    assert_true(k_start >= 0 && k_start < 16);
+    /* (0.8 / 3e-4) x 0.1 s = 267 rad/s */
+    assert_true(w_ref > 250.0 && w_ref < 270.0);
+    assert_true(fabs(s.w_m - w_ref) < 0.35 + 0.001 * w_ref);
+    /* braked by -0.4 N m (below t_b): the speed follows the same equation down to zero
+       (the reference with the plant's period torque, crossing zero within one period of
+       the plant), then the rotor is held for good */
+    sim_ctrl_torque_ref(&c, -0.4, 0.0, 320.0);
+    w_ref = s.w_m;
+    for (k = 0; k < 4000; k++) { /* 0.5 s */
+        ctrl_period(&s, &c);
+        if (k_ref < 0) {
+            w_ref += (s.torque_avg - b * w_ref) / j * s.bases.t_s;
+            if (w_ref <= 0.0) {
+                k_ref = k;
+            }
+        }
+        if (k_stop < 0 && s.held) {
+            k_stop = k;
+            assert_true(fabs(sim_torque(&s)) <= t_b);
+        }
+        if (k_stop >= 0) {
+            assert_true(s.w_m == 0.0);
+            assert_true(s.held);
+        }
+    }
+    print_message("breakaway: start in period %ld, stop after %.4f s (reference %.4f s)\n", k_start,
+                  (double)(k_stop + 1) * s.bases.t_s, (double)(k_ref + 1) * s.bases.t_s);
+    assert_true(k_stop > 1000 && k_ref > 1000);
+    assert_true(k_stop - k_ref <= 1 && k_ref - k_stop <= 1);
+}
+
 static void test_load_profile(void **state)
 {
     /* REQ-SIM-005 */
@@ -337,6 +430,7 @@ int main(void)
         cmocka_unit_test(test_current_step_response),
         cmocka_unit_test(test_dead_time_error),
         cmocka_unit_test(test_mechanics),
+        cmocka_unit_test(test_breakaway),
         cmocka_unit_test(test_load_profile),
         cmocka_unit_test(test_adc),
     };

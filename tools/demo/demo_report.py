@@ -66,6 +66,18 @@ RUN_PARAMS = [("rs_err", "R_s error", "%", 100.0), ("ld_err", "L_d error", "%", 
               ("noise_a", "current noise", "A rms", 1.0),
               ("theta0_deg", "initial angle", "deg", 1.0)]
 RUN_COLS = ["seed"] + [p[0] for p in RUN_PARAMS] + ["success"]
+# parameters of the campaign's axes (columns of runs.csv when the campaign has axes)
+AXIS_PARAMS = [("dead_time_ratio", "dead time / comp.", "x", 1.0),
+               ("t_break_frac", "breakaway / nominal", "%", 100.0)]
+# success rate by bins of a parameter, on the axes that vary it: (column, label, unit,
+# scale, bin edges in the column's units, axes)
+AXIS_BINS = [("dead_time_ratio", "real dead time / the table's compensation", "x", 1.0,
+              [0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0001],
+              ("dead_time", "low_flux_dead_time", "combined")),
+             ("t_break_frac", "breakaway torque / nominal torque", "%", 100.0,
+              [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6001], ("breakaway", "combined")),
+             ("psi_err", "psi_f error (plant / table - 1)", "%", 100.0,
+              [-0.1501, -0.10, -0.05, 0.0, 0.05, 0.10, 0.1501], ("flux_rs", "combined"))]
 RUN_RESULTS = [("t_closed_loop_s", "t closed loop", "s"), ("t_reach_s", "t reach", "s"),
                ("overshoot_pct", "overshoot", "%"), ("ss_err_rpm", "ss error", "rpm"),
                ("ss_err_pct", "ss error", "%"), ("ss_err_max_pct", "max ss error", "%"),
@@ -76,7 +88,9 @@ RANGES = {"rs": ("R_s error", "rel"), "ld": ("L_d error", "rel"), "lq": ("L_q er
           "load_frac": ("load torque, fraction of nominal", "frac"),
           "load_nm": ("load torque", "N m"),
           "vdc_v": ("DC-bus voltage", "V"), "noise_a_rms": ("current-sensor noise", "A rms"),
-          "theta0_deg": ("initial rotor angle", "deg")}
+          "theta0_deg": ("initial rotor angle", "deg"),
+          "dead_time_ratio": ("real dead time / the table's compensation", "x"),
+          "t_break_frac": ("breakaway torque, fraction of nominal", "frac")}
 CSS = """
 body{font-family:system-ui,sans-serif;margin:1.2em auto;max-width:1150px;color:#222;
  padding:0 1em;line-height:1.35}
@@ -685,17 +699,22 @@ def robustness_summary(demo_dir, rel):
     rate = camp.get("rate_pct", 100.0 * ok / n if n else 0.0)
     if not isinstance(rate, (int, float)):
         raise InputError(f"{path}: rate_pct is not a number")
-    verdict = "PASS" if ok == n else "FAIL"
+    every = camp.get("all") if isinstance(camp.get("all"), dict) else {}
+    n_all, ok_all = every.get("count", n), every.get("successes", ok)
+    every = every if n_all != n else {}   # the base axis alone: no second figure
+    verdict = "PASS" if ok == n and ok_all == n_all else "FAIL"
     rdir = os.path.dirname(path)
     page_ = os.path.join(rdir, "index.html")
     link = os.path.relpath(page_, demo_dir)
     more = (f'<a href="{esc(link)}">campaign report</a>' if os.path.exists(page_) else
             f'<a href="{esc(os.path.relpath(path, demo_dir))}">campaign.json</a> (report not '
             f"written yet: tools/demo/demo_report.py --robustness {esc(rdir)})")
+    axes_txt = (f" (base axis); <b>{ok_all} of {n_all}</b> on every axis" if every else "")
     return (f'<h2>Robustness</h2><div class="box"><p>{badge(verdict)} '
-            f"<b>{ok} of {n}</b> randomised starts successful: <b>{rate:.1f} %</b> &mdash; "
+            f"<b>{ok} of {n}</b> randomised starts successful: <b>{rate:.1f} %</b>{axes_txt} &mdash; "
             f"{more}</p><p class=\"small\">{esc(camp.get('criteria', ''))}</p></div>",
-            f"robustness: {ok}/{n} successful starts ({rate:.1f} %), "
+            f"robustness: {ok}/{n} successful starts ({rate:.1f} %)"
+            + (f", every axis {ok_all}/{n_all}" if every else "") + ", "
             + os.path.abspath(page_ if os.path.exists(page_) else path))
 
 
@@ -809,14 +828,23 @@ def range_text(key, r):
     return what, f"{r[0]:g} .. {r[1]:g} {unit}"
 
 
+def run_params(runs):
+    """The randomised parameters of a campaign: the base ones, and the axes' when present."""
+    return RUN_PARAMS + [p for p in AXIS_PARAMS if isinstance(runs.get(p[0], [""])[0], float)]
+
+
 def plot_scatter(runs, ycol, ylabel, title, out):
-    """8 panels: ycol against each randomised parameter, failures as red crosses."""
+    """A panel per randomised parameter: ycol against it, failures as red crosses."""
     ok = [s > 0.5 for s in runs["success"]]
     ys = runs[ycol]
     fin = [v for v in ys if v == v]
     top = (max(fin) + 0.08 * (max(fin) - min(fin) or 1.0)) if fin else 1.0
-    fig, axes = plt.subplots(2, 4, figsize=(FIG_W, 5.6), sharey=True)
-    for ax, (col, name, unit, scale) in zip(axes.flat, RUN_PARAMS):
+    params = run_params(runs)
+    ncol = (len(params) + 1) // 2
+    fig, axes = plt.subplots(2, ncol, figsize=(FIG_W, 5.6), sharey=True)
+    for ax in axes.flat[len(params):]:
+        ax.set_visible(False)
+    for ax, (col, name, unit, scale) in zip(axes.flat, params):
         xs = [v * scale for v in runs[col]]
         ax.plot([x for x, g in zip(xs, ok) if g], [y for y, g in zip(ys, ok) if g], "o",
                 ms=3, color="C0", alpha=0.6, label="success")
@@ -853,8 +881,13 @@ def load_campaign(rdir):
     if not isinstance(camp.get("rate_pct", 0.0), (int, float)):
         raise InputError(f"{rdir}/campaign.json: rate_pct is not a number")
     camp.setdefault("rate_pct", 100.0 * ok / n if n else 0.0)
-    runs = load_csv(os.path.join(rdir, "runs.csv"), RUN_COLS, text=("reason",))
+    runs = load_csv(os.path.join(rdir, "runs.csv"), RUN_COLS,
+                    text=("reason", "axis", "table", "kind"))
     n_csv, ok_csv = len(runs["seed"]), sum(s > 0.5 for s in runs["success"])
+    every = camp.get("all")
+    if isinstance(every, dict):
+        # count and successes are the base axis's; "all" counts every axis
+        n, ok = every.get("count"), every.get("successes")
     if (n_csv, ok_csv) != (n, ok):
         warn(f"{rdir}: campaign.json says {ok}/{n} successes, runs.csv has {ok_csv}/{n_csv}")
     if not all(math.isfinite(s) for s in runs["seed"]):
@@ -880,7 +913,10 @@ def replay_cmd(rec, template):
 def worst_table(rdir, worst, replay):
     """HTML table of the worst cases with their parameters, results and replay command."""
     results = [r for r in RUN_RESULTS if any(r[0] in w for w in worst)]
-    cols = ([("seed", ""), ("result", "")] + [(p[1], p[2]) for p in RUN_PARAMS]
+    params = RUN_PARAMS + [p for p in AXIS_PARAMS if any(p[0] in w for w in worst)]
+    cols = ([("seed", ""), ("result", "")]
+            + ([("axis", ""), ("table", "")] if any("axis" in w for w in worst) else [])
+            + [(p[1], p[2]) for p in params]
             + [(r[1], r[2]) for r in results] + [("fault", ""), ("reason", ""),
                                                  ("replay", "")])
     out = ['<div class="wide"><table class="small"><tr>' + "".join(
@@ -889,7 +925,9 @@ def worst_table(rdir, worst, replay):
         seed, good = w["seed"], _f(w.get("success")) > 0.5
         cells = [f"<td>{seed}</td>", f'<td class="{"pass" if good else "fail"}">'
                  f'{"OK" if good else "FAIL"}</td>']
-        cells += [f'<td class="num">{fnum(_f(w.get(c)) * s)}</td>' for c, _, _, s in RUN_PARAMS]
+        if any("axis" in x for x in worst):
+            cells += [f"<td>{esc(w.get('axis', '-'))}</td>", f"<td>{esc(w.get('table', '-'))}</td>"]
+        cells += [f'<td class="num">{fnum(_f(w.get(c)) * s)}</td>' for c, _, _, s in params]
         cells += [f'<td class="num">{fnum(_f(w.get(c)))}</td>' for c, _, _ in results]
         cmd = f"<code>{esc(replay_cmd(w, replay))}</code>"
         if os.path.exists(os.path.join(rdir, f"replay_{seed}", "index.html")):
@@ -901,10 +939,96 @@ def worst_table(rdir, worst, replay):
     return "\n".join(out)
 
 
+KIND_TEXT = {"t_closed_loop_s": "closed loop not reached (or out of its window)",
+             "t_target_s": "target speed not reached in time",
+             "overshoot_pct": "speed overshoot", "ss_err_max_pct": "speed not held",
+             "faults": "fault"}
+
+
+def kind_text(k):
+    """Readable failure kind: "fault <bits>" or the first metric off its target."""
+    return k if k.startswith("fault") else KIND_TEXT.get(k, k)
+
+
+def axes_table(rdir, camp):
+    """HTML table of the campaign's axes and the terminal lines; ([], []) without axes."""
+    axes = camp.get("axes") or []
+    if not axes:
+        return [], []
+    out = ['<h2>Axes</h2><p>Goal: ' + esc(camp.get("goal", "-")) + '. A false fault is a fault '
+           'raised in a run that reached the target speed (the campaign injects none). Each axis '
+           'is a block of runs with its own seeds (axis a: a x 100000 + i); replay any with '
+           '<code>make robustness-replay SEED=n</code>.</p>'
+           '<div class="wide"><table class="small"><tr><th>axis</th><th>what is drawn</th>'
+           '<th>table</th><th>runs</th><th>successes</th><th>rate</th><th>reached target</th>'
+           '<th>runs with a fault</th><th>false faults (target reached)</th>'
+           '<th>failure kinds</th><th>worst seeds</th></tr>']
+    lines = [f"  {'axis':19} {'runs':>5} {'success':>8} {'rate %':>7} {'faults':>7} "
+             f"{'false*':>7}  {'worst seeds':22} failure kinds"]
+    for a in axes:
+        runs, ok = int(a.get("runs", 0)), int(a.get("successes", 0))
+        good = ok == runs and int(a.get("false_faults_reached", 0)) == 0
+        kinds = a.get("kinds") or {}
+        ktxt = "; ".join(f"{kind_text(k)}: {n}" for k, n in sorted(kinds.items(), key=lambda x: -x[1]))
+        seeds = []
+        for sd in a.get("worst") or []:
+            link = os.path.join(rdir, f"replay_{sd}", "index.html")
+            seeds.append(f'<a href="replay_{sd}/index.html">{sd}</a>' if os.path.exists(link) else str(sd))
+        out.append(f"<tr><td class=\"mono\">{esc(a.get('axis'))}</td><td>{esc(a.get('what', ''))}</td>"
+                   f"<td>{esc(a.get('table', ''))}</td><td class=\"num\">{runs}</td>"
+                   f"<td class=\"num\">{ok}</td><td class=\"{'pass' if good else 'fail'}\">"
+                   f"{fnum(_f(a.get('rate_pct')))} %</td><td class=\"num\">{a.get('reached')}</td>"
+                   f"<td class=\"num\">{a.get('faulted')}</td>"
+                   f"<td class=\"num\">{a.get('false_faults_reached')}</td>"
+                   f"<td>{esc(ktxt or '-')}</td><td>{', '.join(seeds) or '-'}</td></tr>")
+        lines.append(f"  {str(a.get('axis')):19} {runs:5d} {ok:8d} {_f(a.get('rate_pct')):7.1f} "
+                     f"{int(a.get('faulted', 0)):7d} {int(a.get('false_faults_reached', 0)):7d}  "
+                     f"{' '.join(str(x) for x in a.get('worst') or []):22} {ktxt}")
+    out.append("</table></div>")
+    lines.append("  (* false faults: runs that reached the target speed and raised a fault)")
+    return out, lines
+
+
+def bins_tables(runs):
+    """HTML tables: success rate by bins of each axis parameter, on the axes that vary it."""
+    if "axis" not in runs:
+        return []
+    out = ["<h2>Success rate against the axes' parameters</h2><p>Runs of the axes that draw the "
+           "parameter, by bins of it: runs / successes (rate), the failure kinds.</p>"]
+    for col, label, unit, scale, edges, axes in AXIS_BINS:
+        if col not in runs or not isinstance(runs[col][0], float):
+            continue
+        rows = []
+        for lo, hi in zip(edges[:-1], edges[1:]):
+            idx = [i for i, (ax, v) in enumerate(zip(runs["axis"], runs[col]))
+                   if ax in axes and lo <= v < hi]
+            if not idx:
+                continue
+            ok = sum(runs["success"][i] > 0.5 for i in idx)
+            kinds = {}
+            for i in idx:
+                if runs["success"][i] <= 0.5:
+                    k = kind_text(str(runs.get("kind", [""] * len(idx))[i]))
+                    kinds[k] = kinds.get(k, 0) + 1
+            ktxt = "; ".join(f"{k}: {n}" for k, n in sorted(kinds.items(), key=lambda x: -x[1]))
+            hi_txt = f"{min(hi, edges[-1]) * scale:.3g}"
+            rows.append(f"<tr><td>{lo * scale:.3g} .. {hi_txt} {esc(unit)}</td>"
+                        f'<td class="num">{len(idx)}</td><td class="num">{ok}</td>'
+                        f'<td class="{"pass" if ok == len(idx) else "fail"}">'
+                        f"{100.0 * ok / len(idx):.1f} %</td><td>{esc(ktxt or '-')}</td></tr>")
+        if rows:
+            out.append(f"<h3>{esc(label)} (axes {esc(', '.join(axes))})</h3><table class=\"small\">"
+                       "<tr><th>bin</th><th>runs</th><th>successes</th><th>rate</th>"
+                       "<th>failure kinds</th></tr>" + "".join(rows) + "</table>")
+    return out
+
+
 def robust_main(rdir):
     """Report of a robustness campaign; returns the exit status."""
     camp, runs, worst, passed = load_campaign(rdir)
     n, ok, rate = camp["count"], camp["successes"], camp["rate_pct"]
+    every = camp.get("all") if isinstance(camp.get("all"), dict) else None
+    every = every if every and every.get("count") != n else None
     replay = str(camp.get("replay") or "")
     dirs = [d for d in glob.glob(os.path.join(rdir, "replay_*")) if os.path.isdir(d)]
     dirs.sort(key=lambda p: int(re.sub(r"\D", "", os.path.basename(p)) or 0))
@@ -928,18 +1052,25 @@ def robust_main(rdir):
     seeds = camp["seeds"]
     out = [f"<h1>Start-up robustness campaign {badge('PASS' if passed else 'FAIL')}</h1>",
            f'<p style="font-size:1.2em"><b>{ok} of {n}</b> randomised starts successful: '
-           f"<b>{rate:.1f} %</b></p><table>",
+           f"<b>{rate:.1f} %</b>"
+           + (f" on the base axis (the ranges of REQ-SCN-011); <b>{every['successes']} of "
+              f"{every['count']}</b> on every axis: <b>{_f(every.get('rate_pct')):.1f} %</b>"
+              if every else "") + "</p><table>",
            f"<tr><th>runs</th><td>{len(seeds)} (seeds {seeds[0]} .. {seeds[-1]})</td></tr>",
            f"<tr><th>wall time</th><td>{esc(with_unit(fnum(camp.get('wall_s')), 's'))}</td></tr>",
            f"<tr><th>parameter table</th><td>{esc(camp.get('table', '-'))}</td></tr>",
            f"<tr><th>success criteria</th><td>{esc(camp.get('criteria', '-'))}</td></tr>",
            "</table><h2>Randomised parameters</h2><p>Each run draws every parameter "
            "uniformly from its range; errors are of the drive's parameter against the "
-           "motor model's.</p><table><tr><th>parameter</th><th>meaning</th><th>range</th></tr>"]
+           "motor model's; the ranges of the base axis (the other axes widen or add to them: see Axes).</p><table><tr><th>parameter</th><th>meaning</th><th>range</th></tr>"]
     for k, r in (camp.get("ranges") or {}).items():
         what, txt = range_text(k, r)
         out.append(f'<tr><td class="mono">{esc(k)}</td><td>{esc(what)}</td><td>{txt}</td></tr>')
-    out.append("</table><h2>Worst cases</h2><p>Worst first, failures first."
+    axes_html, axes_lines = axes_table(rdir, camp)
+    out.append("</table>")
+    out += axes_html
+    out += bins_tables(runs)
+    out.append("<h2>Worst cases</h2><p>Worst first, failures first."
                + (f" Replay one case with <code>{esc(replay)}</code>." if replay else "")
                + "</p>")
     out.append(worst_table(rdir, worst, replay))
@@ -960,8 +1091,12 @@ def robust_main(rdir):
     with open(path, "w", encoding="utf-8") as f:
         f.write(page("qfoc robustness campaign", "\n".join(out)))
 
-    print(f"robustness: {ok}/{n} successful starts ({rate:.1f} %), "
-          f"wall time {with_unit(fnum(camp.get('wall_s')), 's')}")
+    print(f"robustness: {ok}/{n} successful starts ({rate:.1f} %)"
+          + (f" on the base axis, {every['successes']}/{every['count']} on every axis "
+             f"({_f(every.get('rate_pct')):.1f} %)" if every else "")
+          + f", wall time {with_unit(fnum(camp.get('wall_s')), 's')}")
+    for line in axes_lines:
+        print(line)
     for w in worst[:5]:
         res = "OK  " if _f(w.get("success")) > 0.5 else "FAIL"
         print(f"  {res} seed {w['seed']}: t_reach {with_unit(fnum(_f(w.get('t_reach_s'))), 's')}"
