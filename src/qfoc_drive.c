@@ -752,14 +752,68 @@ static uint16_t drv_faults_power(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     return w;
 }
 
-/* The fast flux plausibility check (REQ-DRV-023): the band, |psi - psi_exp| at most
-   3/10 of psi_exp, the ticks of CLOSED_LOOP before it applies (the handover's transient),
-   and the ticks in a row outside the band that raise STALL.  The speed gate is 1.5 times
-   the handover speed of_speed. */
-#define DRV_FLUX_BAND_NUM ((int32_t)3)
-#define DRV_FLUX_BAND_DEN ((int32_t)10)
+/* The fast flux plausibility check (REQ-DRV-023): the ticks of CLOSED_LOOP before it
+   applies (the handover's transient), and the ticks in a row outside the band that raise
+   STALL (the band: drv_flux_band).  The speed gate is 1.5 times the handover speed
+   of_speed.  The ALIGN check (REQ-DRV-025) raises PHASE after the same ticks in a row. */
 #define DRV_FLUX_BLANK_MS 100u
 #define DRV_FLUX_TICKS ((uint16_t)2u)
+
+/* The fast flux check's band (REQ-DRV-023), from the estimator's error model: flux_band
+   psi_exp (the magnet's temperature, the inductances) plus the flux error of a voltage
+   error, (flux_v_err + flux_r_err R |i|) / |w| (the dead-time voltage the compensation
+   misses, the winding's resistance error; psi_base = V_base / w_base, so a Q15 voltage over
+   a Q15 speed is a Q15 flux), that part at most 65535 (and 65535 at w = 0). */
+/*@
+  requires valid: \valid_read(p) && \valid_read(f);
+  assigns \nothing;
+  ensures range: 0 <= \result <= 98301;
+*/
+static int32_t drv_flux_band(const qfoc_param_table_t *p, const qfoc_drive_fast_t *f,
+                             qfoc_q15_t psi_exp)
+{
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const uint32_t pe = (uint32_t)(int32_t)qfoc_q15_abs(psi_exp);
+    const uint32_t fb = (uint32_t)(int32_t)qfoc_q15_abs(c->flux_band);
+    const uint32_t band = (pe * fb) / 32768u;
+    const uint32_t i = (uint32_t)(int32_t)qfoc_vec_mag(f->i_dq.d, f->i_dq.q);
+    const uint32_t rr = ((uint32_t)(int32_t)qfoc_q15_abs(c->flux_r_err) *
+                         (uint32_t)(int32_t)qfoc_q15_abs(p->flux.r)) / 32768u;
+    const uint32_t v = (uint32_t)(int32_t)qfoc_q15_abs(c->flux_v_err) + ((rr * i) / 32768u);
+    const uint32_t w = (uint32_t)(int32_t)qfoc_q15_abs(f->speed_f);
+    uint32_t dpsi = 65535u;
+    /*@ assert band: band <= 32766; */
+    /*@ assert v: v <= 65533; */
+    if (w > 0u) {
+        const uint32_t q = (v * 32768u) / w;
+        dpsi = (q < 65535u) ? q : 65535u;
+    } else {
+        /* no speed: no flux check (the gate keeps w above 1.5 of_speed) */
+    }
+    return (int32_t)(band + dpsi);
+}
+
+/* ALIGN without current (REQ-DRV-025): the last command's voltage beyond twice what the
+   d reference needs, 2 (R |id_ref| + flux_v_err) (the resistance drop and the dead-time
+   voltage the compensation may miss), while the largest filtered phase current (the phase
+   monitor's) is below a quarter of the reference: both current sensors dead, or a broken
+   connection, with the d PI driving the voltage up against a current it does not see. */
+/*@
+  requires valid: \valid_read(p) && \valid_read(f);
+  requires inv: DRV_PHASE(&f->phase);
+  assigns \nothing;
+*/
+static bool drv_align_open(const qfoc_param_table_t *p, const qfoc_drive_fast_t *f,
+                           qfoc_q15_t id_ref)
+{
+    const uint32_t ir = (uint32_t)(int32_t)qfoc_q15_abs(id_ref);
+    const uint32_t vr = ((uint32_t)(int32_t)qfoc_q15_abs(p->flux.r) * ir) / 32768u;
+    const uint32_t ve = (uint32_t)(int32_t)qfoc_q15_abs(p->drive.flux_v_err);
+    const uint32_t need = 2u * (vr + ve);
+    const uint32_t u = (uint32_t)(int32_t)qfoc_vec_mag(f->u_last.alpha, f->u_last.beta);
+    const uint32_t i = (uint32_t)(int32_t)qfoc_phase_mon_peak(&f->phase);
+    return (u > need) && ((i * 4u) < ir);
+}
 
 /* Tick-evaluated faults of the motor and the table: stall and flux plausibility, phase
    loss, table re-check (fault.h; reaction times in drive.h, REQ-DRV-008, REQ-DRV-010,
@@ -768,7 +822,7 @@ static uint16_t drv_faults_power(qfoc_drive_t *d, const qfoc_tick_in_t *in)
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
   requires inv: DRV_PHASE(&d->f.phase);
-  assigns d->s.db_stall, d->s.db_flux, d->s.db_phase;
+  assigns d->s.db_stall, d->s.db_flux, d->s.db_phase, d->s.db_align;
   ensures bits: \result <= QFOC_FAULT_STALL + QFOC_FAULT_PHASE + QFOC_FAULT_PARAM;
 */
 static uint16_t drv_faults_motor(qfoc_drive_t *d)
@@ -812,7 +866,6 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
         const qfoc_q15_t e_psi = qfoc_q15_sub(f->psi_mag, psi_exp);
         const bool bad_speed = qfoc_fault_abs_over(e_speed, c->stall_err);
         const bool bad_flux = qfoc_fault_abs_over(e_psi, c->flux_tol);
-        /* |e_psi| <= 32768 and psi_exp <= 32767: both products fit in 32 bits */
         const int32_t dev = (int32_t)qfoc_q15_abs(e_psi);
         const bool steady = run && (sub == QFOC_SUB_CLOSED_LOOP) &&
                             ((uint32_t)s->sm.t_sub >= DRV_FLUX_BLANK_MS) &&
@@ -828,8 +881,7 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
                           (w2 < (int32_t)qfoc_q15_abs(c->of_speed)) &&
                           (w2 < (int32_t)qfoc_q15_abs(s->speed_ref));
         stall = closed && (bad_speed || bad_flux);
-        implausible = lost || (steady && (psi_exp > 0) &&
-                               ((dev * DRV_FLUX_BAND_DEN) > ((int32_t)psi_exp * DRV_FLUX_BAND_NUM)));
+        implausible = lost || (steady && (psi_exp > 0) && (dev > drv_flux_band(p, f, psi_exp)));
     }
     {
         const bool slow = qfoc_debounce_step(&s->db_stall, stall, c->stall_ms);
@@ -840,11 +892,17 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
             /* synchronised, the flux plausible */
         }
     }
-    if (qfoc_debounce_step(&s->db_phase, (rotating && imbalanced) || align_imbalanced || no_current,
-                           c->phase_ms)) {
-        w = (uint16_t)(w + QFOC_FAULT_PHASE);
-    } else {
-        /* balanced */
+    {
+        const bool open_align = run && (sub == QFOC_SUB_ALIGN) && drv_align_open(p, f, s->id_ref);
+        const bool slow = qfoc_debounce_step(&s->db_phase,
+                                             (rotating && imbalanced) || align_imbalanced ||
+                                             no_current, c->phase_ms);
+        const bool fast = qfoc_debounce_step(&s->db_align, open_align, DRV_FLUX_TICKS);
+        if (slow || fast) {
+            w = (uint16_t)(w + QFOC_FAULT_PHASE);
+        } else {
+            /* balanced, the current where the voltage drives it */
+        }
     }
     if (!s->table_ok) {
         w = (uint16_t)(w + QFOC_FAULT_PARAM);
@@ -860,7 +918,7 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
   requires sep: \separated(&d->s, d->p) && \separated(&d->s, in);
   requires inv: DRV_PHASE(&d->f.phase);
   assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall, d->s.db_flux,
-          d->s.db_phase, d->s.trip_seen;
+          d->s.db_phase, d->s.db_align, d->s.trip_seen;
   ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET - QFOC_FAULT_TIMING;
 */
 static uint16_t drv_faults(qfoc_drive_t *d, const qfoc_tick_in_t *in)
@@ -1062,7 +1120,8 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
   assigns d->s.fw.pi.integ, d->s.fw.pi.limited, d->s.fw.util_lpf.state, d->s.fw.id_ref,
           d->s.id_ref, d->s.iq_ref, d->s.iq_lim;
   ensures inv: DRV_FW(&d->s.fw);
-  ensures circle: d->s.id_ref * d->s.id_ref + d->s.iq_ref * d->s.iq_ref <=
+  ensures q_limit: -d->s.iq_lim <= d->s.iq_ref <= d->s.iq_lim;
+  ensures circle: d->s.id_ref * d->s.id_ref + d->s.iq_lim * d->s.iq_lim <=
                   \abs(d->p->i_max) * \abs(d->p->i_max);
 */
 static void drv_iref(qfoc_drive_t *d)
@@ -1077,10 +1136,10 @@ static void drv_iref(qfoc_drive_t *d)
     in.psi_f = p->psi_f;
     in.ld = s->hs ? p->drive.ld_hs : p->ld;
     in.lq = s->hs ? p->drive.lq_hs : p->lq;
-    /* MTPA acts where L_q > L_d (qfoc_iref_mtpa gives 0 otherwise) and where the angle
-       estimate is trusted: above the handover speed, as the flux checks (a stalled or
-       slowing rotor falls back to i_d = 0) */
-    in.mtpa = drv_abs_over(d->f.speed_f, qfoc_q15_abs(p->drive.of_speed));
+    /* MTPA acts where L_q > L_d (qfoc_iref_mtpa gives 0 otherwise) and above mtpa_speed,
+       where the angle estimate is trusted (the tool's default: the handover speed; a
+       stalled or slowing rotor falls back to i_d = 0) */
+    in.mtpa = drv_abs_over(d->f.speed_f, qfoc_q15_abs(p->drive.mtpa_speed));
     qfoc_iref_step(&in, &out);
     s->id_ref = out.id;
     s->iq_lim = out.iq_lim;
@@ -1361,6 +1420,30 @@ static void drv_sm_inputs(qfoc_drive_t *d, uint16_t faults, uint8_t old_state,
     s->sm_in.stop_reached = (old_sub == QFOC_SUB_STOPPING) && (s->speed_ref <= of_speed);
 }
 
+/* Thermal derating (REQ-DRV-024): the commanded speed within the lower of the two
+   temperatures' limits, each rpm_max up to its derating temperature and falling linearly to
+   rpm_derate at its trip (qfoc_iref_derate); s->derated says that a limit is below rpm_max.
+   A target of 0 stays 0 and one at or above rpm_min stays at or above rpm_derate >=
+   rpm_min. */
+/*@
+  requires valid: \valid(s) && \valid_read(c) && \valid_read(in);
+  requires sep: \separated(s, c) && \separated(s, in);
+  assigns s->derated;
+  ensures below: \result <= s->cmd.target_rpm;
+*/
+static uint16_t drv_derate(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c,
+                           const qfoc_tick_in_t *in)
+{
+    const uint16_t lim_ipm = qfoc_iref_derate(c->rpm_max, c->rpm_derate, in->t_ipm,
+                                              c->t_ipm_derate, c->t_ipm_max);
+    const uint16_t lim_pcb = qfoc_iref_derate(c->rpm_max, c->rpm_derate, in->t_pcb,
+                                              c->t_pcb_derate, c->t_pcb_max);
+    const uint16_t lim = (lim_ipm < lim_pcb) ? lim_ipm : lim_pcb;
+    const uint16_t rpm = s->cmd.target_rpm;
+    s->derated = (lim < c->rpm_max);
+    return (rpm < lim) ? rpm : lim;
+}
+
 /* The tick's first half: the command link, the faults, the offset calibration and the
    state machine's inputs (REQ-DRV-005, REQ-DRV-008, REQ-DRV-009); the state machine
    itself is not stepped. */
@@ -1396,7 +1479,7 @@ static bool drv_tick_in(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_s
     s->out.can_send = false;
     /* command link (formerly Communication_service) */
     accepted = drv_link_in(s, rx, in->rx_len);
-    s->speed_target = drv_rpm_to_speed(s->cmd.target_rpm, c->k_rpm, p->speed_max);
+    s->speed_target = drv_rpm_to_speed(drv_derate(s, c, in), c->k_rpm, p->speed_max);
     /* faults and the offset calibration */
     faults = drv_faults(d, in);
     {
@@ -1717,8 +1800,8 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
   requires sep: \separated(s, c);
   assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->iq_lim, s->lead,
           s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done,
-          s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out, s->fast_seen,
-          s->ref_guard;
+          s->hs, s->derated, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out,
+          s->fast_seen, s->ref_guard;
   ensures refs: s->speed_target == 0 && s->speed_ref == 0 && s->ol_speed == 0 &&
                 s->id_ref == 0 && s->iq_ref == 0 && s->iq_lim == 0 && s->ref_guard == 42405;
 */
@@ -1741,6 +1824,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->scan_crc = 0u;
     s->calib_done = false;
     s->hs = false;
+    s->derated = false;
     s->run_ms = 0u;
     s->status.state = QFOC_STATE_PRECHARGE;
     s->status.substate = QFOC_SUB_BUS_WAIT;
@@ -1809,11 +1893,12 @@ static void drv_init_fw(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
   requires valid: \valid(s) && \valid_read(p);
   requires sep: \separated(s, p);
   assigns s->sm, s->pi_speed, s->fw, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
-          s->db_stall, s->db_flux, s->db_phase, s->db_ho, s->off_sum_u, s->off_sum_v, s->off_n,
+          s->db_stall, s->db_flux, s->db_phase, s->db_align, s->db_ho, s->off_sum_u, s->off_sum_v,
+          s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
           s->iq_ref, s->iq_lim, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
-          s->scan_crc, s->calib_done, s->hs, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out,
-          s->fast_seen, s->ref_guard;
+          s->scan_crc, s->calib_done, s->hs, s->derated, s->run_ms, s->status, s->cmd, s->sm_cfg,
+          s->sm_in, s->out, s->fast_seen, s->ref_guard;
   ensures refs: s->speed_target == 0 && s->speed_ref == 0 && s->ol_speed == 0 &&
                 s->id_ref == 0 && s->iq_ref == 0 && s->iq_lim == 0 && s->ref_guard == 42405;
   ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_FW(&s->fw) && DRV_TC(&s->tc) &&
@@ -1848,6 +1933,7 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int
     qfoc_debounce_reset(&s->db_stall);
     qfoc_debounce_reset(&s->db_flux);
     qfoc_debounce_reset(&s->db_phase);
+    qfoc_debounce_reset(&s->db_align);
     qfoc_debounce_reset(&s->db_ho);
     s->off_sum_u = 0u;
     s->off_sum_v = 0u;

@@ -54,6 +54,11 @@ bool qfoc_drive_run_requested(const qfoc_drive_t *d)
     return d->s.cmd.power_on;
 }
 
+bool qfoc_drive_derated(const qfoc_drive_t *d)
+{
+    return d->s.derated;
+}
+
 qfoc_angle_t qfoc_drive_angle_est(const qfoc_drive_t *d)
 {
     return d->f.theta_est;

@@ -78,6 +78,22 @@ static bool qfoc_drive_cfg_feat_ok(const qfoc_drive_cfg_t *c)
     return ctrl && ids;
 }
 
+/* MTPA speed, derating windows, the flux check's error model (REQ-DCFG-005); a window's
+   start below its trip temperature bounds it above by QFOC_DRIVE_TEMP_MAX */
+/*@ requires valid_c: \valid_read(c);
+    assigns \nothing;
+    ensures result: \result <==> DriveCfgDerateOk(c); */
+static bool qfoc_drive_cfg_derate_ok(const qfoc_drive_cfg_t *c)
+{
+    const bool window = (c->t_ipm_derate >= QFOC_DRIVE_TEMP_MIN) && (c->t_ipm_derate < c->t_ipm_max)
+                        && (c->t_pcb_derate >= QFOC_DRIVE_TEMP_MIN)
+                        && (c->t_pcb_derate < c->t_pcb_max)
+                        && (c->rpm_derate >= c->rpm_min) && (c->rpm_derate <= c->rpm_max);
+    const bool model = (c->mtpa_speed >= 0) && (c->flux_band >= 1) && (c->flux_v_err >= 0)
+                       && (c->flux_r_err >= 0);
+    return window && model;
+}
+
 /* public interface; qfoc_params_is_valid() (params.h) calls it for the table's drive field */
 bool qfoc_drive_cfg_is_valid(const qfoc_drive_cfg_t *c)
 {
@@ -85,5 +101,6 @@ bool qfoc_drive_cfg_is_valid(const qfoc_drive_cfg_t *c)
     const bool start = qfoc_drive_cfg_start_ok(c);
     const bool prot = qfoc_drive_cfg_prot_ok(c);
     const bool feat = qfoc_drive_cfg_feat_ok(c);
-    return speed && start && prot && feat;
+    const bool derate = qfoc_drive_cfg_derate_ok(c);
+    return speed && start && prot && feat && derate;
 }

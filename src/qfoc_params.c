@@ -221,6 +221,17 @@ static uint32_t qfoc_crc_drive_feat(uint32_t crc, const qfoc_drive_cfg_t *d)
     return qfoc_crc_2x16(c, d->can_id_a, d->can_id_b);
 }
 
+/* drive configuration, version 3: mtpa_speed .. flux_r_err */
+/*@ requires valid_d: \valid_read(d);
+    assigns \nothing; */
+static uint32_t qfoc_crc_drive_v3(uint32_t crc, const qfoc_drive_cfg_t *d)
+{
+    uint32_t c = qfoc_crc_2x16(crc, qfoc_bits16(d->mtpa_speed), qfoc_bits16(d->t_ipm_derate));
+    c = qfoc_crc_2x16(c, qfoc_bits16(d->t_pcb_derate), d->rpm_derate);
+    c = qfoc_crc_2x16(c, qfoc_bits16(d->flux_band), qfoc_bits16(d->flux_v_err));
+    return qfoc_crc_u16(c, qfoc_bits16(d->flux_r_err));
+}
+
 /* public interface, also called by qfoc_params_check (DEV-002) */
 /* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
 uint32_t qfoc_params_crc(const qfoc_param_table_t *t)
@@ -239,6 +250,7 @@ uint32_t qfoc_params_crc(const qfoc_param_table_t *t)
     c = qfoc_crc_drive_run(c, &t->drive);
     c = qfoc_crc_drive_prot(c, &t->drive);
     c = qfoc_crc_drive_feat(c, &t->drive);
+    c = qfoc_crc_drive_v3(c, &t->drive);
     return c ^ QFOC_CRC32_XOROUT;
 }
 
@@ -277,7 +289,8 @@ static bool qfoc_params_limits_ok(const qfoc_param_table_t *t)
     const int32_t i_max = (int32_t)t->i_max;
     const bool motor = (t->alpha_vdc >= 1) && (t->ld >= 0) && (t->lq >= 0) && (t->psi_f >= 0);
     const bool limits = (i_max >= 1) && (i_max <= (int32_t)t->i_trip) && (t->speed_max >= 1)
-                        && (t->vdc_uv >= 1) && (t->vdc_uv < t->vdc_ov) && (t->v_max >= 1);
+                        && (t->vdc_uv >= 1) && (t->vdc_uv < t->vdc_ov)
+           && (t->vdc_ov < QFOC_PARAMS_VDC_READ_MAX) && (t->v_max >= 1);
     const bool refs = ((int32_t)t->pi_speed.out_min >= -i_max)
                       && ((int32_t)t->pi_speed.out_max <= i_max)
                       && ((int32_t)t->pi_fw.out_min >= -i_max)
@@ -370,24 +383,25 @@ int32_t qfoc_params_scan_step(uint32_t *crc, const qfoc_param_table_t *t, uint8_
     int32_t status = QFOC_PARAMS_BUSY;
     uint32_t c = *crc;
 
-    /* the serialisation of qfoc_params_crc() in four parts of 46 to 56 bytes */
+    /* the serialisation of qfoc_params_crc() in four parts of 44 to 58 bytes */
     if (step == 0u) {
         c = qfoc_crc_head(QFOC_CRC32_INIT, t);
         c = qfoc_crc_svpwm(c, &t->svpwm);
         c = qfoc_crc_pi(c, &t->pi_id);
         c = qfoc_crc_pi(c, &t->pi_iq);
-    } else if (step == 1u) {
         c = qfoc_crc_pi(c, &t->pi_speed);
+    } else if (step == 1u) {
         c = qfoc_crc_pi(c, &t->pi_fw);
         c = qfoc_crc_flux(c, &t->flux);
         c = qfoc_crc_pll(c, &t->pll);
-    } else if (step == 2u) {
         c = qfoc_crc_limits(c, t);
+    } else if (step == 2u) {
         c = qfoc_crc_drive_start(c, &t->drive);
         c = qfoc_crc_drive_run(c, &t->drive);
-    } else if (step == 3u) {
         c = qfoc_crc_drive_prot(c, &t->drive);
+    } else if (step == 3u) {
         c = qfoc_crc_drive_feat(c, &t->drive);
+        c = qfoc_crc_drive_v3(c, &t->drive);
     } else if (step == 4u) {
         status = qfoc_params_verdict(t, c ^ QFOC_CRC32_XOROUT);
     } else {

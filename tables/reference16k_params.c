@@ -11,7 +11,7 @@
 
 const qfoc_param_table_t qfoc_params_reference16k = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 2u, /* QFOC_PARAMS_VERSION */
+    .version = 3u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 16000u, /* f_pwm = 16000 Hz, T_s = 62.5 us */
     .v_base_mv = 500000u, /* V_base = 500 V */
     .i_base_ma = 40000u, /* I_base = 40 A */
@@ -129,7 +129,14 @@ const qfoc_param_table_t qfoc_params_reference16k = {
         .lin_id_cmd = 0x10u, /* LIN command frame (drive.lin_id_cmd, default) */
         .lin_id_status = 0x11u, /* LIN status frame (drive.lin_id_status, default) */
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
-        .can_id_b = 0x311u /* CAN status, odd frames (drive.can_id_b, default) */
+        .can_id_b = 0x311u, /* CAN status, odd frames (drive.can_id_b, default) */
+        .mtpa_speed = 3277, /* 1000 rpm x n_p / 60 / f_base = 3 / 60 / 500 x 32768, at most 32767 (drive.mtpa_speed_rpm, default) */
+        .t_ipm_derate = 1000, /* 100 degC x 10 (drive.t_ipm_derate_degc, default) */
+        .t_pcb_derate = 900, /* 90 degC x 10 (drive.t_pcb_derate_degc, default) */
+        .rpm_derate = 1000u, /* 1000 rpm (drive.derate_rpm, default) */
+        .flux_band = 9830, /* 0.3 = 0.3 (drive.flux_band, default); stored 0.299988, error -0.00 % */
+        .flux_v_err = 561, /* 0.0171123 = 8.55617 V / V_base 500 V (drive.flux_v_err_v, default); stored 0.0171204, error +0.05 % */
+        .flux_r_err = 9830 /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
     },
-    .crc = 0xB8BE713Bu /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x797186B9u /* CRC-32/ISO-HDLC of every field above */
 };

@@ -53,8 +53,8 @@ static const fdesc_t fields[] = {
     FD(ho_dwell_ms, T_U16, 1, 60000),
     FD(ol_timeout_ms, T_U16, 1, 60000),
     FD(cl_hold_ms, T_U16, 0, 60000),
-    FD(t_ipm_max, T_I16, -400, 2000),
-    FD(t_pcb_max, T_I16, -400, 2000),
+    FD(t_ipm_max, T_I16, -399, 2000),   /* above t_ipm_derate >= -400 */
+    FD(t_pcb_max, T_I16, -399, 2000),
     FD(vdc_ms, T_U16, 1, 10),
     FD(temp_ms, T_U16, 1, 10),
     FD(stall_err, T_I16, 1, 32767),
@@ -79,6 +79,13 @@ static const fdesc_t fields[] = {
     FD(lin_id_status, T_U8, 0, 0x3B),
     FD(can_id_a, T_U16, 0, 0x7FF),
     FD(can_id_b, T_U16, 0, 0x7FF),
+    FD(mtpa_speed, T_I16, 0, 32767),
+    FD(t_ipm_derate, T_I16, -400, 1999),  /* below t_ipm_max <= 2000 */
+    FD(t_pcb_derate, T_I16, -400, 1999),
+    FD(rpm_derate, T_U16, 1, 65535),
+    FD(flux_band, T_I16, 1, 32767),
+    FD(flux_v_err, T_I16, 0, 32767),
+    FD(flux_r_err, T_I16, 0, 32767),
 };
 #define NFIELDS (sizeof fields / sizeof fields[0])
 
@@ -139,7 +146,9 @@ static bool ref_valid(const qfoc_drive_cfg_t *c)
         }
     }
     return ok && (c->rpm_min <= c->rpm_max) && (c->tc_speed_min <= c->tc_speed_max)
-           && (c->lin_id_status != c->lin_id_cmd);
+           && (c->lin_id_status != c->lin_id_cmd) && (c->t_ipm_derate < c->t_ipm_max)
+           && (c->t_pcb_derate < c->t_pcb_max) && (c->rpm_min <= c->rpm_derate)
+           && (c->rpm_derate <= c->rpm_max);
 }
 
 /* a configuration in the middle of every range (the tool's defaults for the reference
@@ -191,6 +200,13 @@ static void base_cfg(qfoc_drive_cfg_t *c)
     c->lin_id_status = 0x11u;
     c->can_id_a = 0x310u;
     c->can_id_b = 0x311u;
+    c->mtpa_speed = 3277;
+    c->t_ipm_derate = 1000;
+    c->t_pcb_derate = 900;
+    c->rpm_derate = 2000u;
+    c->flux_band = 9830;
+    c->flux_v_err = 394;
+    c->flux_r_err = 9830;
 }
 
 /* the partner fields set so that field f's own bound is the only one that matters */
@@ -198,8 +214,21 @@ static void widen_partners(qfoc_drive_cfg_t *c, const fdesc_t *f)
 {
     if (strcmp(f->name, "rpm_min") == 0) {
         c->rpm_max = 65535u;
+        c->rpm_derate = 65535u;
     } else if (strcmp(f->name, "rpm_max") == 0) {
         c->rpm_min = 1u;
+        c->rpm_derate = 1u;
+    } else if (strcmp(f->name, "rpm_derate") == 0) {
+        c->rpm_min = 1u;
+        c->rpm_max = 65535u;
+    } else if (strcmp(f->name, "t_ipm_max") == 0) {
+        c->t_ipm_derate = -400;
+    } else if (strcmp(f->name, "t_pcb_max") == 0) {
+        c->t_pcb_derate = -400;
+    } else if (strcmp(f->name, "t_ipm_derate") == 0) {
+        c->t_ipm_max = 2000;
+    } else if (strcmp(f->name, "t_pcb_derate") == 0) {
+        c->t_pcb_max = 2000;
     } else if (strcmp(f->name, "tc_speed_min") == 0) {
         c->tc_speed_max = 32767;
     } else if (strcmp(f->name, "tc_speed_max") == 0) {
@@ -225,7 +254,7 @@ static void check_value(const fdesc_t *f, int32_t v, bool expect)
     assert_int_equal(ref_valid(&c), expect);
 }
 
-/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004: the base configuration is
+/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005: the base configuration is
    valid. */
 static void test_dcfg_base_valid(void **state)
 {
@@ -236,7 +265,7 @@ static void test_dcfg_base_valid(void **state)
     assert_true(ref_valid(&c));
 }
 
-/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004: every field: its lowest and
+/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005: every field: its lowest and
    highest value accepted, one below the lowest and one above the highest refused (where
    the type holds them), and the type's extremes refused when outside the range. */
 static void test_dcfg_field_boundaries(void **state)
@@ -264,7 +293,7 @@ static void test_dcfg_field_boundaries(void **state)
                   (unsigned)NFIELDS);
 }
 
-/* REQ-DCFG-001, REQ-DCFG-004: the relations between fields: rpm_min <= rpm_max,
+/* REQ-DCFG-001, REQ-DCFG-004, REQ-DCFG-005: the relations between fields: rpm_min <= rpm_max,
    tc_speed_min <= tc_speed_max, lin_id_status != lin_id_cmd; equality accepted where
    allowed, one past refused. */
 static void test_dcfg_relations(void **state)
@@ -274,6 +303,7 @@ static void test_dcfg_relations(void **state)
     base_cfg(&c);
     c.rpm_min = 4000u;
     c.rpm_max = 4000u;
+    c.rpm_derate = 4000u;
     assert_true(qfoc_drive_cfg_is_valid(&c));
     c.rpm_min = 4001u;
     assert_false(qfoc_drive_cfg_is_valid(&c));
@@ -300,9 +330,31 @@ static void test_dcfg_relations(void **state)
     c.lin_id_cmd = 0x3Bu;
     c.lin_id_status = 0u;
     assert_true(qfoc_drive_cfg_is_valid(&c));
+
+    /* REQ-DCFG-005: a derating window must start below its trip; the derated speed lies in
+       [rpm_min, rpm_max] */
+    base_cfg(&c);
+    c.t_ipm_derate = (int16_t)(c.t_ipm_max - 1);
+    assert_true(qfoc_drive_cfg_is_valid(&c));
+    c.t_ipm_derate = c.t_ipm_max;
+    assert_false(qfoc_drive_cfg_is_valid(&c));
+    base_cfg(&c);
+    c.t_pcb_derate = (int16_t)(c.t_pcb_max - 1);
+    assert_true(qfoc_drive_cfg_is_valid(&c));
+    c.t_pcb_derate = (int16_t)(c.t_pcb_max + 1);
+    assert_false(qfoc_drive_cfg_is_valid(&c));
+    base_cfg(&c);
+    c.rpm_derate = c.rpm_min;
+    assert_true(qfoc_drive_cfg_is_valid(&c));
+    c.rpm_derate = (uint16_t)(c.rpm_min - 1u);
+    assert_false(qfoc_drive_cfg_is_valid(&c));
+    c.rpm_derate = c.rpm_max;
+    assert_true(qfoc_drive_cfg_is_valid(&c));
+    c.rpm_derate = (uint16_t)(c.rpm_max + 1u);
+    assert_false(qfoc_drive_cfg_is_valid(&c));
 }
 
-/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004: random configurations against
+/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005: random configurations against
    the reference check: each field inside its range with probability 0.98, else any bit
    pattern (about half of the configurations are valid), and wholly random bit patterns. */
 static void test_dcfg_random_vs_reference(void **state)
@@ -343,6 +395,19 @@ static void test_dcfg_random_vs_reference(void **state)
                 const int16_t t = c.tc_speed_min;
                 c.tc_speed_min = c.tc_speed_max;
                 c.tc_speed_max = t;
+            }
+            if ((lcg_next() % 8u) != 0u && c.t_ipm_derate >= c.t_ipm_max) {
+                const int16_t t = c.t_ipm_derate;
+                c.t_ipm_derate = (int16_t)(c.t_ipm_max - 1);
+                c.t_ipm_max = (int16_t)((t < 2000) ? (t + 1) : 2000);
+            }
+            if ((lcg_next() % 8u) != 0u && c.t_pcb_derate >= c.t_pcb_max) {
+                const int16_t t = c.t_pcb_derate;
+                c.t_pcb_derate = (int16_t)(c.t_pcb_max - 1);
+                c.t_pcb_max = (int16_t)((t < 2000) ? (t + 1) : 2000);
+            }
+            if ((lcg_next() % 8u) != 0u && c.rpm_min <= c.rpm_max) {
+                c.rpm_derate = (uint16_t)rand_range(c.rpm_min, c.rpm_max);
             }
         }
         expect = ref_valid(&c);

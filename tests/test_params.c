@@ -7,7 +7,7 @@
  * serialisation written here from params.h's description, and against the published
  * check value 0xCBF43926 of "123456789".  The generated tables must pass the library's
  * check, agree with the estimator design of sim/estim.c, and every corruption must be
- * refused with the right status.  Layout version 2: the drive configuration
+ * refused with the right status.  Layout version 3: the drive configuration
  * (drive_cfg.h) is serialised after v_max, and its cross-field conditions with the
  * table's limits (params.h) are tested at their boundaries.
  */
@@ -122,6 +122,13 @@ static void put_drive(ser_t *s, const qfoc_drive_cfg_t *d)
     put(s, d->lin_id_status, 1);
     put(s, d->can_id_a, 2);
     put(s, d->can_id_b, 2);
+    put(s, (uint16_t)d->mtpa_speed, 2);
+    put(s, (uint16_t)d->t_ipm_derate, 2);
+    put(s, (uint16_t)d->t_pcb_derate, 2);
+    put(s, d->rpm_derate, 2);
+    put(s, (uint16_t)d->flux_band, 2);
+    put(s, (uint16_t)d->flux_v_err, 2);
+    put(s, (uint16_t)d->flux_r_err, 2);
 }
 
 /* params.h: every field before crc, declaration order, little-endian, own width */
@@ -164,7 +171,7 @@ static uint32_t table_crc_ref(const qfoc_param_table_t *t)
     put(&s, (uint16_t)t->vdc_ov, 2);
     put(&s, (uint16_t)t->v_max, 2);
     put_drive(&s, &t->drive);
-    assert_int_equal(s.n, 199u);   /* params.h: 115 bytes up to v_max, 84 of drive */
+    assert_int_equal(s.n, 213u);   /* params.h: 115 bytes up to v_max, 98 of drive */
     return crc_ref(s.b, s.n);
 }
 
@@ -271,6 +278,8 @@ static const tfield_t tfields[] = {
     TF(drive.fw_alpha), TF(drive.tc_gain), TF(drive.tc_amp_max), TF(drive.tc_speed_min),
     TF(drive.tc_speed_max), TF(drive.para_speed), TF(drive.ld_hs), TF(drive.lq_hs),
     TF(drive.lin_id_cmd), TF(drive.lin_id_status), TF(drive.can_id_a), TF(drive.can_id_b),
+    TF(drive.mtpa_speed), TF(drive.t_ipm_derate), TF(drive.t_pcb_derate), TF(drive.rpm_derate),
+    TF(drive.flux_band), TF(drive.flux_v_err), TF(drive.flux_r_err),
     TF(crc),
 };
 #define NTFIELDS (sizeof tfields / sizeof tfields[0])
@@ -310,7 +319,7 @@ static void test_par_002_bit_flips_refused(void **state)
             flips++;
         }
     }
-    assert_int_equal(bytes, 199u);   /* the list covers the whole serialisation */
+    assert_int_equal(bytes, 213u);   /* the list covers the whole serialisation */
     print_message("params: %u single-bit flips over %u fields refused\n", (unsigned)flips,
                   (unsigned)NTFIELDS);
 }
@@ -488,9 +497,17 @@ static void test_par_007_cross_field(void **state)
     EXPECT_RANGE(t.drive.of_speed = (int16_t)(t.speed_max + 1), false);
     EXPECT_RANGE((t.speed_max = 32767, t.drive.of_speed = 32767), true);
     EXPECT_RANGE((t.speed_max = 1, t.drive.of_speed = 1, t.drive.rpm_min = 1u,
-                  t.drive.rpm_max = 1u, t.drive.k_rpm = 6143u), true);   /* (6143+2048)>>12 = 1 */
+                  t.drive.rpm_max = 1u, t.drive.rpm_derate = 1u, t.drive.k_rpm = 6143u),
+                 true);   /* (6143+2048)>>12 = 1 */
     EXPECT_RANGE((t.speed_max = 1, t.drive.of_speed = 1, t.drive.rpm_min = 1u,
-                  t.drive.rpm_max = 1u, t.drive.k_rpm = 6144u), false);  /* = 2 */
+                  t.drive.rpm_max = 1u, t.drive.rpm_derate = 1u, t.drive.k_rpm = 6144u),
+                 false);  /* = 2 */
+    /* REQ-PAR-003: an over-voltage threshold the bus reading can reach (at most 4095 codes
+       x 8 = 32760), and one it cannot (OV disabled) */
+    EXPECT_RANGE(t.vdc_ov = (int16_t)(QFOC_PARAMS_VDC_READ_MAX - 1), true);
+    EXPECT_RANGE(t.vdc_ov = QFOC_PARAMS_VDC_READ_MAX, false);
+    EXPECT_RANGE(t.vdc_ov = 32767, false);
+    assert_int_equal(QFOC_PARAMS_VDC_READ_MAX, 4095 * 8);
     /* rpm_max: the largest rpm whose converted speed is within speed_max, and one more */
     t = qfoc_params_reference;
     rpm = 65535u;
@@ -514,6 +531,7 @@ static void test_par_007_cross_field(void **state)
         t.drive.k_rpm = (uint16_t)rand_range(1, 65535);
         t.drive.rpm_max = (uint16_t)rand_range(1, 65535);
         t.drive.rpm_min = 1u;
+        t.drive.rpm_derate = 1u;
         t.speed_max = (int16_t)rand_range(t.drive.of_speed, 32767);
         assert_int_equal(qfoc_params_is_valid(&t),
                          rpm_to_q15(t.drive.rpm_max, t.drive.k_rpm) <= t.speed_max);
@@ -607,12 +625,16 @@ static void test_par_001_identity(void **state)
     t.magic = 0u;
     t.crc ^= 1u;
     assert_int_equal(qfoc_params_check(&t), QFOC_PARAMS_ERR_ID);
-    /* REQ-PAR-006: a layout-1 table (version 1, its CRC correct) is foreign */
+    /* REQ-PAR-006: a layout-1 or layout-2 table (its CRC correct) is foreign */
     t = qfoc_params_reference;
     t.version = 1u;
     reseal(&t);
     assert_int_equal(qfoc_params_check(&t), QFOC_PARAMS_ERR_ID);
-    assert_int_equal(QFOC_PARAMS_VERSION, 2u);
+    t = qfoc_params_reference;
+    t.version = 2u;
+    reseal(&t);
+    assert_int_equal(qfoc_params_check(&t), QFOC_PARAMS_ERR_ID);
+    assert_int_equal(QFOC_PARAMS_VERSION, 3u);
 }
 
 /* REQ-PAR-004, REQ-TUNE-003: the generated reference table carries the estimator

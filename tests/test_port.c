@@ -1038,7 +1038,8 @@ static void test_port_015_nvic(void **state)
    through the port's interrupts only (samples in ADC result registers, command frames
    byte by byte through the UART interrupt, status frames and CAN frames taken from the
    registers); twin B is called directly with the same samples, temperatures and frames.
-   For 400 ms (PRECHARGE, calibration, STOP, RUN/ALIGN) every PWM period's compare
+   For 400 ms (PRECHARGE, calibration, STOP, RUN/ALIGN, the samples in ALIGN carrying the
+   alignment current of a motor at rest) every PWM period's compare
    registers and output mask equal B's output, every status frame on the UART equals
    B's, every CAN frame in MB0 equals B's, and the states agree at every tick. */
 static void test_port_016_017_isr_twin(void **state)
@@ -1067,9 +1068,13 @@ static void test_port_016_017_isr_twin(void **state)
         for (p = 0u; p < per_ms; p++) {
             qfoc_adc_t a;
             qfoc_pwm_t pb;
+            /* in ALIGN a motor at rest carries the d reference on phase u (angle 0):
+               i_u = i_d, i_v = -i_d / 2, 16 Q15 counts per code */
+            const int32_t ia = ((db.s.sm.state == QFOC_STATE_RUN) &&
+                                (db.s.sm.sub == QFOC_SUB_ALIGN)) ? ((int32_t)db.s.id_ref / 16) : 0;
             lcg = (lcg * 1664525u) + 1013904223u;
-            a.iu = (uint16_t)(2046u + ((lcg >> 16) % 5u));
-            a.iv = (uint16_t)(2046u + ((lcg >> 20) % 5u));
+            a.iu = (uint16_t)((int32_t)(2046u + ((lcg >> 16) % 5u)) + ia);
+            a.iv = (uint16_t)((int32_t)(2046u + ((lcg >> 20) % 5u)) - (ia / 2));
             a.vdc = (uint16_t)(2619u + ((lcg >> 24) % 5u));
             set_samples(a.iu, a.iv, a.vdc, 2048u, 2100u);
             qfoc_s32k_ftm_isr();

@@ -242,6 +242,7 @@ typedef struct {
     qfoc_debounce_t db_stall;
     qfoc_debounce_t db_flux;  /**< the fast flux plausibility check (REQ-DRV-023) */
     qfoc_debounce_t db_phase;
+    qfoc_debounce_t db_align; /**< ALIGN without current (REQ-DRV-025) */
     qfoc_debounce_t db_ho;    /**< handover condition dwell */
     uint32_t off_sum_u;       /**< offset calibration sums */
     uint32_t off_sum_v;
@@ -267,6 +268,8 @@ typedef struct {
     uint32_t scan_crc;        /**< CRC register of the table check in progress */
     bool calib_done;          /**< offsets calibrated in range */
     bool hs;                  /**< request: high-speed inductances (motorParaChange) */
+    bool derated;             /**< a temperature holds the speed limit below rpm_max
+                                   (REQ-DRV-024) */
     uint16_t ref_guard;       /**< guard word of speed_target .. iq_lim (REQ-DRV-022) */
     uint32_t run_ms;          /**< time in RUN, ms, saturating (Motor_Run_Time) */
     qfoc_status_t status;     /**< last status (LIN and CAN) */
@@ -566,6 +569,19 @@ uint16_t qfoc_drive_target_rpm(const qfoc_drive_t *d);
   ensures result: \result == d->s.cmd.power_on;
 */
 bool qfoc_drive_run_requested(const qfoc_drive_t *d);
+
+/**
+ * @brief Thermal derating in effect: after the last tick, the IPM or the PCB temperature
+ *        held the speed limit below rpm_max (it falls linearly from rpm_max at the
+ *        derating temperature to rpm_derate at the trip; false before the first tick).
+ * Requirements: REQ-DRV-024.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->s.derated;
+*/
+bool qfoc_drive_derated(const qfoc_drive_t *d);
 
 /**
  * @brief Estimated electrical rotor angle, 65536 per electrical turn (the fast step's

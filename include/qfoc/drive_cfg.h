@@ -2,7 +2,8 @@
  * @file drive_cfg.h
  * @brief Drive configuration: the start-up sequence, protection, command-link and
  *        feature settings of the drive layer, stored in the parameter table (params.h,
- *        field `drive`, layout version 2).
+ *        field `drive`, layout version 3: version 2 and the seven fields from mtpa_speed
+ *        on).
  *
  * Every number is an integer the tuning tool (tools/tune/qfoc_tune.py) derives from the
  * motor file (section [drive] overrides the documented defaults).  Unless a field says
@@ -17,7 +18,7 @@
  * table (currents within i_max, speeds within speed_max) are checked by
  * qfoc_params_is_valid() (params.h).
  *
- * Requirements: REQ-DCFG-001 .. REQ-DCFG-004 (specs/requirements/drive_cfg.md).
+ * Requirements: REQ-DCFG-001 .. REQ-DCFG-005 (specs/requirements/drive_cfg.md).
  */
 #ifndef QFOC_DRIVE_CFG_H
 #define QFOC_DRIVE_CFG_H
@@ -151,6 +152,28 @@ typedef struct {
     uint16_t can_id_a;
     /** CAN identifier of the status frame, odd frames, 11 bits: 0 .. 0x7FF. */
     uint16_t can_id_b;
+    /** MTPA (iref.h) acts while |filtered speed estimate| exceeds this, Q15 of w_base,
+        0 .. 32767 (version 3); the tool's default is of_speed (the estimate's angle is
+        trusted above the handover); a value at or above speed_max turns MTPA off
+        (i_d = 0 below field weakening). */
+    qfoc_q15_t mtpa_speed;
+    /** Derating (version 3): above this IPM temperature the speed limit falls linearly from
+        rpm_max to rpm_derate at t_ipm_max, 0.1 degC, -400 .. 2000, below t_ipm_max. */
+    int16_t t_ipm_derate;
+    /** ... and above this PCB temperature to rpm_derate at t_pcb_max, 0.1 degC,
+        -400 .. 2000, below t_pcb_max; the lower of the two limits applies. */
+    int16_t t_pcb_derate;
+    /** ... the speed limit at the trip temperature, rpm mechanical, rpm_min .. rpm_max. */
+    uint16_t rpm_derate;
+    /** Fast flux check (version 3): the band's part proportional to the expected flux,
+        Q15 fraction, 1 .. 32767 (magnet temperature and inductance errors) ... */
+    qfoc_q15_t flux_band;
+    /** ... plus the estimator's voltage error divided by the speed: the voltage error bound
+        (the dead-time voltage the compensation may miss, sensing), Q15 of V_base,
+        0 .. 32767 ... */
+    qfoc_q15_t flux_v_err;
+    /** ... and the resistance error, a Q15 fraction of R, 0 .. 32767, times R |i|. */
+    qfoc_q15_t flux_r_err;
 } qfoc_drive_cfg_t;
 
 #ifdef __FRAMAC__
@@ -174,14 +197,18 @@ typedef struct {
  *         phase_ratio >= 0; stall_ms, phase_ms, link_timeout_ms, clear_ms in 1 .. 60000;
  *         feature group: fw_level, fw_alpha, para_speed >= 1; tc_gain, tc_amp_max,
  *         ld_hs, lq_hs >= 0; 0 <= tc_speed_min <= tc_speed_max;
- *         lin_id_cmd, lin_id_status <= 0x3B and different; can_id_a, can_id_b <= 0x7FF.
+ *         lin_id_cmd, lin_id_status <= 0x3B and different; can_id_a, can_id_b <= 0x7FF;
+ *         derating and estimator group: mtpa_speed, flux_v_err, flux_r_err >= 0;
+ *         flux_band >= 1; t_ipm_derate, t_pcb_derate in -400 .. 2000 and below t_ipm_max,
+ *         t_pcb_max (a derating window ending above its trip is refused);
+ *         rpm_min <= rpm_derate <= rpm_max.
  *         A field of type qfoc_q15_t / int16_t "<= 32767" and uint16_t "<= 65535" bound
  *         only by the type is not compared.
  *
  * Scaling and overflow: comparisons of each field, widened to its own essential type;
  * no arithmetic.
  *
- * Requirements: REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004.
+ * Requirements: REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005.
  */
 /*@
   requires valid_c: \valid_read(c);

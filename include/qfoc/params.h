@@ -8,13 +8,15 @@
  * application checks it with qfoc_params_check() and copies it to RAM
  * (formerly ParaRam) only when it is intact and every field is in range.
  *
- * Layout (version QFOC_PARAMS_VERSION = 2): the fields below, in this order:
+ * Layout (version QFOC_PARAMS_VERSION = 3): the fields below, in this order:
  * identity (magic, version), the PWM frequency and the record of the bases, the
  * parameter blocks of the control modules (svpwm, four PI controllers, flux observer,
  * PLL), the motor data and limits (alpha_vdc .. v_max), the drive configuration
  * `drive` (drive_cfg.h: start-up sequence, protection, command link, features; new
- * in version 2), and the CRC last.  Version 1 had no `drive` field; a version 1
- * table is refused as foreign (QFOC_PARAMS_ERR_ID), never read with this layout.
+ * in version 2; MTPA speed, derating and the flux check's error model appended in
+ * version 3), and the CRC last.  Version 1 had no `drive` field and version 2 not the
+ * seven fields from drive.mtpa_speed on; a table of another version is refused as
+ * foreign (QFOC_PARAMS_ERR_ID), never read with this layout.
  * Scalings are those of specs/scaling.md: voltages Q15 of V_base, currents Q15 of
  * I_base, speeds Q15 of w_base = 2 pi f_base (electrical), inductances Q12 of
  * L_base = V_base / (I_base w_base), fluxes Q15 of psi_base = V_base / w_base.
@@ -26,8 +28,8 @@
  * integer little-endian in its own width (uint8_t 1 byte, int16_t / uint16_t 2
  * bytes, uint32_t 4 bytes).  The serialisation does not depend on the compiler's
  * structure padding, so the tool computes the same CRC in any language.  Version 2:
- * 115 bytes up to v_max, then the 44 fields of `drive` in their declaration order
- * (drive_cfg.h: 4 one-byte and 40 two-byte fields, 84 bytes): 199 bytes in all.
+ * 115 bytes up to v_max, then the 51 fields of `drive` in their declaration order
+ * (drive_cfg.h: 4 one-byte and 47 two-byte fields, 98 bytes): 213 bytes in all.
  *
  * Start-up (qfoc_params_load()): the table is checked in this order, and the
  * first failure is the status returned:
@@ -56,7 +58,7 @@
 /** Table identifier: the ASCII bytes "QFOC" read as a little-endian uint32_t. */
 #define QFOC_PARAMS_MAGIC ((uint32_t)0x434F4651u)
 /** Layout version of qfoc_param_table_t. */
-#define QFOC_PARAMS_VERSION ((uint16_t)2u)
+#define QFOC_PARAMS_VERSION ((uint16_t)3u)
 
 /** qfoc_params_check() / qfoc_params_load(): the table is intact and in range. */
 #define QFOC_PARAMS_OK ((int32_t)0)
@@ -66,6 +68,11 @@
 #define QFOC_PARAMS_ERR_CRC ((int32_t)-2)
 /** A field is outside its range (qfoc_params_is_valid() is false). */
 #define QFOC_PARAMS_ERR_RANGE ((int32_t)-3)
+
+/** The largest DC-bus reading of the drive: a 12-bit code times 8 (Q15 of V_base:
+    V_base is the sensor's full scale), 4095 x 8 = 32760.  An over-voltage threshold at or
+    above it never trips: the table is refused (REQ-PAR-003). */
+#define QFOC_PARAMS_VDC_READ_MAX ((qfoc_q15_t)32760)
 
 /** Bounds of f_pwm_hz. */
 #define QFOC_PARAMS_F_PWM_MIN ((uint16_t)1000u)
@@ -94,12 +101,13 @@ typedef struct {
     qfoc_q15_t i_trip;           /**< phase over-current trip, Q15 of I_base, i_max .. 32767 */
     qfoc_q15_t speed_max;        /**< largest speed command, Q15 of w_base, 1 .. 32767 */
     qfoc_q15_t vdc_uv;           /**< DC-bus under-voltage threshold, Q15 of V_base, >= 1 */
-    qfoc_q15_t vdc_ov;           /**< DC-bus over-voltage threshold, Q15 of V_base, > vdc_uv */
+    qfoc_q15_t vdc_ov;           /**< DC-bus over-voltage threshold, Q15 of V_base, > vdc_uv and
+                                      below QFOC_PARAMS_VDC_READ_MAX */
     qfoc_q15_t v_max;            /**< field-weakening reference of the loop design, a fraction
                                       of V_dc / sqrt(3), Q15, 1 .. 32767 (the tuning tool's
                                       default for drive.fw_level, which the drive uses; the
                                       voltage vector itself is limited to V_dc / sqrt(3)) */
-    qfoc_drive_cfg_t drive;      /**< drive configuration (drive_cfg.h), version 2; with
+    qfoc_drive_cfg_t drive;      /**< drive configuration (drive_cfg.h), version 3; with
                                       the table: i_align, i_start, tc_amp_max <= i_max;
                                       of_speed <= speed_max;
                                       (rpm_max k_rpm + 2048) >> 12 <= speed_max */
@@ -155,7 +163,8 @@ uint32_t qfoc_params_crc(const qfoc_param_table_t *t);
  *         qfoc_svpwm_cfg_is_valid(svpwm); qfoc_pi_params_is_valid() for the four PI
  *         blocks; qfoc_flux_params_is_valid(flux); qfoc_pll_params_is_valid(pll);
  *         alpha_vdc in [1, 32767]; ld, lq, psi_f in [0, 32767]; 1 <= i_max <= i_trip;
- *         speed_max >= 1; 1 <= vdc_uv < vdc_ov; v_max >= 1; the speed PI output
+ *         speed_max >= 1; 1 <= vdc_uv < vdc_ov < QFOC_PARAMS_VDC_READ_MAX (an
+ *         over-voltage threshold the bus reading can reach); v_max >= 1; the speed PI output
  *         (the q-current reference) within [-i_max, i_max]; the field-weakening PI
  *         output (a d-current reference) within [-i_max, 0];
  *         qfoc_drive_cfg_is_valid(drive); and the drive settings within the table's

@@ -75,7 +75,8 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 TOOL_PATH = "tools/tune/qfoc_tune.py"
 Q15_MAX = 32767
 PARAMS_MAGIC = 0x434F4651          # "QFOC" little-endian (params.h QFOC_PARAMS_MAGIC)
-PARAMS_VERSION = 2                 # params.h QFOC_PARAMS_VERSION (2: drive configuration)
+PARAMS_VERSION = 3                 # params.h QFOC_PARAMS_VERSION (3: MTPA speed, derating,
+                                   # the flux check's error model)
 FLUX_STATE_MAX_Q15 = 524287        # (2^31 - 1) / 4096: flux state Q4.27 range in Q15 counts
 PM_MIN_DEG = 45.0                  # required phase margin of every discrete loop
 COARSE_GAIN_PCT = 1.0              # rounding errors above this are listed as warnings
@@ -152,6 +153,10 @@ def _k(section: str, key: str, kind: str, unit: str, rng: tuple, default: object
 
 RULE_FBASE = ("specs/scaling.md section 2: f_base >= 1.25 x the highest electrical frequency "
               "(field weakening included)")
+RULE_DERATE = ("'derating': the derating window of each temperature starts below its trip "
+               "(drive.t_ipm_derate_degc < drive.t_ipm_max_degc, drive.t_pcb_derate_degc < "
+               "drive.t_pcb_max_degc) and the derated speed lies in drive.rpm_min .. "
+               "drive.rpm_max")
 RULE_VDC_READ = (f"a DC-bus threshold must lie within what the bus sensor reads: at least one "
                  f"code and below the largest reading, {ADC_CODES - 1} codes of the "
                  f"{ADC_BITS}-bit ADC with V_base = {ADC_CODES} codes (the Q15 reading is "
@@ -398,6 +403,31 @@ SCHEMA: tuple = (
        "CAN status identifier, even frames", "drive.can_id_a"),
     _k("drive", "can_id_b", "int", "", (0, 0x7FF, "[]"), 0x311,
        "CAN status identifier, odd frames", "drive.can_id_b"),
+    _k("drive", "mtpa_speed_rpm", "num", "rpm", NONNEG, "drive.of_speed_rpm",
+       "MTPA (maximum torque per ampere, salient motors) above this speed; at or above "
+       "limits.speed_max_rpm MTPA is off (i_d = 0 below field weakening)", "drive.mtpa_speed"),
+    _k("drive", "t_ipm_derate_degc", "num", "degC", (-40, 200, "[)"),
+       "drive.t_ipm_max_degc - 10",
+       "derating: above this IPM temperature the speed limit falls linearly to "
+       "drive.derate_rpm at drive.t_ipm_max_degc", "drive.t_ipm_derate; rule 'derating'"),
+    _k("drive", "t_pcb_derate_degc", "num", "degC", (-40, 200, "[)"),
+       "drive.t_pcb_max_degc - 10",
+       "derating: the same for the PCB temperature, to drive.t_pcb_max_degc",
+       "drive.t_pcb_derate; rule 'derating'"),
+    _k("drive", "derate_rpm", "num", "rpm", POS, "drive.rpm_min",
+       "derating: the speed limit at the over-temperature trip",
+       "drive.rpm_derate; rule 'derating'"),
+    _k("drive", "flux_band", "num", "", (0, 1, "(]"), 0.3,
+       "fast flux check: the band's fraction of the expected flux (magnet temperature, "
+       "inductance errors)", "drive.flux_band"),
+    _k("drive", "flux_v_err_v", "num", "V", NONNEG,
+       "4 / pi x inverter.dead_time_s x inverter.f_pwm_hz x inverter.vdc_max_v",
+       "fast flux check: the estimator's voltage error bound, divided by the speed in the band "
+       "(default: the fundamental of a dead-time voltage error as large as the compensated dead "
+       "time, so a real dead time from 0 to twice the compensation)", "drive.flux_v_err"),
+    _k("drive", "flux_r_err", "num", "", (0, 1, "[)"), 0.3,
+       "fast flux check: the resistance error bound, a fraction of motor.rs_ohm (winding "
+       "temperature); times R |i| divided by the speed in the band", "drive.flux_r_err"),
     # [demo]: read by the simulator only (sim/scenario.c scn_start_point)
     _k("demo", "start_rpm", "num", "rpm", POS, "motor.rated_speed_rpm / 2, rounded to 10 rpm",
        "target speed of the demonstration's cold start",
@@ -780,6 +810,16 @@ def resolve_defaults(cfg: dict) -> None:
         dr["tc_speed_max_rpm"] = m["rated_speed_rpm"]
     if dr["para_speed_rpm"] is None:
         dr["para_speed_rpm"] = 0.7 * m["max_speed_rpm"]
+    if dr["mtpa_speed_rpm"] is None:
+        dr["mtpa_speed_rpm"] = dr["of_speed_rpm"]
+    if dr["t_ipm_derate_degc"] is None:
+        dr["t_ipm_derate_degc"] = dr["t_ipm_max_degc"] - 10.0
+    if dr["t_pcb_derate_degc"] is None:
+        dr["t_pcb_derate_degc"] = dr["t_pcb_max_degc"] - 10.0
+    if dr["derate_rpm"] is None:
+        dr["derate_rpm"] = dr["rpm_min"]
+    if dr["flux_v_err_v"] is None:
+        dr["flux_v_err_v"] = 4.0 / math.pi * inv["dead_time_s"] * inv["f_pwm_hz"] * inv["vdc_max_v"]
 
 
 def typed(cfg: dict, name: str) -> str:
@@ -965,6 +1005,15 @@ def check_rules(cfg: dict) -> list[str]:
         out.append(f"{typed(cfg, 'drive.lin_id_status')} equals "
                    f"{typed(cfg, 'drive.lin_id_cmd')} (rule: the two LIN frames need different "
                    "identifiers)")
+    for start, trip in (("t_ipm_derate_degc", "t_ipm_max_degc"),
+                        ("t_pcb_derate_degc", "t_pcb_max_degc")):
+        if not round(dr[start] * 10.0) < round(dr[trip] * 10.0):
+            out.append(f"{typed(cfg, 'drive.' + start)} is not below "
+                       f"{typed(cfg, 'drive.' + trip)} (rule: {RULE_DERATE}: a window that "
+                       "starts at or above the trip never derates)")
+    if not dr["rpm_min"] <= dr["derate_rpm"] <= rpm_max:
+        out.append(f"{typed(cfg, 'drive.derate_rpm')}: outside drive.rpm_min .. drive.rpm_max "
+                   f"{fmt(dr['rpm_min'])} .. {fmt(rpm_max)} rpm (rule: {RULE_DERATE})")
     return out
 
 
@@ -1582,7 +1631,9 @@ DRIVE_RANGES = {
     "tc_gain": (0, Q15_MAX), "tc_amp_max": (0, Q15_MAX), "tc_speed_max": (0, Q15_MAX),
     "para_speed": (1, Q15_MAX), "ld_hs": (0, Q15_MAX), "lq_hs": (0, Q15_MAX),
     "lin_id_cmd": (0, 0x3B), "lin_id_status": (0, 0x3B), "can_id_a": (0, 0x7FF),
-    "can_id_b": (0, 0x7FF),
+    "can_id_b": (0, 0x7FF), "mtpa_speed": (0, Q15_MAX), "t_ipm_derate": (-400, 2000),
+    "t_pcb_derate": (-400, 2000), "flux_band": (1, Q15_MAX), "flux_v_err": (0, Q15_MAX),
+    "flux_r_err": (0, Q15_MAX),
 }
 
 
@@ -1601,6 +1652,10 @@ def drive_range_text(name: str, flat: dict) -> str:
         return "rpm_min .. 65535, (rpm_max k_rpm + 2048) >> 12 <= speed_max"
     if name == "tc_speed_min":
         return "0 .. tc_speed_max"
+    if name == "rpm_derate":
+        return "rpm_min .. rpm_max"
+    if name in ("t_ipm_derate", "t_pcb_derate"):
+        return f"-400 .. {name.replace('derate', 'max')} - 1"
     lo, hi = DRIVE_RANGES[name]
     text = f"{lo} .. {hi}"
     if name in cross:
@@ -1644,13 +1699,17 @@ def range_checks(table: list) -> list[Bound]:
               "i_max", "speed_max", "vdc_uv", "v_max"):
         need(k, 1, Q15_MAX)
     need("i_trip", flat["i_max"], Q15_MAX)
-    need("vdc_ov", flat["vdc_uv"] + 1, Q15_MAX)
+    need("vdc_ov", flat["vdc_uv"] + 1, (ADC_CODES - 1) * 8 - 1,
+         "params.h vdc_uv < vdc_ov < QFOC_PARAMS_VDC_READ_MAX")
     # drive_cfg.h ranges, then the cross-field conditions of params.h
     for key, (lo, hi) in DRIVE_RANGES.items():
         need(f"drive.{key}", lo, hi, "drive_cfg.h range")
     need("drive.rpm_max", 1, 65535, "drive_cfg.h range")
     need("drive.rpm_min", 1, flat["drive.rpm_max"], "drive_cfg.h range")
     need("drive.tc_speed_min", 0, flat["drive.tc_speed_max"], "drive_cfg.h range")
+    need("drive.t_ipm_derate", -400, flat["drive.t_ipm_max"] - 1, "drive_cfg.h range")
+    need("drive.t_pcb_derate", -400, flat["drive.t_pcb_max"] - 1, "drive_cfg.h range")
+    need("drive.rpm_derate", flat["drive.rpm_min"], flat["drive.rpm_max"], "drive_cfg.h range")
     if flat["drive.lin_id_status"] == flat["drive.lin_id_cmd"]:
         out.append(Bound("table field drive.lin_id_status", "drive_cfg.h lin_id_status != "
                          "lin_id_cmd", 2.0, 1.0, f"lin_id_status = lin_id_cmd = "
@@ -1806,6 +1865,22 @@ def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
               f"LIN status frame ({src('lin_id_status')})"),
         Field("can_id_a", "u16", int(dr["can_id_a"]), f"CAN status, even frames ({src('can_id_a')})"),
         Field("can_id_b", "u16", int(dr["can_id_b"]), f"CAN status, odd frames ({src('can_id_b')})"),
+        Field("mtpa_speed", "i16", min(rnd(dr["mtpa_speed_rpm"] * n_p / 60.0 / b.f_base * 32768.0),
+                                       Q15_MAX),
+              f"{fmt(dr['mtpa_speed_rpm'])} rpm x {rpm_q15} x 32768, at most 32767 "
+              f"({src('mtpa_speed_rpm')})"),
+        Field("t_ipm_derate", "i16", rnd(dr["t_ipm_derate_degc"] * 10.0),
+              f"{fmt(dr['t_ipm_derate_degc'])} degC x 10 ({src('t_ipm_derate_degc')})"),
+        Field("t_pcb_derate", "i16", rnd(dr["t_pcb_derate_degc"] * 10.0),
+              f"{fmt(dr['t_pcb_derate_degc'])} degC x 10 ({src('t_pcb_derate_degc')})"),
+        Field("rpm_derate", "u16", int(math.floor(dr["derate_rpm"])),
+              f"{int(math.floor(dr['derate_rpm']))} rpm ({src('derate_rpm')})"),
+        q15_field("flux_band", dr["flux_band"], f"{fmt(dr['flux_band'])} ({src('flux_band')})"),
+        q15_field("flux_v_err", dr["flux_v_err_v"] / b.v_base,
+                  f"{fmt(dr['flux_v_err_v'])} V / V_base {fmt(b.v_base)} V "
+                  f"({src('flux_v_err_v')})"),
+        q15_field("flux_r_err", dr["flux_r_err"], f"{fmt(dr['flux_r_err'])} of R "
+                  f"({src('flux_r_err')})"),
     ]
     return fields, notes
 
