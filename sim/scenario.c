@@ -22,7 +22,7 @@
 
 const char *const scn_names[] = {
     "cold_start", "speed_steps", "pulsating_load", "load_step", "bus_sag",
-    "fault_oc", "fault_ov", "fault_ot", "fault_stall", "fault_link", NULL
+    "fault_oc", "fault_ov", "fault_ot", "fault_stall", "fault_link", "mtpa", "derating", NULL
 };
 
 /* ------------------------------------------------------------------ targets */
@@ -754,6 +754,213 @@ static int scn_pulsating(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t
     return rc;
 }
 
+/* MTPA, one run (REQ-SCN-013): 3000 rpm at the nominal load; the mean current magnitude
+   (the plant's) and the mean electromagnetic torque of the last second. */
+static int scn_mtpa_run(scn_ctx_t *c, const scn_table_t *tab, const qfoc_param_table_t *table,
+                        const sim_motor_t *m, double *i_mean, double *t_mean, double *id_mean)
+{
+    dsim_t *ds = c->ds;
+    double si = 0.0;
+    double st = 0.0;
+    double sd = 0.0;
+    long n = 0;
+    int rc = scn_rig(c, tab, table, m, 320.0, m->nominal_torque_nm, 0.0, 7u, 0.05);
+    if (rc == 0) {
+        ds->power_on = true;
+        ds->target_rpm = 3000u;
+        scn_event(c, "run, 3000 rpm");
+        while (scn_time(c) < c->r->t_end_s - 1e-9) {
+            scn_ms(c);
+            if (scn_time(c) > c->r->t_end_s - 1.0) {
+                si += hypot(ds->plant.id, ds->plant.iq);
+                st += sim_torque(&ds->plant);
+                sd += ds->plant.id;
+                n++;
+            }
+        }
+        *i_mean = si / (double)n;
+        *t_mean = st / (double)n;
+        *id_mean = sd / (double)n;
+    }
+    return rc;
+}
+
+/* The analytic MTPA current of a torque (specs/equations.md E9-2): the q current whose
+   MTPA pair gives the torque, found by bisection in double precision; returns |i|. */
+static double scn_mtpa_current(const sim_motor_t *m, double torque)
+{
+    const double k = 1.5 * m->pole_pairs;
+    const double dl = m->lq_h - m->ld_h;
+    double lo = 0.0;
+    double hi = 4.0 * torque / (k * m->psi_f_wb) + 1.0;
+    double iq = 0.0;
+    double id = 0.0;
+    int j;
+    for (j = 0; j < 200; j++) {
+        iq = 0.5 * (lo + hi);
+        id = (dl > 0.0) ? (m->psi_f_wb / (2.0 * dl) -
+                           sqrt(m->psi_f_wb * m->psi_f_wb / (4.0 * dl * dl) + iq * iq)) : 0.0;
+        if (k * iq * (m->psi_f_wb + (m->ld_h - m->lq_h) * id) < torque) {
+            lo = iq;
+        } else {
+            hi = iq;
+        }
+    }
+    return hypot(id, iq);
+}
+
+static int scn_mtpa(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t *m)
+{
+    qfoc_param_table_t off = *tab->table;
+    double i_off = NAN;
+    double i_on = NAN;
+    double t_off = NAN;
+    double t_on = NAN;
+    double id_off = NAN;
+    double id_on = NAN;
+    FILE *trace = c->trace;
+    FILE *zoom = c->zoom;
+    int rc;
+    scn_describe(c->r, "MTPA at 3000 rpm and the nominal load, against i_d = 0", "REQ-SCN-013",
+                 "The salient reference motor (L_q / L_d = 1.6) carries its nominal 4.5 N m at "
+                 "3000 rpm twice: with MTPA off (the table's mtpa_speed above speed_max: i_d = 0, "
+                 "grey) and with the generated table (MTPA above the handover speed). MTPA "
+                 "gives the same torque with a negative i_d and less current; the reduction of "
+                 "the current magnitude is compared with the analytic MTPA prediction for the "
+                 "torque the motor delivers (specs/equations.md E9-2).");
+    c->r->t_end_s = 7.0;
+    c->r->zoom_t0_s = 6.98;
+    c->r->zoom_t1_s = 7.0;
+    snprintf(c->r->compare_file, sizeof c->r->compare_file, "trace_off.csv");
+    snprintf(c->r->compare_label, sizeof c->r->compare_label, "without MTPA (i_d = 0)");
+    off.drive.mtpa_speed = 32767;
+    off.crc = qfoc_params_crc(&off);
+    c->trace = scn_open(c->o, "trace_off.csv");
+    if (c->trace != NULL) {
+        fputs(scn_trace_header, c->trace);
+    }
+    c->zoom = NULL;
+    rc = scn_mtpa_run(c, tab, &off, m, &i_off, &t_off, &id_off);
+    if (c->trace != NULL) {
+        fclose(c->trace);
+    }
+    c->trace = trace;
+    c->zoom = zoom;
+    if (rc == 0) {
+        scn_reset_trackers(c);
+        c->r->n_events = 0;
+        rc = scn_mtpa_run(c, tab, tab->table, m, &i_on, &t_on, &id_on);
+    }
+    if (rc == 0) {
+        /* the prediction for the torque of the MTPA run: the i_d = 0 current T / (k psi_f)
+           against the MTPA current of the same torque */
+        const double i0 = t_on / (1.5 * m->pole_pairs * m->psi_f_wb);
+        const double pred = (1.0 - scn_mtpa_current(m, t_on) / i0) * 100.0;
+        const double meas = (1.0 - i_on / i_off) * 100.0;
+        scn_metric(c, "i_off_a", "mean |i| with i_d = 0, last second", "A", i_off);
+        scn_metric(c, "i_on_a", "mean |i| with MTPA, last second", "A", i_on);
+        scn_metric(c, "id_on_a", "mean i_d with MTPA, last second", "A", id_on);
+        scn_metric(c, "torque_on_nm", "mean torque with MTPA, last second", "N m", t_on);
+        scn_metric(c, "torque_off_nm", "mean torque with i_d = 0, last second", "N m", t_off);
+        scn_metric(c, "reduction_pct", "current reduction by MTPA, measured", "%", meas);
+        scn_metric(c, "reduction_pred_pct", "current reduction by MTPA, analytic (E9-2)", "%", pred);
+        scn_metric(c, "reduction_err_pp", "measured - analytic reduction", "pp", fabs(meas - pred));
+        scn_common_metrics(c);
+        scn_metric(c, "faults", "fault bits raised", "", (double)c->faults_seen);
+    }
+    return rc;
+}
+
+/* Thermal derating (REQ-SCN-014): at 6000 rpm the IPM warms from 60 degC into the derating
+   window and back; the speed follows the derated limit and recovers, no OT. */
+static int scn_derating(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t *m)
+{
+    dsim_t *ds = c->ds;
+    const qfoc_drive_cfg_t *const dc = &tab->table->drive;
+    const double t_start = 0.1 * (double)dc->t_ipm_derate;
+    const double t_trip = 0.1 * (double)dc->t_ipm_max;
+    /* the hold: three quarters into the window, below the trip */
+    const double t_hold = t_start + 0.75 * (t_trip - t_start);
+    const double lim = (double)dc->rpm_max -
+                       floor(((double)dc->rpm_max - (double)dc->rpm_derate) * 0.75);
+    const double target = 6000.0;
+    double temp = 60.0;
+    double t_max = 0.0;
+    double rpm_hold_min = INFINITY;
+    double rpm_hold_max = -INFINITY;
+    double err_end = 0.0;
+    bool derated_seen = false;
+    bool derated_end = true;
+    int rc = scn_rig(c, tab, tab->table, m, 320.0, m->nominal_torque_nm, 0.0, 7u, 0.05);
+    if (rc != 0) {
+        return rc;
+    }
+    scn_describe(c->r, "Thermal derating at 6000 rpm: the IPM warms into the window and cools",
+                 "REQ-SCN-014, REQ-DRV-024",
+                 "At 6000 rpm and nominal load the power module's temperature climbs at 5 degC/s "
+                 "from 60 degC to three quarters into its derating window (below the trip), "
+                 "holds there 4 s and cools back. The speed limit falls linearly from rpm_max at "
+                 "the derating temperature to rpm_derate at the trip: the drive ramps down to "
+                 "the limit, holds it without a fault and returns to 6000 rpm when the module "
+                 "has cooled. Look at the speed following the limit and the temperature never "
+                 "reaching the trip.");
+    c->r->t_end_s = 30.0;
+    c->r->zoom_t0_s = 29.98;
+    c->r->zoom_t1_s = 30.0;
+    ds->power_on = true;
+    ds->target_rpm = (uint16_t)target;
+    scn_event(c, "run, 6000 rpm");
+    while (scn_time(c) < c->r->t_end_s - 1e-9) {
+        const double t = scn_time(c);
+        const double t_up = 6.0;
+        const double t_up_end = t_up + (t_hold - 60.0) / 5.0;
+        const double t_down = t_up_end + 4.0;
+        if (t < t_up) {
+            temp = 60.0;
+        } else if (t < t_up_end) {
+            temp = 60.0 + 5.0 * (t - t_up);
+        } else if (t < t_down) {
+            temp = t_hold;
+        } else {
+            temp = fmax(60.0, t_hold - 5.0 * (t - t_down));
+        }
+        if (fabs(t - t_up) < 1e-9) {
+            scn_event(c, "IPM warms");
+        }
+        if (fabs(t - t_down) < 1e-9) {
+            scn_event(c, "IPM cools");
+        }
+        ds->t_ipm = (int16_t)lround(temp * 10.0);
+        t_max = fmax(t_max, temp);
+        scn_ms(c);
+        derated_seen = derated_seen || qfoc_drive_derated(&ds->drv);
+        if ((scn_time(c) > t_down - 1.0) && (scn_time(c) <= t_down)) {
+            rpm_hold_min = fmin(rpm_hold_min, dsim_rpm(ds));
+            rpm_hold_max = fmax(rpm_hold_max, dsim_rpm(ds));
+        }
+        if (scn_time(c) > c->r->t_end_s - 1.0) {
+            err_end = fmax(err_end, fabs(dsim_rpm(ds) - target) / target * 100.0);
+            derated_end = derated_end && qfoc_drive_derated(&ds->drv);
+        }
+    }
+    scn_metric(c, "t_ipm_max_c", "highest IPM temperature", "degC", t_max);
+    scn_metric(c, "t_trip_margin_c", "trip temperature - highest IPM temperature", "degC",
+               t_trip - t_max);
+    scn_metric(c, "limit_rpm", "derated speed limit at the hold (rpm_max .. rpm_derate)", "rpm",
+               lim);
+    scn_metric(c, "hold_dev_pct", "max |speed - limit| in the last second of the hold", "%",
+               fmax(fabs(rpm_hold_min - lim), fabs(rpm_hold_max - lim)) / lim * 100.0);
+    scn_metric(c, "derated_seen", "qfoc_drive_derated() true at some tick", "",
+               derated_seen ? 1.0 : 0.0);
+    scn_metric(c, "derated_end", "qfoc_drive_derated() true in the last second", "",
+               derated_end ? 1.0 : 0.0);
+    scn_metric(c, "recovered_err_pct", "max |speed error| at 6000 rpm in the last second", "%",
+               err_end);
+    scn_common_metrics(c);
+    scn_metric(c, "faults", "fault bits raised", "", (double)c->faults_seen);
+    return 0;
+}
+
 static int scn_load_step(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t *m)
 {
     dsim_t *ds = c->ds;
@@ -1149,6 +1356,10 @@ int scn_run(const char *scenario, const scn_table_t *tab, const scn_opts_t *o, s
             rc = scn_pulsating(&c, tab, &m);
         } else if (strcmp(scenario, "load_step") == 0) {
             rc = scn_load_step(&c, tab, &m);
+        } else if (strcmp(scenario, "mtpa") == 0) {
+            rc = scn_mtpa(&c, tab, &m);
+        } else if (strcmp(scenario, "derating") == 0) {
+            rc = scn_derating(&c, tab, &m);
         } else if (strcmp(scenario, "bus_sag") == 0) {
             rc = scn_bus_sag(&c, tab, &m);
         } else if (strcmp(scenario, "fault_oc") == 0) {

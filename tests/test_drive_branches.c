@@ -1570,6 +1570,145 @@ static void test_req_drv_006_mtpa_and_vector_limit(void **state)
     }
 }
 
+/* REQ-DRV-024: thermal derating of the speed.  The target in effect (speed_target) is the
+   command within the lower of the two temperatures' limits: rpm_max up to the derating
+   start, linear to rpm_derate at the trip (the floor of the interpolation, double
+   precision here), rpm_derate above; qfoc_drive_derated() says a limit is below rpm_max;
+   a target of 0 stays 0.  The ticks here are taken in STOP (no fault from the
+   temperatures: the trip itself is REQ-DRV-008's). */
+static void test_req_drv_024_derating(void **state)
+{
+    rig_t r;
+    const qfoc_drive_cfg_t *c;
+    int t;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    c = &r.table.drive;
+    assert_true(c->t_ipm_derate < c->t_ipm_max);
+    assert_true(c->rpm_derate < c->rpm_max);
+    r.power_on = false;
+    r.rpm = c->rpm_max;
+    for (t = (int)c->t_ipm_derate - 20; t <= (int)c->t_ipm_max + 20; t++) {
+        int which;
+        for (which = 0; which < 2; which++) {
+            const int t0 = (which == 0) ? c->t_ipm_derate : c->t_pcb_derate;
+            const int t1 = (which == 0) ? c->t_ipm_max : c->t_pcb_max;
+            double lim;
+            uint16_t rpm;
+            r.t_ipm = (int16_t)((which == 0) ? t : 250);
+            r.t_pcb = (int16_t)((which == 1) ? (t - (int)c->t_ipm_max + (int)c->t_pcb_max) : 250);
+            {
+                const int tt = (which == 0) ? r.t_ipm : r.t_pcb;
+                if (tt <= t0) {
+                    lim = c->rpm_max;
+                } else if (tt >= t1) {
+                    lim = c->rpm_derate;
+                } else {
+                    lim = (double)c->rpm_max -
+                          floor((double)(c->rpm_max - c->rpm_derate) * (tt - t0) / (double)(t1 - t0));
+                }
+            }
+            rig_tick(&r, true);
+            rpm = (uint16_t)lim;
+            assert_int_equal(r.d.s.speed_target,
+                             (int)floor((double)rpm * c->k_rpm / 4096.0 + 0.5));
+            assert_int_equal(qfoc_drive_derated(&r.d), lim < (double)c->rpm_max);
+        }
+    }
+    /* a target below the limit is unchanged; 0 stays 0 */
+    r.t_ipm = (int16_t)(c->t_ipm_max - 1);
+    r.t_pcb = 250;
+    r.rpm = c->rpm_min;
+    rig_tick(&r, true);
+    assert_int_equal(r.d.s.speed_target, (int)floor((double)c->rpm_min * c->k_rpm / 4096.0 + 0.5));
+    assert_true(qfoc_drive_derated(&r.d));
+    r.rpm = 0u;
+    rig_tick(&r, true);
+    assert_int_equal(r.d.s.speed_target, 0);
+    r.t_ipm = 250;
+    rig_tick(&r, true);
+    assert_false(qfoc_drive_derated(&r.d));
+}
+
+/* REQ-DRV-025: ALIGN with a voltage and no current.  In ALIGN after its ramp (id_ref at
+   i_align), the tick reads the last voltage command and the phase monitor: |u| above
+   2 (R |id_ref| + flux_v_err) with the largest filtered current below |id_ref| / 4 in 2
+   ticks in a row raises PHASE in the second; at either bound never; every other tick
+   never; in OPEN_LOOP never. */
+static void test_req_drv_025_align_open(void **state)
+{
+    const qfoc_param_table_t *const t = &qfoc_params_reference;
+    rig_t base;
+    rig_t x;
+    long k;
+    int32_t ir;
+    int32_t need;
+    int32_t i4;
+    int cas;
+    (void)state;
+    rig_init(&base);
+    rig_to_stop(&base);
+    base.power_on = true;
+    for (k = 0; (k < 2000) && !((st(&base) == QFOC_STATE_RUN) && (sub(&base) == QFOC_SUB_ALIGN) &&
+                                (base.d.s.sm.t_sub >= t->drive.align_ms / 2u + 2u)); k++) {
+        rig_tick(&base, true);
+    }
+    assert_int_equal(sub(&base), QFOC_SUB_ALIGN);
+    ir = abs((int)base.d.s.id_ref);
+    assert_int_equal(ir, t->drive.i_align);
+    need = 2 * ((int32_t)floor((double)t->flux.r * ir / 32768.0) + t->drive.flux_v_err);
+    i4 = (ir + 3) / 4;   /* the smallest filtered current not below |id_ref| / 4 */
+    base.motor_current = false;
+    for (cas = 0; cas < 4; cas++) {
+        /* 0: voltage at the bound; 1: current at the bound; 2: both beyond; 3: beyond every
+           other tick */
+        rig_clone(&x, &base);
+        for (k = 1; k <= 20; k++) {
+            const bool on = (cas != 3) || ((k % 2) == 1);
+            const int32_t u = (cas == 0) ? need : (on ? need + 1 : 0);
+            const int32_t i = (cas == 1) ? i4 : (on ? i4 - 1 : ir);
+            int j;
+            x.d.f.u_last.alpha = (qfoc_q15_t)u;
+            x.d.f.u_last.beta = 0;
+            for (j = 0; j < 3; j++) {
+                x.d.f.phase.abs_lpf[j].state = (j == 0) ? i * 65536 : 0;
+            }
+            rig_tick(&x, true);
+            if (st(&x) == QFOC_STATE_ERROR) {
+                break;
+            }
+        }
+        if (cas == 2) {
+            assert_int_equal(k, 2);
+            assert_int_equal(x.d.s.sm.faults, QFOC_FAULT_PHASE);
+            assert_true(x.out.pwm_off);
+            rig_fast(&x);
+            assert_false(x.pwm.enable);
+        } else {
+            assert_int_equal(st(&x), QFOC_STATE_RUN);
+            assert_int_equal(x.d.s.sm.faults, 0u);
+        }
+    }
+    /* OPEN_LOOP: not this check */
+    rig_clone(&x, &base);
+    x.motor_current = true;
+    for (k = 0; (k < 2000) && (sub(&x) != QFOC_SUB_OPEN_LOOP); k++) {
+        rig_tick(&x, true);
+    }
+    assert_int_equal(sub(&x), QFOC_SUB_OPEN_LOOP);
+    x.motor_current = false;
+    for (k = 0; k < 10; k++) {
+        int j;
+        x.d.f.u_last.alpha = 32767;
+        for (j = 0; j < 3; j++) {
+            x.d.f.phase.abs_lpf[j].state = (int32_t)t->drive.i_start * 65536;
+        }
+        rig_tick(&x, true);
+        assert_true((x.d.s.sm.faults & QFOC_FAULT_PHASE) == 0u);
+    }
+}
+
 /* REQ-DRV-023: the lost rotor.  In CLOSED_LOOP after the 100 ms blank, an estimate with
    4 |speed| below both of_speed and |speed_ref| in 2 ticks in a row raises STALL in the
    second; at the bound, every other tick, in STOPPING, in the blank and below a reference
@@ -1820,6 +1959,8 @@ int main(void)
         cmocka_unit_test(test_req_drv_022_reference_guard),
         cmocka_unit_test(test_req_drv_023_flux_plausibility),
         cmocka_unit_test(test_req_drv_023_rotor_lost),
+        cmocka_unit_test(test_req_drv_024_derating),
+        cmocka_unit_test(test_req_drv_025_align_open),
         cmocka_unit_test(test_req_drv_006_mtpa_and_vector_limit),
         cmocka_unit_test(test_req_drv_009_rpm_to_speed_limit),
         cmocka_unit_test(test_req_drv_013_iq_reference_clamp),

@@ -212,6 +212,27 @@ static void test_scn_012_other_tables(void **state)
     judged("angle_err_max_deg");
 }
 
+/* REQ-SCN-013: MTPA at 3000 rpm and 4.5 N m: the current reduction against i_d = 0 within 1
+   point of the analytic prediction. */
+static void test_scn_013_mtpa(void **state)
+{
+    (void)state;
+    run("mtpa", &tab_reference, NULL);
+    judged("reduction_err_pp");
+    assert_true(scn_value(&res, "id_on_a") < -1.0);
+    assert_true(scn_value(&res, "i_on_a") < scn_value(&res, "i_off_a"));
+}
+
+/* REQ-SCN-014: thermal derating at 6000 rpm: the speed follows the derated limit and
+   recovers, no OT. */
+static void test_scn_014_derating(void **state)
+{
+    (void)state;
+    run("derating", &tab_reference, NULL);
+    judged("hold_dev_pct");
+    assert_true(scn_value(&res, "limit_rpm") < 6000.0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -227,6 +248,8 @@ int main(void)
         cmocka_unit_test(test_scn_010_fault_link),
         cmocka_unit_test(test_scn_011_robust_corners),
         cmocka_unit_test(test_scn_012_other_tables),
+        cmocka_unit_test(test_scn_013_mtpa),
+        cmocka_unit_test(test_scn_014_derating),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -102,6 +102,13 @@ static void eva_drive_cfg(qfoc_drive_cfg_t *c)
     c->lin_id_status = eva_u8;
     c->can_id_a = eva_u16;
     c->can_id_b = eva_u16;
+    c->mtpa_speed = eva_i16;
+    c->t_ipm_derate = eva_i16;
+    c->t_pcb_derate = eva_i16;
+    c->rpm_derate = eva_u16;
+    c->flux_band = eva_i16;
+    c->flux_v_err = eva_i16;
+    c->flux_r_err = eva_i16;
 }
 
 /* the whole table, every field any value of its type */
@@ -221,7 +228,8 @@ static bool eva_limits_ok(const qfoc_param_table_t *t)
     const int32_t i_max = (int32_t)t->i_max;
     return (t->alpha_vdc >= 1) && (t->ld >= 0) && (t->lq >= 0) && (t->psi_f >= 0)
            && (t->i_max >= 1) && (t->i_trip >= t->i_max) && (t->speed_max >= 1)
-           && (t->vdc_uv >= 1) && (t->vdc_ov > t->vdc_uv) && (t->v_max >= 1)
+           && (t->vdc_uv >= 1) && (t->vdc_ov > t->vdc_uv)
+           && (t->vdc_ov < QFOC_PARAMS_VDC_READ_MAX) && (t->v_max >= 1)
            && ((int32_t)t->pi_speed.out_min >= -i_max) && (t->pi_speed.out_max <= t->i_max)
            && ((int32_t)t->pi_fw.out_min >= -i_max) && (t->pi_fw.out_max <= 0);
 }
@@ -294,6 +302,20 @@ static bool eva_cfg_feat_ok(const qfoc_drive_cfg_t *c)
 }
 
 /*@
+  requires valid_c: \valid_read(c);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> DriveCfgDerateOk(c);
+*/
+static bool eva_cfg_derate_ok(const qfoc_drive_cfg_t *c)
+{
+    return (c->mtpa_speed >= 0) && (c->t_ipm_derate >= QFOC_DRIVE_TEMP_MIN)
+           && (c->t_ipm_derate < c->t_ipm_max) && (c->t_pcb_derate >= QFOC_DRIVE_TEMP_MIN)
+           && (c->t_pcb_derate < c->t_pcb_max) && (c->rpm_derate >= c->rpm_min)
+           && (c->rpm_derate <= c->rpm_max) && (c->flux_band >= 1) && (c->flux_v_err >= 0)
+           && (c->flux_r_err >= 0);
+}
+
+/*@
   requires valid_t: \valid_read(t);
   assigns \nothing;
   ensures ok: \result != 0 <==> ParamsDriveCrossOk(t);
@@ -325,7 +347,7 @@ static bool eva_table_ok(const qfoc_param_table_t *t)
            && eva_pi_ok(&t->pi_fw) && eva_flux_ok(&t->flux) && eva_pi_ok(&t->pll.pi)
            && eva_pll_ok(&t->pll) && eva_limits_ok(t) && eva_cfg_speed_ok(&t->drive)
            && eva_cfg_start_ok(&t->drive) && eva_cfg_prot_ok(&t->drive)
-           && eva_cfg_feat_ok(&t->drive) && eva_cross_ok(t);
+           && eva_cfg_feat_ok(&t->drive) && eva_cfg_derate_ok(&t->drive) && eva_cross_ok(t);
 }
 
 int main(void)

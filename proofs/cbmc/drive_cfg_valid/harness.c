@@ -47,7 +47,12 @@ static bool ref_valid(const qfoc_drive_cfg_t *c)
         && (c->lin_id_cmd <= 0x3Bu) && (c->lin_id_status <= 0x3Bu)
         && (c->lin_id_status != c->lin_id_cmd)
         && (c->can_id_a <= 0x7FFu) && (c->can_id_b <= 0x7FFu);
-    return speed && start && prot && feat;
+    const bool derate = (c->mtpa_speed >= 0)
+        && (c->t_ipm_derate >= -400) && (c->t_ipm_derate < c->t_ipm_max)
+        && (c->t_pcb_derate >= -400) && (c->t_pcb_derate < c->t_pcb_max)
+        && (c->rpm_derate >= c->rpm_min) && (c->rpm_derate <= c->rpm_max)
+        && (c->flux_band >= 1) && (c->flux_v_err >= 0) && (c->flux_r_err >= 0);
+    return speed && start && prot && feat && derate;
 }
 
 int main(void)

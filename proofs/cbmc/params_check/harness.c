@@ -65,7 +65,12 @@ static bool drive_ok(const qfoc_drive_cfg_t *c)
         && (c->para_speed >= 1) && (c->ld_hs >= 0) && (c->lq_hs >= 0)
         && (c->lin_id_cmd <= 0x3Bu) && (c->lin_id_status <= 0x3Bu)
         && (c->lin_id_status != c->lin_id_cmd)
-        && (c->can_id_a <= 0x7FFu) && (c->can_id_b <= 0x7FFu);
+        && (c->can_id_a <= 0x7FFu) && (c->can_id_b <= 0x7FFu)
+        && (c->mtpa_speed >= 0)
+        && (c->t_ipm_derate >= -400) && (c->t_ipm_derate < c->t_ipm_max)
+        && (c->t_pcb_derate >= -400) && (c->t_pcb_derate < c->t_pcb_max)
+        && (c->rpm_derate >= c->rpm_min) && (c->rpm_derate <= c->rpm_max)
+        && (c->flux_band >= 1) && (c->flux_v_err >= 0) && (c->flux_r_err >= 0);
 }
 
 /* params.h's cross-field conditions of layout 2.  The rpm condition
@@ -100,7 +105,7 @@ static bool ref_valid(const qfoc_param_table_t *t)
         && (t->pll.k_theta >= 1u) && (t->pll.k_theta <= 32767u) && (t->pll.speed_alpha >= 1)
         && (t->alpha_vdc >= 1) && (t->ld >= 0) && (t->lq >= 0) && (t->psi_f >= 0)
         && (t->i_max >= 1) && (t->i_max <= t->i_trip) && (t->speed_max >= 1)
-        && (t->vdc_uv >= 1) && (t->vdc_uv < t->vdc_ov) && (t->v_max >= 1)
+        && (t->vdc_uv >= 1) && (t->vdc_uv < t->vdc_ov) && (t->vdc_ov < 32760) && (t->v_max >= 1)
         && ((int32_t)t->pi_speed.out_min >= -(int32_t)t->i_max)
         && (t->pi_speed.out_max <= t->i_max)
         && ((int32_t)t->pi_fw.out_min >= -(int32_t)t->i_max) && (t->pi_fw.out_max <= 0);

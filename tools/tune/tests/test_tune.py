@@ -149,8 +149,11 @@ def test_simple_motor_gains_by_hand(tmp_path):
     # Field weakening: G_fw = w_max L_d I_base / (V_dc,min / sqrt 3)
     # = (1200 x 2 x 2 pi / 60) x 1e-3 x 10 / (40 / sqrt 3) = 251.33 x 0.01 / 23.094 = 0.10883
     g_fw = 1200 * 2 * 2 * math.pi / 60 * 1e-3 * 10 / (40 / math.sqrt(3))
-    w_fw = 0.1 / (2 * 150e-6)                               # 333.3 rad/s
-    assert g["pi_fw.ki"].real == pytest.approx(w_fw / g_fw * 100e-6)
+    # crossover 0.1 / (2 T_sigma) = 333.3 rad/s, at most 0.2 / T_tick = 200 rad/s; the loop
+    # runs in the 1 ms tick: ki T_tick
+    w_fw = min(0.1 / (2 * 150e-6), 0.2 / 1e-3)               # 200 rad/s
+    assert w_fw == pytest.approx(200.0)
+    assert g["pi_fw.ki"].real == pytest.approx(w_fw / g_fw * 1e-3)
     assert g["pi_fw.kp"].real == pytest.approx(1 / (4 * g_fw))
 
 
@@ -159,8 +162,8 @@ def test_simple_motor_passes_and_table_compiles_layout(tmp_path):
     ds, path = simple_design(tmp_path)
     items = qt.build_table(ds.cfg, ds)
     # params.h serialisation: 4+2+2+4+4+4 + svpwm 8 + 4 PI x 10 + flux 9 + pll 18 + 10 x 2
-    # = 115, then the drive configuration (layout 2): 4 x 1 + 40 x 2 = 84 bytes
-    assert len(qt.serialise(items)) == 115 + 84
+    # = 115, then the drive configuration (layout 3): 4 x 1 + 47 x 2 = 98 bytes
+    assert len(qt.serialise(items)) == 115 + 98
     assert run(tmp_path, path) == 0
     text = (tmp_path / "tables" / "simple_params.c").read_text()
     assert "const qfoc_param_table_t qfoc_params_simple = {" in text
@@ -248,6 +251,8 @@ DRIVE_LAYOUT = [
     ("fw_alpha", "h"), ("tc_gain", "h"), ("tc_amp_max", "h"), ("tc_speed_min", "h"),
     ("tc_speed_max", "h"), ("para_speed", "h"), ("ld_hs", "h"), ("lq_hs", "h"),
     ("lin_id_cmd", "B"), ("lin_id_status", "B"), ("can_id_a", "H"), ("can_id_b", "H"),
+    ("mtpa_speed", "h"), ("t_ipm_derate", "h"), ("t_pcb_derate", "h"), ("rpm_derate", "H"),
+    ("flux_band", "h"), ("flux_v_err", "h"), ("flux_r_err", "h"),
 ]
 
 
@@ -282,7 +287,7 @@ def test_committed_crc_independent_with_drive(motor):
             "f_pwm_hz": "H", "period": "H", "dt_comp": "H", "k_theta": "H"}
     data = b"".join(struct.pack("<" + fmts.get(n, "h"), v) for n, v in head)
     assert len(data) == 115
-    assert head[1] == ("version", 2)
+    assert head[1] == ("version", 3)
     data += b"".join(struct.pack("<" + f, v) for (_n, f), (_m, v) in zip(DRIVE_LAYOUT, drive))
     assert len(data) == 199
     assert zlib.crc32(data) == crc
@@ -321,7 +326,7 @@ def test_drive_defaults_by_hand(tmp_path):
     assert d["flux_tol"] == round(0.5 * 0.065 / (500 / (2 * math.pi * 500)) * 32768)
     assert d["phase_alpha"] == 129                             # 2 pi 5 / 8000 x 32768 = 128.7
     assert d["phase_i_min"] == 1638 and d["phase_ratio"] == 8192
-    assert d["fw_level"] == 30147 and d["fw_alpha"] == 1287    # 0.92; 2 pi 50 / 8000
+    assert d["fw_level"] == 30147 and d["fw_alpha"] == 10294   # 0.92; 2 pi 50 x 1 ms (tick)
     assert d["tc_gain"] == 492 and d["tc_amp_max"] == 8192
     assert d["tc_speed_min"] == 1966 and d["tc_speed_max"] == 19661  # 600, 6000 rpm
     assert d["para_speed"] == 18350                            # 5600 rpm x 3.2768
@@ -333,6 +338,13 @@ def test_drive_defaults_by_hand(tmp_path):
     assert (d["phase_ms"], d["link_timeout_ms"], d["clear_ms"]) == (100, 500, 5000)
     assert (d["lin_id_cmd"], d["lin_id_status"], d["can_id_a"], d["can_id_b"]) == \
         (0x10, 0x11, 0x310, 0x311)
+    # layout 3: MTPA from the handover speed, derating 10 degC below each trip down to
+    # rpm_min, the flux band 0.3 psi_exp plus the dead-time voltage 4 / pi x 1 us x 8 kHz x
+    # 420 V = 4.278 V (Q15 of 500 V: 280.4) over the speed, and 0.3 of R
+    assert d["mtpa_speed"] == d["of_speed"] == 3277
+    assert (d["t_ipm_derate"], d["t_pcb_derate"], d["rpm_derate"]) == (1000, 900, 1000)
+    assert d["flux_band"] == round(0.3 * 32768) == 9830 and d["flux_r_err"] == 9830
+    assert d["flux_v_err"] == round(4 / math.pi * 1e-6 * 8000 * 420 / 500 * 32768) == 280
 
 
 # REQ-TUNE-001, REQ-TUNE-006, REQ-PAR-006: the defaults round-trip: a motor file that
