@@ -763,9 +763,11 @@ static uint16_t drv_faults_power(qfoc_drive_t *d, const qfoc_tick_in_t *in)
    psi_exp (the magnet's temperature, the inductances) plus the flux error of a voltage
    error, (flux_v_err + flux_r_err R |i|) / |w| (the dead-time voltage the compensation
    misses, the winding's resistance error; psi_base = V_base / w_base, so a Q15 voltage over
-   a Q15 speed is a Q15 flux), that part at most 65535 (and 65535 at w = 0). */
+   a Q15 speed is a Q15 flux), that part at most 65535.  Called inside the speed gate only,
+   where the estimate is not 0. */
 /*@
   requires valid: \valid_read(p) && \valid_read(f);
+  requires moving: f->speed_f != 0;
   assigns \nothing;
   ensures range: 0 <= \result <= 98301;
 */
@@ -781,15 +783,11 @@ static int32_t drv_flux_band(const qfoc_param_table_t *p, const qfoc_drive_fast_
                          (uint32_t)(int32_t)qfoc_q15_abs(p->flux.r)) / 32768u;
     const uint32_t v = (uint32_t)(int32_t)qfoc_q15_abs(c->flux_v_err) + ((rr * i) / 32768u);
     const uint32_t w = (uint32_t)(int32_t)qfoc_q15_abs(f->speed_f);
-    uint32_t dpsi = 65535u;
     /*@ assert band: band <= 32766; */
     /*@ assert v: v <= 65533; */
-    if (w > 0u) {
-        const uint32_t q = (v * 32768u) / w;
-        dpsi = (q < 65535u) ? q : 65535u;
-    } else {
-        /* no speed: no flux check (the gate keeps w above 1.5 of_speed) */
-    }
+    /*@ assert w: 1 <= w; */
+    const uint32_t q = (v * 32768u) / w;
+    const uint32_t dpsi = (q < 65535u) ? q : 65535u;
     return (int32_t)(band + dpsi);
 }
 
