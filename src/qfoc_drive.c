@@ -277,8 +277,13 @@ static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab, qfoc_angle
 */
 static bool drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff, qfoc_dq_t *ref)
 {
-    const qfoc_q15_t lim = (d->s.iq_lim > 0) ? d->s.iq_lim : (qfoc_q15_t)0;
+    qfoc_q15_t lim = 0;
     bool clamped = false;
+    if (d->s.iq_lim > 0) {
+        lim = d->s.iq_lim;
+    } else {
+        /* a negative limit (never written by the tick) reads as 0 */
+    }
     if (sub == QFOC_SUB_ALIGN) {
         ref->d = qfoc_q15_sat((int32_t)d->s.id_ref);
         ref->q = 0;
@@ -759,38 +764,29 @@ static uint16_t drv_faults_power(qfoc_drive_t *d, const qfoc_tick_in_t *in)
 #define DRV_FLUX_BLANK_MS 100u
 #define DRV_FLUX_TICKS ((uint16_t)2u)
 
-/* The fast flux check's band (REQ-DRV-023), from the estimator's error model: flux_band
-   psi_exp (the magnet's temperature, the inductances) plus the flux error of a voltage
-   error, (flux_v_err + flux_r_err R |i|) / |w| (the dead-time voltage the compensation
-   misses, the winding's resistance error; psi_base = V_base / w_base, so a Q15 voltage over
-   a Q15 speed is a Q15 flux), that part at most 65535 (and 65535 at w = 0). */
+/* The fast flux check's band (REQ-DRV-023), from the estimator's error model: outside it
+   when dev > flux_band psi_exp + (flux_v_err + flux_r_err R |i|) / |w| (the magnet's
+   temperature and the inductances; the dead-time voltage the compensation misses and the
+   winding's resistance error over the speed), with k = floor(flux_band psi_exp / 32768) and
+   v = flux_v_err + floor(floor(flux_r_err R / 32768) |i| / 32768): qfoc_fault_band_over. */
 /*@
   requires valid: \valid_read(p) && \valid_read(f);
   assigns \nothing;
-  ensures range: 0 <= \result <= 98301;
 */
-static int32_t drv_flux_band(const qfoc_param_table_t *p, const qfoc_drive_fast_t *f,
-                             qfoc_q15_t psi_exp)
+static bool drv_flux_out(const qfoc_param_table_t *p, const qfoc_drive_fast_t *f,
+                         qfoc_q15_t psi_exp, qfoc_q15_t dev)
 {
     const qfoc_drive_cfg_t *const c = &p->drive;
     const uint32_t pe = (uint32_t)(int32_t)qfoc_q15_abs(psi_exp);
     const uint32_t fb = (uint32_t)(int32_t)qfoc_q15_abs(c->flux_band);
-    const uint32_t band = (pe * fb) / 32768u;
+    const uint32_t k = (pe * fb) / 32768u;
     const uint32_t i = (uint32_t)(int32_t)qfoc_vec_mag(f->i_dq.d, f->i_dq.q);
     const uint32_t rr = ((uint32_t)(int32_t)qfoc_q15_abs(c->flux_r_err) *
                          (uint32_t)(int32_t)qfoc_q15_abs(p->flux.r)) / 32768u;
     const uint32_t v = (uint32_t)(int32_t)qfoc_q15_abs(c->flux_v_err) + ((rr * i) / 32768u);
-    const uint32_t w = (uint32_t)(int32_t)qfoc_q15_abs(f->speed_f);
-    uint32_t dpsi = 65535u;
-    /*@ assert band: band <= 32766; */
+    /*@ assert k: k <= 32766; */
     /*@ assert v: v <= 65533; */
-    if (w > 0u) {
-        const uint32_t q = (v * 32768u) / w;
-        dpsi = (q < 65535u) ? q : 65535u;
-    } else {
-        /* no speed: no flux check (the gate keeps w above 1.5 of_speed) */
-    }
-    return (int32_t)(band + dpsi);
+    return qfoc_fault_band_over(dev, (qfoc_q15_t)k, (int32_t)v, f->speed_f);
 }
 
 /* ALIGN without current (REQ-DRV-025): the last command's voltage beyond twice what the
@@ -881,7 +877,8 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
                           (w2 < (int32_t)qfoc_q15_abs(c->of_speed)) &&
                           (w2 < (int32_t)qfoc_q15_abs(s->speed_ref));
         stall = closed && (bad_speed || bad_flux);
-        implausible = lost || (steady && (psi_exp > 0) && (dev > drv_flux_band(p, f, psi_exp)));
+        implausible = lost || (steady && (psi_exp > 0) &&
+                               drv_flux_out(p, f, psi_exp, (qfoc_q15_t)dev));
     }
     {
         const bool slow = qfoc_debounce_step(&s->db_stall, stall, c->stall_ms);
@@ -1134,8 +1131,13 @@ static void drv_iref(qfoc_drive_t *d)
     in.iq_dem = s->iq_ref;
     in.id_fw = qfoc_fw_step(&s->fw, s->util, true);
     in.psi_f = p->psi_f;
-    in.ld = s->hs ? p->drive.ld_hs : p->ld;
-    in.lq = s->hs ? p->drive.lq_hs : p->lq;
+    if (s->hs) {
+        in.ld = p->drive.ld_hs;
+        in.lq = p->drive.lq_hs;
+    } else {
+        in.ld = p->ld;
+        in.lq = p->lq;
+    }
     /* MTPA acts where L_q > L_d (qfoc_iref_mtpa gives 0 otherwise) and above mtpa_speed,
        where the angle estimate is trusted (the tool's default: the handover speed; a
        stalled or slowing rotor falls back to i_d = 0) */
@@ -1541,7 +1543,7 @@ static qfoc_q15_t drv_utilisation(const qfoc_ab_t *v, qfoc_q15_t vdc, qfoc_q15_t
 
 /* One quarter of the RAM check (REQ-DRV-019): slice k of the drive invariant, and in the
    last slice two relations the invariant does not state: the calibrated offsets lie within
-   offset_window of mid-scale (drv_calibrate stores no other) and the PLL's angle gain is
+   offset_window of mid-scale (drv_calibrate stores no other) and the PLL's angle gain and the observer's constants are
    the table's (only the init writes it). */
 /*@
   requires valid: \valid_read(d) && \valid_read(d->p) && \separated(d, d->p);
@@ -1579,7 +1581,14 @@ static bool drv_object_slice(const qfoc_drive_t *d, uint8_t k)
                           (s->off_sum_u <= (4095u * (uint32_t)s->off_n)) &&
                           (s->off_sum_v <= (4095u * (uint32_t)s->off_n));
         const bool offsets = (du <= win) && (du >= -win) && (dv <= win) && (dv >= -win);
-        const bool copies = (d->f.pll.k_theta == d->p->pll.k_theta);
+        /* the table's constants the fast half holds a copy of: the PLL's angle gain and
+           the observer's gain, resistance and back-EMF scale (its inductance follows the
+           inductance set the fast step selects, and is not compared) */
+        const bool copies = (d->f.pll.k_theta == d->p->pll.k_theta) &&
+                            (d->f.flux.params.r == d->p->flux.r) &&
+                            (d->f.flux.params.kg == d->p->flux.kg) &&
+                            (d->f.flux.params.gain == d->p->flux.gain) &&
+                            (d->f.flux.params.gain_shift == d->p->flux.gain_shift);
         ok = sums && offsets && copies;
     }
     return ok;

@@ -203,6 +203,24 @@ bool qfoc_fault_under(qfoc_q15_t x, qfoc_q15_t limit)
     return (x < limit);
 }
 
+bool qfoc_fault_band_over(qfoc_q15_t dev, qfoc_q15_t k, int32_t v, qfoc_q15_t w)
+{
+    const int32_t kk = (k > 0) ? (int32_t)k : 0;
+    const int32_t vc = (v < 0) ? 0 : ((v > 65535) ? 65535 : v);
+    const int32_t aw = (w < 0) ? -(int32_t)w : (int32_t)w;
+    bool over = false;
+    if ((int32_t)dev > kk) {
+        /* dev - k' in [1, 32767], |w| in [0, 32768]: the product below 2^31 */
+        const uint32_t e = (uint32_t)((int32_t)dev - kk);
+        const uint32_t lhs = e * (uint32_t)aw;
+        const uint32_t rhs = (uint32_t)vc * 32768u;
+        over = (lhs > rhs);
+    } else {
+        /* within the speed-independent part */
+    }
+    return over;
+}
+
 bool qfoc_fault_abs_over(qfoc_q15_t x, qfoc_q15_t limit)
 {
     /* |x| in [0, 32768], exact in 32 bits (no saturation of -32768) */

@@ -21,6 +21,8 @@ static uint32_t iref_mag(qfoc_q15_t i_max)
     return (i_max > 0) ? (uint32_t)i_max : 0u;
 }
 
+/* public interface, also called by qfoc_iref_step (DEV-002) */
+/* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
 qfoc_q15_t qfoc_iref_q_limit(qfoc_q15_t i_max, qfoc_q15_t i_d)
 {
     const uint32_t m = iref_mag(i_max);
@@ -34,6 +36,8 @@ qfoc_q15_t qfoc_iref_q_limit(qfoc_q15_t i_max, qfoc_q15_t i_d)
     return (qfoc_q15_t)r;
 }
 
+/* public interface, also called by qfoc_iref_step (DEV-002) */
+/* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
 qfoc_q15_t qfoc_iref_mtpa(qfoc_q15_t i_q, qfoc_q15_t psi_f, int16_t ld, int16_t lq)
 {
     const int32_t dl = (int32_t)lq - (int32_t)ld;
@@ -54,9 +58,15 @@ qfoc_q15_t qfoc_iref_mtpa(qfoc_q15_t i_q, qfoc_q15_t psi_f, int16_t ld, int16_t 
         const uint32_t r = qfoc_isqrt32((uint32_t)(sum / 4u));
         const uint64_t odd = (2u * (uint64_t)r) + 1u;
         const uint32_t fl = ((odd * odd) <= sum) ? ((2u * r) + 1u) : (2u * r);
-        const uint32_t root = ((((uint64_t)fl * (uint64_t)fl) + (uint64_t)fl) < sum) ? (fl + 1u)
-                                                                                      : fl;
-        const uint32_t den = pf + root;
+        const uint64_t fl_up = ((uint64_t)fl * (uint64_t)fl) + (uint64_t)fl;
+        uint32_t root = fl;
+        uint32_t den;
+        if (fl_up < sum) {
+            root = fl + 1u;
+        } else {
+            /* the floor is the nearest */
+        }
+        den = pf + root;
         uint32_t q = 0u;
         if (den > 0u) {
             /* g = 2 x / den in Q15, from the unrounded x: 2 (x_hi / 4096) 32768 = 16 x_hi */
@@ -85,8 +95,10 @@ uint16_t qfoc_iref_derate(uint16_t hi, uint16_t lo, int16_t t, int16_t t_start, 
         r = low;
     } else {
         /* t_start < t < t_end: the span and the position fit 16 bits */
-        const uint32_t span = (uint32_t)((int32_t)t_end - (int32_t)t_start);
-        const uint32_t pos = (uint32_t)((int32_t)t - (int32_t)t_start);
+        const int32_t span_s = (int32_t)t_end - (int32_t)t_start;
+        const int32_t pos_s = (int32_t)t - (int32_t)t_start;
+        const uint32_t span = (uint32_t)span_s;
+        const uint32_t pos = (uint32_t)pos_s;
         const uint32_t drop = ((uint32_t)hi - (uint32_t)low) * pos / span;
         /*@ assert drop_le: drop <= hi - low; */
         r = (uint16_t)((uint32_t)hi - drop);

@@ -966,7 +966,8 @@ typedef enum {
     CORRUPT_LINK_LOST, CORRUPT_OFFSET, CORRUPT_OFF_SUM, CORRUPT_OFF_SUM_U, CORRUPT_OFF_SUM_V,
     /* inside the invariant, caught by the relations checked with it */
     CORRUPT_OFFSET_WINDOW, CORRUPT_OFFSET_WINDOW_LOW, CORRUPT_OFFSET_WINDOW_V,
-    CORRUPT_OFFSET_WINDOW_V_LOW, CORRUPT_K_THETA, CORRUPT_COUNT
+    CORRUPT_OFFSET_WINDOW_V_LOW, CORRUPT_K_THETA, CORRUPT_FLUX_R, CORRUPT_FLUX_KG,
+    CORRUPT_FLUX_GAIN_COPY, CORRUPT_FLUX_SHIFT, CORRUPT_COUNT
 } corrupt_t;
 
 static void corrupt(qfoc_drive_t *d, corrupt_t k)
@@ -1000,6 +1001,12 @@ static void corrupt(qfoc_drive_t *d, corrupt_t k)
         d->s.offset_v = (uint16_t)(QFOC_ADC_MID + d->p->drive.offset_window + 1u); break;
     case CORRUPT_OFFSET_WINDOW_V_LOW:
         d->s.offset_v = (uint16_t)(QFOC_ADC_MID - d->p->drive.offset_window - 1u); break;
+    /* the observer's copies of the table (an admissible value, bit 13 of R: the fault
+       campaign's flip that let the current pass i_trip) */
+    case CORRUPT_FLUX_R:       d->f.flux.params.r = (int16_t)(d->f.flux.params.r ^ 0x2000); break;
+    case CORRUPT_FLUX_KG:      d->f.flux.params.kg = (int16_t)(d->f.flux.params.kg ^ 0x0001); break;
+    case CORRUPT_FLUX_GAIN_COPY: d->f.flux.params.gain = (int16_t)(d->f.flux.params.gain ^ 0x0100); break;
+    case CORRUPT_FLUX_SHIFT:   d->f.flux.params.gain_shift = (uint8_t)(d->f.flux.params.gain_shift ^ 1u); break;
     default:
         d->f.pll.k_theta = (uint16_t)((d->f.pll.k_theta < 32767u) ? (d->f.pll.k_theta + 1u)
                                                                   : (d->f.pll.k_theta - 1u));
@@ -1014,7 +1021,8 @@ static void test_req_drv_019_object_check(void **state)
     static const uint8_t slice_of[CORRUPT_COUNT] = {
         1u, 1u, 0u, 0u, 0u, 2u, 0u, 1u, 1u, 1u,   /* pi_iq .. mech recip (fw: the tick's) */
         2u, 2u, 2u, 2u, 2u, 2u, 3u, 3u, 3u, 3u,   /* sm .. sums */
-        3u, 3u, 3u, 3u, 3u                        /* windows, k_theta */
+        3u, 3u, 3u, 3u, 3u,                       /* windows, k_theta */
+        3u, 3u, 3u, 3u                            /* the observer's copies */
     };
     int k;
     (void)state;

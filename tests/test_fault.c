@@ -481,9 +481,52 @@ static void test_fault_thresholds(void **state)
     assert_true(qfoc_fault_abs_over(0, -1));
 }
 
+/* REQ-FAULT-008: the error-model band compare against its definition in double precision,
+   dev > k' + 32768 v' / |w| (k' = max(k, 0), v' = clamp(v, 0, 65535)), on every corner and
+   200000 random inputs; w = 0 never exceeds. */
+static void test_fault_008_band_over(void **state)
+{
+    static const int16_t devs[] = { (int16_t)-32768, -1, 0, 1, 100, 5000, 32767 };
+    static const int16_t ks[] = { (int16_t)-32768, -5, 0, 1, 99, 4999, 32767 };
+    static const int32_t vs[] = { -100000, -1, 0, 1, 280, 65535, 65536, 2000000 };
+    static const int16_t ws[] = { (int16_t)-32768, -9830, -1, 0, 1, 9830, 32767 };
+    size_t a, b, c, e;
+    int k;
+    (void)state;
+    for (a = 0u; a < sizeof devs / sizeof devs[0]; a++) {
+        for (b = 0u; b < sizeof ks / sizeof ks[0]; b++) {
+            for (c = 0u; c < sizeof vs / sizeof vs[0]; c++) {
+                for (e = 0u; e < sizeof ws / sizeof ws[0]; e++) {
+                    const double kk = (ks[b] > 0) ? ks[b] : 0.0;
+                    const double vv = (vs[c] < 0) ? 0.0 : ((vs[c] > 65535) ? 65535.0 : vs[c]);
+                    const double aw = fabs((double)ws[e]);
+                    const bool want = (aw > 0.0) && ((double)devs[a] > kk + 32768.0 * vv / aw);
+                    assert_int_equal(qfoc_fault_band_over(devs[a], ks[b], vs[c], ws[e]), want);
+                }
+            }
+        }
+    }
+    for (k = 0; k < 200000; k++) {
+        const int16_t dev = rand_i16();
+        const int16_t kq = rand_i16();
+        const int32_t v = (int32_t)(lcg_next() % 80000u) - 5000;
+        const int16_t w = rand_i16();
+        const double kk = (kq > 0) ? kq : 0.0;
+        const double vv = (v < 0) ? 0.0 : ((v > 65535) ? 65535.0 : v);
+        const double aw = fabs((double)w);
+        const bool want = (aw > 0.0) && ((double)dev > kk + 32768.0 * vv / aw);
+        assert_int_equal(qfoc_fault_band_over(dev, kq, v, w), want);
+    }
+    /* the drive's use: the reference table at 3000 rpm (9830), psi_exp 13385, band 0.3 and
+       4.28 V: k = 4015, v = 280: the band is 4015 + 933 */
+    assert_false(qfoc_fault_band_over(4948, 4015, 280, 9830));
+    assert_true(qfoc_fault_band_over(4949, 4015, 280, 9830));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fault_008_band_over),
         cmocka_unit_test(test_fault_bits),
         cmocka_unit_test(test_debounce_run_length),
         cmocka_unit_test(test_debounce_corners),

@@ -204,6 +204,10 @@ static void test_iref_mtpa_corners(void **state)
     assert_int_equal(qfoc_iref_mtpa(20000, 5000, 4000, 3000), 0);
     assert_int_equal(qfoc_iref_mtpa(0, 5000, 3000, 6000), 0);
     assert_int_equal(qfoc_iref_mtpa(-32768, 5000, -32768, 32767) <= 0, 1);
+    /* no magnet and a reluctance flux below half a count: no MTPA current at this
+       resolution (the divisor psi_f + root is 0) */
+    assert_int_equal(qfoc_iref_mtpa(1, 0, 0, 1), 0);
+    assert_int_equal(qfoc_iref_mtpa(-30, 0, 1000, 1034), 0);
     /* no magnet: 45 degrees, i_d = -|i_q| (synchronous reluctance) */
     assert_true(abs(qfoc_iref_mtpa(20000, 0, 2000, 6000) + 20000) <= 1);
     assert_true(abs(qfoc_iref_mtpa(-20000, -5, 2000, 6000) + 20000) <= 1);

@@ -25,7 +25,7 @@
  *
  * All functions are total on every value of their input types.
  *
- * Requirements: REQ-FAULT-001 .. REQ-FAULT-006 (specs/requirements/fault.md).
+ * Requirements: REQ-FAULT-001 .. REQ-FAULT-008 (specs/requirements/fault.md).
  */
 #ifndef QFOC_FAULT_H
 #define QFOC_FAULT_H
@@ -450,5 +450,30 @@ bool qfoc_fault_under(qfoc_q15_t x, qfoc_q15_t limit);
   ensures result: \result != 0 <==> \abs(x) > limit;
 */
 bool qfoc_fault_abs_over(qfoc_q15_t x, qfoc_q15_t limit);
+
+/**
+ * @brief Error-model band compare: is a deviation beyond k + v / |w|?  (The drive's fast
+ *        flux check, REQ-DRV-023: a flux deviation against a band with a part that does not
+ *        depend on the speed, k, and a voltage error over the speed, v / |w|; a voltage in
+ *        Q15 of V_base over a speed in Q15 of w_base is a flux in Q15 of psi_base, times
+ *        32768.)
+ * @param[in] dev the deviation, Q15, any int16_t (a negative one never exceeds)
+ * @param[in] k   the speed-independent part, Q15 (a negative value reads as 0)
+ * @param[in] v   the voltage error, Q15 of V_base, clamped to [0, 65535]
+ * @param[in] w   the speed, Q15, any int16_t; |w| is used (w = 0: never exceeds)
+ * @return true exactly when dev > k' and (dev - k') |w| > 32768 v' (k', v' the clamped
+ *         values), which is dev > k' + floor(32768 v' / |w|) for w != 0: decided with two
+ *         products, without a division.
+ * Scaling and overflow: dev - k' <= 32767 and |w| <= 32768 give a product below 2^31;
+ * 32768 v' <= 32768 x 65535 < 2^31; both in uint32.
+ * Requirements: REQ-FAULT-008.
+ */
+/*@
+  assigns \nothing;
+  ensures result: \result != 0 <==>
+      (dev > \max(k, 0) &&
+       (dev - \max(k, 0)) * \abs(w) > 32768 * ((v < 0) ? 0 : ((v > 65535) ? 65535 : v)));
+*/
+bool qfoc_fault_band_over(qfoc_q15_t dev, qfoc_q15_t k, int32_t v, qfoc_q15_t w);
 
 #endif /* QFOC_FAULT_H */

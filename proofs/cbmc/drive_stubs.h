@@ -8,6 +8,7 @@
 #define QFOC_DRIVE_STUBS_H
 
 #include "qfoc/drive.h"
+#include "qfoc/iref.h"
 #include "harness_util.h"
 
 /* DRIVE_STUBS_PURE (drive_frame): every stub returns values fixed once per run by
@@ -130,6 +131,41 @@ qfoc_q15_t stub_fw_step(qfoc_fw_t *fw, qfoc_q15_t u, bool enable)
     return y;
 }
 void stub_fw_reset(qfoc_fw_t *fw) { (void)fw; }
+/* qfoc_iref_step (iref.h): i_d in [-m, 0], the q limit in [0, m], m = max(i_max, 0) */
+void stub_iref_step(const qfoc_iref_in_t *in, qfoc_iref_out_t *out)
+{
+    const int32_t m = (in->i_max > 0) ? (int32_t)in->i_max : 0;
+    out->id = ANY_S16(2);
+    out->iq_lim = ANY_S16(3);
+    __CPROVER_assume(out->id >= -m && out->id <= 0 && out->iq_lim >= 0 && out->iq_lim <= m);
+}
+/* qfoc_fault_band_over (fault.h): any verdict */
+bool stub_band_over(qfoc_q15_t dev, qfoc_q15_t k, int32_t v, qfoc_q15_t w)
+{
+    (void)dev; (void)k; (void)v; (void)w;
+    return ANY_B(1);
+}
+/* qfoc_iref_derate (iref.h): in [min(lo, hi), hi] */
+uint16_t stub_iref_derate(uint16_t hi, uint16_t lo, int16_t t, int16_t t0, int16_t t1)
+{
+    const uint16_t r = ANY_U16(3);
+    (void)t; (void)t0; (void)t1;
+    __CPROVER_assume(r <= hi && r >= ((lo < hi) ? lo : hi));
+    return r;
+}
+/* qfoc_pi_set_limit (pi.h): its contract, linear: limits [-l, l], l = clamp(lim, 0, 32767),
+   the integrator clamped into them */
+void stub_pi_set_limit(qfoc_pi_t *pi, qfoc_q15_t lim)
+{
+    const int32_t l = (lim > 0) ? (int32_t)lim : 0;
+    pi->params.out_max = (qfoc_q15_t)l;
+    pi->params.out_min = (qfoc_q15_t)(-l);
+    if (pi->integ > l * 65536) {
+        pi->integ = l * 65536;
+    } else if (pi->integ < -l * 65536) {
+        pi->integ = -l * 65536;
+    }
+}
 qfoc_q15_t stub_lpf_step(qfoc_lpf_t *f, qfoc_q15_t u)
 {
     const qfoc_q15_t y = ANY_S16(1);

@@ -507,7 +507,9 @@ static int check_models(void)
     checks[4].value = (double)(c2 - 2048) / (double)(c1 - 2048);
     snprintf(checks[4].what, sizeof checks[4].what, "iu gain 2: sensed / exact current (codes from "
              "mid-scale, %d and %d)", c2 - 2048, c1 - 2048);
-    checks[4].ok = fabs(checks[4].value - 2.0) * fabs((double)(c1 - 2048)) <= 1.0;
+    /* each code is rounded: round(2 x) - 2 round(x) is -1, 0 or 1 (compared in integers, not
+       through the quotient's floating-point rounding) */
+    checks[4].ok = abs((c2 - 2048) - (2 * (c1 - 2048))) <= 1;
     for (k = 0; k < N_CHECKS; k++) {
         if (!checks[k].ok) {
             fprintf(stderr, "qfoc_faults: model check failed: %s = %g\n", checks[k].what,

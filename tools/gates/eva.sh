@@ -26,7 +26,13 @@
 #     the quotient is below 65536 because turn < pole_pairs, a relation between the count
 #     and the reciprocal that intervals lose when pole_pairs ranges over 1 .. 16 (with the
 #     reference table's single pole-pair count they keep it); its contract (the exact
-#     quotient MechCount / pole_pairs) is proved by WP; it reads *m and writes nothing.
+#     quotient MechCount / pole_pairs) is proved by WP; it reads *m and writes nothing;
+#   qfoc_iref_q_limit and qfoc_iref_derate (src/qfoc_iref.c, both analyses): the square
+#     root of i_max^2 - min(|i_d|, i_max)^2, and hi less a drop at most hi - lo: the clamp's
+#     bound enters a product or a quotient, a relation neither octagons nor equalities keep
+#     when i_max, the temperatures and the window range over every accepted table; their
+#     contracts (include/qfoc/iref.h: the floor root in [0, max(i_max, 0)], the result in
+#     [min(lo, hi), hi]) are proved by WP; no memory access beyond their locals.
 #
 # eva-all keeps the table where it is accepted by a filter in the harness, eva_table_ok():
 # the identity (ParamsIdOk) and the groups of ParamsValid, one function per group, each
@@ -53,9 +59,10 @@ mkdir -p "$OUT"
 max=${EVA_MAX_ALARMS:-0}
 precision=${EVA_PRECISION:-4}
 WARN="-warn-signed-overflow -warn-signed-downcast -warn-unsigned-overflow -warn-unsigned-downcast"
-FILTER="eva_table_ok,eva_scaling_ok,eva_svpwm_ok,eva_pi_ok,eva_flux_ok,eva_pll_ok,eva_limits_ok,eva_cfg_speed_ok,eva_cfg_start_ok,eva_cfg_prot_ok,eva_cfg_feat_ok,eva_cross_ok"
+FILTER="eva_table_ok,eva_scaling_ok,eva_svpwm_ok,eva_pi_ok,eva_flux_ok,eva_pll_ok,eva_limits_ok,eva_cfg_speed_ok,eva_cfg_start_ok,eva_cfg_prot_ok,eva_cfg_feat_ok,eva_cfg_derate_ok,eva_cross_ok"
 # the default options of eva-all: every filter function split at its return, with a slevel
-ALL_DEFAULT="-eva-domains octagon,equality -eva-use-spec qfoc_isqrt32,qfoc_mech_scale \
+ALL_DEFAULT="-eva-domains octagon,equality \
+-eva-use-spec qfoc_isqrt32,qfoc_mech_scale,qfoc_iref_q_limit,qfoc_iref_derate \
 -eva-split-return-function $(echo "$FILTER" | sed 's/,/:0,/g'):0 \
 -eva-slevel-function $(echo "$FILTER" | sed 's/,/:50,/g'):50"
 t0=$(date +%s)
@@ -117,7 +124,7 @@ run_one() {  # run_one NAME: one analysis, its report and its stamp; non-zero on
         # shellcheck disable=SC2086
         frama-c -cpp-extra-args="-Iinclude -Ispecs -Itables" src/*.c tables/reference_params.c \
             proofs/eva/eva_main.c -eva -eva-precision "$precision" \
-            ${EVA_EXTRA:--eva-domains octagon,equality -eva-use-spec qfoc_isqrt32} \
+            ${EVA_EXTRA:--eva-domains octagon,equality -eva-use-spec qfoc_isqrt32,qfoc_iref_q_limit,qfoc_iref_derate} \
             $WARN -eva-no-show-progress > "$OUT/eva.log" 2>&1
         r=$?
         report eva "$title" "$r" "$(($(date +%s) - s0))" || rc=1
