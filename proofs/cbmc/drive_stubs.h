@@ -139,6 +139,14 @@ void stub_iref_step(const qfoc_iref_in_t *in, qfoc_iref_out_t *out)
     out->iq_lim = ANY_S16(3);
     __CPROVER_assume(out->id >= -m && out->id <= 0 && out->iq_lim >= 0 && out->iq_lim <= m);
 }
+/* qfoc_phase_mon_peak (fault.h): in [0, 32767] for a valid monitor */
+qfoc_q15_t stub_pm_peak(const qfoc_phase_mon_t *m)
+{
+    const qfoc_q15_t y = ANY_S16(0);
+    (void)m;
+    __CPROVER_assume(y >= 0);
+    return y;
+}
 /* qfoc_fault_band_over (fault.h): any verdict */
 bool stub_band_over(qfoc_q15_t dev, qfoc_q15_t k, int32_t v, qfoc_q15_t w)
 {
