@@ -1118,8 +1118,7 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
           d->s.id_ref, d->s.iq_ref, d->s.iq_lim;
   ensures inv: DRV_FW(&d->s.fw);
   ensures q_limit: -d->s.iq_lim <= d->s.iq_ref <= d->s.iq_lim;
-  ensures circle: d->s.id_ref * d->s.id_ref + d->s.iq_lim * d->s.iq_lim <=
-                  \abs(d->p->i_max) * \abs(d->p->i_max);
+  ensures circle: DrvInCircle(d->s.id_ref, d->s.iq_lim, (d->p->i_max > 0) ? d->p->i_max : 0);
 */
 static void drv_iref(qfoc_drive_t *d)
 {
@@ -1143,6 +1142,7 @@ static void drv_iref(qfoc_drive_t *d)
        stalled or slowing rotor falls back to i_d = 0) */
     in.mtpa = drv_abs_over(d->f.speed_f, qfoc_q15_abs(p->drive.mtpa_speed));
     qfoc_iref_step(&in, &out);
+    /*@ assert circle: DrvInCircle(out.id, out.iq_lim, (p->i_max > 0) ? p->i_max : 0); */
     s->id_ref = out.id;
     s->iq_lim = out.iq_lim;
     if (s->iq_ref > out.iq_lim) {

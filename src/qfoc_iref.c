@@ -11,6 +11,17 @@
 /** Largest reluctance flux dL |i_q| taken by MTPA: 1 psi_base (32767 in Q15), in Q27. */
 #define IREF_XHI_MAX ((uint32_t)134213632u)
 
+/* A temperature as an offset from the lowest: t + 32768 in [0, 65535]. */
+/*@
+  assigns \nothing;
+  ensures \result == t + 32768;
+*/
+static uint32_t iref_temp_u(int16_t t)
+{
+    const int32_t s = (int32_t)t + 32768;
+    return (uint32_t)s;
+}
+
 /* The limit m = max(i_max, 0). */
 /*@
   assigns \nothing;
@@ -95,12 +106,15 @@ uint16_t qfoc_iref_derate(uint16_t hi, uint16_t lo, int16_t t, int16_t t_start, 
         r = low;
     } else {
         /* t_start < t < t_end: the span and the position fit 16 bits */
-        const int32_t span_s = (int32_t)t_end - (int32_t)t_start;
-        const int32_t pos_s = (int32_t)t - (int32_t)t_start;
-        const uint32_t span = (uint32_t)span_s;
-        const uint32_t pos = (uint32_t)pos_s;
-        const uint32_t drop = ((uint32_t)hi - (uint32_t)low) * pos / span;
-        /*@ assert drop_le: drop <= hi - low; */
+        const uint32_t span = iref_temp_u(t_end) - iref_temp_u(t_start);
+        const uint32_t pos = iref_temp_u(t) - iref_temp_u(t_start);
+        const uint32_t gap = (uint32_t)hi - (uint32_t)low;
+        uint32_t drop;
+        /*@ assert pos_lt: 1 <= pos < span <= 65535; */
+        /*@ assert gap_le: gap <= 65535; */
+        /*@ assert prod: gap * pos <= gap * span; */
+        drop = (gap * pos) / span;
+        /*@ assert drop_le: drop <= gap; */
         r = (uint16_t)((uint32_t)hi - drop);
     }
     return r;
