@@ -210,10 +210,11 @@ bool qfoc_fault_band_over(qfoc_q15_t dev, qfoc_q15_t k, int32_t v, qfoc_q15_t w)
     const int32_t aw = (w < 0) ? -(int32_t)w : (int32_t)w;
     bool over = false;
     if ((int32_t)dev > kk) {
-        /* dev - k' in [1, 32767], |w| in [0, 32768]: the product below 2^31 */
-        const uint32_t e = (uint32_t)((int32_t)dev - kk);
-        const uint32_t lhs = e * (uint32_t)aw;
-        const uint32_t rhs = (uint32_t)vc * 32768u;
+        /* dev - k' in [1, 32767], |w| in [0, 32768]: the product at most 2^30 - 2^15;
+           32768 v' at most 2147450880 < 2^31 - 1: both in int32 */
+        const int32_t e = (int32_t)dev - kk;
+        const int32_t lhs = e * aw;
+        const int32_t rhs = vc * 32768;
         over = (lhs > rhs);
     } else {
         /* within the speed-independent part */

@@ -464,8 +464,8 @@ bool qfoc_fault_abs_over(qfoc_q15_t x, qfoc_q15_t limit);
  * @return true exactly when dev > k' and (dev - k') |w| > 32768 v' (k', v' the clamped
  *         values), which is dev > k' + floor(32768 v' / |w|) for w != 0: decided with two
  *         products, without a division.
- * Scaling and overflow: dev - k' <= 32767 and |w| <= 32768 give a product below 2^31;
- * 32768 v' <= 32768 x 65535 < 2^31; both in uint32.
+ * Scaling and overflow: dev - k' <= 32767 and |w| <= 32768 give a product below 2^30;
+ * 32768 v' <= 32768 x 65535 < 2^31 - 1; both in int32.
  * Requirements: REQ-FAULT-008.
  */
 /*@
