@@ -109,12 +109,12 @@ uint16_t qfoc_iref_derate(uint16_t hi, uint16_t lo, int16_t t, int16_t t_start, 
         const uint32_t span = iref_temp_u(t_end) - iref_temp_u(t_start);
         const uint32_t pos = iref_temp_u(t) - iref_temp_u(t_start);
         const uint32_t gap = (uint32_t)hi - (uint32_t)low;
-        uint32_t drop;
         /*@ assert pos_lt: 1 <= pos < span <= 65535; */
         /*@ assert gap_le: gap <= 65535; */
-        /*@ assert prod: gap * pos <= gap * span; */
-        drop = (gap * pos) / span;
-        /*@ assert drop_le: drop <= gap; */
+        /* (gap pos) / span <= gap since pos < span; the minimum states it without the
+           division's algebra */
+        const uint32_t q = (gap * pos) / span;
+        const uint32_t drop = (q < gap) ? q : gap;
         r = (uint16_t)((uint32_t)hi - drop);
     }
     return r;
