@@ -137,7 +137,8 @@
  * steps and field weakening, REQ-SCN-003 pulsating load, REQ-SCN-004 load step,
  * REQ-SCN-005 DC-bus sag, REQ-SCN-006 over-current, REQ-SCN-007 over-voltage,
  * REQ-SCN-008 over-temperature, REQ-SCN-009 locked rotor, REQ-SCN-010 link loss (each
- * with its recovery), REQ-SCN-011 robust start, REQ-SCN-012 other tables.
+ * with its recovery), REQ-SCN-011 robust start, REQ-SCN-012 other tables, REQ-SCN-013
+ * MTPA against i_d = 0, REQ-SCN-014 thermal derating.
  */
 #ifndef QFOC_DRIVE_H
 #define QFOC_DRIVE_H

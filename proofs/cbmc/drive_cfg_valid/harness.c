@@ -1,6 +1,6 @@
 /*
  * CBMC harness: qfoc_drive_cfg_is_valid() on any configuration (REQ-DCFG-001,
- * REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004).
+ * REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005).
  *
  * Every byte of the configuration is nondet (any bit pattern, padding included).
  * Properties:
