@@ -289,7 +289,7 @@ def test_committed_crc_independent_with_drive(motor):
     assert len(data) == 115
     assert head[1] == ("version", 3)
     data += b"".join(struct.pack("<" + f, v) for (_n, f), (_m, v) in zip(DRIVE_LAYOUT, drive))
-    assert len(data) == 199
+    assert len(data) == 213
     assert zlib.crc32(data) == crc
 
 
