@@ -8,6 +8,7 @@
  * drive may run.
  */
 #include "qfoc/drive.h"
+#include "qfoc/dtc.h"
 #include "qfoc/iref.h"
 #include "qfoc/q15.h"
 #include "qfoc/trig.h"
@@ -245,19 +246,20 @@ static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
    (qfoc_flux_lead, once a millisecond: the lead follows the speed, which moves little
    in 1 ms). */
 /*@
-  requires valid: \valid(f) && \valid_read(i_ab);
-  requires sep: \separated(f, i_ab);
+  requires valid: \valid(f) && \valid_read(i_ab) && \valid_read(u);
+  requires sep: \separated(f, i_ab) && \separated(f, u);
   requires inv: DRV_FAST(f);
   assigns f->flux.psi_alpha, f->flux.psi_beta, f->flux.i_prev, f->pll.pi.integ,
           f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed,
           f->theta_est, f->speed, f->speed_f, f->psi_mag;
   ensures inv: DRV_FAST(f);
 */
-static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab, qfoc_angle_t lead)
+static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab, const qfoc_ab_t *u,
+                         qfoc_angle_t lead)
 {
     qfoc_ab_t psi;
     qfoc_pll_out_t po;
-    qfoc_flux_step(&f->flux, &f->u_applied, i_ab, &psi);
+    qfoc_flux_step(&f->flux, u, i_ab, &psi);
     qfoc_pll_step(&f->pll, &psi, &po);
     f->theta_est = drv_angle_shift(po.theta, -(int32_t)lead);
     f->speed = po.speed;
@@ -362,7 +364,16 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
     qfoc_svpwm_out_t sv;
 
     qfoc_clarke(i_abc->u, i_abc->v, &i_ab);
-    drv_estimate(f, &i_ab, d->s.lead);
+    /* the observer's voltage: the command applied during the period that ended at this
+       sample, less the inverter's residual error learnt at ALIGN (dtc.h, REQ-DRV-026) */
+    {
+        qfoc_ab_t e;
+        qfoc_ab_t u_obs;
+        qfoc_dtc_error(d->s.dt_dv, i_abc, p->svpwm.i_deadband, &e);
+        u_obs.alpha = qfoc_q15_sub(f->u_applied.alpha, e.alpha);
+        u_obs.beta = qfoc_q15_sub(f->u_applied.beta, e.beta);
+        drv_estimate(f, &i_ab, &u_obs, d->s.lead);
+    }
     /* control angle and speed of the sub-state */
     if (sub == QFOC_SUB_ALIGN) {
         theta = 0u;
@@ -1056,7 +1067,9 @@ static qfoc_q15_t drv_bumpless_iq(const qfoc_drive_t *d)
   requires inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
   assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.fw.pi.integ, d->s.fw.pi.limited,
           d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.clear_seq, d->s.run_ms, d->s.calib_done;
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_dv, d->s.dt_learn, d->s.dt_u, d->s.clear_seq,
+          d->s.run_ms,
+          d->s.calib_done;
   ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
 */
 static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_sub)
@@ -1079,12 +1092,33 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         s->id_ref = 0;
         s->iq_ref = 0;
         s->iq_lim = 0;
+        s->dt_dv = 0;
+        s->dt_learn = 0;
+        s->dt_u = 0;
         s->run_ms = 0u;
         qfoc_pi_reset(&s->pi_speed, 0);
         qfoc_fw_reset(&s->fw);
         qfoc_trqcomp_reset(&s->tc);
     } else if (sub == QFOC_SUB_OPEN_LOOP) {
-        /* OPEN_LOOP is entered from ALIGN only (sm.h, to_open_loop) */
+        /* OPEN_LOOP is entered from ALIGN only (sm.h, to_open_loop): the rotor stands
+           aligned and the d PI's integrator holds the whole d voltage of the half alignment
+           current (w = 0: no decoupling term); with the voltage at the full current, the
+           inverter's residual voltage error (REQ-DTC-002, REQ-DRV-026), within the table's
+           dead-time voltage error */
+        const qfoc_q15_t ia = qfoc_q15_abs(p->drive.i_align);
+        if ((ia > 1) && (s->id_ref == (qfoc_q15_t)(ia / 2))) {
+            qfoc_dtc_align_t al;
+            al.u_hi = s->dt_u;
+            al.u_lo = qfoc_q15_sat(d->f.pi_id.integ / 65536);
+            al.i_hi = ia;
+            al.i_db = p->svpwm.i_deadband;
+            al.v_max = p->drive.flux_v_err;
+            al.r = p->flux.r;
+            al.r_err = p->drive.flux_r_err;
+            s->dt_learn = qfoc_dtc_learn(&al);
+        } else {
+            /* ALIGN ended before its half-current hold: nothing learnt */
+        }
         s->id_ref = 0;
         s->iq_ref = qfoc_q15_abs(p->drive.i_start);
     } else if ((sub == QFOC_SUB_CLOSED_LOOP) && (old_sub == QFOC_SUB_OPEN_LOOP)) {
@@ -1163,7 +1197,7 @@ static void drv_iref(qfoc_drive_t *d)
   assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.pi_speed.params.out_min,
           d->s.pi_speed.params.out_max, d->s.fw.pi.integ, d->s.fw.pi.limited,
           d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.clamp_seen;
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_u, d->s.clamp_seen;
   ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
 */
 static void drv_run(qfoc_drive_t *d)
@@ -1175,11 +1209,24 @@ static void drv_run(qfoc_drive_t *d)
     if (s->sm.state != QFOC_STATE_RUN) {
         /* nothing runs */
     } else if (sub == QFOC_SUB_ALIGN) {
-        /* d-current ramp over the first half of align_ms, then hold */
+        /* d-current ramp over the first half of align_ms, hold to three quarters, then half
+           the current for the last quarter: the d voltage at the end of the full-current
+           hold is kept for the learning of the inverter's error (REQ-DRV-026) */
         const int32_t half = (int32_t)c->align_ms / 2;
+        const uint32_t q3 = ((uint32_t)c->align_ms * 3u) / 4u;
         const int32_t ia = (int32_t)qfoc_q15_abs(c->i_align);
         const int32_t step = (half > 0) ? ((ia + half - 1) / half) : ia;
-        s->id_ref = qfoc_ramp_toward(s->id_ref, (qfoc_q15_t)ia, (qfoc_q15_t)step);
+        const qfoc_q15_t lo = (qfoc_q15_t)(ia / 2);
+        if (((uint32_t)s->sm.t_sub < q3) || ((s->id_ref != lo) && (s->id_ref != (qfoc_q15_t)ia))) {
+            /* the ramp and the full-current hold (also a ramp not done by three quarters,
+               which only a table changed after the start can give) */
+            s->id_ref = qfoc_ramp_toward(s->id_ref, (qfoc_q15_t)ia, (qfoc_q15_t)step);
+        } else if (s->id_ref == (qfoc_q15_t)ia) {
+            s->dt_u = qfoc_q15_sat(d->f.pi_id.integ / 65536);
+            s->id_ref = lo;
+        } else {
+            /* the half-current hold */
+        }
     } else if (sub == QFOC_SUB_OPEN_LOOP) {
         s->ol_speed = qfoc_ramp_toward(s->ol_speed, qfoc_q15_abs(c->of_speed), c->of_accel);
     } else {
@@ -1312,7 +1359,9 @@ static void drv_sm_step(qfoc_drive_slow_t *s)
   requires inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
   assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.fw.pi.integ, d->s.fw.pi.limited,
           d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.clear_seq, d->s.run_ms, d->s.calib_done;
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_dv, d->s.dt_learn, d->s.dt_u, d->s.clear_seq,
+          d->s.run_ms,
+          d->s.calib_done;
   ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
 */
 static void drv_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_sub)
@@ -1595,13 +1644,13 @@ static bool drv_object_slice(const qfoc_drive_t *d, uint8_t k)
 }
 
 /* Bias of the reference guard (REQ-DRV-022, DRV_REF_GUARD of specs/drive.acsl): it makes
-   the sum of the six references non-negative (6 x 32768 <= 239013) and the guard of an
+   the sum of the seven references non-negative (7 x 32768 <= 239013) and the guard of an
    object of zeros (42405) other than 0. */
 #define DRV_GUARD_BIAS ((int32_t)239013)
-/* The guard of six references at 0 (the reset values): 239013 modulo 2^16. */
+/* The guard of seven references at 0 (the reset values): 239013 modulo 2^16. */
 #define DRV_GUARD_ZERO ((uint16_t)42405u)
 
-/* The guard word of the tick's six references (REQ-DRV-022): their sum with the bias,
+/* The guard word of the tick's seven references (REQ-DRV-022): their sum with the bias,
    modulo 2^16, which a single flipped bit of any of them changes. */
 /*@
   requires valid: \valid_read(s);
@@ -1610,10 +1659,10 @@ static bool drv_object_slice(const qfoc_drive_t *d, uint8_t k)
 */
 static uint16_t drv_ref_guard(const qfoc_drive_slow_t *s)
 {
-    /* six terms in [-32768, 32767]: the sum with the bias in [42405, 435615] */
+    /* seven terms in [-32768, 32767]: the sum with the bias in [9637, 468382] */
     const int32_t sum = (int32_t)s->speed_target + (int32_t)s->speed_ref + (int32_t)s->ol_speed +
                         (int32_t)s->id_ref + (int32_t)s->iq_ref + (int32_t)s->iq_lim +
-                        DRV_GUARD_BIAS;
+                        (int32_t)s->dt_dv + DRV_GUARD_BIAS;
     return (uint16_t)((uint32_t)sum % 65536u);
 }
 
@@ -1628,10 +1677,10 @@ static uint16_t drv_ref_guard(const qfoc_drive_slow_t *s)
    half while it may pre-empt is sound: every relation checked bounds one field the fast
    step writes by constants of the table or by fields only the tick or the init write, so
    a mix of two periods' values passes.  Every tick also checks the guard word of the
-   six references against their values (REQ-DRV-022): only the tick and the init write
+   seven references against their values (REQ-DRV-022): only the tick and the init write
    them, and both leave the guard matching (ensures guard), so a mismatch at the start of
    a tick is a change since the last tick that no code made; it clears table_ok the same
-   way, before any of the six is used. */
+   way, before any of the seven is used. */
 /*@
   requires valid: \valid(d) && \valid_read(d->p) && \separated(d, d->p);
   assigns d->s.table_ok;
@@ -1679,6 +1728,13 @@ static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_
     drv_sm_step(s);
     drv_transition(d, old_state, old_sub);
     drv_run(d);
+    /* the learnt inverter error as the fast step's observer uses it at this speed: whole up
+       to twice the handover speed, none from four times (REQ-DRV-026); 0 outside RUN */
+    {
+        const qfoc_q15_t w = (s->sm.sub == QFOC_SUB_OPEN_LOOP) ? s->ol_speed : s->speed_ref;
+        const int32_t w_full = 2 * (int32_t)qfoc_q15_abs(d->p->drive.of_speed);
+        s->dt_dv = qfoc_dtc_speed_fade(s->dt_learn, w, qfoc_q15_sat(w_full));
+    }
     /* the observer's phase lead at the present speed, for the fast step's rotor angle */
     s->lead = qfoc_flux_lead(&d->f.flux, d->f.speed_f);
     /* the voltage utilisation of the last command, for the fast step's field weakening */
@@ -1807,12 +1863,14 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 /*@
   requires valid: \valid(s) && \valid_read(c);
   requires sep: \separated(s, c);
-  assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->iq_lim, s->lead,
-          s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->scan_crc, s->calib_done,
+  assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->iq_lim, s->dt_dv,
+          s->dt_learn, s->dt_u, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100,
+          s->scan_crc, s->calib_done,
           s->hs, s->derated, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out,
           s->fast_seen, s->ref_guard;
   ensures refs: s->speed_target == 0 && s->speed_ref == 0 && s->ol_speed == 0 &&
-                s->id_ref == 0 && s->iq_ref == 0 && s->iq_lim == 0 && s->ref_guard == 42405;
+                s->id_ref == 0 && s->iq_ref == 0 && s->iq_lim == 0 && s->dt_dv == 0 &&
+                s->ref_guard == 42405;
 */
 static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
 {
@@ -1824,6 +1882,9 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->id_ref = 0;
     s->iq_ref = 0;
     s->iq_lim = 0;
+    s->dt_dv = 0;
+    s->dt_learn = 0;
+    s->dt_u = 0;
     s->lead = 0u;
     s->util = 0;
     s->trip_seen = 0u;
@@ -1905,11 +1966,14 @@ static void drv_init_fw(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
           s->db_stall, s->db_flux, s->db_phase, s->db_align, s->db_ho, s->off_sum_u, s->off_sum_v,
           s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
-          s->iq_ref, s->iq_lim, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100, s->table_ok,
+          s->iq_ref, s->iq_lim, s->dt_dv, s->dt_learn, s->dt_u, s->lead, s->util, s->trip_seen,
+          s->clamp_seen,
+          s->clear_seq, s->ms100, s->table_ok,
           s->scan_crc, s->calib_done, s->hs, s->derated, s->run_ms, s->status, s->cmd, s->sm_cfg,
           s->sm_in, s->out, s->fast_seen, s->ref_guard;
   ensures refs: s->speed_target == 0 && s->speed_ref == 0 && s->ol_speed == 0 &&
-                s->id_ref == 0 && s->iq_ref == 0 && s->iq_lim == 0 && s->ref_guard == 42405;
+                s->id_ref == 0 && s->iq_ref == 0 && s->iq_lim == 0 && s->dt_dv == 0 &&
+                s->ref_guard == 42405;
   ensures inv: DRV_SM(&s->sm) && DRV_PI(&s->pi_speed) && DRV_FW(&s->fw) && DRV_TC(&s->tc) &&
                s->offset_u <= 4095 && s->offset_v <= 4095 && DRV_OFF_SUMS(s);
   ensures accepted: st == QFOC_PARAMS_OK ==>

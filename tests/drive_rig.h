@@ -89,16 +89,17 @@ static inline void rig_fast(rig_t *r)
     assert_true(!r->pwm.enable || (r->d.s.sm.state == QFOC_STATE_RUN));
 }
 
-/* REQ-DRV-022: the guard word of the tick's six references (DRV_REF_GUARD of
+/* REQ-DRV-022: the guard word of the tick's seven references (DRV_REF_GUARD of
    specs/drive.acsl): their sum plus 239013, modulo 2^16. */
 static inline uint16_t rig_guard(const qfoc_drive_t *d)
 {
     const long sum = (long)d->s.speed_target + (long)d->s.speed_ref + (long)d->s.ol_speed +
-                     (long)d->s.id_ref + (long)d->s.iq_ref + (long)d->s.iq_lim + 239013L;
+                     (long)d->s.id_ref + (long)d->s.iq_ref + (long)d->s.iq_lim +
+                     (long)d->s.dt_dv + 239013L;
     return (uint16_t)(sum % 65536L);
 }
 
-/* after a test writes one of the five references: the guard a tick would have left */
+/* after a test writes one of the references: the guard a tick would have left */
 static inline void rig_reguard(rig_t *r)
 {
     r->d.s.ref_guard = rig_guard(&r->d);

@@ -311,7 +311,8 @@ static void test_req_drv_006_k_theta_above_q15_bounded(void **state)
 }
 
 /* REQ-DRV-006, REQ-DRV-010: ALIGN ramps the d-current reference by ceil(i_align /
-   (align_ms / 2)) per tick to i_align, reached within align_ms / 2, then holds it; an
+   (align_ms / 2)) per tick to i_align, reached within align_ms / 2, then holds it to three
+   quarters of align_ms and half of it after (REQ-DRV-026); an
    ALIGN time below 2 ms (refused by the table check, here changed after the start) has
    no ramp: the reference steps to i_align at once, and the re-check reports PARAM. */
 static void test_req_drv_006_align_ramp(void **state)
@@ -331,7 +332,9 @@ static void test_req_drv_006_align_ramp(void **state)
     }
     assert_int_equal(sub(&r), QFOC_SUB_ALIGN);
     for (k = 1; sub(&r) == QFOC_SUB_ALIGN; k++) {
-        const int32_t expect = (k * step < ia) ? (k * step) : ia;
+        /* from three quarters of align_ms on (t_sub = k - 1), half of i_align (REQ-DRV-026) */
+        const int32_t q3 = (int32_t)qfoc_params_reference.drive.align_ms * 3 / 4;
+        const int32_t expect = (k - 1 >= q3) ? (ia / 2) : ((k * step < ia) ? (k * step) : ia);
         assert_int_equal(r.d.s.id_ref, expect);
         if (k == half) {
             assert_int_equal(r.d.s.id_ref, ia);   /* reached by align_ms / 2 */

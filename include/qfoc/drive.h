@@ -35,7 +35,9 @@
  *     each offset must lie within offset_window of 2048, else fault OFFSET.
  *   - STOP: PWM off; a run request (power-on bit, target rpm_min..rpm_max, link alive)
  *     starts the motor.
- *   - RUN / ALIGN: d-current ramp to i_align at angle 0 over align_ms / 2, then held.
+ *   - RUN / ALIGN: d-current ramp to i_align at angle 0 over align_ms / 2, then held to
+ *     3/4 align_ms and half of it for the last quarter; the two d voltages give the
+ *     inverter's residual voltage error (dtc.h, REQ-DRV-026).
  *   - RUN / OPEN_LOOP (I/f): current i_start on the q axis of an imposed frame whose
  *     speed ramps at of_accel to of_speed; the estimator (flux observer + PLL) runs
  *     throughout.
@@ -258,6 +260,11 @@ typedef struct {
     qfoc_q15_t iq_ref;        /**< q-current reference (speed PI, or i_start in OPEN_LOOP) */
     qfoc_q15_t iq_lim;        /**< q-current limit of the closed loop, sqrt(i_max^2 - id_ref^2)
                                    (iref.h); 0 outside CLOSED_LOOP and STOPPING */
+    qfoc_q15_t dt_dv;         /**< the inverter's residual voltage error the observer uses:
+                                   dt_learn faded out with the speed (dtc.h, REQ-DRV-026) */
+    qfoc_q15_t dt_learn;      /**< the residual learnt at the end of ALIGN, 0 until then in
+                                   each run and outside RUN */
+    qfoc_q15_t dt_u;          /**< the d voltage at the end of ALIGN's full-current hold */
     qfoc_angle_t lead;        /**< observer phase lead at the filtered speed (qfoc_flux_lead) */
     qfoc_q15_t util;          /**< voltage utilisation of the last command, |v| / (V_dc / sqrt 3) */
     uint8_t trip_seen;        /**< trip_count already reported */
@@ -271,7 +278,7 @@ typedef struct {
     bool hs;                  /**< request: high-speed inductances (motorParaChange) */
     bool derated;             /**< a temperature holds the speed limit below rpm_max
                                    (REQ-DRV-024) */
-    uint16_t ref_guard;       /**< guard word of speed_target .. iq_lim (REQ-DRV-022) */
+    uint16_t ref_guard;       /**< guard word of speed_target .. dt_dv (REQ-DRV-022) */
     uint32_t run_ms;          /**< time in RUN, ms, saturating (Motor_Run_Time) */
     qfoc_status_t status;     /**< last status (LIN and CAN) */
     qfoc_cmd_t cmd;           /**< effective command of this tick (after the link rules) */
@@ -343,7 +350,9 @@ int32_t qfoc_drive_init(qfoc_drive_t *d, const qfoc_param_table_t *table);
  * Guarantees: cmp[k] <= period always; enable only in RUN without an over-current
  * latch; an over-current in these samples gives enable false in this same call.
  * Writes only d->f (the tick's half d->s and the table are read only).
- * Requirements: REQ-DRV-002, REQ-DRV-003, REQ-DRV-004.
+ * The flux observer integrates the voltage applied in the last period less the inverter's
+ * residual error the tick learnt when ALIGN ended (dtc.h, REQ-DRV-026).
+ * Requirements: REQ-DRV-002, REQ-DRV-003, REQ-DRV-004, REQ-DRV-026.
  */
 /*@
   requires valid: \valid(d) && \valid_read(adc);
@@ -371,8 +380,8 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
  * gain against the table), the whole in 4 calls; a violation (a flipped bit, a stray
  * write) raises PARAM and ERROR in that call, the PWM goes off in the next period, and
  * the drive stays in ERROR until qfoc_drive_init() is called again (REQ-DRV-019).
- * Reference guard: each call also first compares the guard word of the six references
- * (speed_target, speed_ref, ol_speed, id_ref, iq_ref, iq_lim) with their values; only the
+ * Reference guard: each call also first compares the guard word of the seven references
+ * (speed_target, speed_ref, ol_speed, id_ref, iq_ref, iq_lim, dt_dv) with their values; only the
  * init and the tick write them and both leave the guard matching (ensures guard), so a flipped bit
  * that leaves a reference admissible is PARAM in the same way, before it is used
  * (REQ-DRV-022).
@@ -380,7 +389,7 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
  * TIMING above (REQ-DRV-020, REQ-DRV-021).  out.pwm_off is true whenever the state after
  * the call is not RUN: the port turns the inverter off at once (a second path to the safe
  * state beside the fast step's PWM off, for a fast step that no longer runs).
- * Requirements: REQ-DRV-005 .. REQ-DRV-012, REQ-DRV-019 .. REQ-DRV-022.
+ * Requirements: REQ-DRV-005 .. REQ-DRV-012, REQ-DRV-019 .. REQ-DRV-022, REQ-DRV-026.
  */
 /*@
   requires valid: \valid(d) && \valid_read(in);

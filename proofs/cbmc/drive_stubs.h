@@ -8,6 +8,7 @@
 #define QFOC_DRIVE_STUBS_H
 
 #include "qfoc/drive.h"
+#include "qfoc/dtc.h"
 #include "qfoc/iref.h"
 #include "harness_util.h"
 
@@ -215,6 +216,30 @@ qfoc_q15_t stub_vec_mag(qfoc_q15_t x, qfoc_q15_t y)
     (void)x; (void)y;
     __CPROVER_assume(m >= 0);
     return m;
+}
+/* qfoc_dtc_learn (dtc.h): in [-m, m], m = max(v_max, 0) */
+qfoc_q15_t stub_dtc_learn(const qfoc_dtc_align_t *a)
+{
+    const qfoc_q15_t y = ANY_S16(1);
+    const int32_t m = (a->v_max > 0) ? (int32_t)a->v_max : 0;
+    __CPROVER_assume((int32_t)y >= -m && (int32_t)y <= m);
+    return y;
+}
+/* qfoc_dtc_speed_fade (dtc.h): between 0 and dv */
+qfoc_q15_t stub_dtc_speed_fade(qfoc_q15_t dv, qfoc_q15_t w, qfoc_q15_t w_full)
+{
+    const qfoc_q15_t y = ANY_S16(0);
+    (void)w; (void)w_full;
+    __CPROVER_assume((dv >= 0) ? (y >= 0 && y <= dv) : (y >= dv && y <= 0));
+    return y;
+}
+/* qfoc_dtc_error (dtc.h): both components in [-32767, 32767] */
+void stub_dtc_error(qfoc_q15_t dv, const qfoc_abc_t *i, qfoc_q15_t i_db, qfoc_ab_t *e)
+{
+    (void)dv; (void)i; (void)i_db;
+    e->alpha = ANY_S16(2);
+    e->beta = ANY_S16(3);
+    __CPROVER_assume(e->alpha >= -32767 && e->beta >= -32767);
 }
 void stub_flux_reset(qfoc_flux_t *o, const qfoc_ab_t *p, const qfoc_ab_t *i) { (void)o; (void)p; (void)i; }
 void stub_pll_reset(qfoc_pll_t *pll, qfoc_angle_t t, qfoc_q15_t w) { (void)pll; (void)t; (void)w; }
