@@ -1067,7 +1067,8 @@ static qfoc_q15_t drv_bumpless_iq(const qfoc_drive_t *d)
   requires inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
   assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.fw.pi.integ, d->s.fw.pi.limited,
           d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_dv, d->s.dt_learn, d->s.dt_u, d->s.clear_seq,
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_dv, d->s.dt_learn, d->s.dt_u, d->s.dt_u0,
+          d->s.dt_u1, d->s.clear_seq,
           d->s.run_ms,
           d->s.calib_done;
   ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
@@ -1095,6 +1096,8 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         s->dt_dv = 0;
         s->dt_learn = 0;
         s->dt_u = 0;
+        s->dt_u0 = 0;
+        s->dt_u1 = 0;
         s->run_ms = 0u;
         qfoc_pi_reset(&s->pi_speed, 0);
         qfoc_fw_reset(&s->fw);
@@ -1109,7 +1112,9 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         if ((ia > 1) && (s->id_ref == (qfoc_q15_t)(ia / 2))) {
             qfoc_dtc_align_t al;
             al.u_hi = s->dt_u;
+            al.u_hi0 = s->dt_u0;
             al.u_lo = qfoc_q15_sat(d->f.pi_id.integ / 65536);
+            al.u_lo0 = s->dt_u1;
             al.i_hi = ia;
             al.i_db = p->svpwm.i_deadband;
             al.v_max = p->drive.flux_v_err;
@@ -1197,7 +1202,8 @@ static void drv_iref(qfoc_drive_t *d)
   assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.pi_speed.params.out_min,
           d->s.pi_speed.params.out_max, d->s.fw.pi.integ, d->s.fw.pi.limited,
           d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_u, d->s.clamp_seen;
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_u, d->s.dt_u0, d->s.dt_u1,
+          d->s.clamp_seen;
   ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
 */
 static void drv_run(qfoc_drive_t *d)
@@ -1210,19 +1216,29 @@ static void drv_run(qfoc_drive_t *d)
         /* nothing runs */
     } else if (sub == QFOC_SUB_ALIGN) {
         /* d-current ramp over the first half of align_ms, hold to three quarters, then half
-           the current for the last quarter: the d voltage at the end of the full-current
-           hold is kept for the learning of the inverter's error (REQ-DRV-026) */
+           the current for the last quarter: the d voltages at five and seven eighths and
+           at the end of the full-current hold are kept for the learning of the inverter's
+           error (REQ-DRV-026) */
         const int32_t half = (int32_t)c->align_ms / 2;
         const uint32_t q3 = ((uint32_t)c->align_ms * 3u) / 4u;
+        const uint32_t t = (uint32_t)s->sm.t_sub;
+        const qfoc_q15_t u_now = qfoc_q15_sat(d->f.pi_id.integ / 65536);
         const int32_t ia = (int32_t)qfoc_q15_abs(c->i_align);
         const int32_t step = (half > 0) ? ((ia + half - 1) / half) : ia;
         const qfoc_q15_t lo = (qfoc_q15_t)(ia / 2);
-        if (((uint32_t)s->sm.t_sub < q3) || ((s->id_ref != lo) && (s->id_ref != (qfoc_q15_t)ia))) {
+        if (t == (((uint32_t)c->align_ms * 5u) / 8u)) {
+            s->dt_u0 = u_now;
+        } else if (t == (((uint32_t)c->align_ms * 7u) / 8u)) {
+            s->dt_u1 = u_now;
+        } else {
+            /* no eighth */
+        }
+        if ((t < q3) || ((s->id_ref != lo) && (s->id_ref != (qfoc_q15_t)ia))) {
             /* the ramp and the full-current hold (also a ramp not done by three quarters,
                which only a table changed after the start can give) */
             s->id_ref = qfoc_ramp_toward(s->id_ref, (qfoc_q15_t)ia, (qfoc_q15_t)step);
         } else if (s->id_ref == (qfoc_q15_t)ia) {
-            s->dt_u = qfoc_q15_sat(d->f.pi_id.integ / 65536);
+            s->dt_u = u_now;
             s->id_ref = lo;
         } else {
             /* the half-current hold */
@@ -1359,7 +1375,8 @@ static void drv_sm_step(qfoc_drive_slow_t *s)
   requires inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
   assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.fw.pi.integ, d->s.fw.pi.limited,
           d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
-          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_dv, d->s.dt_learn, d->s.dt_u, d->s.clear_seq,
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_dv, d->s.dt_learn, d->s.dt_u, d->s.dt_u0,
+          d->s.dt_u1, d->s.clear_seq,
           d->s.run_ms,
           d->s.calib_done;
   ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
@@ -1864,7 +1881,7 @@ static void drv_init_fast(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
   requires valid: \valid(s) && \valid_read(c);
   requires sep: \separated(s, c);
   assigns s->speed_target, s->speed_ref, s->ol_speed, s->id_ref, s->iq_ref, s->iq_lim, s->dt_dv,
-          s->dt_learn, s->dt_u, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100,
+          s->dt_learn, s->dt_u, s->dt_u0, s->dt_u1, s->lead, s->util, s->trip_seen, s->clamp_seen, s->clear_seq, s->ms100,
           s->scan_crc, s->calib_done,
           s->hs, s->derated, s->run_ms, s->status, s->cmd, s->sm_cfg, s->sm_in, s->out,
           s->fast_seen, s->ref_guard;
@@ -1885,6 +1902,8 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->dt_dv = 0;
     s->dt_learn = 0;
     s->dt_u = 0;
+    s->dt_u0 = 0;
+    s->dt_u1 = 0;
     s->lead = 0u;
     s->util = 0;
     s->trip_seen = 0u;
@@ -1966,7 +1985,8 @@ static void drv_init_fw(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
           s->db_stall, s->db_flux, s->db_phase, s->db_align, s->db_ho, s->off_sum_u, s->off_sum_v,
           s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
-          s->iq_ref, s->iq_lim, s->dt_dv, s->dt_learn, s->dt_u, s->lead, s->util, s->trip_seen,
+          s->iq_ref, s->iq_lim, s->dt_dv, s->dt_learn, s->dt_u, s->dt_u0, s->dt_u1, s->lead,
+          s->util, s->trip_seen,
           s->clamp_seen,
           s->clear_seq, s->ms100, s->table_ok,
           s->scan_crc, s->calib_done, s->hs, s->derated, s->run_ms, s->status, s->cmd, s->sm_cfg,

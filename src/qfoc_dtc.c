@@ -95,8 +95,14 @@ qfoc_q15_t qfoc_dtc_learn(const qfoc_dtc_align_t *a)
     const int32_t s_lo = dtc_sd(i_lo, a->i_db);
     const int32_t den = dtc_sd(a->i_hi, a->i_db) - (2 * s_lo);
     const int32_t n = dtc_clamp((int32_t)a->u_hi - (2 * (int32_t)a->u_lo), DTC_N_MAX);
+    const int32_t ch = (int32_t)a->u_hi - (int32_t)a->u_hi0;
+    const int32_t cl = (int32_t)a->u_lo - (int32_t)a->u_lo0;
+    const int32_t tol = (m / 8) + QFOC_DTC_SETTLE_TOL;
+    const bool settled = (ch <= tol) && (ch >= -tol) && (cl <= tol) && (cl >= -tol);
     int32_t dv = 0;
-    if ((den >= QFOC_DTC_DEN_MIN) || (den <= -QFOC_DTC_DEN_MIN)) {
+    if (!settled) {
+        /* a hold that has not settled: nothing learnt */
+    } else if ((den >= QFOC_DTC_DEN_MIN) || (den <= -QFOC_DTC_DEN_MIN)) {
         const int32_t v = dtc_clamp((n * 32768) / den, DTC_V_MAX);
         const int32_t ri = ((int32_t)a->r * (int32_t)i_lo) / 32768;
         const int32_t ri_abs = (ri < 0) ? -ri : ri;

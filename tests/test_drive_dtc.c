@@ -44,18 +44,19 @@ static double sd_d(double i, double db)
     return (2.0 / 3.0) * (fade_d(i, db) - fade_d(-trunc(i / 2.0), db));
 }
 
-/* From STOP: power on and tick (the test plays the fast step) to the last tick of ALIGN's
-   full-current hold (t_sub one below three quarters of align_ms). */
+/* From STOP: power on and tick (the test plays the fast step) to the tick before the
+   first voltage ALIGN keeps (t_sub one below five eighths of align_ms, in the
+   full-current hold). */
 static void rig_to_align_hold(rig_t *r)
 {
-    const uint32_t q3 = ((uint32_t)r->table.drive.align_ms * 3u) / 4u;
+    const uint32_t c1 = ((uint32_t)r->table.drive.align_ms * 5u) / 8u;
     long k;
     r->power_on = true;
     for (k = 0; k < 4000; k++) {
         rig_tick(r, true);
         if ((r->d.s.sm.state == QFOC_STATE_RUN) && (r->d.s.sm.sub == QFOC_SUB_ALIGN)) {
             assert_int_equal(r->d.s.dt_dv, 0);
-            if ((uint32_t)r->d.s.sm.t_sub + 1u >= q3) {
+            if ((uint32_t)r->d.s.sm.t_sub + 1u >= c1) {
                 break;
             }
         }
@@ -64,22 +65,32 @@ static void rig_to_align_hold(rig_t *r)
     assert_int_equal(r->d.s.id_ref, abs(r->table.drive.i_align));
 }
 
-/* The d PI holding u_hi to the end of the full-current hold, then u_lo through the
-   half-current hold: ticks until OPEN_LOOP; returns the learnt error. */
-static int32_t learn_with(rig_t *r, int32_t u_hi, int32_t u_lo)
+/* The d PI holding u_hi through the rest of the full-current hold, then u_lo through the
+   half-current hold (each moved by `drift` counts between its two voltages ALIGN keeps):
+   ticks until OPEN_LOOP; returns the learnt error. */
+static int32_t learn_drift(rig_t *r, int32_t u_hi, int32_t u_lo, int32_t drift)
 {
     const int32_t ia = abs(r->table.drive.i_align);
+    const uint32_t q3 = ((uint32_t)r->table.drive.align_ms * 3u) / 4u;
     long k;
+    r->d.f.pi_id.integ = (u_hi - drift) * 65536;
+    for (k = 0; (k < 1000) && ((uint32_t)r->d.s.sm.t_sub + 1u < q3); k++) {
+        rig_tick(r, true);
+        assert_int_equal(r->d.s.id_ref, ia);
+    }
     r->d.f.pi_id.integ = u_hi * 65536;
     rig_tick(r, true);
     /* three quarters: half the current */
     assert_int_equal(r->d.s.sm.sub, QFOC_SUB_ALIGN);
     assert_int_equal(r->d.s.id_ref, ia / 2);
-    r->d.f.pi_id.integ = u_lo * 65536;
+    r->d.f.pi_id.integ = (u_lo - drift) * 65536;
     for (k = 0; (k < 1000) && (r->d.s.sm.sub == QFOC_SUB_ALIGN); k++) {
         assert_int_equal(r->d.s.dt_dv, 0);
         assert_int_equal(r->d.s.dt_learn, 0);
         assert_int_equal(r->d.s.id_ref, ia / 2);
+        if ((uint32_t)r->d.s.sm.t_sub + 2u >= (uint32_t)r->table.drive.align_ms) {
+            r->d.f.pi_id.integ = u_lo * 65536;
+        }
         rig_tick(r, true);
     }
     assert_int_equal(r->d.s.sm.state, QFOC_STATE_RUN);
@@ -87,6 +98,11 @@ static int32_t learn_with(rig_t *r, int32_t u_hi, int32_t u_lo)
     /* at the open-loop frame's standstill the observer uses all of it */
     assert_int_equal(r->d.s.dt_dv, r->d.s.dt_learn);
     return r->d.s.dt_learn;
+}
+
+static int32_t learn_with(rig_t *r, int32_t u_hi, int32_t u_lo)
+{
+    return learn_drift(r, u_hi, u_lo, 0);
 }
 
 /* REQ-DRV-026: the error learnt when ALIGN ends against the model in double precision: a
@@ -140,9 +156,10 @@ static void test_req_drv_026_learn(void **state)
     }
 }
 
-/* REQ-DRV-026: nothing learnt when the alignment current has no half (i_align = 1) or when
+/* REQ-DRV-026: nothing learnt when the alignment current has no half (i_align = 1), when
    ALIGN ends at another d reference than its half-current hold (written here, as a fault
-   would): the error stays 0 however far the d voltage is from the resistance drop. */
+   would), or when a hold's voltage has not settled: the error stays 0 however far the d
+   voltage is from the resistance drop. */
 static void test_req_drv_026_no_learning(void **state)
 {
     qfoc_param_table_t t1 = qfoc_params_reference;
@@ -175,6 +192,30 @@ static void test_req_drv_026_no_learning(void **state)
     }
     assert_int_equal(x.d.s.sm.sub, QFOC_SUB_OPEN_LOOP);
     assert_int_equal(x.d.s.dt_dv, 0);
+
+    /* a hold that has not settled: the voltage moved by more than flux_v_err / 8 + 4
+       counts over the last eighth of ALIGN (by that much: learnt; one more: not) */
+    {
+        const qfoc_param_table_t *const t = &qfoc_params_reference;
+        const double ia = fabs((double)t->drive.i_align);
+        const double db = (double)t->svpwm.i_deadband;
+        const double r = (double)t->flux.r;
+        const int32_t u_hi = (int32_t)lround(r * ia / 32768.0 + 200.0 * sd_d(ia, db));
+        const int32_t u_lo = (int32_t)lround(r * trunc(ia / 2.0) / 32768.0 +
+                                             200.0 * sd_d(trunc(ia / 2.0), db));
+        const int32_t tol = t->drive.flux_v_err / 8 + 4;
+        int32_t drift;
+        for (drift = tol; drift <= tol + 1; drift++) {
+            rig_init_table(&x, t, 1000u);
+            rig_ms(&x, 300);
+            rig_to_align_hold(&x);
+            if (drift == tol) {
+                assert_true(abs(learn_drift(&x, u_hi, u_lo, drift) - 200) <= 3);
+            } else {
+                assert_int_equal(learn_drift(&x, u_hi, u_lo, drift), 0);
+            }
+        }
+    }
 }
 
 /* REQ-DRV-026: the observer uses the learnt error whole up to twice the handover speed

@@ -90,17 +90,26 @@ static void test_dtc_fade_random(void **state)
 
 /* ---- the learnt error ------------------------------------------------------- */
 
-static int learn(int u_hi, int u_lo, int i_hi, int i_db, int v_max, int r, int r_err)
+static int learn_s(int u_hi, int u_hi0, int u_lo, int u_lo0, int i_hi, int i_db, int v_max,
+                   int r, int r_err)
 {
     qfoc_dtc_align_t al;
     al.u_hi = (int16_t)u_hi;
+    al.u_hi0 = (int16_t)u_hi0;
     al.u_lo = (int16_t)u_lo;
+    al.u_lo0 = (int16_t)u_lo0;
     al.i_hi = (int16_t)i_hi;
     al.i_db = (int16_t)i_db;
     al.v_max = (int16_t)v_max;
     al.r = (int16_t)r;
     al.r_err = (int16_t)r_err;
     return qfoc_dtc_learn(&al);
+}
+
+/* settled holds: each voltage the same an eighth of ALIGN earlier */
+static int learn(int u_hi, int u_lo, int i_hi, int i_db, int v_max, int r, int r_err)
+{
+    return learn_s(u_hi, u_hi, u_lo, u_lo, i_hi, i_db, v_max, r, r_err);
 }
 
 /* REQ-DTC-002: two settled alignments at i_hi and i_lo = i_hi / 2 of a motor whose
@@ -160,8 +169,8 @@ static void test_dtc_learn_model(void **state)
 }
 
 /* REQ-DTC-002: the corners: no bound accepted, alignments inside the dead band, either
-   clamp of the difference and of the result, the resistance check at its edges, the
-   extremes of every argument. */
+   clamp of the difference and of the result, the resistance check and the settling check
+   at their edges, the extremes of every argument. */
 static void test_dtc_learn_corners(void **state)
 {
     (void)state;
@@ -188,6 +197,19 @@ static void test_dtc_learn_corners(void **state)
     assert_int_equal(learn(1090, 745, 10000, 0, 3000, 3277, 9830), 0);
     assert_int_equal(learn(1406, 903, 10000, 0, 3000, 3277, -5), 300);
     assert_int_equal(learn(1408, 904, 10000, 0, 3000, 3277, -5), 0);
+    /* settled holds: with v_max = 3000 a change of 3000 / 8 + 4 = 379 counts over the last
+       eighth passes, 380 does not, on either hold and in either direction; with v_max = 0
+       the allowance is 4 (and nothing is learnt anyway) */
+    assert_int_equal(learn_s(1400, 1021, 900, 1279, 10000, 0, 3000, 3277, 9830), 300);
+    assert_int_equal(learn_s(1400, 1779, 900, 521, 10000, 0, 3000, 3277, 9830), 300);
+    assert_int_equal(learn_s(1400, 1020, 900, 900, 10000, 0, 3000, 3277, 9830), 0);
+    assert_int_equal(learn_s(1400, 1780, 900, 900, 10000, 0, 3000, 3277, 9830), 0);
+    assert_int_equal(learn_s(1400, 1400, 900, 520, 10000, 0, 3000, 3277, 9830), 0);
+    assert_int_equal(learn_s(1400, 1400, 900, 1280, 10000, 0, 3000, 3277, 9830), 0);
+    assert_int_equal(learn_s(1400, 1396, 900, 904, 10000, 0, 7, 3277, 9830), 7);
+    assert_int_equal(learn_s(1400, 1395, 900, 900, 10000, 0, 7, 3277, 9830), 0);
+    assert_int_equal(learn_s(-32768, 32767, 900, 900, 10000, 0, 3000, 3277, 9830), 0);
+    assert_int_equal(learn_s(1400, 1400, 32767, -32768, 10000, 0, 3000, 3277, 9830), 0);
     /* the difference beyond +-65535 (its clamp), v beyond +-49151, the largest bound:
        a drop far from R i_lo: nothing learnt */
     assert_int_equal(learn(-32768, 32767, 32767, 0, 32767, 3277, 9830), 0);
@@ -200,8 +222,9 @@ static void test_dtc_learn_corners(void **state)
                 for (size_t c = 0; c < 7u; c++) {
                     for (size_t e = 0; e < 7u; e++) {
                         for (size_t f = 0; f < 7u; f++) {
-                            const int got = learn(ext[a], ext[b], ext[c], ext[e], 32767, ext[f],
-                                                  ext[(a + f) % 7u]);
+                            const int got = learn_s(ext[a], ext[(a + b) % 7u], ext[b],
+                                                    ext[(b + c) % 7u], ext[c], ext[e], 32767,
+                                                    ext[f], ext[(a + f) % 7u]);
                             assert_true(got >= -32767 && got <= 32767);
                         }
                     }

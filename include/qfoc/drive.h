@@ -265,6 +265,8 @@ typedef struct {
     qfoc_q15_t dt_learn;      /**< the residual learnt at the end of ALIGN, 0 until then in
                                    each run and outside RUN */
     qfoc_q15_t dt_u;          /**< the d voltage at the end of ALIGN's full-current hold */
+    qfoc_q15_t dt_u0;         /**< the d voltage at 5/8 of ALIGN (the full-current hold) */
+    qfoc_q15_t dt_u1;         /**< the d voltage at 7/8 of ALIGN (the half-current hold) */
     qfoc_angle_t lead;        /**< observer phase lead at the filtered speed (qfoc_flux_lead) */
     qfoc_q15_t util;          /**< voltage utilisation of the last command, |v| / (V_dc / sqrt 3) */
     uint8_t trip_seen;        /**< trip_count already reported */

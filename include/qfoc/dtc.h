@@ -67,7 +67,9 @@ qfoc_q15_t qfoc_dtc_fade(qfoc_q15_t i, qfoc_q15_t i_db);
 /** The two settled alignments of ALIGN and what the table says of the motor and inverter. */
 typedef struct {
     qfoc_q15_t u_hi;   /**< the d voltage the current loop holds at the d current i_hi, Q15 */
+    qfoc_q15_t u_hi0;  /**< the same an eighth of ALIGN earlier, Q15 */
     qfoc_q15_t u_lo;   /**< the d voltage at i_lo = trunc(i_hi / 2), Q15 */
+    qfoc_q15_t u_lo0;  /**< the same an eighth of ALIGN earlier, Q15 */
     qfoc_q15_t i_hi;   /**< the larger alignment current on the alpha axis, Q15 */
     qfoc_q15_t i_db;   /**< the compensation's dead band, Q15 (svpwm.h) */
     qfoc_q15_t v_max;  /**< the largest |dV| accepted, Q15: the table's dead-time voltage
@@ -80,19 +82,27 @@ typedef struct {
 /** The quantisation allowance of the resistance check of qfoc_dtc_learn(), Q15 counts of
     voltage: u_lo and dV s_lo, from voltages held to 1 LSB. */
 #define QFOC_DTC_R_TOL ((int32_t)4)
+/** The quantisation part of the settling check of qfoc_dtc_learn(), Q15 counts: a hold is
+    settled when its d voltage moved by at most m / 8 + QFOC_DTC_SETTLE_TOL over the last
+    eighth of ALIGN (m the accepted bound of dV). */
+#define QFOC_DTC_SETTLE_TOL ((int32_t)4)
 
 /**
  * @brief The residual voltage error dV from the d voltages of two settled alignments.
  * @param[in] a the alignments and the table's values (any values)
  * @return with s(i) = trunc(2 (f(i) - f(-trunc(i / 2))) / 3), den = s(i_hi) - 2 s(i_lo) and
  *         n = u_hi - 2 u_lo clamped to [-65535, 65535]:
+ *         - 0 when |u_hi - u_hi0| or |u_lo - u_lo0| exceeds trunc(m / 8) +
+ *           QFOC_DTC_SETTLE_TOL, m = max(v_max, 0) (a hold that has not settled: a rotor
+ *           still moving, a current still changing); a settled pair moves the learnt error
+ *           by at most 3 (m / 8 + 4) / |den|, under 0.3 m + 9 counts outside the band;
  *         - 0 when |den| < QFOC_DTC_DEN_MIN (the dead band hides the error's shape);
  *         - else with v = trunc(n x 32768 / den) clamped to [-49151, 49151], the resistance
  *           drop it implies, u_lo - trunc(v s(i_lo) / 32768), must lie within
  *           trunc(r' |R i_lo| / 32768) + QFOC_DTC_R_TOL of the table's
  *           R i_lo = trunc(r i_lo / 32768), r' = max(r_err, 0): 0 when it does not (a rotor
  *           still moving, a table whose R is wrong: a measurement the error model does not
- *           explain), v clamped to [-m, m] when it does, m = max(v_max, 0).
+ *           explain), v clamped to [-m, m] when it does.
  *         For i_hi = 2 i_lo the resistance drops out of v: u_hi - 2 u_lo = dV den (E10-4);
  *         an odd i_hi leaves R' / 32768 of a count.
  * Scaling and overflow: |n| <= 65535, 65535 x 32768 < 2^31; |den| <= 131070;
