@@ -97,7 +97,7 @@ qfoc_q15_t qfoc_dtc_learn(const qfoc_dtc_align_t *a)
     const int32_t n = dtc_clamp((int32_t)a->u_hi - (2 * (int32_t)a->u_lo), DTC_N_MAX);
     const int32_t ch = (int32_t)a->u_hi - (int32_t)a->u_hi0;
     const int32_t cl = (int32_t)a->u_lo - (int32_t)a->u_lo0;
-    const int32_t tol = (m / 8) + QFOC_DTC_SETTLE_TOL;
+    const int32_t tol = (m / 4) + QFOC_DTC_SETTLE_TOL;
     const bool settled = (ch <= tol) && (ch >= -tol) && (cl <= tol) && (cl >= -tol);
     int32_t dv = 0;
     if (!settled) {

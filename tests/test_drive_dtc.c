@@ -193,7 +193,7 @@ static void test_req_drv_026_no_learning(void **state)
     assert_int_equal(x.d.s.sm.sub, QFOC_SUB_OPEN_LOOP);
     assert_int_equal(x.d.s.dt_dv, 0);
 
-    /* a hold that has not settled: the voltage moved by more than flux_v_err / 8 + 4
+    /* a hold that has not settled: the voltage moved by more than flux_v_err / 4 + 4
        counts over the last eighth of ALIGN (by that much: learnt; one more: not) */
     {
         const qfoc_param_table_t *const t = &qfoc_params_reference;
@@ -203,7 +203,7 @@ static void test_req_drv_026_no_learning(void **state)
         const int32_t u_hi = (int32_t)lround(r * ia / 32768.0 + 200.0 * sd_d(ia, db));
         const int32_t u_lo = (int32_t)lround(r * trunc(ia / 2.0) / 32768.0 +
                                              200.0 * sd_d(trunc(ia / 2.0), db));
-        const int32_t tol = t->drive.flux_v_err / 8 + 4;
+        const int32_t tol = t->drive.flux_v_err / 4 + 4;
         int32_t drift;
         for (drift = tol; drift <= tol + 1; drift++) {
             rig_init_table(&x, t, 1000u);

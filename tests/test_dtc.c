@@ -197,17 +197,17 @@ static void test_dtc_learn_corners(void **state)
     assert_int_equal(learn(1090, 745, 10000, 0, 3000, 3277, 9830), 0);
     assert_int_equal(learn(1406, 903, 10000, 0, 3000, 3277, -5), 300);
     assert_int_equal(learn(1408, 904, 10000, 0, 3000, 3277, -5), 0);
-    /* settled holds: with v_max = 3000 a change of 3000 / 8 + 4 = 379 counts over the last
-       eighth passes, 380 does not, on either hold and in either direction; with v_max = 0
-       the allowance is 4 (and nothing is learnt anyway) */
-    assert_int_equal(learn_s(1400, 1021, 900, 1279, 10000, 0, 3000, 3277, 9830), 300);
-    assert_int_equal(learn_s(1400, 1779, 900, 521, 10000, 0, 3000, 3277, 9830), 300);
-    assert_int_equal(learn_s(1400, 1020, 900, 900, 10000, 0, 3000, 3277, 9830), 0);
-    assert_int_equal(learn_s(1400, 1780, 900, 900, 10000, 0, 3000, 3277, 9830), 0);
-    assert_int_equal(learn_s(1400, 1400, 900, 520, 10000, 0, 3000, 3277, 9830), 0);
-    assert_int_equal(learn_s(1400, 1400, 900, 1280, 10000, 0, 3000, 3277, 9830), 0);
-    assert_int_equal(learn_s(1400, 1396, 900, 904, 10000, 0, 7, 3277, 9830), 7);
-    assert_int_equal(learn_s(1400, 1395, 900, 900, 10000, 0, 7, 3277, 9830), 0);
+    /* settled holds: with v_max = 3000 a change of 3000 / 4 + 4 = 754 counts over the last
+       eighth passes, 755 does not, on either hold and in either direction; with v_max = 7
+       the allowance is 5 */
+    assert_int_equal(learn_s(1400, 646, 900, 1654, 10000, 0, 3000, 3277, 9830), 300);
+    assert_int_equal(learn_s(1400, 2154, 900, 146, 10000, 0, 3000, 3277, 9830), 300);
+    assert_int_equal(learn_s(1400, 645, 900, 900, 10000, 0, 3000, 3277, 9830), 0);
+    assert_int_equal(learn_s(1400, 2155, 900, 900, 10000, 0, 3000, 3277, 9830), 0);
+    assert_int_equal(learn_s(1400, 1400, 900, 145, 10000, 0, 3000, 3277, 9830), 0);
+    assert_int_equal(learn_s(1400, 1400, 900, 1655, 10000, 0, 3000, 3277, 9830), 0);
+    assert_int_equal(learn_s(1400, 1395, 900, 905, 10000, 0, 7, 3277, 9830), 7);
+    assert_int_equal(learn_s(1400, 1394, 900, 900, 10000, 0, 7, 3277, 9830), 0);
     assert_int_equal(learn_s(-32768, 32767, 900, 900, 10000, 0, 3000, 3277, 9830), 0);
     assert_int_equal(learn_s(1400, 1400, 32767, -32768, 10000, 0, 3000, 3277, 9830), 0);
     /* the difference beyond +-65535 (its clamp), v beyond +-49151, the largest bound:

@@ -83,7 +83,7 @@ typedef struct {
     voltage: u_lo and dV s_lo, from voltages held to 1 LSB. */
 #define QFOC_DTC_R_TOL ((int32_t)4)
 /** The quantisation part of the settling check of qfoc_dtc_learn(), Q15 counts: a hold is
-    settled when its d voltage moved by at most m / 8 + QFOC_DTC_SETTLE_TOL over the last
+    settled when its d voltage moved by at most m / 4 + QFOC_DTC_SETTLE_TOL over the last
     eighth of ALIGN (m the accepted bound of dV). */
 #define QFOC_DTC_SETTLE_TOL ((int32_t)4)
 
@@ -92,10 +92,11 @@ typedef struct {
  * @param[in] a the alignments and the table's values (any values)
  * @return with s(i) = trunc(2 (f(i) - f(-trunc(i / 2))) / 3), den = s(i_hi) - 2 s(i_lo) and
  *         n = u_hi - 2 u_lo clamped to [-65535, 65535]:
- *         - 0 when |u_hi - u_hi0| or |u_lo - u_lo0| exceeds trunc(m / 8) +
+ *         - 0 when |u_hi - u_hi0| or |u_lo - u_lo0| exceeds trunc(m / 4) +
  *           QFOC_DTC_SETTLE_TOL, m = max(v_max, 0) (a hold that has not settled: a rotor
- *           still moving, a current still changing); a settled pair moves the learnt error
- *           by at most 3 (m / 8 + 4) / |den|, under 0.3 m + 9 counts outside the band;
+ *           still moving, a current still changing); a pair within it moves the learnt
+ *           error by at most 3 (m / 4 + 4) / |den|, under 0.57 m + 9 counts outside the
+ *           band (a rotor that a breakaway torque releases late in the hold);
  *         - 0 when |den| < QFOC_DTC_DEN_MIN (the dead band hides the error's shape);
  *         - else with v = trunc(n x 32768 / den) clamped to [-49151, 49151], the resistance
  *           drop it implies, u_lo - trunc(v s(i_lo) / 32768), must lie within
