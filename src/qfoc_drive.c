@@ -1748,8 +1748,13 @@ static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_
     /* the learnt inverter error as the fast step's observer uses it at this speed: whole up
        to twice the handover speed, none from four times (REQ-DRV-026); 0 outside RUN */
     {
-        const qfoc_q15_t w = (s->sm.sub == QFOC_SUB_OPEN_LOOP) ? s->ol_speed : s->speed_ref;
         const int32_t w_full = 2 * (int32_t)qfoc_q15_abs(d->p->drive.of_speed);
+        qfoc_q15_t w = s->speed_ref;
+        if (s->sm.sub == QFOC_SUB_OPEN_LOOP) {
+            w = s->ol_speed;
+        } else {
+            /* the speed reference */
+        }
         s->dt_dv = qfoc_dtc_speed_fade(s->dt_learn, w, qfoc_q15_sat(w_full));
     }
     /* the observer's phase lead at the present speed, for the fast step's rotor angle */

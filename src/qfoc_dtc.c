@@ -100,9 +100,7 @@ qfoc_q15_t qfoc_dtc_learn(const qfoc_dtc_align_t *a)
     const int32_t tol = (m / 4) + QFOC_DTC_SETTLE_TOL;
     const bool settled = (ch <= tol) && (ch >= -tol) && (cl <= tol) && (cl >= -tol);
     int32_t dv = 0;
-    if (!settled) {
-        /* a hold that has not settled: nothing learnt */
-    } else if ((den >= QFOC_DTC_DEN_MIN) || (den <= -QFOC_DTC_DEN_MIN)) {
+    if (settled && ((den >= QFOC_DTC_DEN_MIN) || (den <= -QFOC_DTC_DEN_MIN))) {
         const int32_t v = dtc_clamp((n * 32768) / den, DTC_V_MAX);
         const int32_t ri = ((int32_t)a->r * (int32_t)i_lo) / 32768;
         const int32_t ri_abs = (ri < 0) ? -ri : ri;
@@ -116,7 +114,8 @@ qfoc_q15_t qfoc_dtc_learn(const qfoc_dtc_align_t *a)
             /* a drop the table's resistance does not explain: nothing learnt */
         }
     } else {
-        /* the alignment currents inside the dead band: nothing to measure */
+        /* a hold that has not settled, or the alignment currents inside the dead band:
+           nothing to measure */
     }
     return (qfoc_q15_t)dv;
 }

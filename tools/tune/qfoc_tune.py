@@ -330,7 +330,8 @@ SCHEMA: tuple = (
     _k("drive", "i_align_a", "num", "A", POS, "0.5 x motor.rated_current_a",
        "ALIGN d current", "drive.i_align; rule 'currents'"),
     _k("drive", "align_ms", "int", "ms", (2, 60000, "[]"), 300,
-       "ALIGN time (ramp over the first half, hold)", "drive.align_ms"),
+       "ALIGN time (ramp over the first half, hold to 3/4, half the current for the last "
+       "quarter: the inverter's error learnt from the two holds)", "drive.align_ms"),
     _k("drive", "i_start_a", "num", "A", POS, "motor.rated_current_a",
        "OPEN_LOOP (I/f) current amplitude", "drive.i_start; rule 'currents'"),
     _k("drive", "of_accel_rpm_s", "num", "rpm/s", POS, 1000.0, "OPEN_LOOP speed ramp",
