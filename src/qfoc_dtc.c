@@ -105,6 +105,7 @@ qfoc_q15_t qfoc_dtc_learn(const qfoc_dtc_align_t *a)
         const int32_t ri = ((int32_t)a->r * (int32_t)i_lo) / 32768;
         const int32_t ri_abs = (ri < 0) ? -ri : ri;
         const int32_t re = (a->r_err > 0) ? (int32_t)a->r_err : 0;
+        /*@ assert vs: -49151 * 43690 <= v * s_lo <= 49151 * 43690; */
         const int32_t drop = (int32_t)a->u_lo - ((v * s_lo) / 32768);
         const int32_t band = ((re * ri_abs) / 32768) + QFOC_DTC_R_TOL;
         const int32_t off = drop - ri;
@@ -150,6 +151,10 @@ void qfoc_dtc_error(qfoc_q15_t dv, const qfoc_abc_t *i, qfoc_q15_t i_db, qfoc_ab
     const int32_t fw = (int32_t)qfoc_dtc_fade(i->w, i_db);
     const int32_t sa = ((2 * fu) - fv - fw) / 3;
     const int32_t sb = ((fv - fw) * DTC_INV_SQRT3) / 32768;
+    /*@ assert sa: -43690 <= sa <= 43690; */
+    /*@ assert sb: -37837 <= sb <= 37837; */
+    /*@ assert pa: -32768 * 43690 <= dv * sa <= 32768 * 43690; */
+    /*@ assert pb: -32768 * 37837 <= dv * sb <= 32768 * 37837; */
     e->alpha = dtc_sym(((int32_t)dv * sa) / 32768);
     e->beta = dtc_sym(((int32_t)dv * sb) / 32768);
 }
