@@ -32,7 +32,15 @@
 #     bound enters a product or a quotient, a relation neither octagons nor equalities keep
 #     when i_max, the temperatures and the window range over every accepted table; their
 #     contracts (include/qfoc/iref.h: the floor root in [0, max(i_max, 0)], the result in
-#     [min(lo, hi), hi]) are proved by WP; no memory access beyond their locals.
+#     [min(lo, hi), hi]) are proved by WP; no memory access beyond their locals;
+#   qfoc_dtc_fade and qfoc_dtc_speed_fade (src/qfoc_dtc.c, eva-all only): i x 32767 / i_db
+#     inside the dead band |i| < i_db, and dv (2 w_full - |w|) / w_full for
+#     w_full < |w| < 2 w_full: the quotient is bounded by the relation between the
+#     numerator's factor and the divisor, which intervals lose when the dead band and the
+#     hand-over speed range over every accepted table (with the reference table's values the
+#     analysis over the whole drive keeps it: 0 alarms); their contracts (include/qfoc/dtc.h:
+#     the fade in [-32767, 32767] with the sign of i, the faded value between 0 and dv) are
+#     proved by WP; no memory access beyond their locals.
 #
 # eva-all keeps the table where it is accepted by a filter in the harness, eva_table_ok():
 # the identity (ParamsIdOk) and the groups of ParamsValid, one function per group, each
@@ -62,7 +70,7 @@ WARN="-warn-signed-overflow -warn-signed-downcast -warn-unsigned-overflow -warn-
 FILTER="eva_table_ok,eva_scaling_ok,eva_svpwm_ok,eva_pi_ok,eva_flux_ok,eva_pll_ok,eva_limits_ok,eva_cfg_speed_ok,eva_cfg_start_ok,eva_cfg_prot_ok,eva_cfg_feat_ok,eva_cfg_derate_ok,eva_cross_ok"
 # the default options of eva-all: every filter function split at its return, with a slevel
 ALL_DEFAULT="-eva-domains octagon,equality \
--eva-use-spec qfoc_isqrt32,qfoc_mech_scale,qfoc_iref_q_limit,qfoc_iref_derate \
+-eva-use-spec qfoc_isqrt32,qfoc_mech_scale,qfoc_iref_q_limit,qfoc_iref_derate,qfoc_dtc_fade,qfoc_dtc_speed_fade \
 -eva-split-return-function $(echo "$FILTER" | sed 's/,/:0,/g'):0 \
 -eva-slevel-function $(echo "$FILTER" | sed 's/,/:50,/g'):50"
 t0=$(date +%s)
