@@ -561,11 +561,14 @@ static void drv_off(qfoc_drive_fast_t *f)
 */
 static void drv_run_period(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
 {
-    if (!d->f.active) {
+    if (!d->f.active || ((sub == QFOC_SUB_ALIGN) && (d->f.sub_last != QFOC_SUB_ALIGN))) {
+        /* RUN entered, or ALIGN after CATCH found the rotor standing: ALIGN starts from
+           the state of a RUN entry (REQ-DRV-027) */
         drv_fast_restart(&d->f, d->p);
     } else {
         /* running on */
     }
+    d->f.sub_last = sub;
     drv_control(d, sub, ff);
     drv_control_after(d, sub);
     d->f.active = true;
@@ -1069,7 +1072,7 @@ static qfoc_q15_t drv_bumpless_iq(const qfoc_drive_t *d)
           d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
           d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_dv, d->s.dt_learn, d->s.dt_u, d->s.dt_u0,
           d->s.dt_u1, d->s.clear_seq,
-          d->s.run_ms,
+          d->s.run_ms, d->s.catch_st, d->s.caught,
           d->s.calib_done;
   ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
 */
@@ -1099,6 +1102,8 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         s->dt_u0 = 0;
         s->dt_u1 = 0;
         s->run_ms = 0u;
+        s->caught = false;
+        qfoc_catch_reset(&s->catch_st);
         qfoc_pi_reset(&s->pi_speed, 0);
         qfoc_fw_reset(&s->fw);
         qfoc_trqcomp_reset(&s->tc);
@@ -1126,6 +1131,16 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         }
         s->id_ref = 0;
         s->iq_ref = qfoc_q15_abs(p->drive.i_start);
+    } else if ((sub == QFOC_SUB_CLOSED_LOOP) && (old_sub == QFOC_SUB_CATCH)) {
+        /* a coasting rotor caught (REQ-DRV-027): the speed reference from its measured
+           speed, within [0, speed_max]; no torque acted in CATCH, so the speed PI starts
+           from zero q current; no 2 s hold, the observer has converged */
+        s->speed_ref = qfoc_ramp_toward(0, (d->f.speed_f > 0) ? d->f.speed_f : (qfoc_q15_t)0,
+                                        qfoc_q15_abs(p->speed_max));
+        s->iq_ref = 0;
+        s->iq_lim = qfoc_q15_abs(p->i_max);
+        s->caught = true;
+        qfoc_pi_reset(&s->pi_speed, 0);
     } else if ((sub == QFOC_SUB_CLOSED_LOOP) && (old_sub == QFOC_SUB_OPEN_LOOP)) {
         /* speed reference from the estimate, within [0, speed_max] */
         s->speed_ref = qfoc_ramp_toward(0, (d->f.speed_f > 0) ? d->f.speed_f : (qfoc_q15_t)0,
@@ -1212,8 +1227,9 @@ static void drv_run(qfoc_drive_t *d)
     const qfoc_param_table_t *const p = d->p;
     const qfoc_drive_cfg_t *const c = &p->drive;
     const uint8_t sub = s->sm.sub;
-    if (s->sm.state != QFOC_STATE_RUN) {
-        /* nothing runs */
+    if ((s->sm.state != QFOC_STATE_RUN) || (sub == QFOC_SUB_CATCH)) {
+        /* nothing runs; CATCH keeps the zero references and the zero q limit of RUN
+           entry (zero-current control, REQ-DRV-027) */
     } else if (sub == QFOC_SUB_ALIGN) {
         /* d-current ramp over the first half of align_ms, hold to three quarters, then half
            the current for the last quarter: the d voltages at five and seven eighths and
@@ -1250,7 +1266,7 @@ static void drv_run(qfoc_drive_t *d)
         qfoc_q15_t target = s->speed_ref;
         if (sub == QFOC_SUB_STOPPING) {
             target = stop_speed;
-        } else if (s->sm.t_state >= c->cl_hold_ms) {
+        } else if ((s->sm.t_state >= c->cl_hold_ms) || s->caught) {
             target = s->speed_target;
         } else {
             /* the 2 s of specs/equations.md section 8.3: hold the handover speed */
@@ -1377,7 +1393,7 @@ static void drv_sm_step(qfoc_drive_slow_t *s)
           d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref, d->s.ol_speed,
           d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.dt_dv, d->s.dt_learn, d->s.dt_u, d->s.dt_u0,
           d->s.dt_u1, d->s.clear_seq,
-          d->s.run_ms,
+          d->s.run_ms, d->s.catch_st, d->s.caught,
           d->s.calib_done;
   ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
 */
@@ -1462,7 +1478,7 @@ static bool drv_link_in(qfoc_drive_slow_t *s, const uint8_t *rx, uint8_t rx_len)
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(d, d->p);
-  assigns d->s.sm_in, d->s.db_ho;
+  assigns d->s.sm_in, d->s.db_ho, d->s.catch_st;
 */
 static void drv_sm_inputs(qfoc_drive_t *d, uint16_t faults, uint8_t old_state,
                           uint8_t old_sub)
@@ -1486,6 +1502,26 @@ static void drv_sm_inputs(qfoc_drive_t *d, uint16_t faults, uint8_t old_state,
                                        (old_sub == QFOC_SUB_OPEN_LOOP));
     of_speed = qfoc_q15_abs(c->of_speed);
     s->sm_in.stop_reached = (old_sub == QFOC_SUB_STOPPING) && (s->speed_ref <= of_speed);
+    /* flying start (REQ-DRV-027): CATCH's verdict on the zero-current loops' voltage and
+       the observer, caught between the handover speed and speed_max */
+    {
+        uint8_t v = QFOC_CATCH_WAIT;
+        if ((old_state == QFOC_STATE_RUN) && (old_sub == QFOC_SUB_CATCH)) {
+            qfoc_catch_cfg_t k;
+            k.psi_f = p->psi_f;
+            k.psi_tol = c->flux_tol;
+            k.v_err = c->flux_v_err;
+            k.w_min = of_speed;
+            k.w_max = p->speed_max;
+            v = qfoc_catch_step(&s->catch_st,
+                                qfoc_vec_mag(d->f.u_last.alpha, d->f.u_last.beta),
+                                d->f.speed_f, d->f.psi_mag, &k, c->ho_dwell_ms);
+        } else {
+            /* not looking */
+        }
+        s->sm_in.catch_lock = (v == QFOC_CATCH_LOCK);
+        s->sm_in.catch_still = (v == QFOC_CATCH_STILL);
+    }
 }
 
 /* Thermal derating (REQ-DRV-024): the commanded speed within the lower of the two
@@ -1826,7 +1862,7 @@ static void drv_init_vdc(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 /*@
   requires valid: \valid(f) && \valid_read(p);
   requires sep: \separated(f, p);
-  assigns f->phase, f->phase_k, f->mech;
+  assigns f->phase, f->phase_k, f->sub_last, f->mech;
   ensures inv: DRV_PHASE(&f->phase) && DRV_MECH(&f->mech);
 */
 static void drv_init_monitors(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
@@ -1834,6 +1870,7 @@ static void drv_init_monitors(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
     /* each phase is filtered every third period: the coefficient for that rate */
     (void)qfoc_phase_mon_init(&f->phase, qfoc_phase_mon_alpha3(p->drive.phase_alpha));
     f->phase_k = 0u;
+    f->sub_last = QFOC_SUB_NONE;
     (void)qfoc_mech_init(&f->mech, p->drive.pole_pairs, 0u);
 }
 
@@ -1987,8 +2024,8 @@ static void drv_init_fw(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
   requires valid: \valid(s) && \valid_read(p);
   requires sep: \separated(s, p);
   assigns s->sm, s->pi_speed, s->fw, s->tc, s->db_ov, s->db_uv, s->db_ot_ipm, s->db_ot_pcb,
-          s->db_stall, s->db_flux, s->db_phase, s->db_align, s->db_ho, s->off_sum_u, s->off_sum_v,
-          s->off_n,
+          s->db_stall, s->db_flux, s->db_phase, s->db_align, s->db_ho, s->catch_st, s->caught,
+          s->off_sum_u, s->off_sum_v, s->off_n,
           s->offset_u, s->offset_v, s->speed_target, s->speed_ref, s->ol_speed, s->id_ref,
           s->iq_ref, s->iq_lim, s->dt_dv, s->dt_learn, s->dt_u, s->dt_u0, s->dt_u1, s->lead,
           s->util, s->trip_seen,
@@ -2033,6 +2070,8 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int
     qfoc_debounce_reset(&s->db_phase);
     qfoc_debounce_reset(&s->db_align);
     qfoc_debounce_reset(&s->db_ho);
+    qfoc_catch_reset(&s->catch_st);
+    s->caught = false;
     s->off_sum_u = 0u;
     s->off_sum_v = 0u;
     s->off_n = 0u;

@@ -37,7 +37,7 @@ static bool sm_sub_ok(const qfoc_sm_t *sm)
     if (st == QFOC_STATE_PRECHARGE) {
         ok = (sub == QFOC_SUB_BUS_WAIT) || (sub == QFOC_SUB_CALIB);
     } else if (st == QFOC_STATE_RUN) {
-        ok = (sub >= QFOC_SUB_ALIGN) && (sub <= QFOC_SUB_STOPPING);
+        ok = (sub >= QFOC_SUB_ALIGN) && (sub <= QFOC_SUB_CATCH);
     } else if ((st == QFOC_STATE_STOP) || (st == QFOC_STATE_ERROR)) {
         ok = (sub == QFOC_SUB_NONE);
     } else {
@@ -139,6 +139,7 @@ void qfoc_sm_fail(qfoc_sm_t *sm, uint16_t faults)
   requires clean: SmMask(in->faults) == 0;
   assigns *sm;
   ensures inv: SmValid(sm);
+  ensures not_running: sm->sub == QFOC_SUB_NONE;
   ensures exit: sm->state != QFOC_STATE_ERROR ==>
       sm->state == QFOC_STATE_STOP && in->fault_clear && in->table_ok &&
       sm->t_state == 0 && \old(sm->t_state) >= cfg->clear_ms;
@@ -164,6 +165,7 @@ static void sm_error_rule(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm
   assigns sm->state, sm->sub, sm->t_state, sm->t_sub;
   ensures inv: SmValid(sm);
   ensures where: sm->state == QFOC_STATE_PRECHARGE || sm->state == QFOC_STATE_STOP;
+  ensures not_running: sm->sub != QFOC_SUB_CLOSED_LOOP;
   ensures stop_entry: sm->state == QFOC_STATE_STOP ==>
       in->calib_done && in->bus_ok && \old(sm->sub) == QFOC_SUB_CALIB && sm->t_state == 0;
   ensures calib_entry: sm->sub == QFOC_SUB_CALIB && \old(sm->sub) == QFOC_SUB_BUS_WAIT ==>
@@ -193,16 +195,17 @@ static void sm_precharge_rule(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfo
   assigns sm->state, sm->sub, sm->t_state, sm->t_sub;
   ensures inv: SmValid(sm);
   ensures run_entry: sm->state == QFOC_STATE_RUN ==>
-      in->run_request && sm->sub == QFOC_SUB_ALIGN && sm->t_state == 0;
+      in->run_request && sm->sub == QFOC_SUB_CATCH && sm->t_state == 0;
   ensures where: sm->state == QFOC_STATE_STOP || sm->state == QFOC_STATE_RUN ||
       (sm->state == QFOC_STATE_PRECHARGE && sm->sub == QFOC_SUB_BUS_WAIT);
+  ensures not_running: sm->sub != QFOC_SUB_CLOSED_LOOP;
 */
 static void sm_stop_rule(qfoc_sm_t *sm, const qfoc_sm_in_t *in)
 {
     if (!in->bus_ok || !in->calib_done) {
         sm_enter(sm, QFOC_STATE_PRECHARGE, QFOC_SUB_BUS_WAIT);
     } else if (in->run_request) {
-        sm_enter(sm, QFOC_STATE_RUN, QFOC_SUB_ALIGN);
+        sm_enter(sm, QFOC_STATE_RUN, QFOC_SUB_CATCH);
     } else {
         /* ready */
     }
@@ -217,25 +220,44 @@ static void sm_stop_rule(qfoc_sm_t *sm, const qfoc_sm_in_t *in)
   ensures where: sm->state == QFOC_STATE_RUN || sm->state == QFOC_STATE_STOP;
   ensures to_stop: sm->state == QFOC_STATE_STOP ==> sm->t_state == 0 &&
       ((\old(sm->sub) == QFOC_SUB_STOPPING && in->stop_reached) ||
-       ((\old(sm->sub) == QFOC_SUB_ALIGN || \old(sm->sub) == QFOC_SUB_OPEN_LOOP) &&
-        !in->run_request));
+       ((\old(sm->sub) == QFOC_SUB_ALIGN || \old(sm->sub) == QFOC_SUB_OPEN_LOOP ||
+         \old(sm->sub) == QFOC_SUB_CATCH) && !in->run_request));
   ensures to_open_loop: sm->sub == QFOC_SUB_OPEN_LOOP && \old(sm->sub) != QFOC_SUB_OPEN_LOOP ==>
       \old(sm->sub) == QFOC_SUB_ALIGN && \old(sm->t_sub) >= cfg->align_ms;
   ensures to_closed_loop: sm->sub == QFOC_SUB_CLOSED_LOOP && \old(sm->sub) == QFOC_SUB_OPEN_LOOP ==>
       in->converged && \old(sm->t_state) >= cfg->cl_hold_ms;
+  ensures to_caught: sm->sub == QFOC_SUB_CLOSED_LOOP && \old(sm->sub) == QFOC_SUB_CATCH ==>
+      in->catch_lock;
   ensures closed_loop_origin: sm->sub == QFOC_SUB_CLOSED_LOOP ==>
       \old(sm->sub) == QFOC_SUB_OPEN_LOOP || \old(sm->sub) == QFOC_SUB_CLOSED_LOOP ||
-      \old(sm->sub) == QFOC_SUB_STOPPING;
+      \old(sm->sub) == QFOC_SUB_STOPPING || \old(sm->sub) == QFOC_SUB_CATCH;
   ensures stopping_origin: sm->sub == QFOC_SUB_STOPPING ==>
       \old(sm->sub) == QFOC_SUB_CLOSED_LOOP || \old(sm->sub) == QFOC_SUB_STOPPING;
   ensures align_origin: sm->state == QFOC_STATE_RUN && sm->sub == QFOC_SUB_ALIGN ==>
-      \old(sm->sub) == QFOC_SUB_ALIGN;
-  ensures time: sm->state == QFOC_STATE_RUN ==> sm->t_state == \old(sm->t_state);
+      \old(sm->sub) == QFOC_SUB_ALIGN ||
+      (\old(sm->sub) == QFOC_SUB_CATCH && in->catch_still && !in->catch_lock);
+  ensures catch_origin: sm->state == QFOC_STATE_RUN && sm->sub == QFOC_SUB_CATCH ==>
+      \old(sm->sub) == QFOC_SUB_CATCH;
+  ensures time: sm->state == QFOC_STATE_RUN && \old(sm->sub) != QFOC_SUB_CATCH ==>
+      sm->t_state == \old(sm->t_state);
+  ensures align_time: sm->sub == QFOC_SUB_ALIGN && \old(sm->sub) == QFOC_SUB_CATCH ==>
+      sm->t_state == 0;
 */
 static void sm_run_rule(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_in_t *in)
 {
     const uint8_t sub = sm->sub;
-    if (sub == QFOC_SUB_ALIGN) {
+    if (sub == QFOC_SUB_CATCH) {
+        if (!in->run_request) {
+            sm_enter(sm, QFOC_STATE_STOP, QFOC_SUB_NONE);
+        } else if (in->catch_lock) {
+            sm_enter_sub(sm, QFOC_SUB_CLOSED_LOOP);   /* caught at its speed */
+        } else if (in->catch_still) {
+            /* standing: the normal start, timed from here as from a RUN entry */
+            sm_enter(sm, QFOC_STATE_RUN, QFOC_SUB_ALIGN);
+        } else {
+            /* looking, or waiting for a rotor that cannot be caught to coast down */
+        }
+    } else if (sub == QFOC_SUB_ALIGN) {
         if (!in->run_request) {
             sm_enter(sm, QFOC_STATE_STOP, QFOC_SUB_NONE);
         } else if (sm->t_sub >= cfg->align_ms) {
@@ -299,9 +321,11 @@ static uint16_t sm_set_bit(uint16_t w, uint16_t bit)
 static uint16_t sm_faults(const qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_in_t *in)
 {
     uint16_t f = (uint16_t)(in->faults % 2048u);
-    const bool open_loop = (sm->state == QFOC_STATE_RUN) && (sm->sub == QFOC_SUB_OPEN_LOOP);
+    const bool open_loop = (sm->state == QFOC_STATE_RUN) &&
+                           ((sm->sub == QFOC_SUB_OPEN_LOOP) || (sm->sub == QFOC_SUB_CATCH));
     const bool early = (sm->state == QFOC_STATE_RUN) &&
-                       ((sm->sub == QFOC_SUB_ALIGN) || (sm->sub == QFOC_SUB_OPEN_LOOP));
+                       ((sm->sub == QFOC_SUB_ALIGN) || (sm->sub == QFOC_SUB_OPEN_LOOP) ||
+                        (sm->sub == QFOC_SUB_CATCH));
     const bool stopped = (sm->state == QFOC_STATE_RUN) && (sm->sub == QFOC_SUB_STOPPING) &&
                          in->stop_reached;
     if (open_loop && (sm->t_sub >= cfg->ol_timeout_ms)) {

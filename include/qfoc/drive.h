@@ -157,6 +157,7 @@
 #include "qfoc/trqcomp.h"
 #include "qfoc/link.h"
 #include "qfoc/sm.h"
+#include "qfoc/catch.h"
 
 /** Largest ADC code (12 bits). */
 #define QFOC_ADC_MAX ((uint16_t)4095u)
@@ -223,6 +224,7 @@ typedef struct {
     bool active;              /**< the control ran in the last period */
     bool hs;                  /**< high-speed inductances in use (motorParaChange) */
     uint8_t phase_k;          /**< phase the monitor filters in this period (0, 1, 2) */
+    uint8_t sub_last;         /**< the sub-state of the last controlled period */
     qfoc_abc_t i_abc;         /**< this period's phase currents, offset-corrected, Q15 */
     qfoc_pwm_t out;           /**< this period's output (returned by the fast step) */
     uint16_t same_u;          /**< consecutive samples with the i_u code unchanged (capped at
@@ -247,6 +249,7 @@ typedef struct {
     qfoc_debounce_t db_phase;
     qfoc_debounce_t db_align; /**< ALIGN without current (REQ-DRV-025) */
     qfoc_debounce_t db_ho;    /**< handover condition dwell */
+    qfoc_catch_t catch_st;    /**< flying start: CATCH's filter and dwells (catch.h) */
     uint32_t off_sum_u;       /**< offset calibration sums */
     uint32_t off_sum_v;
     uint16_t off_n;           /**< samples summed */
@@ -280,6 +283,8 @@ typedef struct {
     bool hs;                  /**< request: high-speed inductances (motorParaChange) */
     bool derated;             /**< a temperature holds the speed limit below rpm_max
                                    (REQ-DRV-024) */
+    bool caught;              /**< this run's CLOSED_LOOP was entered from CATCH: no
+                                   cl_hold_ms hold (REQ-DRV-027) */
     uint16_t ref_guard;       /**< guard word of speed_target .. dt_dv (REQ-DRV-022) */
     uint32_t run_ms;          /**< time in RUN, ms, saturating (Motor_Run_Time) */
     qfoc_status_t status;     /**< last status (LIN and CAN) */

@@ -17,7 +17,13 @@
  *   STOP       NONE                     PWM off, ready; leaves on a run request; back
  *                                       to PRECHARGE when the bus drops or the offsets
  *                                       are not calibrated (after an OFFSET fault)
- *   RUN        ALIGN -> OPEN_LOOP -> CLOSED_LOOP <-> STOPPING
+ *   RUN        CATCH -> ALIGN -> OPEN_LOOP -> CLOSED_LOOP <-> STOPPING
+ *              CATCH -> CLOSED_LOOP     CATCH: zero-current control, the observer
+ *                                       looks for a coasting rotor (flying start,
+ *                                       catch.h): caught, to CLOSED_LOOP at its speed;
+ *                                       standing, to ALIGN (the state time
+ *                                       restarts: the start is timed from ALIGN);
+ *                                       else it waits;
  *                                       ALIGN: fixed angle, d-current ramp
  *                                       (formerly park); OPEN_LOOP: I/f start;
  *                                       CLOSED_LOOP: sensorless speed control;
@@ -28,8 +34,9 @@
  * Transition rules, evaluated in this order in one step (times count whole ticks):
  *  1. The state and sub-state times advance by one tick (saturating at 65535).
  *  2. Outside ERROR, the faults of this tick are collected: the drive's (in->faults),
- *     plus STALL when OPEN_LOOP has lasted ol_timeout_ms without a handover, plus LINK
- *     when the command link is lost in ALIGN or OPEN_LOOP, or when a stop caused by the
+ *     plus STALL when OPEN_LOOP has lasted ol_timeout_ms without a handover or CATCH
+ *     as long without a verdict, plus LINK
+ *     when the command link is lost in CATCH, ALIGN or OPEN_LOOP, or when a stop caused by the
  *     lost link completes.  Any fault: ERROR, the fault word and the first-fault record
  *     are the faults of this tick (REQ-SM-002).
  *  3. In ERROR the fault word keeps the faults that caused it (a fault still present
@@ -62,6 +69,7 @@
 #define QFOC_SUB_OPEN_LOOP   ((uint8_t)4u)  /**< RUN: I/f open-loop acceleration */
 #define QFOC_SUB_CLOSED_LOOP ((uint8_t)5u)  /**< RUN: sensorless speed control */
 #define QFOC_SUB_STOPPING    ((uint8_t)6u)  /**< RUN: ramp down before STOP */
+#define QFOC_SUB_CATCH       ((uint8_t)7u)  /**< RUN: flying-start detection (catch.h) */
 
 /** Fault bits raised by the state machine itself (the fault word of fault.h). */
 #define QFOC_SM_FAULT_STALL QFOC_FAULT_STALL
@@ -89,6 +97,8 @@ typedef struct {
     bool table_ok;       /**< the parameter table passed its last check */
     bool converged;      /**< the handover condition has held for its dwell time */
     bool stop_reached;   /**< STOPPING: the speed reference is down at the stop speed */
+    bool catch_lock;     /**< CATCH: a coasting rotor caught, its speed measured (catch.h) */
+    bool catch_still;    /**< CATCH: the rotor stands (its back-EMF below the error bound) */
 } qfoc_sm_in_t;
 
 /** State of the machine. */
@@ -111,7 +121,8 @@ typedef struct {
  * @brief Check the state-machine invariant (the logic twin of SmValid).
  * @param[in] sm state machine (any bit pattern)
  * @return true iff the state is one of the four, the sub-state belongs to it
- *         (PRECHARGE: BUS_WAIT or CALIB; RUN: ALIGN, OPEN_LOOP, CLOSED_LOOP or STOPPING;
+ *         (PRECHARGE: BUS_WAIT or CALIB; RUN: ALIGN, OPEN_LOOP, CLOSED_LOOP, STOPPING or
+ *         CATCH;
  *         STOP and ERROR: NONE), the fault word has only defined bits and is non-zero
  *         exactly in ERROR, and first_fault is non-zero with defined bits only in
  *         ERROR and 0 elsewhere.
@@ -165,8 +176,9 @@ void qfoc_sm_fail(qfoc_sm_t *sm, uint16_t faults);
  *                    are ignored)
  * Contract clauses: fault_to_error (REQ-SM-002); error_exit, error_latched
  * (REQ-SM-003); stop_entry (REQ-SM-004); run_entry (REQ-SM-005); to_open_loop,
- * to_closed_loop, closed_loop_origin, stopping_origin (REQ-SM-006, REQ-SM-007).
- * Requirements: REQ-SM-002 .. REQ-SM-009.
+ * to_closed_loop, closed_loop_origin, stopping_origin (REQ-SM-006, REQ-SM-007);
+ * to_align, to_caught, catch_origin (REQ-SM-010).
+ * Requirements: REQ-SM-002 .. REQ-SM-010.
  */
 /*@
   requires valid: \valid(sm) && \valid_read(cfg) && \valid_read(in);
@@ -184,7 +196,15 @@ void qfoc_sm_fail(qfoc_sm_t *sm, uint16_t faults);
   ensures error_latched: \old(sm->state) == QFOC_STATE_ERROR && sm->state == QFOC_STATE_ERROR ==>
       sm->faults == \old(sm->faults) && sm->first_fault == \old(sm->first_fault);
   ensures run_entry: \old(sm->state) != QFOC_STATE_RUN && sm->state == QFOC_STATE_RUN ==>
-      \old(sm->state) == QFOC_STATE_STOP && in->run_request && sm->sub == QFOC_SUB_ALIGN;
+      \old(sm->state) == QFOC_STATE_STOP && in->run_request && sm->sub == QFOC_SUB_CATCH;
+  ensures to_align: sm->sub == QFOC_SUB_ALIGN && \old(sm->sub) != QFOC_SUB_ALIGN ==>
+      \old(sm->sub) == QFOC_SUB_CATCH && in->catch_still && !in->catch_lock &&
+      sm->t_state == 0;
+  ensures to_caught: sm->sub == QFOC_SUB_CLOSED_LOOP && \old(sm->sub) == QFOC_SUB_CATCH ==>
+      in->catch_lock;
+  ensures catch_origin: sm->state == QFOC_STATE_RUN && sm->sub == QFOC_SUB_CATCH ==>
+      \old(sm->state) == QFOC_STATE_STOP ||
+      (\old(sm->state) == QFOC_STATE_RUN && \old(sm->sub) == QFOC_SUB_CATCH);
   ensures to_open_loop: sm->sub == QFOC_SUB_OPEN_LOOP && \old(sm->sub) != QFOC_SUB_OPEN_LOOP ==>
       \old(sm->sub) == QFOC_SUB_ALIGN && SmTick(\old(sm->t_sub)) >= cfg->align_ms;
   ensures to_closed_loop: sm->sub == QFOC_SUB_CLOSED_LOOP && \old(sm->sub) == QFOC_SUB_OPEN_LOOP ==>

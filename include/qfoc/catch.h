@@ -1,0 +1,149 @@
+/**
+ * @file catch.h
+ * @brief Flying start: the verdict on a rotor that may still be turning when the drive
+ *        is asked to run (a short stop, or pressure equalising through the compressor,
+ *        in either direction).
+ *
+ * The drive enters RUN in the sub-state CATCH (sm.h).  There it runs the current loops
+ * with zero references in the frame of the flux observer (zero-current control): the
+ * loops' voltage command then equals the rotor's back-EMF, e = w psi_f, and no torque
+ * acts on the rotor.  The voltage-model observer works in the stationary frame, so it
+ * converges on a coasting rotor from its reset state whatever the control frame, and its
+ * PLL measures the speed.  Zero-current control rather than short zero-vector pulses:
+ * the pulses' short-circuit current grows with the speed as psi_f / L_d and needs a
+ * pulse width tuned to each motor, and the pulses leave the observer without a voltage
+ * to integrate; zero current keeps every phase current at the measurement noise on every
+ * motor, and the observer the drive already has measures the speed (specs/equations.md
+ * section 11).
+ *
+ * qfoc_catch_verdict() classifies one tick's measurement:
+ *  - LOCK: the observer's speed lies in [w_min, w_max], its flux magnitude within the
+ *    table's band psi_f +- psi_tol, and the voltage command agrees with the back-EMF the
+ *    speed implies, | |u| - w psi_f | <= v_err + w psi_f / 4 (two independent measures of
+ *    the speed, the PLL's frequency and the voltage's magnitude);
+ *  - STILL: otherwise, when |u| <= 2 v_err: the back-EMF is below the voltage error the
+ *    inverter can make (v_err, the table's dead-time voltage-error bound), so a standing
+ *    rotor is always classed STILL, and a rotor classed STILL turns slower than
+ *    3 v_err / psi_f;
+ *  - WAIT: a rotor that turns but cannot be caught: backwards, slower than w_min (where
+ *    the observer is not trusted), faster than w_max, or with the two speeds disagreeing.
+ *    The drive keeps zero current (no torque: the compressor's load slows the rotor down)
+ *    until the verdict is STILL or LOCK.
+ * qfoc_catch_step() is the tick's whole CATCH logic: it low-passes |u| over 8 ticks,
+ * starting from full scale at CATCH entry (qfoc_catch_reset()), so that STILL cannot come
+ * before the filter has seen the loops' voltage for at least
+ * 8 ln(32767 / (2 v_err)) ticks, whatever the dwell; it then debounces LOCK and STILL over
+ * the dwell (the drive's ho_dwell_ms, drive_cfg.h) before the drive acts on them.
+ *
+ * Scaling (specs/scaling.md): speeds Q15 of w_base, fluxes Q15 of psi_base = V_base /
+ * w_base, voltages Q15 of V_base: w psi in Q15 is (w psi) / 32768.
+ *
+ * Both functions are total on every value of their argument types.
+ *
+ * Requirements: REQ-CATCH-001, REQ-CATCH-002 (specs/requirements/catch.md).
+ */
+#ifndef QFOC_CATCH_H
+#define QFOC_CATCH_H
+
+#include "qfoc/types.h"
+#include "qfoc/fault.h"
+
+/** Verdicts of qfoc_catch_verdict(). */
+#define QFOC_CATCH_WAIT  ((uint8_t)0u)  /**< turning, not catchable: keep zero current */
+#define QFOC_CATCH_STILL ((uint8_t)1u)  /**< standing: the normal start (ALIGN) */
+#define QFOC_CATCH_LOCK  ((uint8_t)2u)  /**< caught: closed loop at the measured speed */
+
+/** One tick's measurement in CATCH. */
+typedef struct {
+    qfoc_q15_t speed;    /**< the observer's filtered electrical speed, Q15 of w_base */
+    qfoc_q15_t psi_mag;  /**< the observer's flux magnitude, Q15 of psi_base */
+    qfoc_q15_t u_mag;    /**< the magnitude of the voltage command (filtered), Q15 of V_base */
+} qfoc_catch_meas_t;
+
+/** What the table says (each read as its magnitude). */
+typedef struct {
+    qfoc_q15_t psi_f;    /**< the magnet flux, Q15 of psi_base */
+    qfoc_q15_t psi_tol;  /**< the flux band (drive.flux_tol), Q15 of psi_base */
+    qfoc_q15_t v_err;    /**< the inverter's voltage-error bound (drive.flux_v_err), Q15 of V_base */
+    qfoc_q15_t w_min;    /**< the lowest speed caught (drive.of_speed), Q15 of w_base */
+    qfoc_q15_t w_max;    /**< the highest speed caught (speed_max), Q15 of w_base */
+} qfoc_catch_cfg_t;
+
+/*@
+  logic integer CatchAbs(integer x) = (x < 0) ? -x : x;
+  // the back-EMF the speed implies, Q15
+  logic integer CatchEmf(integer w, integer psi) = (w * CatchAbs(psi)) / 32768;
+  predicate CatchLock(qfoc_catch_meas_t *m, qfoc_catch_cfg_t *c) =
+    CatchAbs(c->w_min) <= m->speed <= CatchAbs(c->w_max) &&
+    CatchAbs(m->psi_mag - CatchAbs(c->psi_f)) <= CatchAbs(c->psi_tol) &&
+    CatchAbs(CatchAbs(m->u_mag) - CatchEmf(m->speed, c->psi_f)) <=
+      CatchAbs(c->v_err) + CatchEmf(m->speed, c->psi_f) / 4;
+  predicate CatchStill(qfoc_catch_meas_t *m, qfoc_catch_cfg_t *c) =
+    CatchAbs(m->u_mag) <= 2 * CatchAbs(c->v_err);
+*/
+
+/**
+ * @brief The verdict on one tick's measurement in CATCH (rules in the file comment).
+ * @param[in] m the measurement (any values)
+ * @param[in] c the table's values (any values; each read as its magnitude)
+ * @return QFOC_CATCH_LOCK, QFOC_CATCH_STILL or QFOC_CATCH_WAIT
+ * Scaling and overflow: every quantity is formed in 32 bits; |w psi| < 2^30.
+ * Requirements: REQ-CATCH-001, REQ-CATCH-002.
+ */
+/*@
+  requires valid: \valid_read(m) && \valid_read(c);
+  assigns \nothing;
+  ensures lock: \result == QFOC_CATCH_LOCK <==> CatchLock(m, c);
+  ensures still: \result == QFOC_CATCH_STILL <==> !CatchLock(m, c) && CatchStill(m, c);
+  ensures wait: \result == QFOC_CATCH_WAIT <==> !CatchLock(m, c) && !CatchStill(m, c);
+*/
+uint8_t qfoc_catch_verdict(const qfoc_catch_meas_t *m, const qfoc_catch_cfg_t *c);
+
+/** The tick's CATCH state (qfoc_catch_step()). */
+typedef struct {
+    qfoc_q15_t u_f;            /**< |u| low-passed over 8 ticks, Q15 of V_base */
+    qfoc_debounce_t db_lock;   /**< ticks in a row with the verdict LOCK */
+    qfoc_debounce_t db_still;  /**< ticks in a row with the verdict STILL */
+} qfoc_catch_t;
+
+/**
+ * @brief The state at CATCH entry: the filter at full scale, both counts 0.
+ * @param[out] k state
+ * Requirements: REQ-CATCH-003.
+ */
+/*@
+  requires valid: \valid(k);
+  assigns *k;
+  ensures u_f: k->u_f == 32767;
+  ensures counts: k->db_lock.count == 0 && k->db_still.count == 0;
+*/
+void qfoc_catch_reset(qfoc_catch_t *k);
+
+/**
+ * @brief One tick in CATCH: the filter, the verdict on the filtered magnitude, and its
+ *        debounce.
+ * @param[in,out] k     state (any values)
+ * @param[in]     u     the magnitude of the last voltage command, Q15 (read as |u|)
+ * @param[in]     speed the observer's filtered speed, Q15
+ * @param[in]     psi   the observer's flux magnitude, Q15
+ * @param[in]     c     the table's values
+ * @param[in]     dwell ticks a verdict must hold (0 reads as 1)
+ * @return QFOC_CATCH_LOCK once the verdict LOCK has held for dwell ticks in a row, else
+ *         QFOC_CATCH_STILL once STILL has, else QFOC_CATCH_WAIT.
+ * Scaling and overflow: u_f + (|u| - u_f) / 8 lies between u_f and |u|.
+ * Requirements: REQ-CATCH-003.
+ */
+/*@
+  requires valid: \valid(k) && \valid_read(c);
+  requires sep: \separated(k, c);
+  assigns *k;
+  ensures filter: k->u_f == \old(k->u_f) + (CatchAbs(u) - \old(k->u_f)) / 8;
+  ensures result: \result == QFOC_CATCH_LOCK || \result == QFOC_CATCH_STILL ||
+                  \result == QFOC_CATCH_WAIT;
+  ensures lock: \result == QFOC_CATCH_LOCK ==> k->db_lock.count >= 1;
+  ensures still: \result == QFOC_CATCH_STILL ==> k->db_still.count >= 1;
+*/
+uint8_t qfoc_catch_step(qfoc_catch_t *k, qfoc_q15_t u, qfoc_q15_t speed, qfoc_q15_t psi,
+                        const qfoc_catch_cfg_t *c, uint16_t dwell);
+
+#endif /* QFOC_CATCH_H */

@@ -1,0 +1,75 @@
+/**
+ * @file qfoc_catch.c
+ * @brief Flying start: the verdict on a coasting rotor (catch.h).
+ */
+#include "qfoc/catch.h"
+
+/* |x| of a 16-bit value in 32 bits. */
+/*@
+  assigns \nothing;
+  ensures result: \result == CatchAbs(x);
+*/
+static int32_t catch_abs(qfoc_q15_t x)
+{
+    return (x < 0) ? -(int32_t)x : (int32_t)x;
+}
+
+uint8_t qfoc_catch_verdict(const qfoc_catch_meas_t *m, const qfoc_catch_cfg_t *c)
+{
+    const int32_t w = (int32_t)m->speed;
+    const int32_t psi_f = catch_abs(c->psi_f);
+    const int32_t v_err = catch_abs(c->v_err);
+    const int32_t u = catch_abs(m->u_mag);
+    uint8_t r = QFOC_CATCH_WAIT;
+    /*@ assert prod: -32768 * 32768 <= w * psi_f <= 32767 * 32768; */
+    {
+        const int32_t e = (w * psi_f) / 32768;
+        const int32_t de = u - e;
+        const int32_t dpsi = (int32_t)m->psi_mag - psi_f;
+        const bool speed_ok = (w >= catch_abs(c->w_min)) && (w <= catch_abs(c->w_max));
+        const bool flux_ok = (dpsi <= catch_abs(c->psi_tol)) && (dpsi >= -catch_abs(c->psi_tol));
+        const bool emf_ok = (de <= (v_err + (e / 4))) && (de >= -(v_err + (e / 4)));
+        if (speed_ok && flux_ok && emf_ok) {
+            r = QFOC_CATCH_LOCK;
+        } else if (u <= (2 * v_err)) {
+            r = QFOC_CATCH_STILL;
+        } else {
+            /* turning, not catchable */
+        }
+    }
+    return r;
+}
+
+void qfoc_catch_reset(qfoc_catch_t *k)
+{
+    k->u_f = 32767;
+    qfoc_debounce_reset(&k->db_lock);
+    qfoc_debounce_reset(&k->db_still);
+}
+
+uint8_t qfoc_catch_step(qfoc_catch_t *k, qfoc_q15_t u, qfoc_q15_t speed, qfoc_q15_t psi,
+                        const qfoc_catch_cfg_t *c, uint16_t dwell)
+{
+    const int32_t uf = (int32_t)k->u_f;
+    const uint16_t n = (dwell > 0u) ? dwell : 1u;
+    qfoc_catch_meas_t m;
+    uint8_t v;
+    uint8_t r = QFOC_CATCH_WAIT;
+    k->u_f = (qfoc_q15_t)(uf + ((catch_abs(u) - uf) / 8));
+    m.speed = speed;
+    m.psi_mag = psi;
+    m.u_mag = k->u_f;
+    v = qfoc_catch_verdict(&m, c);
+    {
+        const bool lock = qfoc_debounce_step(&k->db_lock, v == QFOC_CATCH_LOCK, n);
+        const bool still = qfoc_debounce_step(&k->db_still, v == QFOC_CATCH_STILL, n);
+        if (lock) {
+            r = QFOC_CATCH_LOCK;
+        } else if (still) {
+            r = QFOC_CATCH_STILL;
+        } else {
+            /* not yet, or turning */
+        }
+    }
+    return r;
+}
