@@ -22,7 +22,8 @@
 
 const char *const scn_names[] = {
     "cold_start", "speed_steps", "pulsating_load", "load_step", "bus_sag",
-    "fault_oc", "fault_ov", "fault_ot", "fault_stall", "fault_link", "mtpa", "derating", NULL
+    "fault_oc", "fault_ov", "fault_ot", "fault_stall", "fault_link", "mtpa", "derating",
+    "flying_start", NULL
 };
 
 /* ------------------------------------------------------------------ targets */
@@ -871,6 +872,121 @@ static int scn_mtpa(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t *m)
     return rc;
 }
 
+/* Flying start (REQ-SCN-015): one restart of a coasting compressor; the run command comes
+   when the drive is ready (STOP) and the rotor turns at rpm0.  Returns the time from the
+   command to within 2 % of the target (NAN: never), whether CATCH caught the rotor, and
+   the true speed when CLOSED_LOOP was entered. */
+static int scn_flying_run(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t *m,
+                          double rpm0, double target_rpm, double t_run, double *t_target,
+                          bool *caught, double *rpm_cl)
+{
+    dsim_t *ds = c->ds;
+    /* pressure equalised through the compressor: a light passive load while it coasts */
+    int rc = scn_rig(c, tab, tab->table, m, 320.0, 0.2, 0.0, 23u, 0.05);
+    bool in_align = false;
+    *t_target = NAN;
+    *caught = false;
+    *rpm_cl = NAN;
+    if (rc == 0) {
+        double t_cmd;
+        long guard = 0;
+        while (ds->drv.s.sm.state != QFOC_STATE_STOP && guard < 2000) {
+            scn_ms(c);
+            guard++;
+        }
+        /* the compressor turns at rpm0 (a short stop, or the pressure equalising) */
+        sim_set_state(&ds->plant, 0.3, rpm0 / 60.0 * 2.0 * SIM_PI * m->pole_pairs, 0.0, 0.0);
+        ds->power_on = true;
+        ds->target_rpm = (uint16_t)lround(target_rpm);
+        t_cmd = scn_time(c);
+        scn_event(c, "run command, rotor coasting");
+        while (scn_time(c) < t_cmd + t_run - 1e-9) {
+            const uint8_t sub_before = ds->drv.s.sm.sub;
+            scn_ms(c);
+            if (ds->drv.s.sm.sub == QFOC_SUB_ALIGN) {
+                in_align = true;
+            }
+            if (sub_before == QFOC_SUB_CATCH && ds->drv.s.sm.sub == QFOC_SUB_CLOSED_LOOP) {
+                *caught = true;
+                scn_event(c, "caught");
+            }
+            if (isnan(*rpm_cl) && ds->drv.s.sm.sub == QFOC_SUB_CLOSED_LOOP) {
+                *rpm_cl = dsim_rpm(ds);
+            }
+            if (isnan(*t_target) && fabs(dsim_rpm(ds) - target_rpm) <= 0.02 * target_rpm) {
+                *t_target = scn_time(c) - t_cmd;
+            }
+        }
+        if (*caught && in_align) {
+            *caught = false;   /* both paths in one run: not a clean catch */
+        }
+    }
+    return rc;
+}
+
+static int scn_flying(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t *m)
+{
+    /* the restart speeds: +50 %, +10 %, 0 and -20 % of the rated speed */
+    static const double frac[4] = { 0.5, 0.1, 0.0, -0.2 };
+    static const char *const tag[4] = { "p50", "p10", "zero", "m20" };
+    const double target = 4000.0;
+    FILE *trace = c->trace;
+    FILE *zoom = c->zoom;
+    int rc = 0;
+    int k;
+    scn_describe(c->r, "Flying start: restarts of a coasting compressor at +50 %, +10 %, 0 and "
+                 "-20 % of the rated speed", "REQ-SCN-015, REQ-DRV-027",
+                 "The drive is ready when the run command comes, with the rotor still turning "
+                 "(a short stop, or the pressure equalising through the compressor, which can "
+                 "turn it backwards). CATCH runs zero-current control and the observer: at +50 % "
+                 "it catches the rotor and closes the loop at its speed; at +10 % (below the "
+                 "handover speed, where the observer is not trusted) and at -20 % it waits, with "
+                 "no torque, until the load has stopped the rotor, then starts as from standstill; "
+                 "at 0 it starts at once. The trace is the +50 % restart; each run goes to "
+                 "4000 rpm.");
+    c->r->t_end_s = 4.3;      /* PRECHARGE (0.27 s), then 4 s from the run command */
+    c->r->zoom_t0_s = 0.30;
+    c->r->zoom_t1_s = 0.34;
+    for (k = 0; (k < 4) && (rc == 0); k++) {
+        double t_target;
+        double rpm_cl;
+        bool caught;
+        char key[64];
+        char text[128];
+        const double rpm0 = frac[k] * m->rated_speed_rpm;
+        const int n_ev = c->r->n_events;
+        if (k > 0) {
+            c->trace = NULL;
+            c->zoom = NULL;
+        }
+        scn_reset_trackers(c);
+        rc = scn_flying_run(c, tab, m, rpm0, target, 4.0, &t_target, &caught, &rpm_cl);
+        if (k > 0) {
+            c->r->n_events = n_ev;   /* the events of the traced run only */
+        }
+        if (rc == 0) {
+            snprintf(key, sizeof key, "t_target_%s_s", tag[k]);
+            snprintf(text, sizeof text, "%+.0f rpm: run command to within 2 %% of 4000 rpm", rpm0);
+            scn_metric(c, key, text, "s", t_target);
+            snprintf(key, sizeof key, "caught_%s", tag[k]);
+            snprintf(text, sizeof text, "%+.0f rpm: caught by CATCH (1) or started from ALIGN (0)", rpm0);
+            scn_metric(c, key, text, "", caught ? 1.0 : 0.0);
+            snprintf(key, sizeof key, "rpm_closed_loop_%s", tag[k]);
+            snprintf(text, sizeof text, "%+.0f rpm: true speed when the loop closed", rpm0);
+            scn_metric(c, key, text, "rpm", rpm_cl);
+            snprintf(key, sizeof key, "i_peak_pct_trip_%s", tag[k]);
+            snprintf(text, sizeof text, "%+.0f rpm: peak phase current / over-current trip", rpm0);
+            scn_metric(c, key, text, "%", c->ipk_all / c->i_trip_a * 100.0);
+            snprintf(key, sizeof key, "faults_%s", tag[k]);
+            snprintf(text, sizeof text, "%+.0f rpm: fault bits raised", rpm0);
+            scn_metric(c, key, text, "", (double)c->faults_seen);
+        }
+    }
+    c->trace = trace;
+    c->zoom = zoom;
+    return rc;
+}
+
 /* Thermal derating (REQ-SCN-014): at 6000 rpm the IPM warms from 60 degC into the derating
    window and back; the speed follows the derated limit and recovers, no OT. */
 static int scn_derating(scn_ctx_t *c, const scn_table_t *tab, const sim_motor_t *m)
@@ -1360,6 +1476,8 @@ int scn_run(const char *scenario, const scn_table_t *tab, const scn_opts_t *o, s
             rc = scn_mtpa(&c, tab, &m);
         } else if (strcmp(scenario, "derating") == 0) {
             rc = scn_derating(&c, tab, &m);
+        } else if (strcmp(scenario, "flying_start") == 0) {
+            rc = scn_flying(&c, tab, &m);
         } else if (strcmp(scenario, "bus_sag") == 0) {
             rc = scn_bus_sag(&c, tab, &m);
         } else if (strcmp(scenario, "fault_oc") == 0) {

@@ -233,6 +233,22 @@ static void test_scn_014_derating(void **state)
     assert_true(scn_value(&res, "limit_rpm") < 6000.0);
 }
 
+/* REQ-SCN-015: flying start; restarts at +50 %, +10 %, 0 and -20 % of the rated speed:
+   the +50 % rotor is caught (closed loop at its speed, well above the handover speed), the
+   others start from ALIGN; every run at the target without a fault. */
+static void test_scn_015_flying_start(void **state)
+{
+    (void)state;
+    run("flying_start", &tab_reference, NULL);
+    judged("t_target_p50_s");
+    judged("t_target_m20_s");
+    assert_true(scn_value(&res, "caught_p50") > 0.5);
+    assert_true(scn_value(&res, "caught_m20") < 0.5);
+    /* caught well above the handover speed (1000 rpm), below the +50 % it was set to */
+    assert_true(scn_value(&res, "rpm_closed_loop_p50") > 1500.0);
+    assert_true(scn_value(&res, "rpm_closed_loop_p50") < 3000.0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -250,6 +266,7 @@ int main(void)
         cmocka_unit_test(test_scn_012_other_tables),
         cmocka_unit_test(test_scn_013_mtpa),
         cmocka_unit_test(test_scn_014_derating),
+        cmocka_unit_test(test_scn_015_flying_start),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
