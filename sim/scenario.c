@@ -1501,7 +1501,7 @@ int scn_run(const char *scenario, const scn_table_t *tab, const scn_opts_t *o, s
 int scn_run_start(const scn_table_t *tab, const scn_start_t *st, const scn_opts_t *o,
                   scn_result_t *r)
 {
-    static const scn_start_ext_t none = { 1.0, 0.0 };
+    static const scn_start_ext_t none = { 1.0, 0.0, 0.0 };
     const scn_start_ext_t *x = (o->start_ext != NULL) ? o->start_ext : &none;
     scn_ctx_t c;
     sim_motor_t m;
@@ -1527,6 +1527,19 @@ int scn_run_start(const scn_table_t *tab, const scn_start_t *st, const scn_opts_
             }
             p->cfg.load.t_break = x->t_break_nm;
             sim_set_state(p, st->theta0_deg * SIM_PI / 180.0, 0.0, 0.0, 0.0);
+            if (x->w0_frac != 0.0) {
+                /* a restart: the drive is ready (STOP) and the rotor still coasts */
+                long guard = 0;
+                while (c.ds->drv.s.sm.state != QFOC_STATE_STOP && guard < 2000) {
+                    scn_ms(&c);
+                    guard++;
+                }
+                sim_set_state(p, st->theta0_deg * SIM_PI / 180.0,
+                              x->w0_frac * m.rated_speed_rpm / 60.0 * 2.0 * SIM_PI * m.pole_pairs,
+                              0.0, 0.0);
+                snprintf(more, sizeof more, " Restart with the rotor coasting at %+.0f rpm.",
+                         x->w0_frac * m.rated_speed_rpm);
+            }
             if (x->dead_time_ratio != 1.0 || x->t_break_nm > 0.0) {
                 snprintf(more, sizeof more,
                          " Inverter dead time %.2f us (%.2f x the table's compensation of %.2f us); "
@@ -1541,7 +1554,8 @@ int scn_run_start(const scn_table_t *tab, const scn_start_t *st, const scn_opts_
                      target, tab->name, st->rs_err * 100.0, st->ld_err * 100.0, st->lq_err * 100.0,
                      st->psi_err * 100.0, st->load_nm, st->vdc_v, st->noise_a, st->theta0_deg, more);
             snprintf(c.r->description, sizeof c.r->description, "%s", text);
-            snprintf(c.r->requirements, sizeof c.r->requirements, "REQ-SCN-011");
+            snprintf(c.r->requirements, sizeof c.r->requirements, "%s",
+                     (x->w0_frac != 0.0) ? "REQ-SCN-011, REQ-DRV-027" : "REQ-SCN-011");
             c.r->zoom_t0_s = 6.0;
             c.r->zoom_t1_s = 6.0 + 3.0 * 60.0 / (target * m.pole_pairs);
             scn_cold_start_body(&c, target, 7.0);

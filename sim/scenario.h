@@ -59,6 +59,9 @@ typedef struct {
     double dead_time_ratio;  /**< plant dead time = ratio x the table's dead-time compensation
                                   (svpwm.dt_comp) */
     double t_break_nm;       /**< breakaway torque (static friction) of the plant, N m (0: none) */
+    double w0_frac;          /**< the rotor's speed when the run command comes, a fraction of the
+                                  rated speed (0: standing; else the command waits for STOP and
+                                  the rotor coasts at this speed: a flying start, REQ-DRV-027) */
 } scn_start_ext_t;
 
 /** Run options. */

@@ -14,6 +14,8 @@ static int32_t catch_abs(qfoc_q15_t x)
     return (x < 0) ? -(int32_t)x : (int32_t)x;
 }
 
+/* public interface, also called by qfoc_catch_step (DEV-002) */
+/* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
 uint8_t qfoc_catch_verdict(const qfoc_catch_meas_t *m, const qfoc_catch_cfg_t *c)
 {
     const int32_t w = (int32_t)m->speed;

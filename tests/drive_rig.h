@@ -1,10 +1,13 @@
 /**
  * @file drive_rig.h
- * @brief The test rig shared by tests/test_drive.c and tests/test_drive_branches.c:
+ * @brief The test rig shared by the drive tests (tests/test_drive*.c):
  *        one drive on a RAM copy of a table, synthetic ADC samples, and a master that
  *        sends the command frame every 10 ms through the sim's independent LIN encoder.
  *        Every fast step is checked for compare values within the period and the PWM
  *        enabled only in RUN; every tick for the drive invariant.
+ *        A run request enters RUN in CATCH (flying start, REQ-DRV-027); the rig's motor
+ *        stands, so CATCH ends in ALIGN (rig_catch_ms, rig_catch_ticks) after the ticks
+ *        rig_catch_still_ticks counts, and the start-up is timed from there.
  *        Include after cmocka.h, test_util.h, qfoc/drive.h and drive_sim.h.
  */
 #ifndef QFOC_TESTS_DRIVE_RIG_H
@@ -36,7 +39,8 @@ typedef struct {
     long enabled_outside_run;   /* enable seen while the state was not RUN */
     bool motor_current;         /* before each tick the phase monitor reads, on all three
                                    phases, the current the drive imposes (|i_align| or
-                                   |i_start|): a connected motor, for tests that feed zero
+                                   |i_start|; none in CATCH, the zero-current control of
+                                   REQ-DRV-027): a connected motor, for tests that feed zero
                                    current samples; false: only what the samples give;
                                    and, in the same way, current codes that move (the
                                    stuck-sample counts at 0, REQ-DRV-020) */
@@ -112,7 +116,8 @@ static inline void rig_tick_rx(rig_t *r, const uint8_t *rx, uint8_t len)
     if (r->motor_current) {
         const int32_t ia = abs((int32_t)r->table.drive.i_align);
         const int32_t is = abs((int32_t)r->table.drive.i_start);
-        const int32_t i = (r->d.s.sm.sub == QFOC_SUB_ALIGN) ? ia : is;
+        const uint8_t sub = r->d.s.sm.sub;
+        const int32_t i = (sub == QFOC_SUB_ALIGN) ? ia : ((sub == QFOC_SUB_CATCH) ? 0 : is);
         int k;
         for (k = 0; k < 3; k++) {
             r->d.f.phase.abs_lpf[k].state = i * 65536;
@@ -161,6 +166,95 @@ static inline void rig_ms(rig_t *r, int n)
         }
         rig_tick(r, r->send && ((r->ms % 10) == 0));
     }
+}
+
+/* REQ-DRV-027 (flying start, catch.h): the ticks a standing rotor spends in CATCH, from
+   the tick that entered RUN to the tick that enters ALIGN, when the loops' voltage
+   command stays 0 (the rig's samples at the offsets, or ticks without fast steps).  The
+   first verdict comes in the tick after the RUN entry; the filter of qfoc_catch_step
+   starts at 32767 and takes an eighth of the way to |u| = 0 per tick (the C quotient,
+   truncated), so the verdict is STILL from the n-th tick on, the first with
+   u_f <= 2 |flux_v_err|; it must then hold for ho_dwell_ms ticks (0 reads as 1):
+   ALIGN on tick n + dwell - 1. */
+static inline long rig_catch_still_ticks(const qfoc_param_table_t *t)
+{
+    const int32_t lim = 2 * abs((int32_t)t->drive.flux_v_err);
+    const long dwell = (t->drive.ho_dwell_ms > 0u) ? (long)t->drive.ho_dwell_ms : 1L;
+    int32_t uf = 32767;
+    long n = 0;
+    do {
+        uf += (0 - uf) / 8;
+        n++;
+    } while (uf > lim);
+    return n + dwell - 1;
+}
+
+/* one CATCH tick's checks (REQ-DRV-027): zero-current control, no fault */
+static inline void rig_catch_check(const rig_t *r)
+{
+    assert_int_equal(r->d.s.sm.state, QFOC_STATE_RUN);
+    assert_int_equal(r->d.s.sm.faults, 0u);
+    if (r->d.s.sm.sub == QFOC_SUB_CATCH) {
+        assert_int_equal(r->d.s.id_ref, 0);
+        assert_int_equal(r->d.s.iq_ref, 0);
+        assert_int_equal(r->d.s.iq_lim, 0);
+        assert_int_equal(r->d.s.speed_ref, 0);
+    }
+}
+
+/* the tick that left CATCH on the rig's standing rotor: to ALIGN, the state time
+   restarted (the start-up is timed from here, as it was from the RUN entry), after
+   exactly the ticks of rig_catch_still_ticks */
+static inline long rig_catch_done(const rig_t *r, long ticks)
+{
+    assert_int_equal(r->d.s.sm.state, QFOC_STATE_RUN);
+    assert_int_equal(r->d.s.sm.sub, QFOC_SUB_ALIGN);
+    assert_int_equal(r->d.s.sm.t_state, 0u);
+    assert_int_equal(r->d.s.sm.t_sub, 0u);
+    assert_false(r->d.s.caught);
+    assert_int_equal(ticks, rig_catch_still_ticks(&r->table));
+    return ticks;
+}
+
+/* REQ-DRV-027: from the tick that entered RUN (sub-state CATCH), whole milliseconds
+   (rig_ms: fast steps, PWM on, and the tick) until the sub-state leaves CATCH; on the
+   rig's standing rotor it enters ALIGN.  Returns the ms spent in CATCH. */
+static inline long rig_catch_ms(rig_t *r)
+{
+    long ms = 0;
+    assert_int_equal(r->d.s.sm.state, QFOC_STATE_RUN);
+    assert_int_equal(r->d.s.sm.sub, QFOC_SUB_CATCH);
+    assert_int_equal(r->d.s.sm.t_state, 0u);
+    rig_catch_check(r);
+    while ((r->d.s.sm.sub == QFOC_SUB_CATCH) && (ms < 10000L)) {
+        const int per_ms = (int)(r->table.f_pwm_hz / 1000u);
+        int j;
+        for (j = 0; j < per_ms; j++) {
+            rig_fast(r);
+            assert_true(r->pwm.enable);   /* zero-current control: the PWM on */
+        }
+        rig_tick(r, r->send && ((r->ms % 10) == 0));
+        ms++;
+        rig_catch_check(r);
+    }
+    return rig_catch_done(r, ms);
+}
+
+/* REQ-DRV-027: the same in ticks only (the test plays the fast step: the voltage command
+   stays 0), the master's frame in every tick. */
+static inline long rig_catch_ticks(rig_t *r)
+{
+    long k = 0;
+    assert_int_equal(r->d.s.sm.state, QFOC_STATE_RUN);
+    assert_int_equal(r->d.s.sm.sub, QFOC_SUB_CATCH);
+    assert_int_equal(r->d.s.sm.t_state, 0u);
+    rig_catch_check(r);
+    while ((r->d.s.sm.sub == QFOC_SUB_CATCH) && (k < 10000L)) {
+        rig_tick(r, true);
+        k++;
+        rig_catch_check(r);
+    }
+    return rig_catch_done(r, k);
 }
 
 #endif /* QFOC_TESTS_DRIVE_RIG_H */

@@ -131,8 +131,16 @@ static void test_drv_009_command(void **state)
     rig_ms(&r, 100);
     assert_int_equal(st(&r), QFOC_STATE_STOP);
     r.rpm = r.table.drive.rpm_min;
-    rig_ms(&r, 20);
+    {
+        int ms;
+        for (ms = 0; (ms < 20) && (st(&r) != QFOC_STATE_RUN); ms++) {
+            rig_ms(&r, 1);
+        }
+    }
     assert_int_equal(st(&r), QFOC_STATE_RUN);
+    /* RUN is entered in CATCH (REQ-DRV-027); the rig's rotor stands: ALIGN */
+    assert_int_equal(r.d.s.sm.sub, QFOC_SUB_CATCH);
+    (void)rig_catch_ms(&r);
     assert_int_equal(r.d.s.sm.sub, QFOC_SUB_ALIGN);
     {
         const double expect = floor((double)r.rpm * r.table.drive.k_rpm / 4096.0 + 0.5);

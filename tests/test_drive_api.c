@@ -231,8 +231,13 @@ static void test_drv_017_status_readers(void **state)
         const qfoc_cmd_t c = { true, false, 3000u };
         int k;
         assert_int_equal(qfoc_drive_command(&r.d, &c), QFOC_LINK_OK);
-        rig_ms(&r, 2);
+        for (k = 0; (k < 2) && (qfoc_drive_state(&r.d) != QFOC_STATE_RUN); k++) {
+            rig_ms(&r, 1);
+        }
         assert_int_equal(qfoc_drive_state(&r.d), QFOC_STATE_RUN);
+        /* RUN is entered in CATCH (REQ-DRV-027); the rig's rotor stands: ALIGN */
+        assert_int_equal(qfoc_drive_substate(&r.d), QFOC_SUB_CATCH);
+        (void)rig_catch_ms(&r);
         assert_int_equal(qfoc_drive_substate(&r.d), QFOC_SUB_ALIGN);
         assert_true(qfoc_drive_run_requested(&r.d));
         assert_int_equal(qfoc_drive_target_rpm(&r.d), 3000u);

@@ -119,24 +119,25 @@ static int16_t psi_ok(const qfoc_param_table_t *t)
     return (t->psi_f > t->pll.mag_min) ? t->psi_f : t->pll.mag_min;
 }
 
-/* From STOP: power on and, in ticks only, an observer locked on a rotor dth counts
-   behind the open-loop frame at the frame's speed.  Returns the ticks from the tick
-   that entered RUN to the tick that entered CLOSED_LOOP. */
+/* From STOP: power on, enter RUN and pass CATCH on the standing rotor (REQ-DRV-027),
+   then, in ticks only, an observer locked on a rotor dth counts behind the open-loop
+   frame at the frame's speed.  Returns the ticks from the tick that entered ALIGN (the
+   start-up is timed from there, as it was from the RUN entry before CATCH) to the tick
+   that entered CLOSED_LOOP. */
 static long run_to_handover(rig_t *r, int32_t dth)
 {
     long k;
-    long t_run = -1;
+    long t_run = 0;
     r->power_on = true;
+    for (k = 0; (k < 20) && (st(r) != QFOC_STATE_RUN); k++) {
+        emu_est(r, (int32_t)r->d.s.ol_speed, psi_ok(&r->table), dth);
+        rig_tick(r, true);
+    }
+    (void)rig_catch_ticks(r);
     for (k = 0; k < 8000; k++) {
         emu_est(r, (int32_t)r->d.s.ol_speed, psi_ok(&r->table), dth);
         rig_tick(r, true);
-        if (t_run >= 0) {
-            t_run++;
-        } else if (st(r) == QFOC_STATE_RUN) {
-            t_run = 0;
-        } else {
-            /* not started yet */
-        }
+        t_run++;
         assert_int_equal(r->d.s.sm.faults, 0u);
         if ((st(r) == QFOC_STATE_RUN) && (sub(r) == QFOC_SUB_CLOSED_LOOP)) {
             break;
@@ -330,6 +331,8 @@ static void test_req_drv_006_align_ramp(void **state)
     for (ms = 0; (ms < 20) && (st(&r) != QFOC_STATE_RUN); ms++) {
         rig_ms(&r, 1);
     }
+    /* CATCH finds the rotor standing (REQ-DRV-027): k counts from the ALIGN entry */
+    (void)rig_catch_ms(&r);
     assert_int_equal(sub(&r), QFOC_SUB_ALIGN);
     for (k = 1; sub(&r) == QFOC_SUB_ALIGN; k++) {
         /* from three quarters of align_ms on (t_sub = k - 1), half of i_align (REQ-DRV-026) */
@@ -353,6 +356,7 @@ static void test_req_drv_006_align_ramp(void **state)
     for (ms = 0; (ms < 20) && (st(&r) != QFOC_STATE_RUN); ms++) {
         rig_ms(&r, 1);
     }
+    (void)rig_catch_ms(&r);
     assert_int_equal(sub(&r), QFOC_SUB_ALIGN);
     assert_int_equal(r.d.s.id_ref, ia);
     for (ms = 0; (ms < 101) && (st(&r) != QFOC_STATE_ERROR); ms++) {
@@ -363,7 +367,8 @@ static void test_req_drv_006_align_ramp(void **state)
 
 /* REQ-DRV-006, REQ-SM-006: the handover needs, for ho_dwell_ms ticks, |speed_f -
    w_ol| <= w_ol / 4, |psi| >= mag_min and -(90 deg + ho_angle) < theta_ol - theta_est
-   < ho_angle, and not before cl_hold_ms after the RUN entry.  Each condition one
+   < ho_angle, and not before cl_hold_ms after the ALIGN entry (the RUN entry before
+   CATCH, REQ-DRV-027).  Each condition one
    count outside its bound holds the drive in OPEN_LOOP; all of them at their bound
    hand over after exactly ho_dwell_ms ticks. */
 static void test_req_drv_006_handover_conditions(void **state)
@@ -380,6 +385,12 @@ static void test_req_drv_006_handover_conditions(void **state)
     rig_init(&r);
     rig_to_stop(&r);
     r.power_on = true;
+    for (k = 0; (k < 20) && (st(&r) != QFOC_STATE_RUN); k++) {
+        emu_est(&r, r.d.s.ol_speed, mag - 1, 0);
+        rig_tick(&r, true);
+    }
+    /* CATCH finds the rotor standing (REQ-DRV-027): the start-up is timed from ALIGN */
+    (void)rig_catch_ticks(&r);
     /* flux magnitude one count below mag_min: no handover after cl_hold_ms */
     for (k = 0; k < (long)t->drive.cl_hold_ms + 400; k++) {
         emu_est(&r, r.d.s.ol_speed, mag - 1, 0);
@@ -761,7 +772,8 @@ static void test_req_drv_013_field_weakening_in_stopping(void **state)
 }
 
 /* REQ-DRV-006 (drive_cfg.h cl_hold_ms): the speed reference is not ramped to the
-   target before cl_hold_ms after the RUN entry; the drive reads the time from the
+   target before cl_hold_ms after the ALIGN entry (the state time restarts there when
+   CATCH finds the rotor standing, REQ-DRV-027); the drive reads the time from the
    table, so a valid table whose cl_hold_ms grew after the handover holds the
    reference, and the ramp resumes once the time has passed again. */
 static void test_req_drv_006_speed_hold_before_cl_hold(void **state)
@@ -839,17 +851,26 @@ static void test_req_drv_008_stall_speed_and_flux(void **state)
     }
 }
 
-/* Ticks from the RUN entry to ERROR (at most `limit`), from STOP with the samples as set;
-   the phase monitor reads the samples only (no emulated motor current). */
+/* Ticks from the ALIGN entry to ERROR (at most `limit`), from STOP with the samples as
+   set; the phase monitor reads the samples only (no emulated motor current).  RUN is
+   entered in CATCH (REQ-DRV-027), whose zero-current control leaves a motor at rest
+   without current: the samples stay at the offsets there, CATCH finds the rotor standing,
+   and the samples as set apply from the ALIGN entry, where the start-up (and this count)
+   begins, as it began at the RUN entry before CATCH. */
 static int ms_to_error(rig_t *r, int limit)
 {
+    const qfoc_adc_t set = r->adc;
     int ms;
     r->motor_current = false;
+    r->adc.iu = QFOC_ADC_MID;
+    r->adc.iv = QFOC_ADC_MID;
     r->power_on = true;
     for (ms = 0; (ms < 20) && (st(r) != QFOC_STATE_RUN); ms++) {
         rig_ms(r, 1);
     }
     assert_int_equal(st(r), QFOC_STATE_RUN);
+    (void)rig_catch_ms(r);
+    r->adc = set;
     for (ms = 0; (ms < limit) && (st(r) == QFOC_STATE_RUN); ms++) {
         rig_ms(r, 1);
     }
@@ -910,7 +931,8 @@ static void test_req_drv_008_phase_loss(void **state)
 /* REQ-DRV-018, REQ-DRV-025: no current where the drive imposes one.  Samples at the
    offset (no motor, or both sensors stuck at mid-scale): ERROR / PHASE in ALIGN, from
    the ALIGN check of REQ-DRV-025 as soon as the d PI's voltage passes twice what the
-   reference needs (within 20 ms of the RUN entry, long before the slow check's
+   reference needs (within 20 ms of the ALIGN entry, which follows CATCH on the standing
+   rotor (REQ-DRV-027), long before the slow check's
    align_ms / 2 + phase_ms), never OPEN_LOOP.  A current in ALIGN that vanishes in
    OPEN_LOOP: PHASE once the largest filtered magnitude falls below |i_start| / 4 and
    phase_ms more ticks have passed. */
@@ -925,7 +947,7 @@ static void test_req_drv_018_no_current(void **state)
     rig_to_stop(&r);
     r.motor_current = false;
     ms = ms_to_error(&r, 2000);
-    print_message("no current from the RUN entry: PHASE after %d ms\n", ms);
+    print_message("no current from the ALIGN entry: PHASE after %d ms\n", ms);
     assert_true(ms <= 20);
     assert_true(ms < (int)c->align_ms / 2 + (int)c->phase_ms);
     assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_PHASE);
@@ -935,9 +957,14 @@ static void test_req_drv_018_no_current(void **state)
     rig_init(&r);
     rig_to_stop(&r);
     r.motor_current = false;
+    r.power_on = true;
+    for (ms = 0; (ms < 20) && (st(&r) != QFOC_STATE_RUN); ms++) {
+        rig_ms(&r, 1);
+    }
+    /* none in CATCH (zero-current control on the motor at rest, REQ-DRV-027) */
+    (void)rig_catch_ms(&r);
     r.adc.iu = (uint16_t)(QFOC_ADC_MID + a);
     r.adc.iv = (uint16_t)(QFOC_ADC_MID - a / 2u);
-    r.power_on = true;
     for (ms = 0; (ms < 2000) && (sub(&r) != QFOC_SUB_OPEN_LOOP); ms++) {
         rig_ms(&r, 1);
     }

@@ -44,14 +44,20 @@ static double sd_d(double i, double db)
     return (2.0 / 3.0) * (fade_d(i, db) - fade_d(-trunc(i / 2.0), db));
 }
 
-/* From STOP: power on and tick (the test plays the fast step) to the tick before the
-   first voltage ALIGN keeps (t_sub one below five eighths of align_ms, in the
-   full-current hold). */
+/* From STOP: power on and tick (the test plays the fast step) through CATCH, which finds
+   the rotor standing (REQ-DRV-027), to the tick before the first voltage ALIGN keeps
+   (t_sub one below five eighths of align_ms, in the full-current hold). */
 static void rig_to_align_hold(rig_t *r)
 {
     const uint32_t c1 = ((uint32_t)r->table.drive.align_ms * 5u) / 8u;
     long k;
     r->power_on = true;
+    for (k = 0; (k < 20) && (r->d.s.sm.state != QFOC_STATE_RUN); k++) {
+        rig_tick(r, true);
+    }
+    (void)rig_catch_ticks(r);
+    assert_int_equal(r->d.s.dt_dv, 0);
+    assert_int_equal(r->d.s.dt_learn, 0);
     for (k = 0; k < 4000; k++) {
         rig_tick(r, true);
         if ((r->d.s.sm.state == QFOC_STATE_RUN) && (r->d.s.sm.sub == QFOC_SUB_ALIGN)) {

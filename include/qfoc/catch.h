@@ -9,11 +9,15 @@
  * loops' voltage command then equals the rotor's back-EMF, e = w psi_f, and no torque
  * acts on the rotor.  The voltage-model observer works in the stationary frame, so it
  * converges on a coasting rotor from its reset state whatever the control frame, and its
- * PLL measures the speed.  Zero-current control rather than short zero-vector pulses:
- * the pulses' short-circuit current grows with the speed as psi_f / L_d and needs a
- * pulse width tuned to each motor, and the pulses leave the observer without a voltage
- * to integrate; zero current keeps every phase current at the measurement noise on every
- * motor, and the observer the drive already has measures the speed (specs/equations.md
+ * PLL measures the speed.  Until the PLL has locked (a few milliseconds) the loops run in
+ * a frame that does not yet turn with the rotor: the back-EMF drives a transient current
+ * that grows with the speed (on the reference motor about 35 % of i_max from 3000 rpm,
+ * 80 % from the rated 6000 rpm, 130 % from speed_max, below the over-current trip), then
+ * the phase currents fall to the measurement noise.  Zero-current control rather than
+ * short zero-vector pulses: a pulse's short-circuit current grows with the speed too, up
+ * to psi_f / L_d, and needs a pulse width tuned to each motor, and the pulses leave the
+ * observer without a voltage to integrate; zero-current control needs no tuning of its
+ * own, and the observer the drive already has measures the speed (specs/equations.md
  * section 11).
  *
  * qfoc_catch_verdict() classifies one tick's measurement:
@@ -32,7 +36,8 @@
  * qfoc_catch_step() is the tick's whole CATCH logic: it low-passes |u| over 8 ticks,
  * starting from full scale at CATCH entry (qfoc_catch_reset()), so that STILL cannot come
  * before the filter has seen the loops' voltage for at least
- * 8 ln(32767 / (2 v_err)) ticks, whatever the dwell; it then debounces LOCK and STILL over
+ * ln(32767 / (2 v_err)) / ln(8 / 7) ticks (31 on the reference table), whatever the dwell;
+ * it then debounces LOCK and STILL over
  * the dwell (the drive's ho_dwell_ms, drive_cfg.h) before the drive acts on them.
  *
  * Scaling (specs/scaling.md): speeds Q15 of w_base, fluxes Q15 of psi_base = V_base /

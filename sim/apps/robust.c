@@ -16,6 +16,8 @@
  *              dead-time voltage error), base draws
  *   low_flux_dead_time  low_flux + the dead time 0..2 x the compensation
  *   combined   every axis at once, on the reference or the low-flux motor
+ *   flying     a restart with the rotor coasting at -30..+60 % of the rated speed, light load
+ *              (0..20 % of nominal), the reference or the low-flux motor (REQ-DRV-027)
  *
  * usage: qfoc_robust --count N [--axis-count M] [--seed0 S] [--jobs J] [--out DIR]
  *                    [--targets FILE]
@@ -63,23 +65,30 @@ typedef struct {
     double dt_lo;          /* plant dead time / the table's compensation: range */
     double dt_hi;
     double brk_max;        /* breakaway torque: up to this fraction of the nominal torque */
+    double w0_lo;          /* speed at the run command / rated speed: range (0, 0: standing) */
+    double w0_hi;
+    double load_hi;        /* load: up to this fraction of the nominal torque */
 } axis_t;
 
 static const axis_t axes[] = {
     { "base", "the base draws (R_s +-30 %, L_d, L_q +-20 %, psi_f +-10 %, load 0..100 % of nominal, "
               "bus 250..420 V, noise 0..0.1 A rms, any initial angle), reference table",
-      "reference", PSI_ERR, 1.0, 1.0, 0.0 },
+      "reference", PSI_ERR, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0 },
     { "dead_time", "base + the inverter's dead time 0..2 x the table's dead-time compensation",
-      "reference", PSI_ERR, 0.0, 2.0, 0.0 },
+      "reference", PSI_ERR, 0.0, 2.0, 0.0, 0.0, 0.0, 1.0 },
     { "breakaway", "base + a breakaway torque (static friction) 0..60 % of the nominal torque",
-      "reference", PSI_ERR, 1.0, 1.0, 0.6 },
-    { "flux_rs", "base with psi_f +-15 % (R_s +-30 %)", "reference", 0.15, 1.0, 1.0, 0.0 },
+      "reference", PSI_ERR, 1.0, 1.0, 0.6, 0.0, 0.0, 1.0 },
+    { "flux_rs", "base with psi_f +-15 % (R_s +-30 %)", "reference", 0.15, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0 },
     { "low_flux", "the low-flux motor (back-EMF at the 1000 rpm hand-over 18.8 V, within 3 x its "
-                  "6.4 V dead-time voltage error), base draws", "lowflux", PSI_ERR, 1.0, 1.0, 0.0 },
+                  "6.4 V dead-time voltage error), base draws", "lowflux", PSI_ERR, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0 },
     { "low_flux_dead_time", "low_flux + the inverter's dead time 0..2 x the compensation",
-      "lowflux", PSI_ERR, 0.0, 2.0, 0.0 },
+      "lowflux", PSI_ERR, 0.0, 2.0, 0.0, 0.0, 0.0, 1.0 },
     { "combined", "every axis at once (psi_f +-15 %, dead time 0..2 x, breakaway 0..60 %), the "
-                  "reference or the low-flux motor", NULL, 0.15, 0.0, 2.0, 0.6 },
+                  "reference or the low-flux motor", NULL, 0.15, 0.0, 2.0, 0.6, 0.0, 0.0, 1.0 },
+    { "flying", "a restart with the rotor still coasting at -30..+60 % of the rated speed and a "
+                "light load (0..20 % of nominal: the pressure equalised), base draws otherwise, the "
+                "reference or the low-flux motor (flying start, REQ-DRV-027)",
+      NULL, PSI_ERR, 1.0, 1.0, 0.0, -0.3, 0.6, 0.2 },
 };
 #define N_AXES ((int)(sizeof axes / sizeof axes[0]))
 
@@ -143,7 +152,7 @@ static int draw(uint32_t seed, rec_t *r)
     r->st.ld_err = uni(&s, -LDQ_ERR, LDQ_ERR);
     r->st.lq_err = uni(&s, -LDQ_ERR, LDQ_ERR);
     r->st.psi_err = uni(&s, -ax->psi_err, ax->psi_err);
-    load_frac = uni(&s, 0.0, 1.0);
+    load_frac = uni(&s, 0.0, ax->load_hi);
     r->st.vdc_v = uni(&s, VDC_MIN, VDC_MAX);
     r->st.noise_a = uni(&s, 0.0, NOISE_MAX);
     r->st.theta0_deg = uni(&s, 0.0, 360.0);
@@ -155,6 +164,10 @@ static int draw(uint32_t seed, rec_t *r)
     }
     if (ax->brk_max > 0.0) {
         r->brk_frac = uni(&s, 0.0, ax->brk_max);
+    }
+    r->x.w0_frac = 0.0;
+    if (ax->w0_hi > ax->w0_lo) {
+        r->x.w0_frac = uni(&s, ax->w0_lo, ax->w0_hi);
     }
     if (ax->table == NULL) {
         r->motor = (int)(mix(&s) >> 63);
@@ -204,7 +217,8 @@ static int one(uint32_t seed, const char *targets, const char *dir, rec_t *rec)
     }
     o.targets_file = targets;
     o.out_dir = dir;
-    o.name = "robust_start";
+    /* a flying start has its own section (it may close the loop at once) */
+    o.name = (rec->x.w0_frac != 0.0) ? "robust_flying" : "robust_start";
     o.start_ext = &rec->x;
     rc = scn_run_start(motors[rec->motor].tab, &rec->st, &o, &r);
     rec->success = (rc == 0 && r.pass) ? 1 : 0;
