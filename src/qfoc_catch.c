@@ -31,9 +31,16 @@ uint8_t qfoc_catch_verdict(const qfoc_catch_meas_t *m, const qfoc_catch_cfg_t *c
         const bool speed_ok = (w >= catch_abs(c->w_min)) && (w <= catch_abs(c->w_max));
         const bool flux_ok = (dpsi <= catch_abs(c->psi_tol)) && (dpsi >= -catch_abs(c->psi_tol));
         const bool emf_ok = (de <= (v_err + (e / 4))) && (de >= -(v_err + (e / 4)));
+        const int32_t e_min = (catch_abs(c->w_min) * psi_f) / 32768;
+        int32_t v_still = 2 * v_err;
+        if (v_still < (e_min / 4)) {
+            v_still = e_min / 4;   /* the floor: a quarter of the back-EMF at w_min */
+        } else {
+            /* twice the inverter's error */
+        }
         if (speed_ok && flux_ok && emf_ok) {
             r = QFOC_CATCH_LOCK;
-        } else if (u <= (2 * v_err)) {
+        } else if (u <= v_still) {
             r = QFOC_CATCH_STILL;
         } else {
             /* turning, not catchable */
@@ -57,7 +64,13 @@ uint8_t qfoc_catch_step(qfoc_catch_t *k, qfoc_q15_t u, qfoc_q15_t speed, qfoc_q1
     qfoc_catch_meas_t m;
     uint8_t v;
     uint8_t r = QFOC_CATCH_WAIT;
-    k->u_f = (qfoc_q15_t)(uf + ((catch_abs(u) - uf) / 8));
+    const int32_t du = catch_abs(u) - uf;
+    /* an eighth of the difference, rounded away from zero: the filter reaches |u| */
+    const int32_t step = (du >= 0) ? ((du + 7) / 8) : -((7 - du) / 8);
+    const int32_t nf = uf + step;
+    /* within [min(u_f, |u|), max(u_f, |u|)], but for |u| = 32768 (u = -32768) one past
+       32767 at full scale: saturated */
+    k->u_f = (nf > 32767) ? (qfoc_q15_t)32767 : (qfoc_q15_t)nf;
     m.speed = speed;
     m.psi_mag = psi;
     m.u_mag = k->u_f;

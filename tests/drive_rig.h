@@ -170,22 +170,26 @@ static inline void rig_ms(rig_t *r, int n)
 
 /* REQ-DRV-027 (flying start, catch.h): the ticks a standing rotor spends in CATCH, from
    the tick that entered RUN to the tick that enters ALIGN, when the loops' voltage
-   command stays 0 (the rig's samples at the offsets, or ticks without fast steps).  The
-   first verdict comes in the tick after the RUN entry; the filter of qfoc_catch_step
-   starts at 32767 and takes an eighth of the way to |u| = 0 per tick (the C quotient,
-   truncated), so the verdict is STILL from the n-th tick on, the first with
-   u_f <= 2 |flux_v_err|; it must then hold for ho_dwell_ms ticks (0 reads as 1):
-   ALIGN on tick n + dwell - 1. */
+   command stays 0 (the rig's samples at the offsets, or ticks without fast steps).
+   Computed here in double precision from catch.h's rules, not by the library: the first
+   verdict comes in the tick after the RUN entry; the filter of qfoc_catch_step starts at
+   32767 and moves an eighth of the way to |u| = 0 per tick, rounded away from zero
+   (u_f - ceil(u_f / 8)), so the verdict is STILL (the speed 0 is below of_speed: never
+   LOCK) from the n-th tick on, the first with u_f <= v_still = max(2 |flux_v_err|,
+   e_min / 4), e_min = |of_speed| |psi_f| / 32768 (each quotient truncated); it must then
+   hold for ho_dwell_ms ticks (0 reads as 1): ALIGN on tick n + dwell - 1. */
 static inline long rig_catch_still_ticks(const qfoc_param_table_t *t)
 {
-    const int32_t lim = 2 * abs((int32_t)t->drive.flux_v_err);
+    const double e_min = trunc(fabs((double)t->drive.of_speed) * fabs((double)t->psi_f) /
+                               32768.0);
+    const double v_still = fmax(2.0 * fabs((double)t->drive.flux_v_err), trunc(e_min / 4.0));
     const long dwell = (t->drive.ho_dwell_ms > 0u) ? (long)t->drive.ho_dwell_ms : 1L;
-    int32_t uf = 32767;
+    double uf = 32767.0;
     long n = 0;
     do {
-        uf += (0 - uf) / 8;
+        uf -= ceil(uf / 8.0);
         n++;
-    } while (uf > lim);
+    } while (uf > v_still);
     return n + dwell - 1;
 }
 

@@ -181,38 +181,44 @@ static void plant_catch_run(dsim_t *ds, double rpm_start, long ms_max, catch_run
 /* REQ-DRV-027, REQ-CATCH-003: a standing rotor on the rig (the loops' voltage command 0):
    the run request enters RUN in CATCH; the PWM is on with every current reference 0
    (zero-current control: id_ref = iq_ref = iq_lim = 0); the filtered magnitude starts at
-   32767 and falls by an eighth of itself per tick (truncated), reaches 2 flux_v_err on the
-   n-th tick after the RUN entry (never before ln(32767 / (2 flux_v_err)) / ln(8 / 7)
-   ticks, the untruncated decay; catch.h's "8 ln(32767 / (2 v_err))" overstates it: with
-   the reference table 32.6 against 30.5 and n = 31), and the verdict STILL must then hold
-   ho_dwell_ms ticks: ALIGN exactly on tick
-   n + ho_dwell_ms - 1, with the state time restarted, never CLOSED_LOOP.  The same with
-   the fast step played by the test (ticks only). */
+   32767 and falls by an eighth of itself per tick, rounded up (catch.h's CatchStep:
+   u_f - (7 + u_f) / 8 = floor(7 u_f / 8)), reaches v_still = max(2 |flux_v_err|, e_min / 4),
+   e_min = of_speed psi_f / 32768, on the n-th tick after the RUN entry, where
+   ln(32767 / (v_still + 7)) / ln(8 / 7) < n <= ceil(ln(32767 / v_still) / ln(8 / 7))
+   (the sequence lies in (32767 (7/8)^n - 7, 32767 (7/8)^n]; with the reference table
+   v_still = max(560, 1338 / 4 = 334) = 560, 30.4 < n <= 31: n = 31, catch.h's "30" being
+   the untruncated 30.5), and the verdict STILL must then hold ho_dwell_ms ticks: ALIGN
+   exactly on tick n + ho_dwell_ms - 1 (80), with the state time restarted, never
+   CLOSED_LOOP.  The same with the fast step played by the test (ticks only).  The count
+   here is formed in 32-bit integers as catch.h writes it, the rig's
+   (rig_catch_still_ticks) in double precision: both independent of the library. */
 static void test_req_drv_027_standing_rotor(void **state)
 {
     const qfoc_param_table_t *const t = &qfoc_params_reference;
-    const int32_t lim = 2 * abs((int32_t)t->drive.flux_v_err);
-    const double n_min = log(32767.0 / (double)lim) / log(8.0 / 7.0);
+    const int32_t e_min = (abs((int32_t)t->drive.of_speed) * abs((int32_t)t->psi_f)) / 32768;
+    const int32_t lim = (2 * abs((int32_t)t->drive.flux_v_err) >= e_min / 4)
+                            ? 2 * abs((int32_t)t->drive.flux_v_err) : e_min / 4;
+    const double n_lo = log(32767.0 / ((double)lim + 7.0)) / log(8.0 / 7.0);
+    const double n_hi = ceil(log(32767.0 / (double)lim) / log(8.0 / 7.0));
     long n = 0;
     long bound;
     int mode;
     (void)state;
-    /* the filter, as catch.h writes it */
+    /* the filter, as catch.h writes it: u_f + CatchStep(0 - u_f), d < 0 */
     {
         int32_t uf = 32767;
         while (uf > lim) {
-            uf = uf + (0 - uf) / 8;
+            uf = uf - ((7 - (0 - uf)) / 8);
             n++;
         }
     }
     bound = n + (long)t->drive.ho_dwell_ms - 1;
-    assert_true((double)n >= n_min);
-    assert_true((double)n <= n_min * 1.1 + 1.0);   /* the truncation costs little */
+    assert_true((double)n > n_lo);
+    assert_true((double)n <= n_hi);
     assert_int_equal(bound, rig_catch_still_ticks(t));
-    print_message("standing rotor: filter at 2 flux_v_err = %d after %ld ticks (ln(32767 / %d) / "
-                  "ln(8 / 7) = %.1f; catch.h's 8 ln(32767 / %d) = %.1f), ALIGN %ld ticks after "
-                  "the RUN entry (dwell %u)\n", lim, n, lim, n_min, lim,
-                  8.0 * log(32767.0 / (double)lim), bound, t->drive.ho_dwell_ms);
+    print_message("standing rotor: v_still = max(2 flux_v_err, e_min / 4 = %d / 4) = %d, the "
+                  "filter there after %ld ticks (%.1f < n <= %.0f), ALIGN %ld ticks after the RUN "
+                  "entry (dwell %u)\n", e_min, lim, n, n_lo, n_hi, bound, t->drive.ho_dwell_ms);
     for (mode = 0; mode < 2; mode++) {
         rig_t r;
         long k;
@@ -264,6 +270,57 @@ static void test_req_drv_027_standing_rotor(void **state)
             assert_int_equal(r.d.s.sm.sub, QFOC_SUB_OPEN_LOOP);
             assert_int_equal(k - 1, (long)t->drive.align_ms);
             assert_int_equal(r.enabled_outside_run, 0);
+        }
+    }
+}
+
+/* REQ-DRV-027, REQ-CATCH-002: the STILL threshold's floor on the rig: the reference table
+   (of_speed 3277, psi_f 13383: e_min / 4 = 334) with flux_v_err 0, 3, 173 (v_still
+   = max(2 |flux_v_err|, 334) = 334, 334, 346) and 174, 280 (348, 560), ho_dwell_ms 50 and
+   1: a standing rotor goes from CATCH to ALIGN on tick N(v_still) + dwell - 1, N by hand
+   from the filter's fall 32767 -> floor(7 u_f / 8) (397, 347 on tick 34, 303 on 35):
+   N = 35, 35, 35, 34, 31.  With flux_v_err 0 the old filter (truncated eighths) stuck at
+   7 and CATCH never ended in STILL.  The rig's count (rig_catch_still_ticks, double
+   precision) against the hand value, the drive against both (rig_catch_ticks), and the
+   filter's value at the exit. */
+static void test_req_drv_027_standing_rotor_floor(void **state)
+{
+    static const struct {
+        int16_t v_err;
+        uint16_t dwell;
+        long ticks;   /* by hand: N + dwell - 1 */
+    } tab[] = {
+        { 0, 50u, 84 }, { 3, 50u, 84 }, { 173, 50u, 84 }, { 174, 50u, 83 }, { 280, 50u, 80 },
+        { 0, 1u, 35 },  { 174, 1u, 34 }, { 280, 1u, 31 },
+    };
+    unsigned i;
+    (void)state;
+    assert_int_equal(qfoc_params_reference.drive.of_speed, 3277);
+    assert_int_equal(qfoc_params_reference.psi_f, 13383);
+    for (i = 0; i < (sizeof tab / sizeof tab[0]); i++) {
+        qfoc_param_table_t t = qfoc_params_reference;
+        rig_t r;
+        int ms;
+        t.drive.flux_v_err = tab[i].v_err;
+        t.drive.ho_dwell_ms = tab[i].dwell;
+        t.crc = qfoc_params_crc(&t);
+        assert_int_equal(rig_catch_still_ticks(&t), tab[i].ticks);
+        rig_init_table(&r, &t, 3000u);
+        rig_ms(&r, 300);
+        assert_int_equal(r.d.s.sm.state, QFOC_STATE_STOP);
+        r.power_on = true;
+        for (ms = 0; (ms < 20) && (r.d.s.sm.state != QFOC_STATE_RUN); ms++) {
+            rig_ms(&r, 1);
+        }
+        assert_int_equal(rig_catch_ticks(&r), tab[i].ticks);
+        /* the filter ran in every CATCH tick: u_f after `ticks` steps towards 0 */
+        {
+            int32_t uf = 32767;
+            long k;
+            for (k = 0; k < tab[i].ticks; k++) {
+                uf -= (7 + uf) / 8;
+            }
+            assert_int_equal(r.d.s.catch_st.u_f, uf);
         }
     }
 }
@@ -346,15 +403,19 @@ static void test_req_drv_027_coasting_rotor_caught(void **state)
    current (no torque, the load slows the rotor down), longer than on a standing rotor, and
    never counts a LOCK verdict nor enters CLOSED_LOOP while the rotor turns backwards; once
    the back-EMF is below the STILL bound it goes to ALIGN with the rotor slowed below
-   3 flux_v_err / psi_f (catch.h), and the start reaches CLOSED_LOOP, forwards, without
-   fault. */
+   max(3 flux_v_err / psi_f, of_speed / 4 + flux_v_err / psi_f) (catch.h), and the start
+   reaches CLOSED_LOOP, forwards, without fault. */
 static void test_req_drv_027_reverse_rotation(void **state)
 {
     static const double loads[2] = { 0.1, 0.5 };
     const qfoc_param_table_t *const t = &qfoc_params_reference;
     const double i_max_a = (double)t->i_max / 32768.0 * (double)t->i_base_ma / 1000.0;
-    /* the speed below which the back-EMF is within 3 v_err: w psi_f = 3 v_err (Q15) */
-    const int32_t w_still = (int32_t)lround(3.0 * fabs((double)t->drive.flux_v_err) /
+    /* the speed below which the back-EMF is within max(3 v_err, v_err + e_min / 4):
+       w psi_f = that (Q15); e_min = of_speed psi_f / 32768 */
+    const double e_min = trunc(fabs((double)t->drive.of_speed) * fabs((double)t->psi_f) /
+                               32768.0);
+    const double v_err = fabs((double)t->drive.flux_v_err);
+    const int32_t w_still = (int32_t)lround(fmax(3.0 * v_err, v_err + trunc(e_min / 4.0)) /
                                             fabs((double)t->psi_f) * 32768.0);
     int c;
     (void)state;
@@ -395,6 +456,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_req_drv_027_standing_rotor),
+        cmocka_unit_test(test_req_drv_027_standing_rotor_floor),
         cmocka_unit_test(test_req_drv_027_standing_rotor_plant),
         cmocka_unit_test(test_req_drv_027_coasting_rotor_caught),
         cmocka_unit_test(test_req_drv_027_reverse_rotation),

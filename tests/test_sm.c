@@ -28,6 +28,8 @@ static qfoc_sm_in_t quiet(void)
     in.table_ok = true;
     in.converged = false;
     in.stop_reached = false;
+    in.catch_lock = false;
+    in.catch_still = false;
     return in;
 }
 
@@ -80,7 +82,9 @@ static void test_sm_001_init_and_validity(void **state)
     assert_false(qfoc_sm_is_valid(&sm));
     sm.sub = QFOC_SUB_STOPPING;
     assert_true(qfoc_sm_is_valid(&sm));
-    sm.sub = 7u;
+    sm.sub = QFOC_SUB_CATCH;
+    assert_true(qfoc_sm_is_valid(&sm));
+    sm.sub = 8u;
     assert_false(qfoc_sm_is_valid(&sm));
     sm.state = QFOC_STATE_STOP;
     sm.sub = QFOC_SUB_CALIB;
@@ -131,7 +135,7 @@ static void to_stop(qfoc_sm_t *sm)
     assert_int_equal(sm->state, QFOC_STATE_STOP);
 }
 
-/* REQ-SM-005: STOP starts on a run request into ALIGN; bus or offsets lost: PRECHARGE. */
+/* REQ-SM-005: STOP starts on a run request into CATCH; bus or offsets lost: PRECHARGE. */
 static void test_sm_005_stop(void **state)
 {
     qfoc_sm_t sm;
@@ -142,9 +146,13 @@ static void test_sm_005_stop(void **state)
     steps(&sm, &in, 100);
     assert_int_equal(sm.state, QFOC_STATE_STOP);
     in.run_request = true;
+    in.catch_lock = true;                    /* a verdict in STOP changes nothing */
+    in.catch_still = true;
     steps(&sm, &in, 1);
     assert_int_equal(sm.state, QFOC_STATE_RUN);
-    assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
+    assert_int_equal(sm.sub, QFOC_SUB_CATCH);
+    assert_int_equal(sm.t_state, 0);
+    assert_int_equal(sm.t_sub, 0);
     to_stop(&sm);
     in = quiet();
     in.calib_done = true;
@@ -160,7 +168,8 @@ static void test_sm_005_stop(void **state)
     assert_int_equal(sm.state, QFOC_STATE_PRECHARGE);
 }
 
-/* REQ-SM-006: ALIGN -> OPEN_LOOP -> CLOSED_LOOP, handover not before cl_hold_ms. */
+/* REQ-SM-006, REQ-SM-010: CATCH (standing) -> ALIGN -> OPEN_LOOP -> CLOSED_LOOP, handover
+   not before cl_hold_ms counted from ALIGN. */
 static void test_sm_006_run_sequence(void **state)
 {
     qfoc_sm_t sm;
@@ -170,8 +179,12 @@ static void test_sm_006_run_sequence(void **state)
     in.calib_done = true;
     in.run_request = true;
     in.converged = true;                     /* converged early: must still wait */
+    in.catch_still = true;                   /* the rotor stands */
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_CATCH);
     steps(&sm, &in, 1);
     assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
+    assert_int_equal(sm.t_state, 0);
     steps(&sm, &in, 299);
     assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
     steps(&sm, &in, 1);                      /* the 300th tick of ALIGN */
@@ -196,9 +209,11 @@ static void test_sm_007_stop_requests(void **state)
     qfoc_sm_in_t in = quiet();
     (void)state;
     in.calib_done = true;
+    in.catch_still = true;                                 /* every start through ALIGN */
     to_stop(&sm);
     in.run_request = true;
     steps(&sm, &in, 5);
+    assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
     in.run_request = false;
     steps(&sm, &in, 1);
     assert_int_equal(sm.state, QFOC_STATE_STOP);          /* from ALIGN */
@@ -231,13 +246,15 @@ static void test_sm_007_stop_requests(void **state)
 static void test_sm_002_fault_to_error(void **state)
 {
     const uint8_t subs[] = { QFOC_SUB_BUS_WAIT, QFOC_SUB_CALIB, QFOC_SUB_NONE, QFOC_SUB_ALIGN,
-                             QFOC_SUB_OPEN_LOOP, QFOC_SUB_CLOSED_LOOP, QFOC_SUB_STOPPING };
+                             QFOC_SUB_OPEN_LOOP, QFOC_SUB_CLOSED_LOOP, QFOC_SUB_STOPPING,
+                             QFOC_SUB_CATCH };
     const uint8_t sts[] = { QFOC_STATE_PRECHARGE, QFOC_STATE_PRECHARGE, QFOC_STATE_STOP,
-                            QFOC_STATE_RUN, QFOC_STATE_RUN, QFOC_STATE_RUN, QFOC_STATE_RUN };
+                            QFOC_STATE_RUN, QFOC_STATE_RUN, QFOC_STATE_RUN, QFOC_STATE_RUN,
+                            QFOC_STATE_RUN };
     unsigned k;
     unsigned bit;
     (void)state;
-    for (k = 0; k < 7u; k++) {
+    for (k = 0; k < 8u; k++) {
         for (bit = 0; bit < 16u; bit++) {
             qfoc_sm_t sm;
             qfoc_sm_in_t in = quiet();
@@ -273,8 +290,10 @@ static void test_sm_008_own_faults(void **state)
     in.calib_done = true;
     to_stop(&sm);
     in.run_request = true;
-    steps(&sm, &in, 302);
+    in.catch_still = true;
+    steps(&sm, &in, 303);                           /* CATCH 1 tick, ALIGN 300 */
     assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);   /* t_sub 1 */
+    assert_int_equal(sm.t_sub, 1);
     steps(&sm, &in, 1998);
     assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
     steps(&sm, &in, 1);
@@ -285,7 +304,9 @@ static void test_sm_008_own_faults(void **state)
     in = quiet();
     in.calib_done = true;
     in.run_request = true;
+    in.catch_still = true;
     steps(&sm, &in, 3);
+    assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
     in.link_lost = true;
     in.run_request = false;
     steps(&sm, &in, 1);
@@ -297,6 +318,7 @@ static void test_sm_008_own_faults(void **state)
     in.calib_done = true;
     in.run_request = true;
     in.converged = true;
+    in.catch_still = true;
     steps(&sm, &in, 2100);
     assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
     in.link_lost = true;
@@ -377,6 +399,142 @@ static void test_sm_003_fault_clear(void **state)
     assert_int_equal(sm.t_sub, 65535u);
 }
 
+/* STOP -> RUN / CATCH on a run request, from a fresh STOP. */
+static void to_catch(qfoc_sm_t *sm, qfoc_sm_in_t *in)
+{
+    to_stop(sm);
+    *in = quiet();
+    in->calib_done = true;
+    in->run_request = true;
+    steps(sm, in, 1);
+    assert_int_equal(sm->state, QFOC_STATE_RUN);
+    assert_int_equal(sm->sub, QFOC_SUB_CATCH);
+    assert_int_equal(sm->t_state, 0);
+}
+
+/* REQ-SM-010: the flying start.  CATCH goes to CLOSED_LOOP on a lock (the lock wins over
+   still, and the caught rotor does not wait for cl_hold_ms), to ALIGN on still with both
+   times restarted, waits otherwise; without a run request it stops at once; STALL after
+   ol_timeout_ms in CATCH without a verdict; a lost link in CATCH is LINK. */
+static void test_sm_010_catch(void **state)
+{
+    qfoc_sm_t sm;
+    qfoc_sm_in_t in;
+    (void)state;
+    /* caught: lock and still at once, the lock wins */
+    to_catch(&sm, &in);
+    steps(&sm, &in, 9);                      /* no verdict yet: waits */
+    assert_int_equal(sm.sub, QFOC_SUB_CATCH);
+    assert_int_equal(sm.t_state, 9);
+    in.catch_lock = true;
+    in.catch_still = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_RUN);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+    assert_int_equal(sm.t_sub, 0);
+    assert_int_equal(sm.t_state, 10);        /* a sub-state change: RUN's time runs on */
+    assert_int_equal(sm.faults, 0);
+    /* CLOSED_LOOP stays, whatever the verdicts; a lost link there is no fault at once */
+    in.catch_lock = false;
+    in.link_lost = true;
+    steps(&sm, &in, 50);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+    /* the caught rotor stops through STOPPING like any other */
+    in.link_lost = false;
+    in.run_request = false;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_STOPPING);
+    in.stop_reached = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);
+
+    /* lock alone */
+    to_catch(&sm, &in);
+    in.catch_lock = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+
+    /* standing: waits while neither verdict, then ALIGN with both times 0 */
+    to_catch(&sm, &in);
+    steps(&sm, &in, 1500);
+    assert_int_equal(sm.state, QFOC_STATE_RUN);
+    assert_int_equal(sm.sub, QFOC_SUB_CATCH);
+    assert_int_equal(sm.t_state, 1500);
+    assert_int_equal(sm.t_sub, 1500);
+    in.catch_still = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_RUN);
+    assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
+    assert_int_equal(sm.t_state, 0);
+    assert_int_equal(sm.t_sub, 0);
+    /* the start is timed from ALIGN: OPEN_LOOP after align_ms, the handover after
+       cl_hold_ms counted from ALIGN, not from the RUN entry 1501 ticks earlier */
+    in.catch_still = false;
+    in.catch_lock = true;                    /* a verdict outside CATCH changes nothing */
+    in.converged = true;
+    steps(&sm, &in, 299);
+    assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
+    assert_int_equal(sm.t_state, 300);
+    steps(&sm, &in, 1699);
+    assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+
+    /* no run request: STOP at once, whatever the verdicts */
+    to_catch(&sm, &in);
+    steps(&sm, &in, 20);
+    in.run_request = false;
+    in.catch_lock = true;
+    in.catch_still = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);
+    assert_int_equal(sm.sub, QFOC_SUB_NONE);
+    assert_int_equal(sm.t_state, 0);
+    assert_int_equal(sm.faults, 0);
+
+    /* STALL: ol_timeout_ms in CATCH without a verdict */
+    to_catch(&sm, &in);
+    steps(&sm, &in, 1999);
+    assert_int_equal(sm.sub, QFOC_SUB_CATCH);
+    assert_int_equal(sm.t_sub, 1999);
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_STALL);
+    assert_int_equal(sm.first_fault, QFOC_SM_FAULT_STALL);
+    /* the timeout wins over a verdict in the same tick */
+    to_catch(&sm, &in);
+    steps(&sm, &in, 1999);
+    in.catch_lock = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_STALL);
+
+    /* LINK: the link lost in CATCH, with or without the run request, over a lock */
+    to_catch(&sm, &in);
+    steps(&sm, &in, 5);
+    in.link_lost = true;
+    in.catch_lock = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_LINK);
+    assert_int_equal(sm.first_fault, QFOC_SM_FAULT_LINK);
+    to_catch(&sm, &in);
+    in.link_lost = true;
+    in.run_request = false;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_LINK);
+    /* both at the timeout: the bits add up */
+    to_catch(&sm, &in);
+    steps(&sm, &in, 1999);
+    in.link_lost = true;
+    steps(&sm, &in, 1);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_STALL | QFOC_SM_FAULT_LINK);
+    assert_true(qfoc_sm_is_valid(&sm));
+}
+
 /* REQ-SM-009: random sequences against an independent model of the rules. */
 typedef struct {
     int st, sub, faults, t_state, t_sub;
@@ -397,11 +555,13 @@ static void model_step(model_t *m, const qfoc_sm_in_t *in)
         }
         return;
     }
-    if (m->st == 2 && m->sub == 4 && m->t_sub >= (int)cfg.ol_timeout_ms) {
+    /* STALL: OPEN_LOOP without a handover, or CATCH without a verdict, for ol_timeout_ms */
+    if (m->st == 2 && (m->sub == 4 || m->sub == 7) && m->t_sub >= (int)cfg.ol_timeout_ms) {
         f |= 0x20;
     }
+    /* LINK: lost before the closed loop (CATCH, ALIGN, OPEN_LOOP), or a lost-link stop done */
     if (m->st == 2 && in->link_lost &&
-        (m->sub == 3 || m->sub == 4 || (m->sub == 6 && in->stop_reached))) {
+        (m->sub == 7 || m->sub == 3 || m->sub == 4 || (m->sub == 6 && in->stop_reached))) {
         f |= 0x100;
     }
     if (f != 0) {
@@ -425,11 +585,19 @@ static void model_step(model_t *m, const qfoc_sm_in_t *in)
         if (!in->bus_ok || !in->calib_done) {
             GO(0, 1);
         } else if (in->run_request) {
-            GO(2, 3);
+            GO(2, 7);                        /* every start looks for a turning rotor */
         }
         break;
     default:
-        if (m->sub == 3) {
+        if (m->sub == 7) {
+            if (!in->run_request) {
+                GO(1, 0);
+            } else if (in->catch_lock) {
+                GOSUB(5);                    /* caught: t_state runs on from the RUN entry */
+            } else if (in->catch_still) {
+                GO(2, 3);                    /* standing: ALIGN, both times restart */
+            }
+        } else if (m->sub == 3) {
             if (!in->run_request) {
                 GO(1, 0);
             } else if (m->t_sub >= (int)cfg.align_ms) {
@@ -459,27 +627,44 @@ static void model_step(model_t *m, const qfoc_sm_in_t *in)
 }
 
 /* REQ-SM-001, REQ-SM-002, REQ-SM-003, REQ-SM-004, REQ-SM-005, REQ-SM-006, REQ-SM-007,
-   REQ-SM-008, REQ-SM-009: random tick sequences against the model above, which states
-   every rule (faults, Faultclear, PRECHARGE, STOP, start-up, stopping, the machine's own
-   faults, times); the invariant is checked after every tick. */
+   REQ-SM-008, REQ-SM-009, REQ-SM-010: random tick sequences against the model above,
+   which states every rule (faults, Faultclear, PRECHARGE, STOP, the flying-start CATCH,
+   start-up, stopping, the machine's own faults, times); the invariant is checked after
+   every tick.  CATCH's verdicts come in spells (a rotor that stands, one that can be
+   caught, one that does neither), so that every way out of CATCH, the STALL of a CATCH
+   without a verdict included, is taken many times. */
 static void test_sm_009_random_against_model(void **state)
 {
     qfoc_sm_t sm;
     qfoc_sm_in_t in;
     model_t m = { 0, 1, 0, 0, 0 };
     long k;
-    long visits[7] = { 0 };
+    long visits[8] = { 0 };
+    long caught = 0;
+    long standing = 0;
+    long catch_stall = 0;
+    long catch_link = 0;
+    bool still_spell = false;
+    bool lock_spell = false;
     (void)state;
     qfoc_sm_init(&sm);
     in = quiet();
     for (k = 0; k < 2000000L; k++) {
         const uint32_t r = lcg_next() >> 8;
         const uint32_t flip = (lcg_next() >> 12) % 4096u;
+        const uint32_t c = lcg_next() >> 16;
+        const qfoc_sm_t old = sm;
+        still_spell = (flip == 10u || flip == 11u) ? !still_spell : still_spell;
+        lock_spell = (flip == 12u) ? !lock_spell : lock_spell;
+        in.catch_still = still_spell && ((c % 4u) != 0u);
+        in.catch_lock = lock_spell && (((c >> 2) % 8u) == 0u);
         /* persistent conditions that change now and then, rare faults */
         in.faults = ((r % 6000u) == 0u) ? (uint16_t)(lcg_next() >> 16) : 0u;
         in.bus_ok = (flip == 0u) ? !in.bus_ok : (in.bus_ok || ((r % 50u) == 0u));
         in.calib_done = (flip == 1u) ? !in.calib_done : (in.calib_done || ((r % 300u) == 0u));
-        in.run_request = (flip < 8u) ? !in.run_request : in.run_request;
+        /* the run request held longer in CATCH, for its timeout to be reached */
+        in.run_request = (flip < ((sm.sub == QFOC_SUB_CATCH) ? 1u : 8u)) ? !in.run_request
+                                                                         : in.run_request;
         in.link_lost = (flip == 9u) ? !in.link_lost : (in.link_lost && ((r % 100u) != 0u));
         in.fault_clear = ((r >> 3) & 0x1u) != 0u;
         in.table_ok = ((r >> 4) & 0x3Fu) != 0u;
@@ -494,12 +679,27 @@ static void test_sm_009_random_against_model(void **state)
         assert_int_equal(sm.t_sub, m.t_sub);
         assert_true(qfoc_sm_is_valid(&sm));
         visits[sm.sub]++;
+        if (old.state == QFOC_STATE_RUN && old.sub == QFOC_SUB_CATCH) {
+            caught += (sm.sub == QFOC_SUB_CLOSED_LOOP) ? 1 : 0;
+            standing += (sm.sub == QFOC_SUB_ALIGN) ? 1 : 0;
+            catch_stall += (sm.state == QFOC_STATE_ERROR &&
+                            (sm.faults & QFOC_SM_FAULT_STALL) != 0u) ? 1 : 0;
+            catch_link += (sm.state == QFOC_STATE_ERROR &&
+                           (sm.faults & QFOC_SM_FAULT_LINK) != 0u) ? 1 : 0;
+        }
     }
-    print_message("sub-state visits: none %ld wait %ld calib %ld align %ld ol %ld cl %ld stopping %ld\n",
-                  visits[0], visits[1], visits[2], visits[3], visits[4], visits[5], visits[6]);
-    for (k = 0; k < 7; k++) {
+    print_message("sub-state visits: none %ld wait %ld calib %ld align %ld ol %ld cl %ld "
+                  "stopping %ld catch %ld\n", visits[0], visits[1], visits[2], visits[3],
+                  visits[4], visits[5], visits[6], visits[7]);
+    print_message("out of CATCH: caught %ld standing %ld stall %ld link %ld\n",
+                  caught, standing, catch_stall, catch_link);
+    for (k = 0; k < 8; k++) {
         assert_true(visits[k] > 1000);
     }
+    assert_true(caught > 100);
+    assert_true(standing > 100);
+    assert_true(catch_stall > 10);
+    assert_true(catch_link > 10);
 }
 
 int main(void)
@@ -514,6 +714,7 @@ int main(void)
         cmocka_unit_test(test_sm_007_stop_requests),
         cmocka_unit_test(test_sm_008_own_faults),
         cmocka_unit_test(test_sm_009_random_against_model),
+        cmocka_unit_test(test_sm_010_catch),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

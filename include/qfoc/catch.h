@@ -25,19 +25,22 @@
  *    table's band psi_f +- psi_tol, and the voltage command agrees with the back-EMF the
  *    speed implies, | |u| - w psi_f | <= v_err + w psi_f / 4 (two independent measures of
  *    the speed, the PLL's frequency and the voltage's magnitude);
- *  - STILL: otherwise, when |u| <= 2 v_err: the back-EMF is below the voltage error the
- *    inverter can make (v_err, the table's dead-time voltage-error bound), so a standing
- *    rotor is always classed STILL, and a rotor classed STILL turns slower than
- *    3 v_err / psi_f;
+ *  - STILL: otherwise, when |u| <= v_still = max(2 v_err, w_min psi_f / 4): the voltage is
+ *    below twice the error the inverter can make (v_err, the table's dead-time
+ *    voltage-error bound) or below the back-EMF of a quarter of the handover speed, so a
+ *    standing rotor is always classed STILL (also on a table with v_err = 0, whatever the
+ *    loops' voltage noise below w_min psi_f / 4), and a rotor classed STILL turns slower
+ *    than max(3 v_err / psi_f, w_min / 4 + v_err / psi_f): ALIGN's current stops it;
  *  - WAIT: a rotor that turns but cannot be caught: backwards, slower than w_min (where
  *    the observer is not trusted), faster than w_max, or with the two speeds disagreeing.
  *    The drive keeps zero current (no torque: the compressor's load slows the rotor down)
  *    until the verdict is STILL or LOCK.
- * qfoc_catch_step() is the tick's whole CATCH logic: it low-passes |u| over 8 ticks,
- * starting from full scale at CATCH entry (qfoc_catch_reset()), so that STILL cannot come
- * before the filter has seen the loops' voltage for at least
- * ln(32767 / (2 v_err)) / ln(8 / 7) ticks (31 on the reference table), whatever the dwell;
- * it then debounces LOCK and STILL over
+ * qfoc_catch_step() is the tick's whole CATCH logic: it low-passes |u| over 8 ticks
+ * (each step an eighth of the difference rounded away from zero, so that the filter
+ * reaches a constant input exactly), starting from full scale at CATCH entry
+ * (qfoc_catch_reset()), so that STILL cannot come before the filter has seen the loops'
+ * voltage for about ln(32767 / v_still) / ln(8 / 7) ticks (30 on the reference table),
+ * whatever the dwell; it then debounces LOCK and STILL over
  * the dwell (the drive's ho_dwell_ms, drive_cfg.h) before the drive acts on them.
  *
  * Scaling (specs/scaling.md): speeds Q15 of w_base, fluxes Q15 of psi_base = V_base /
@@ -45,7 +48,7 @@
  *
  * Both functions are total on every value of their argument types.
  *
- * Requirements: REQ-CATCH-001, REQ-CATCH-002 (specs/requirements/catch.md).
+ * Requirements: REQ-CATCH-001 .. REQ-CATCH-003 (specs/requirements/catch.md).
  */
 #ifndef QFOC_CATCH_H
 #define QFOC_CATCH_H
@@ -83,8 +86,17 @@ typedef struct {
     CatchAbs(m->psi_mag - CatchAbs(c->psi_f)) <= CatchAbs(c->psi_tol) &&
     CatchAbs(CatchAbs(m->u_mag) - CatchEmf(m->speed, c->psi_f)) <=
       CatchAbs(c->v_err) + CatchEmf(m->speed, c->psi_f) / 4;
+  // the STILL threshold: twice the inverter's error, at least a quarter of the back-EMF
+  // at the handover speed
+  logic integer CatchVStill(qfoc_catch_cfg_t *c) =
+    (2 * CatchAbs(c->v_err) >= CatchEmf(CatchAbs(c->w_min), c->psi_f) / 4) ?
+      2 * CatchAbs(c->v_err) : CatchEmf(CatchAbs(c->w_min), c->psi_f) / 4;
   predicate CatchStill(qfoc_catch_meas_t *m, qfoc_catch_cfg_t *c) =
-    CatchAbs(m->u_mag) <= 2 * CatchAbs(c->v_err);
+    CatchAbs(m->u_mag) <= CatchVStill(c);
+  // one filter step: an eighth of the difference, rounded away from zero
+  logic integer CatchStep(integer d) = (d >= 0) ? (d + 7) / 8 : -((7 - d) / 8);
+  // at most 32767 (the step from 32767 towards |u| = 32768)
+  logic integer CatchSat(integer x) = (x > 32767) ? 32767 : x;
 */
 
 /**
@@ -135,14 +147,15 @@ void qfoc_catch_reset(qfoc_catch_t *k);
  * @param[in]     dwell ticks a verdict must hold (0 reads as 1)
  * @return QFOC_CATCH_LOCK once the verdict LOCK has held for dwell ticks in a row, else
  *         QFOC_CATCH_STILL once STILL has, else QFOC_CATCH_WAIT.
- * Scaling and overflow: u_f + (|u| - u_f) / 8 lies between u_f and |u|.
+ * Scaling and overflow: u_f + CatchStep(|u| - u_f) lies between u_f and |u| (at most
+ * 32768, for u = -32768 from 32767: saturated to 32767).
  * Requirements: REQ-CATCH-003.
  */
 /*@
   requires valid: \valid(k) && \valid_read(c);
   requires sep: \separated(k, c);
   assigns *k;
-  ensures filter: k->u_f == \old(k->u_f) + (CatchAbs(u) - \old(k->u_f)) / 8;
+  ensures filter: k->u_f == CatchSat(\old(k->u_f) + CatchStep(CatchAbs(u) - \old(k->u_f)));
   ensures result: \result == QFOC_CATCH_LOCK || \result == QFOC_CATCH_STILL ||
                   \result == QFOC_CATCH_WAIT;
   ensures lock: \result == QFOC_CATCH_LOCK ==> k->db_lock.count >= 1;

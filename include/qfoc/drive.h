@@ -35,6 +35,10 @@
  *     each offset must lie within offset_window of 2048, else fault OFFSET.
  *   - STOP: PWM off; a run request (power-on bit, target rpm_min..rpm_max, link alive)
  *     starts the motor.
+ *   - RUN / CATCH (flying start, catch.h, REQ-DRV-027): zero-current control in the
+ *     observer's frame; a coasting rotor between of_speed and speed_max is caught
+ *     (CLOSED_LOOP at its measured speed, no cl_hold_ms hold), a standing one goes to
+ *     ALIGN (estimator and current loops restarted), any other waits with zero current.
  *   - RUN / ALIGN: d-current ramp to i_align at angle 0 over align_ms / 2, then held to
  *     3/4 align_ms and half of it for the last quarter; the two d voltages give the
  *     inverter's residual voltage error (dtc.h, REQ-DRV-026).
@@ -140,7 +144,7 @@
  * REQ-SCN-005 DC-bus sag, REQ-SCN-006 over-current, REQ-SCN-007 over-voltage,
  * REQ-SCN-008 over-temperature, REQ-SCN-009 locked rotor, REQ-SCN-010 link loss (each
  * with its recovery), REQ-SCN-011 robust start, REQ-SCN-012 other tables, REQ-SCN-013
- * MTPA against i_d = 0, REQ-SCN-014 thermal derating.
+ * MTPA against i_d = 0, REQ-SCN-014 thermal derating, REQ-SCN-015 flying start.
  */
 #ifndef QFOC_DRIVE_H
 #define QFOC_DRIVE_H
@@ -413,7 +417,7 @@ qfoc_pwm_t qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
   ensures error_exit: \old(d->s.sm.state) == QFOC_STATE_ERROR &&
       d->s.sm.state != QFOC_STATE_ERROR ==> d->s.sm.state == QFOC_STATE_STOP;
   ensures run_entry: \old(d->s.sm.state) != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>
-      \old(d->s.sm.state) == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN;
+      \old(d->s.sm.state) == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_CATCH;
 */
 qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
 

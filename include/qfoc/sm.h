@@ -47,7 +47,7 @@
  *  4. Otherwise the state's own rule applies (REQ-SM-004 .. REQ-SM-008).
  * A transition sets both times to 0.
  *
- * Requirements: REQ-SM-001 .. REQ-SM-009.
+ * Requirements: REQ-SM-001 .. REQ-SM-010.
  */
 #ifndef QFOC_SM_H
 #define QFOC_SM_H
@@ -211,7 +211,7 @@ void qfoc_sm_fail(qfoc_sm_t *sm, uint16_t faults);
       in->converged && SmTick(\old(sm->t_state)) >= cfg->cl_hold_ms;
   ensures closed_loop_origin: sm->sub == QFOC_SUB_CLOSED_LOOP ==>
       \old(sm->sub) == QFOC_SUB_OPEN_LOOP || \old(sm->sub) == QFOC_SUB_CLOSED_LOOP ||
-      \old(sm->sub) == QFOC_SUB_STOPPING;
+      \old(sm->sub) == QFOC_SUB_STOPPING || \old(sm->sub) == QFOC_SUB_CATCH;
   ensures stopping_origin: sm->sub == QFOC_SUB_STOPPING ==>
       \old(sm->sub) == QFOC_SUB_CLOSED_LOOP || \old(sm->sub) == QFOC_SUB_STOPPING;
   ensures stop_entry: sm->state == QFOC_STATE_STOP && \old(sm->state) == QFOC_STATE_PRECHARGE ==>

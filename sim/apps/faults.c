@@ -652,7 +652,7 @@ static void run(const inj_t *in, res_t *r)
                 r->t_det = (double)(k + 1) * t;
                 r->first = sm->faults;
             }
-            r->state_bad = r->state_bad || sm->state > QFOC_STATE_ERROR || sm->sub > QFOC_SUB_STOPPING;
+            r->state_bad = r->state_bad || sm->state > QFOC_STATE_ERROR || sm->sub > QFOC_SUB_CATCH;
             r->cmd_changed = r->cmd_changed ||
                              (in->kind == K_GARBAGE && (ds->drv.s.link.cmd.target_rpm != RPM_OP ||
                                                         !ds->drv.s.link.cmd.power_on));

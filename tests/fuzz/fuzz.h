@@ -284,8 +284,8 @@ static inline qfoc_tick_out_t fz_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     FZ_CHECK(!(old_state == QFOC_STATE_ERROR && d->s.sm.state != QFOC_STATE_ERROR) ||
              d->s.sm.state == QFOC_STATE_STOP, "tick: ERROR is left only to STOP");
     FZ_CHECK(!(old_state != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN) ||
-             (old_state == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN),
-             "tick: RUN is entered only from STOP, in ALIGN");
+             (old_state == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_CATCH),
+             "tick: RUN is entered only from STOP, in CATCH");
     FZ_CHECK((out.tx_len == QFOC_LIN_STATUS_LEN) == (ref == QFOC_LINK_OK),
              "tick: a status frame answers exactly an accepted command frame");
     if (out.tx_len == QFOC_LIN_STATUS_LEN) {

@@ -66,7 +66,11 @@ static inline void fz_snap_table(const char *tname, const qfoc_param_table_t *t)
     fz_snap_add(name, &e);
     /* RUN through the master's command */
     r.power_on = true;
-    fz_rig_until(&r, QFOC_STATE_RUN, QFOC_SUB_ALIGN, 100);
+    fz_rig_until(&r, QFOC_STATE_RUN, QFOC_SUB_CATCH, 100);
+    fz_rig_ms(&r, 5);
+    snprintf(name, sizeof name, "%s/catch", tname);
+    fz_snap_add(name, &r);
+    fz_rig_until(&r, QFOC_STATE_RUN, QFOC_SUB_ALIGN, 1000);
     fz_rig_ms(&r, 5);
     snprintf(name, sizeof name, "%s/align", tname);
     fz_snap_add(name, &r);

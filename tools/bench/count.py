@@ -639,7 +639,7 @@ def drive_bench(elf, rec_path, insns, sample_ms=50):
     can_off = t.info[INFO["tick_can_send"]]
     subs = {(0, 1): "PRECHARGE / BUS_WAIT", (0, 2): "PRECHARGE / CALIB", (1, 0): "STOP",
             (2, 3): "RUN / ALIGN", (2, 4): "RUN / OPEN_LOOP", (2, 5): "RUN / CLOSED_LOOP",
-            (2, 6): "RUN / STOPPING", (3, 0): "ERROR"}
+            (2, 6): "RUN / STOPPING", (2, 7): "RUN / CATCH", (3, 0): "ERROR"}
     mismatch = 0
 
     def probe():

@@ -51,7 +51,7 @@ MAX_POINTS = 4000            # points per line in the full-time plots
 FIG_W = 11.0                 # figure width, inches; fixed margins align the time axes
 LEFT_IN, RIGHT_IN = 1.3, 2.35
 STATES = ["PRECHARGE", "STOP", "RUN", "ERROR"]
-SUBS = ["-", "BUS_WAIT", "CALIB", "ALIGN", "OPEN_LOOP", "CLOSED_LOOP", "STOPPING"]
+SUBS = ["-", "BUS_WAIT", "CALIB", "ALIGN", "OPEN_LOOP", "CLOSED_LOOP", "STOPPING", "CATCH"]
 FAULTS = ["OC", "OV", "UV", "OT_IPM", "OT_PCB", "STALL", "PHASE", "OFFSET", "LINK", "PARAM", "TIMING"]
 TRACE_COLS = ["t_s", "target_rpm", "speed_ref_rpm", "speed_est_rpm", "speed_true_rpm",
               "id_ref_a", "iq_ref_a", "id_a", "iq_a", "id_true_a", "iq_true_a",

@@ -1,6 +1,7 @@
 /*
  * CBMC harness: the drive state machine alone, 40 ticks from ANY valid state with
- * any times and any inputs at every tick (REQ-SM-001 .. REQ-SM-009).
+ * any times and any inputs at every tick, the flying start's verdicts (catch_lock,
+ * catch_still) included (REQ-SM-001 .. REQ-SM-010).
  *
  * Asserted at every tick, against the previous state:
  *  - the invariant holds (REQ-SM-001);
@@ -8,11 +9,20 @@
  *  - ERROR is left only to STOP, with a clear request, no fault in the tick, the table
  *    intact, and clear_ms reached (REQ-SM-003);
  *  - STOP is entered from PRECHARGE only from CALIB with the calibration done (REQ-SM-004);
- *  - RUN is entered only from STOP, in ALIGN, on a run request (REQ-SM-005);
+ *  - RUN is entered only from STOP, in CATCH, on a run request, with both times 0
+ *    (REQ-SM-005);
+ *  - CATCH is held only in RUN entered from STOP or kept from CATCH, and is kept only
+ *    without a verdict, with the run request and the link, before ol_timeout_ms; ALIGN is
+ *    entered only from CATCH, on catch_still without catch_lock, with both times 0 (the
+ *    start is timed from ALIGN); CLOSED_LOOP from CATCH only on catch_lock, RUN's time
+ *    running on (REQ-SM-010);
+ *  - CATCH lasting ol_timeout_ms is STALL, a link lost in CATCH is LINK (REQ-SM-008);
  *  - OPEN_LOOP only from ALIGN after align_ms; CLOSED_LOOP only from OPEN_LOOP (converged,
- *    cl_hold_ms reached) or STOPPING; STOPPING only from CLOSED_LOOP (REQ-SM-006, REQ-SM-007);
- *  - and over the whole run: a CLOSED_LOOP reached from STOP went through ALIGN and
- *    OPEN_LOOP in that order (tracked by the harness).
+ *    cl_hold_ms reached), CATCH (caught) or STOPPING; STOPPING only from CLOSED_LOOP
+ *    (REQ-SM-006, REQ-SM-007);
+ *  - and over the whole run: a CLOSED_LOOP reached from STOP went either through CATCH
+ *    straight to CLOSED_LOOP (caught), or through CATCH, ALIGN and OPEN_LOOP in that order
+ *    (tracked by the harness).
  */
 #include "qfoc/sm.h"
 #include "../harness_util.h"
@@ -31,6 +41,8 @@ static qfoc_sm_in_t any_in(void)
     in.table_ok = nondet_bool();
     in.converged = nondet_bool();
     in.stop_reached = nondet_bool();
+    in.catch_lock = nondet_bool();
+    in.catch_still = nondet_bool();
     return in;
 }
 
@@ -39,7 +51,8 @@ int main(void)
     qfoc_sm_t sm;
     qfoc_sm_cfg_t cfg;
     int k;
-    /* harness-side history: 0 none, 1 saw ALIGN after STOP, 2 then OPEN_LOOP */
+    /* harness-side history since the last STOP: 0 none, 1 CATCH, 2 then ALIGN, 3 then
+       OPEN_LOOP, 4 CLOSED_LOOP straight from CATCH (caught) */
     int seq = 0;
     bool from_stop = false;
 
@@ -87,7 +100,41 @@ int main(void)
         }
         if ((old.state != QFOC_STATE_RUN) && (sm.state == QFOC_STATE_RUN)) {
             __CPROVER_assert(old.state == QFOC_STATE_STOP && in.run_request &&
-                             sm.sub == QFOC_SUB_ALIGN, "REQ-SM-005 RUN from STOP in ALIGN");
+                             sm.sub == QFOC_SUB_CATCH && sm.t_state == 0u && sm.t_sub == 0u,
+                             "REQ-SM-005 RUN from STOP in CATCH");
+        }
+        if ((sm.state == QFOC_STATE_RUN) && (sm.sub == QFOC_SUB_CATCH)) {
+            __CPROVER_assert(old.state == QFOC_STATE_STOP ||
+                             (old.state == QFOC_STATE_RUN && old.sub == QFOC_SUB_CATCH),
+                             "REQ-SM-010 CATCH only from STOP or CATCH");
+        }
+        if ((sm.sub == QFOC_SUB_ALIGN) && (old.sub != QFOC_SUB_ALIGN)) {
+            __CPROVER_assert(old.state == QFOC_STATE_RUN && old.sub == QFOC_SUB_CATCH &&
+                             in.catch_still && !in.catch_lock && in.run_request &&
+                             sm.t_state == 0u && sm.t_sub == 0u,
+                             "REQ-SM-010 ALIGN only from CATCH, standing, times 0");
+        }
+        if ((sm.sub == QFOC_SUB_CLOSED_LOOP) && (old.sub == QFOC_SUB_CATCH)) {
+            __CPROVER_assert(in.catch_lock && in.run_request && f == 0u &&
+                             sm.t_state == t_old && sm.t_sub == 0u,
+                             "REQ-SM-010 CLOSED_LOOP from CATCH only when caught");
+        }
+        if ((old.state == QFOC_STATE_RUN) && (old.sub == QFOC_SUB_CATCH) &&
+            (sm.state == QFOC_STATE_RUN) && (sm.sub == QFOC_SUB_CATCH)) {
+            __CPROVER_assert(!in.catch_lock && !in.catch_still && in.run_request &&
+                             !in.link_lost && ts_old < cfg.ol_timeout_ms,
+                             "REQ-SM-010 CATCH waits only without a verdict, before its timeout");
+        }
+        if ((old.state == QFOC_STATE_RUN) && (old.sub == QFOC_SUB_CATCH) &&
+            (ts_old >= cfg.ol_timeout_ms)) {
+            __CPROVER_assert(sm.state == QFOC_STATE_ERROR &&
+                             (sm.faults & QFOC_SM_FAULT_STALL) != 0u,
+                             "REQ-SM-008 STALL when CATCH lasts ol_timeout_ms");
+        }
+        if ((old.state == QFOC_STATE_RUN) && (old.sub == QFOC_SUB_CATCH) && in.link_lost) {
+            __CPROVER_assert(sm.state == QFOC_STATE_ERROR &&
+                             (sm.faults & QFOC_SM_FAULT_LINK) != 0u,
+                             "REQ-SM-008 LINK when the link is lost in CATCH");
         }
         if ((sm.sub == QFOC_SUB_OPEN_LOOP) && (old.sub != QFOC_SUB_OPEN_LOOP)) {
             __CPROVER_assert(old.sub == QFOC_SUB_ALIGN && ts_old >= cfg.align_ms,
@@ -95,26 +142,41 @@ int main(void)
         }
         if ((sm.sub == QFOC_SUB_CLOSED_LOOP) && (old.sub != QFOC_SUB_CLOSED_LOOP)) {
             __CPROVER_assert((old.sub == QFOC_SUB_OPEN_LOOP && in.converged &&
-                              t_old >= cfg.cl_hold_ms) || old.sub == QFOC_SUB_STOPPING,
-                             "REQ-SM-006 CLOSED_LOOP from OPEN_LOOP");
+                              t_old >= cfg.cl_hold_ms) ||
+                             (old.sub == QFOC_SUB_CATCH && in.catch_lock) ||
+                             old.sub == QFOC_SUB_STOPPING,
+                             "REQ-SM-006 CLOSED_LOOP from OPEN_LOOP, CATCH or STOPPING");
         }
         if ((sm.sub == QFOC_SUB_STOPPING) && (old.sub != QFOC_SUB_STOPPING)) {
             __CPROVER_assert(old.sub == QFOC_SUB_CLOSED_LOOP, "REQ-SM-007 STOPPING from CLOSED_LOOP");
         }
-        /* the start-up order over the run, from a STOP */
+        /* the start-up order over the run, from a STOP: CATCH, then either CLOSED_LOOP
+           at once (caught) or ALIGN and OPEN_LOOP; a sub-state out of this order leaves
+           seq where it was, and the assertion below fails */
         if (sm.state == QFOC_STATE_STOP) {
             from_stop = true;
             seq = 0;
-        } else if (from_stop && (sm.sub == QFOC_SUB_ALIGN)) {
-            seq = 1;
-        } else if (from_stop && (sm.sub == QFOC_SUB_OPEN_LOOP) && (seq >= 1)) {
-            seq = 2;
         } else if (sm.state != QFOC_STATE_RUN) {
             from_stop = false;
             seq = 0;
+        } else if (from_stop && (sm.sub == QFOC_SUB_CATCH) && (seq <= 1)) {
+            seq = 1;
+        } else if (from_stop && (sm.sub == QFOC_SUB_ALIGN) && (seq == 1 || seq == 2)) {
+            seq = 2;
+        } else if (from_stop && (sm.sub == QFOC_SUB_OPEN_LOOP) && (seq == 2 || seq == 3)) {
+            seq = 3;
+        } else if (from_stop && (sm.sub == QFOC_SUB_CLOSED_LOOP) && (seq == 1)) {
+            seq = 4;
+        } else {
+            /* CLOSED_LOOP or STOPPING after the start: the order is already checked */
+        }
+        if (from_stop && (sm.state == QFOC_STATE_RUN)) {
+            __CPROVER_assert(seq >= 1, "REQ-SM-005 RUN from STOP starts in CATCH");
         }
         if (from_stop && (sm.sub == QFOC_SUB_CLOSED_LOOP)) {
-            __CPROVER_assert(seq == 2, "REQ-SM-006 CLOSED_LOOP only through ALIGN and OPEN_LOOP");
+            __CPROVER_assert(seq == 3 || seq == 4,
+                             "REQ-SM-006 REQ-SM-010 CLOSED_LOOP only through CATCH (caught) or "
+                             "CATCH, ALIGN and OPEN_LOOP");
         }
     }
     return 0;
