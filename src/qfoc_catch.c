@@ -14,6 +14,22 @@ static int32_t catch_abs(qfoc_q15_t x)
     return (x < 0) ? -(int32_t)x : (int32_t)x;
 }
 
+/* The back-EMF of a speed, w |psi| / 32768 truncated (the one product of the verdict,
+   kept apart so that the verdict's goals are linear). */
+/*@
+  requires w: -32768 <= w <= 32768;
+  assigns \nothing;
+  ensures result: \result == CatchEmf(w, psi);
+  ensures range: -32768 <= \result <= 32768;
+*/
+static int32_t catch_emf(int32_t w, qfoc_q15_t psi)
+{
+    const int32_t p = catch_abs(psi);
+    /*@ assert p: 0 <= p <= 32768; */
+    /*@ assert prod: -32768 * 32768 <= w * p <= 32768 * 32768; */
+    return (w * p) / 32768;
+}
+
 /* public interface, also called by qfoc_catch_step (DEV-002) */
 /* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
 uint8_t qfoc_catch_verdict(const qfoc_catch_meas_t *m, const qfoc_catch_cfg_t *c)
@@ -22,29 +38,28 @@ uint8_t qfoc_catch_verdict(const qfoc_catch_meas_t *m, const qfoc_catch_cfg_t *c
     const int32_t psi_f = catch_abs(c->psi_f);
     const int32_t v_err = catch_abs(c->v_err);
     const int32_t u = catch_abs(m->u_mag);
+    const int32_t w_min = catch_abs(c->w_min);
+    const int32_t e = catch_emf(w, c->psi_f);
+    const int32_t e_min = catch_emf(w_min, c->psi_f);
+    const int32_t de = u - e;
+    const int32_t dpsi = (int32_t)m->psi_mag - psi_f;
+    const int32_t band = v_err + (e / 4);
+    const bool speed_ok = (w >= w_min) && (w <= catch_abs(c->w_max));
+    const bool flux_ok = (dpsi <= catch_abs(c->psi_tol)) && (dpsi >= -catch_abs(c->psi_tol));
+    const bool emf_ok = (de <= band) && (de >= -band);
+    int32_t v_still = 2 * v_err;
     uint8_t r = QFOC_CATCH_WAIT;
-    /*@ assert prod: -32768 * 32768 <= w * psi_f <= 32767 * 32768; */
-    {
-        const int32_t e = (w * psi_f) / 32768;
-        const int32_t de = u - e;
-        const int32_t dpsi = (int32_t)m->psi_mag - psi_f;
-        const bool speed_ok = (w >= catch_abs(c->w_min)) && (w <= catch_abs(c->w_max));
-        const bool flux_ok = (dpsi <= catch_abs(c->psi_tol)) && (dpsi >= -catch_abs(c->psi_tol));
-        const bool emf_ok = (de <= (v_err + (e / 4))) && (de >= -(v_err + (e / 4)));
-        const int32_t e_min = (catch_abs(c->w_min) * psi_f) / 32768;
-        int32_t v_still = 2 * v_err;
-        if (v_still < (e_min / 4)) {
-            v_still = e_min / 4;   /* the floor: a quarter of the back-EMF at w_min */
-        } else {
-            /* twice the inverter's error */
-        }
-        if (speed_ok && flux_ok && emf_ok) {
-            r = QFOC_CATCH_LOCK;
-        } else if (u <= v_still) {
-            r = QFOC_CATCH_STILL;
-        } else {
-            /* turning, not catchable */
-        }
+    if (v_still < (e_min / 4)) {
+        v_still = e_min / 4;   /* the floor: a quarter of the back-EMF at w_min */
+    } else {
+        /* twice the inverter's error */
+    }
+    if (speed_ok && flux_ok && emf_ok) {
+        r = QFOC_CATCH_LOCK;
+    } else if (u <= v_still) {
+        r = QFOC_CATCH_STILL;
+    } else {
+        /* turning, not catchable */
     }
     return r;
 }

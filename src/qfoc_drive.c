@@ -1377,7 +1377,7 @@ static void drv_job_100ms(qfoc_drive_t *d)
   ensures error_exit: \old(s->sm.state) == QFOC_STATE_ERROR && s->sm.state != QFOC_STATE_ERROR ==>
       s->sm.state == QFOC_STATE_STOP;
   ensures run_entry: \old(s->sm.state) != QFOC_STATE_RUN && s->sm.state == QFOC_STATE_RUN ==>
-      \old(s->sm.state) == QFOC_STATE_STOP && s->sm.sub == QFOC_SUB_ALIGN;
+      \old(s->sm.state) == QFOC_STATE_STOP && s->sm.sub == QFOC_SUB_CATCH;
 */
 static void drv_sm_step(qfoc_drive_slow_t *s)
 {
@@ -1769,7 +1769,7 @@ static void drv_object_check(qfoc_drive_t *d)
   ensures error_exit: old_state == QFOC_STATE_ERROR &&
       d->s.sm.state != QFOC_STATE_ERROR ==> d->s.sm.state == QFOC_STATE_STOP;
   ensures run_entry: old_state != QFOC_STATE_RUN && d->s.sm.state == QFOC_STATE_RUN ==>
-      old_state == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_ALIGN;
+      old_state == QFOC_STATE_STOP && d->s.sm.sub == QFOC_SUB_CATCH;
   ensures pwm_off: d->s.out.pwm_off == \true <==> d->s.sm.state != QFOC_STATE_RUN;
   ensures guard: DRV_GUARD_OK(d);
 */
