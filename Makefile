@@ -217,9 +217,9 @@ demo: deps $(BUILD)/host/qfoc_demo
 	@$(PYTHON) tools/demo/demo_report.py $(BUILD)/demo
 
 # The cold-start campaign (sim/apps/robust.c): ROBUST_COUNT starts of its base axis (the
-# ranges of REQ-SCN-011), then ROBUST_AXIS_COUNT starts on each of its 6 further axes (dead
+# ranges of REQ-SCN-011), then ROBUST_AXIS_COUNT starts on each of its 7 further axes (dead
 # time, breakaway torque, psi_f +-15 %, low-flux motor, low-flux motor with dead time, all
-# combined).  A ROBUST_COUNT given alone on the command line runs the base axis only: the
+# combined, a flying start on a coasting rotor).  A ROBUST_COUNT given alone on the command line runs the base axis only: the
 # short form of make check, `make robustness ROBUST_COUNT=24`.  The report is written even
 # when starts fail; the target then fails.  SEED=<n> replays one run.
 ROBUST_COUNT ?= 200
