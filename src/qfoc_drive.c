@@ -135,6 +135,32 @@ static qfoc_q15_t drv_li(int16_t l, qfoc_q15_t i)
     return qfoc_q15_sat(((int32_t)l * (int32_t)i) / 4096);
 }
 
+/* 2^s of the flux base psi_base = 2^s V_base / w_base (drive_cfg.h psi_shift; the range
+   check keeps s <= 4, and a larger value reads as 4). */
+/*@
+  assigns \nothing;
+  ensures range: 1 <= \result <= 16;
+*/
+static int32_t drv_psi_k(uint8_t s)
+{
+    const uint8_t e = (s < QFOC_DRIVE_PSI_SHIFT_MAX) ? s : QFOC_DRIVE_PSI_SHIFT_MAX;
+    return (int32_t)((uint32_t)1u << e);
+}
+
+/* A speed (Q15 of w_base) times a flux (Q15 of psi_base) as a voltage, Q15 of V_base:
+   the Q15 product times 2^s, saturated. */
+/*@
+  requires k: 1 <= k <= 16;
+  assigns \nothing;
+  ensures range: -32767 <= \result <= 32767;
+*/
+static qfoc_q15_t drv_emf(qfoc_q15_t w, qfoc_q15_t psi, int32_t k)
+{
+    const int32_t v = (int32_t)qfoc_q15_mul(w, psi);
+    /*@ assert v: -32767 <= v <= 32767; */
+    return qfoc_q15_sat(v * k);
+}
+
 /* ================================================================== fast step */
 
 /*@
@@ -322,10 +348,12 @@ static void drv_current_loop(qfoc_drive_fast_t *f, const qfoc_param_table_t *p,
 {
     const int16_t ld = f->hs ? p->drive.ld_hs : p->ld;
     const int16_t lq = f->hs ? p->drive.lq_hs : p->lq;
-    /* decoupling (rotor frame): u_d -= w L_q i_q, u_q += w (L_d i_d + psi_f) */
+    /* decoupling (rotor frame): u_d -= w L_q i_q, u_q += w (L_d i_d + psi_f), each a flux
+       times the speed: a voltage of 2^psi_shift V_base */
+    const int32_t k = drv_psi_k(p->drive.psi_shift);
     const qfoc_q15_t psi_d = qfoc_q15_add(drv_li(ld, f->i_dq.d), p->psi_f);
-    const qfoc_q15_t ff_d = qfoc_q15_neg(qfoc_q15_mul(w, drv_li(lq, f->i_dq.q)));
-    const qfoc_q15_t ff_q = qfoc_q15_mul(w, psi_d);
+    const qfoc_q15_t ff_d = qfoc_q15_neg(drv_emf(w, drv_li(lq, f->i_dq.q), k));
+    const qfoc_q15_t ff_q = drv_emf(w, psi_d, k);
     const qfoc_q15_t pi_d = qfoc_pi_step(&f->pi_id, qfoc_q15_sub(ref->d, f->i_dq.d));
     const qfoc_q15_t pi_q = qfoc_pi_step(&f->pi_iq, qfoc_q15_sub(ref->q, f->i_dq.q));
     /* the linear SVPWM range: |v| <= V_dc / sqrt 3; field weakening keeps the
@@ -779,10 +807,12 @@ static uint16_t drv_faults_power(qfoc_drive_t *d, const qfoc_tick_in_t *in)
 #define DRV_FLUX_TICKS ((uint16_t)2u)
 
 /* The fast flux check's band (REQ-DRV-023), from the estimator's error model: outside it
-   when dev > flux_band psi_exp + (flux_v_err + flux_r_err R |i|) / |w| (the magnet's
+   when dev > flux_band psi_exp + (flux_v_err + flux_r_err R |i|) / (2^s |w|) (the magnet's
    temperature and the inductances; the dead-time voltage the compensation misses and the
-   winding's resistance error over the speed), with k = floor(flux_band psi_exp / 32768) and
-   v = flux_v_err + floor(floor(flux_r_err R / 32768) |i| / 32768): qfoc_fault_band_over. */
+   winding's resistance error over the speed, a voltage over a speed: a flux of 2^s times
+   the table's flux base), with k = floor(flux_band psi_exp / 32768) and
+   v = ceil((flux_v_err + floor(floor(flux_r_err R / 32768) |i| / 32768)) / 2^s):
+   qfoc_fault_band_over. */
 /*@
   requires valid: \valid_read(p) && \valid_read(f);
   assigns \nothing;
@@ -798,9 +828,13 @@ static bool drv_flux_out(const qfoc_param_table_t *p, const qfoc_drive_fast_t *f
     const uint32_t rr = ((uint32_t)(int32_t)qfoc_q15_abs(c->flux_r_err) *
                          (uint32_t)(int32_t)qfoc_q15_abs(p->flux.r)) / 32768u;
     const uint32_t v = (uint32_t)(int32_t)qfoc_q15_abs(c->flux_v_err) + ((rr * i) / 32768u);
+    const uint32_t ks = (uint32_t)drv_psi_k(c->psi_shift);
     /*@ assert k: k <= 32766; */
     /*@ assert v: v <= 65533; */
-    return qfoc_fault_band_over(dev, (qfoc_q15_t)k, (int32_t)v, f->speed_f);
+    /* the voltage in the flux base: v / 2^s rounded up (the band never narrower) */
+    const uint32_t vs = (v + ks - 1u) / ks;
+    /*@ assert vs: vs <= v; */
+    return qfoc_fault_band_over(dev, (qfoc_q15_t)k, (int32_t)vs, f->speed_f);
 }
 
 /* ALIGN without current (REQ-DRV-025): the last command's voltage beyond twice what the
@@ -1513,6 +1547,7 @@ static void drv_sm_inputs(qfoc_drive_t *d, uint16_t faults, uint8_t old_state,
             k.v_err = c->flux_v_err;
             k.w_min = of_speed;
             k.w_max = p->speed_max;
+            k.psi_shift = c->psi_shift;
             v = qfoc_catch_step(&s->catch_st,
                                 qfoc_vec_mag(d->f.u_last.alpha, d->f.u_last.beta),
                                 d->f.speed_f, d->f.psi_mag, &k, c->ho_dwell_ms);

@@ -221,7 +221,7 @@ static uint32_t qfoc_crc_drive_feat(uint32_t crc, const qfoc_drive_cfg_t *d)
     return qfoc_crc_2x16(c, d->can_id_a, d->can_id_b);
 }
 
-/* drive configuration, version 3: mtpa_speed .. flux_r_err */
+/* drive configuration, versions 3 and 4: mtpa_speed .. flux_r_err, psi_shift */
 /*@ requires valid_d: \valid_read(d);
     assigns \nothing; */
 static uint32_t qfoc_crc_drive_v3(uint32_t crc, const qfoc_drive_cfg_t *d)
@@ -229,7 +229,8 @@ static uint32_t qfoc_crc_drive_v3(uint32_t crc, const qfoc_drive_cfg_t *d)
     uint32_t c = qfoc_crc_2x16(crc, qfoc_bits16(d->mtpa_speed), qfoc_bits16(d->t_ipm_derate));
     c = qfoc_crc_2x16(c, qfoc_bits16(d->t_pcb_derate), d->rpm_derate);
     c = qfoc_crc_2x16(c, qfoc_bits16(d->flux_band), qfoc_bits16(d->flux_v_err));
-    return qfoc_crc_u16(c, qfoc_bits16(d->flux_r_err));
+    c = qfoc_crc_u16(c, qfoc_bits16(d->flux_r_err));
+    return qfoc_crc_u8(c, d->psi_shift);
 }
 
 /* public interface, also called by qfoc_params_check (DEV-002) */

@@ -176,12 +176,14 @@ static inline void rig_ms(rig_t *r, int n)
    32767 and moves an eighth of the way to |u| = 0 per tick, rounded away from zero
    (u_f - ceil(u_f / 8)), so the verdict is STILL (the speed 0 is below of_speed: never
    LOCK) from the n-th tick on, the first with u_f <= v_still = max(2 |flux_v_err|,
-   e_min / 4), e_min = |of_speed| |psi_f| / 32768 (each quotient truncated); it must then
+   e_min / 4), e_min = |of_speed| |psi_f| 2^s / 32768 (s = min(psi_shift, 4), the flux
+   base; each quotient truncated); it must then
    hold for ho_dwell_ms ticks (0 reads as 1): ALIGN on tick n + dwell - 1. */
 static inline long rig_catch_still_ticks(const qfoc_param_table_t *t)
 {
-    const double e_min = trunc(fabs((double)t->drive.of_speed) * fabs((double)t->psi_f) /
-                               32768.0);
+    const int s = (t->drive.psi_shift < 4u) ? (int)t->drive.psi_shift : 4;
+    const double e_min = trunc(fabs((double)t->drive.of_speed) * fabs((double)t->psi_f) *
+                               ldexp(1.0, s) / 32768.0);
     const double v_still = fmax(2.0 * fabs((double)t->drive.flux_v_err), trunc(e_min / 4.0));
     const long dwell = (t->drive.ho_dwell_ms > 0u) ? (long)t->drive.ho_dwell_ms : 1L;
     double uf = 32767.0;

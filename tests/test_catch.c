@@ -3,12 +3,13 @@
  *
  * Reference: the rules of catch.h in double precision, written here from the header:
  *  - every table value and the voltage are read as magnitudes (fabs);
- *  - the back-EMF the speed implies, e = w |psi_f| / 32768, and e / 4, each truncated
- *    towards zero as the header's integer division is (trunc; the product is below 2^31,
- *    so the double quotient is exact before the truncation);
+ *  - the back-EMF the speed implies, e = w |psi_f| 2^s / 32768 (s = psi_shift, the flux
+ *    base, read as 4 above 4), and e / 4, each truncated towards zero as the header's
+ *    integer division is (trunc; the product is below 2^35, so the double quotient is
+ *    exact before the truncation);
  *  - LOCK: |w_min| <= w <= |w_max|, | psi - |psi_f| | <= |psi_tol| and
  *    | |u| - e | <= |v_err| + e / 4; else STILL when |u| <= v_still; else WAIT, where
- *    v_still = max(2 |v_err|, e_min / 4), e_min = |w_min| |psi_f| / 32768 (the back-EMF
+ *    v_still = max(2 |v_err|, e_min / 4), e_min = |w_min| |psi_f| 2^s / 32768 (the back-EMF
  *    at the handover speed), each quotient truncated;
  *  - the step: u_f plus an eighth of d = |u| - u_f rounded away from zero (the sign of d
  *    times ceil(|d| / 8)), the verdict on u_f, and a verdict acted on once it has held for
@@ -40,12 +41,20 @@
 typedef struct {
     int w, psi, u;                          /* the measurement */
     int psi_f, psi_tol, v_err, w_min, w_max; /* the table */
+    int shift;                              /* the flux base psi_shift (0 .. 255) */
 } tcase_t;
 
-/* the STILL threshold max(2 |v_err|, e_min / 4), e_min = |w_min| |psi_f| / 32768 */
+/* the back-EMF of a speed w and a flux psi in the flux base 2^s V_base / w_base, Q15 of
+   V_base: w |psi| 2^min(s, 4) / 32768, truncated */
+static double ref_emf(double w, double psi, int s)
+{
+    return trunc((w * fabs(psi) * ldexp(1.0, (s < 4) ? s : 4)) / 32768.0);
+}
+
+/* the STILL threshold max(2 |v_err|, e_min / 4), e_min = |w_min| |psi_f| 2^s / 32768 */
 static double ref_v_still(const tcase_t *t)
 {
-    const double e_min = trunc((fabs((double)t->w_min) * fabs((double)t->psi_f)) / 32768.0);
+    const double e_min = ref_emf(fabs((double)t->w_min), (double)t->psi_f, t->shift);
     return fmax(2.0 * fabs((double)t->v_err), trunc(e_min / 4.0));
 }
 
@@ -55,7 +64,7 @@ static int ref_verdict(const tcase_t *t)
     const double pf = fabs((double)t->psi_f);
     const double u = fabs((double)t->u);
     const double ve = fabs((double)t->v_err);
-    const double e = trunc((w * pf) / 32768.0);
+    const double e = ref_emf(w, pf, t->shift);
     const double e4 = trunc(e / 4.0);
     const bool speed = (fabs((double)t->w_min) <= w) && (w <= fabs((double)t->w_max));
     const bool flux = fabs((double)t->psi - pf) <= fabs((double)t->psi_tol);
@@ -103,6 +112,7 @@ static qfoc_catch_cfg_t cfg_of(const tcase_t *t)
     c.v_err = (qfoc_q15_t)t->v_err;
     c.w_min = (qfoc_q15_t)t->w_min;
     c.w_max = (qfoc_q15_t)t->w_max;
+    c.psi_shift = (uint8_t)t->shift;
     return c;
 }
 
@@ -141,6 +151,7 @@ static tcase_t base(void)
     t.psi_tol = 1000;
     t.v_err = 300;
     t.w_min = 1000;
+    t.shift = 0;
     t.w_max = 20000;
     return t;
 }
@@ -192,6 +203,7 @@ static void test_req_catch_001_verdict_corners(void **state)
     t.w = 999;   t.u = 499;   check(&t, QFOC_CATCH_STILL);
     t.w = 20000; t.u = 10000; check(&t, QFOC_CATCH_LOCK);
     t.w = 20001; t.u = 10000; check(&t, QFOC_CATCH_WAIT);   /* e = 10000.5 -> 10000 */
+    t.shift = 0;
     t.w_max = -20000;
     t.w = 20000; t.u = 10000; check(&t, QFOC_CATCH_LOCK);
     t.w = 20001; t.u = 10000; check(&t, QFOC_CATCH_WAIT);
@@ -284,7 +296,9 @@ static void test_req_catch_001_verdict_corners(void **state)
     t.u = -32768; check(&t, QFOC_CATCH_LOCK);               /* |u| - e = 2 <= 8191 */
     t.psi = 32766; check(&t, QFOC_CATCH_WAIT);              /* psi_tol 0: exact flux only */
     t.psi = 32767;
+    t.shift = 0;
     t.w_max = 32766; check(&t, QFOC_CATCH_WAIT);
+    t.shift = 0;
     t.w_max = -32768; check(&t, QFOC_CATCH_LOCK);           /* |w_max| = 32768 */
     t.w_min = -32768; check(&t, QFOC_CATCH_WAIT);           /* |w_min| = 32768: never */
     t.u = 0;          check(&t, QFOC_CATCH_STILL);
@@ -337,6 +351,7 @@ static void test_req_catch_001_verdict_extremes(void **state)
         t.psi_tol = v[r % 5]; r /= 5;
         t.v_err = v[r % 5]; r /= 5;
         t.w_min = v[r % 5]; r /= 5;
+        t.shift = 0;
         t.w_max = v[r % 5];
         got = verdict_of(&t);
         assert_int_equal(got, ref_verdict(&t));
@@ -371,7 +386,9 @@ static void test_req_catch_001_verdict_random(void **state)
             t.psi_tol = rand_i16();
             t.v_err = rand_i16();
             t.w_min = rand_i16();
+            t.shift = 0;
             t.w_max = rand_i16();
+            t.shift = (int)rand_range(0, 255);
         } else {
             const int pick = (int)rand_range(0, 3);
             int pf;
@@ -391,6 +408,7 @@ static void test_req_catch_001_verdict_random(void **state)
                 t.psi = clamp16((long)pf + rand_range(-(tol + 2), tol + 2));
             }
             t.w_min = (int)rand_range(-6000, 6000);
+            t.shift = 0;
             t.w_max = (int)rand_range(-32768, 32767);
             if (pick == 0) {
                 t.w = clamp16((long)abs(t.w_min) + rand_range(-2, 2));
@@ -400,6 +418,8 @@ static void test_req_catch_001_verdict_random(void **state)
                 t.w = (int)rand_range(-3000, 32767);
             }
             t.v_err = (int)rand_range(-3000, 3000);
+            /* half of the cases in a flux base of their own (6 and 7 read as 4) */
+            t.shift = (rand_range(0, 1) != 0) ? (int)rand_range(1, 7) : 0;
             if ((pick == 3) && (rand_range(0, 99) < 50)) {
                 /* a small error and any handover speed: the floor e_min / 4 decides (a
                    coin from the generator's high bits: rand_range(0, 1) is its low bit) */
@@ -407,11 +427,11 @@ static void test_req_catch_001_verdict_random(void **state)
                 t.w_min = rand_i16();
             }
             ve = abs(t.v_err);
-            e = ((long)t.w * (long)pf) / 32768L;
+            e = (long)ref_emf((double)t.w, (double)pf, t.shift);
             band = labs((long)ve + (e / 4L));
             if (pick == 3) {
                 /* around the STILL threshold */
-                const long e4_min = ((labs((long)t.w_min) * (long)pf) / 32768L) / 4L;
+                const long e4_min = (long)ref_emf(fabs((double)t.w_min), (double)pf, t.shift) / 4L;
                 t.u = clamp16(((2L * ve >= e4_min) ? 2L * ve : e4_min) + rand_range(-2, 2));
             } else if ((k % 3) == 0) {
                 /* at the band's edges */
@@ -428,11 +448,11 @@ static void test_req_catch_001_verdict_random(void **state)
         n[got]++;
         {
             const long pf = labs((long)t.psi_f);
-            const long e = ((long)t.w * pf) / 32768L;
+            const long e = (long)ref_emf((double)t.w, (double)pf, t.shift);
             edge_emf += (labs(labs((long)t.u) - e) == labs((long)t.v_err) + (e / 4L)) ? 1 : 0;
             edge_flux += (labs((long)t.psi - pf) == labs((long)t.psi_tol)) ? 1 : 0;
             edge_speed += ((t.w == abs(t.w_min)) || (t.w == abs(t.w_max))) ? 1 : 0;
-            const long e4_min = ((labs((long)t.w_min) * pf) / 32768L) / 4L;
+            const long e4_min = (long)ref_emf(fabs((double)t.w_min), (double)pf, t.shift) / 4L;
             edge_still += ((labs((long)t.u) == 2L * labs((long)t.v_err)) &&
                            (2L * labs((long)t.v_err) >= e4_min)) ? 1 : 0;
             edge_floor += ((labs((long)t.u) == e4_min) &&
@@ -445,6 +465,89 @@ static void test_req_catch_001_verdict_random(void **state)
     assert_true(n[0] > 20000 && n[1] > 20000 && n[2] > 20000);
     assert_true(edge_emf > 1000 && edge_flux > 1000 && edge_speed > 1000 && edge_still > 1000);
     assert_true(edge_floor > 1000);
+}
+
+/* REQ-CATCH-001: the flux base (catch.h, specs/scaling.md section 2).  One machine
+   written in the bases s = 0 .. 4 (its fluxes P / 2^s, P a multiple of 16) gets the same
+   back-EMF and so the same verdict in every base; a shift above 4 reads as 4; and the
+   worked case by hand: psi_f 8192 in the base s = 2 (one pu of V_base / w_base) at the
+   speed 8192 (0.25 pu) has the back-EMF 8192 x 8192 x 4 / 32768 = 8192 (0.25 pu of V_base):
+   |u| = 8192 is LOCK, and it is WAIT in the base s = 0, where the same numbers are a
+   quarter of that flux (e = 2048, band 300 + 512). */
+static void test_req_catch_001_flux_base(void **state)
+{
+    long same = 0;
+    long lock = 0;
+    int k;
+    (void)state;
+    {
+        tcase_t t = base();
+        t.w = 8192;
+        t.psi = 8192;
+        t.psi_f = 8192;
+        t.u = 8192;
+        t.shift = 2;
+        check(&t, QFOC_CATCH_LOCK);
+        t.shift = 0;
+        check(&t, QFOC_CATCH_WAIT);
+        t.u = 2048;
+        check(&t, QFOC_CATCH_LOCK);
+        /* 5 and 255 read as 4: e = 8192 x 8192 x 16 / 32768 = 32768 */
+        t.u = 32767;
+        t.shift = 4;
+        check(&t, QFOC_CATCH_LOCK);
+        t.shift = 5;
+        check(&t, QFOC_CATCH_LOCK);
+        t.shift = 255;
+        check(&t, QFOC_CATCH_LOCK);
+        t.shift = 3;
+        check(&t, QFOC_CATCH_WAIT);   /* e = 16384, band 300 + 4096 */
+    }
+    for (k = 0; k < 50000; k++) {
+        /* the machine in the largest base (s = 4), its values multiples of 16 there */
+        /* a machine that fits the bases 1 .. 4 (and 0 for pf <= 2047), its flux estimate
+           around the band and its voltage around the back-EMF */
+        const long pf = 16L * rand_range(0, 255);
+        const long tol = 16L * rand_range(0, 63);
+        const long psi_r = pf + 16L * rand_range(-(int32_t)(tol / 8L) - 2, (int32_t)(tol / 8L) + 2);
+        const long psi = (psi_r < 0L) ? 0L : psi_r;
+        const int w = (int)rand_range(-2000, 32767);
+        const long e = (long)ref_emf((double)w, (double)pf, 4);
+        const long band = 300L + labs(e / 4L);
+        const int u = clamp16(labs(e + rand_range(-2 * (int32_t)band - 3, 2 * (int32_t)band + 3)));
+        int first = -1;
+        int s;
+        for (s = 0; s <= 4; s++) {
+            tcase_t t;
+            const long m = 1L << (4 - s);   /* the value in base s is m times that in 4 */
+            int got;
+            t.w = w;
+            t.u = u;
+            t.psi = (int)((psi * m > 32767L) ? 32767L : psi * m);
+            t.psi_f = (int)(pf * m);
+            t.psi_tol = (int)(tol * m);
+            t.v_err = 300;
+            t.w_min = 1000;
+            t.w_max = 32767;
+            t.shift = s;
+            if ((pf * m > 32767L) || (tol * m > 32767L) || (psi * m > 32767L)) {
+                continue;   /* the machine does not fit this base */
+            }
+            got = verdict_of(&t);
+            assert_int_equal(got, ref_verdict(&t));
+            assert_true(ref_emf((double)w, (double)t.psi_f, s) ==
+                        ref_emf((double)w, (double)pf, 4));
+            if (first < 0) {
+                first = got;
+            } else {
+                assert_int_equal(got, first);
+                same++;
+            }
+            lock += (got == QFOC_CATCH_LOCK) ? 1 : 0;
+        }
+    }
+    print_message("flux base: %ld verdicts equal across bases, %ld LOCK\n", same, lock);
+    assert_true(same > 150000 && lock > 10000 && (same - lock) > 10000);
 }
 
 /* ---- the STILL bound --------------------------------------------------------- */
@@ -532,6 +635,7 @@ static void test_req_catch_002_still_bound(void **state)
                                : ((k % 3 == 1) ? (int)rand_range(-3000, 3000)
                                                : (int)rand_range(-3, 3));
         t.w_min = rand_i16();
+        t.shift = 0;
         t.w_max = rand_i16();
         ve = abs(t.v_err);
         e4_min = ((labs((long)t.w_min) * labs((long)t.psi_f)) / 32768L) / 4L;
@@ -556,6 +660,7 @@ static void test_req_catch_002_still_bound(void **state)
         t.psi_tol = rand_i16();
         t.v_err = (k % 4 == 0) ? (int)rand_range(-30, 30) : (int)rand_range(-4000, 4000);
         t.w_min = rand_i16();
+        t.shift = 0;
         t.w_max = rand_i16();
         ve = abs(t.v_err);
         e = ((long)t.w * labs((long)t.psi_f)) / 32768L;
@@ -616,6 +721,7 @@ static void test_req_catch_003_filter(void **state)
     c.v_err = 300;
     c.w_min = 1000;
     c.w_max = 20000;
+    c.psi_shift = 0u;
     for (k = 0; k < 200000 + 121; k++) {
         qfoc_catch_t s;
         int old;
@@ -690,6 +796,7 @@ static void test_req_catch_003_filter_reaches(void **state)
     c.v_err = 0;
     c.w_min = 3277;
     c.w_max = 32767;
+    c.psi_shift = 0u;
     for (k = 0; k < 6L * 65536L + 200000L; k++) {
         qfoc_catch_t s;
         int u;
@@ -735,6 +842,7 @@ static void test_req_catch_003_filter_full_scale(void **state)
     c.v_err = 300;
     c.w_min = 1000;
     c.w_max = 20000;
+    c.psi_shift = 0u;
     qfoc_catch_reset(&s);
     for (n = 0; n < 3; n++) {
         (void)qfoc_catch_step(&s, -32768, 0, 0, &c, 1u);
@@ -851,6 +959,7 @@ static void test_req_catch_003_step(void **state)
     tb.v_err = 280;
     tb.w_min = 3277;
     tb.psi_f = 13383;
+    tb.shift = 0;
     tb.w_max = 32767;
     tb.psi_tol = 6691;
     c = cfg_of(&tb);
@@ -893,6 +1002,7 @@ static void test_req_catch_003_step(void **state)
         t.psi_tol = rand_i16();
         t.v_err = (int)rand_range(-14335, 14335);
         t.w_min = rand_i16();
+        t.shift = 0;
         t.w_max = rand_i16();
         c = cfg_of(&t);
         assert_true(ref_v_still(&t) < 28671.0);
@@ -924,6 +1034,7 @@ static void test_req_catch_003_step(void **state)
         t.psi_tol = rand_i16();
         t.v_err = ((i % 4) < 2) ? (int)rand_range(-1000, 1000) : rand_i16();
         t.w_min = rand_i16();
+        t.shift = 0;
         t.w_max = rand_i16();
         dwell = (int)rand_range(0, 60);
         c = cfg_of(&t);
@@ -966,11 +1077,13 @@ static void test_req_catch_003_step(void **state)
         t.psi_tol = (int)rand_range(200, 3000);
         t.v_err = (int)(((i % 8) == 0) ? rand_range(0, 3) : rand_range(50, 1500));
         t.w_min = (int)rand_range(500, 5000);
+        t.shift = 0;
         t.w_max = (int)rand_range(15000, 32767);
         if (rand_range(0, 3) == 0) {
             /* table values given with a sign: read as magnitudes */
             t.psi_f = -t.psi_f;
             t.v_err = -t.v_err;
+            t.shift = 0;
             t.w_max = -t.w_max;
         }
         c = cfg_of(&t);
@@ -1061,6 +1174,7 @@ static void test_req_catch_003_standing_small_v_err(void **state)
         t.psi_tol = 6691;
         t.v_err = tab[i].v_err;
         t.w_min = tab[i].w_min;
+        t.shift = 0;
         t.w_max = 32767;
         c = cfg_of(&t);
         assert_true(ref_v_still(&t) == (double)tab[i].v_still);
@@ -1107,6 +1221,7 @@ static void test_req_catch_003_standing_small_v_err(void **state)
         c.v_err = 0;
         c.w_min = 3;
         c.w_max = 32767;
+        c.psi_shift = 0u;
         qfoc_catch_reset(&s);
         for (n = 1; n <= 67; n++) {
             (void)qfoc_catch_step(&s, 0, 0, 0, &c, 1u);
@@ -1136,6 +1251,7 @@ int main(void)
         cmocka_unit_test(test_req_catch_001_verdict_corners),
         cmocka_unit_test(test_req_catch_001_verdict_extremes),
         cmocka_unit_test(test_req_catch_001_verdict_random),
+        cmocka_unit_test(test_req_catch_001_flux_base),
         cmocka_unit_test(test_req_catch_002_still_bound),
         cmocka_unit_test(test_req_catch_003_reset),
         cmocka_unit_test(test_req_catch_003_filter),

@@ -252,6 +252,60 @@ static void test_req_drv_003_overcurrent_phase_v_alone(void **state)
     }
 }
 
+/* REQ-DRV-006: the current loops' decoupling feed-forward in the flux base
+   (drive_cfg.h psi_shift).  In OPEN_LOOP with the current PIs' gains and integrators at
+   zero and no current measured, the voltage command is the feed-forward alone,
+   u_q = w psi_f 2^s (u_d = w L_q i_q = 0): its magnitude after the inverse Park step is
+   round(w psi_f / 32768) 2^min(s, 4), saturated at full scale and limited to V_dc / sqrt 3,
+   within the inverse Park step's rounding (2 counts). */
+static void test_req_drv_006_decoupling_flux_base(void **state)
+{
+    rig_t r;
+    int s;
+    int ms;
+    (void)state;
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.power_on = true;
+    for (ms = 0; (ms < 2000) && (sub(&r) != QFOC_SUB_OPEN_LOOP); ms++) {
+        rig_ms(&r, 1);
+    }
+    rig_ms(&r, 50);
+    assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);
+    for (s = 0; s <= 7; s++) {
+        rig_t c;
+        const double w = 3000.0;
+        const double e0 = floor(w * (double)r.table.psi_f / 32768.0 + 0.5);
+        double want;
+        double got;
+        double v_lim;
+        rig_clone(&c, &r);
+        c.table.drive.psi_shift = (uint8_t)s;
+        /* a frame speed at which the back-EMF term is well above the rounding (the tick's
+           references carry a guard word: re-guarded) */
+        c.d.s.ol_speed = 3000;
+        rig_reguard(&c);
+        c.d.f.pi_id.params.kp = 0;
+        c.d.f.pi_id.params.ki = 0;
+        c.d.f.pi_id.integ = 0;
+        c.d.f.pi_iq.params.kp = 0;
+        c.d.f.pi_iq.params.ki = 0;
+        c.d.f.pi_iq.integ = 0;
+        c.adc.iu = QFOC_ADC_MID;
+        c.adc.iv = QFOC_ADC_MID;
+        rig_fast(&c);
+        assert_int_equal(c.d.f.i_dq.d, 0);
+        assert_int_equal(c.d.f.i_dq.q, 0);
+        v_lim = floor((double)c.d.f.vdc / sqrt(3.0));
+        want = fmin(fmin(e0 * ldexp(1.0, (s < 4) ? s : 4), 32767.0), v_lim);
+        got = hypot((double)c.d.f.u_last.alpha, (double)c.d.f.u_last.beta);
+        print_message("psi_shift %d: w %d, |u| %.1f, expected %.0f (limit %.0f)\n", s,
+                      (int)w, got, want, v_lim);
+        assert_true(e0 >= 100.0);
+        assert_true(fabs(got - want) <= 2.0);
+    }
+}
+
 /* REQ-DRV-006, REQ-DRV-010: the open-loop frame advances ol_speed x k_theta per PWM
    period (2^32 per turn) and the output angle leads by 1.5 periods at that rate; the
    drive bounds k_theta to the PLL's range 1 .. 32767 itself, so a table whose k_theta
@@ -1836,7 +1890,8 @@ static void test_req_drv_023_rotor_lost(void **state)
 }
 
 /* REQ-DRV-023: the fast flux check's band at the estimate w (drive_cfg.h flux_band,
-   flux_v_err, flux_r_err): flux_band psi_exp plus (flux_v_err + flux_r_err R |i|) / |w|
+   flux_v_err, flux_r_err, psi_shift): flux_band psi_exp plus
+   ceil((flux_v_err + flux_r_err R |i|) / 2^s) / |w|
    (that part at most 65535), each term in the drive's integer steps (Q15; i_dq of the rig) */
 static int32_t flux_band_at(const rig_t *r, int32_t w, int32_t pe)
 {
@@ -1844,7 +1899,9 @@ static int32_t flux_band_at(const rig_t *r, int32_t w, int32_t pe)
     const qfoc_drive_cfg_t *const c = &t->drive;
     const double i_mag = floor(hypot((double)r->d.f.i_dq.d, (double)r->d.f.i_dq.q));
     const double rr = floor((double)c->flux_r_err * t->flux.r / 32768.0);
-    const double v = (double)c->flux_v_err + floor(rr * i_mag / 32768.0);
+    const double v0 = (double)c->flux_v_err + floor(rr * i_mag / 32768.0);
+    /* a voltage over a speed is a flux of 2^s flux units: v / 2^s, rounded up */
+    const double v = ceil(v0 / ldexp(1.0, (c->psi_shift < 4u) ? (int)c->psi_shift : 4));
     const double dpsi = (w == 0) ? 65535.0 : fmin(floor(v * 32768.0 / fabs((double)w)), 65535.0);
     return (int32_t)(floor((double)pe * c->flux_band / 32768.0) + dpsi);
 }
@@ -1855,9 +1912,9 @@ static int32_t flux_band_at(const rig_t *r, int32_t w, int32_t pe)
    2 ticks in a row raises STALL in the second.  At the band, alternating in and out, at
    the speed gate, in the blank after the handover, in STOPPING and with psi_exp = 0 it does
    not; the slow criterion (flux_tol, stall_ms) does not act in any of these cases. */
-static void test_req_drv_023_flux_plausibility(void **state)
+static void flux_plausibility_on(const qfoc_param_table_t *tab)
 {
-    const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
+    const qfoc_drive_cfg_t *const c = &tab->drive;
     /* the largest |speed| the gate keeps closed: 2 |speed| <= 3 of_speed */
     const int32_t gate = (3 * (int32_t)c->of_speed) / 2;
     rig_t base;
@@ -1866,8 +1923,7 @@ static void test_req_drv_023_flux_plausibility(void **state)
     int32_t band;
     long k;
     int sign;
-    (void)state;
-    rig_closed_loop(&base, &qfoc_params_reference, deg_counts(-30.0));
+    rig_closed_loop(&base, tab, deg_counts(-30.0));
     base.d.f.i_dq.d = 0;
     base.rpm = 3000u;
     for (k = 0; (k < 5000) && ((base.d.s.speed_ref != base.d.s.speed_target) ||
@@ -1878,7 +1934,7 @@ static void test_req_drv_023_flux_plausibility(void **state)
     assert_int_equal(base.d.s.sm.faults, 0u);
     assert_int_equal(base.d.s.speed_ref, base.d.s.speed_target);
     pe = psi_expected(&base);
-    assert_int_equal(pe, qfoc_params_reference.psi_f);
+    assert_int_equal(pe, tab->psi_f);
     /* the largest |psi - psi_exp| inside the band (drive_cfg.h flux_band, flux_v_err,
        flux_r_err): flux_band psi_exp plus (flux_v_err + flux_r_err R |i|) / |w|, each term
        in the drive's integer steps (Q15; the estimate at the reference, i_dq of the rig) */
@@ -1939,7 +1995,7 @@ static void test_req_drv_023_flux_plausibility(void **state)
         }
     }
     /* the blank: from the handover on, estimate above the gate, flux beyond the band */
-    rig_closed_loop(&x, &qfoc_params_reference, deg_counts(-30.0));
+    rig_closed_loop(&x, tab, deg_counts(-30.0));
     x.d.f.i_dq.d = 0;
     assert_true(x.d.s.sm.t_sub < 2u);
     for (k = 1; k <= 300; k++) {
@@ -1974,6 +2030,35 @@ static void test_req_drv_023_flux_plausibility(void **state)
     assert_true(x.d.s.table_ok);
 }
 
+static void test_req_drv_023_flux_plausibility(void **state)
+{
+    (void)state;
+    flux_plausibility_on(&qfoc_params_reference);
+}
+
+/* REQ-DRV-023 in a flux base of its own (drive_cfg.h psi_shift): the band's voltage part
+   is (flux_v_err + flux_r_err R |i|) / 2^s rounded up, over the speed; the same table in
+   the base s = 2 has that part a quarter as wide (the flux values read 4 times larger
+   flux units), and the check trips one count beyond it and not at it. */
+static void test_req_drv_023_flux_plausibility_flux_base(void **state)
+{
+    qfoc_param_table_t t = qfoc_params_reference;
+    rig_t r;
+    int32_t b0;
+    int32_t b2;
+    (void)state;
+    t.drive.psi_shift = 2u;
+    table_seal(&t);
+    rig_closed_loop(&r, &t, deg_counts(-30.0));
+    r.d.f.i_dq.d = 0;
+    b2 = flux_band_at(&r, 3000, t.psi_f);
+    r.table.drive.psi_shift = 0u;
+    b0 = flux_band_at(&r, 3000, t.psi_f);
+    print_message("flux band at 3000: %d in the base s = 0, %d in s = 2\n", (int)b0, (int)b2);
+    assert_true(b2 < b0);
+    flux_plausibility_on(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1981,6 +2066,7 @@ int main(void)
         cmocka_unit_test(test_req_drv_003_overcurrent_phase_v_alone),
         cmocka_unit_test(test_req_drv_005_run_time_saturates),
         cmocka_unit_test(test_req_drv_006_k_theta_above_q15_bounded),
+        cmocka_unit_test(test_req_drv_006_decoupling_flux_base),
         cmocka_unit_test(test_req_drv_006_align_ramp),
         cmocka_unit_test(test_req_drv_006_handover_conditions),
         cmocka_unit_test(test_req_drv_006_bumpless_transfer),
@@ -1996,6 +2082,7 @@ int main(void)
         cmocka_unit_test(test_req_drv_021_fast_steps_per_tick),
         cmocka_unit_test(test_req_drv_022_reference_guard),
         cmocka_unit_test(test_req_drv_023_flux_plausibility),
+        cmocka_unit_test(test_req_drv_023_flux_plausibility_flux_base),
         cmocka_unit_test(test_req_drv_023_rotor_lost),
         cmocka_unit_test(test_req_drv_024_derating),
         cmocka_unit_test(test_req_drv_025_align_open),

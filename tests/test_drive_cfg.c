@@ -86,6 +86,7 @@ static const fdesc_t fields[] = {
     FD(flux_band, T_I16, 1, 32767),
     FD(flux_v_err, T_I16, 0, 32767),
     FD(flux_r_err, T_I16, 0, 32767),
+    FD(psi_shift, T_U8, 0, 4),
 };
 #define NFIELDS (sizeof fields / sizeof fields[0])
 

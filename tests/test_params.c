@@ -129,6 +129,7 @@ static void put_drive(ser_t *s, const qfoc_drive_cfg_t *d)
     put(s, (uint16_t)d->flux_band, 2);
     put(s, (uint16_t)d->flux_v_err, 2);
     put(s, (uint16_t)d->flux_r_err, 2);
+    put(s, d->psi_shift, 1);
 }
 
 /* params.h: every field before crc, declaration order, little-endian, own width */
@@ -171,7 +172,7 @@ static uint32_t table_crc_ref(const qfoc_param_table_t *t)
     put(&s, (uint16_t)t->vdc_ov, 2);
     put(&s, (uint16_t)t->v_max, 2);
     put_drive(&s, &t->drive);
-    assert_int_equal(s.n, 213u);   /* params.h: 115 bytes up to v_max, 98 of drive */
+    assert_int_equal(s.n, 214u);   /* params.h: 115 bytes up to v_max, 99 of drive */
     return crc_ref(s.b, s.n);
 }
 
@@ -279,7 +280,7 @@ static const tfield_t tfields[] = {
     TF(drive.tc_speed_max), TF(drive.para_speed), TF(drive.ld_hs), TF(drive.lq_hs),
     TF(drive.lin_id_cmd), TF(drive.lin_id_status), TF(drive.can_id_a), TF(drive.can_id_b),
     TF(drive.mtpa_speed), TF(drive.t_ipm_derate), TF(drive.t_pcb_derate), TF(drive.rpm_derate),
-    TF(drive.flux_band), TF(drive.flux_v_err), TF(drive.flux_r_err),
+    TF(drive.flux_band), TF(drive.flux_v_err), TF(drive.flux_r_err), TF(drive.psi_shift),
     TF(crc),
 };
 #define NTFIELDS (sizeof tfields / sizeof tfields[0])
@@ -319,7 +320,7 @@ static void test_par_002_bit_flips_refused(void **state)
             flips++;
         }
     }
-    assert_int_equal(bytes, 213u);   /* the list covers the whole serialisation */
+    assert_int_equal(bytes, 214u);   /* the list covers the whole serialisation */
     print_message("params: %u single-bit flips over %u fields refused\n", (unsigned)flips,
                   (unsigned)NTFIELDS);
 }
@@ -634,7 +635,11 @@ static void test_par_001_identity(void **state)
     t.version = 2u;
     reseal(&t);
     assert_int_equal(qfoc_params_check(&t), QFOC_PARAMS_ERR_ID);
-    assert_int_equal(QFOC_PARAMS_VERSION, 3u);
+    t = qfoc_params_reference;
+    t.version = 3u;   /* the layout before drive.psi_shift */
+    reseal(&t);
+    assert_int_equal(qfoc_params_check(&t), QFOC_PARAMS_ERR_ID);
+    assert_int_equal(QFOC_PARAMS_VERSION, 4u);
 }
 
 /* REQ-PAR-004, REQ-TUNE-003: the generated reference table carries the estimator

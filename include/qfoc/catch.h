@@ -43,8 +43,10 @@
  * whatever the dwell; it then debounces LOCK and STILL over
  * the dwell (the drive's ho_dwell_ms, drive_cfg.h) before the drive acts on them.
  *
- * Scaling (specs/scaling.md): speeds Q15 of w_base, fluxes Q15 of psi_base = V_base /
- * w_base, voltages Q15 of V_base: w psi in Q15 is (w psi) / 32768.
+ * Scaling (specs/scaling.md): speeds Q15 of w_base, fluxes Q15 of psi_base =
+ * 2^s V_base / w_base (s = psi_shift, the table's flux base drive.psi_shift), voltages Q15
+ * of V_base: w psi in Q15 of V_base is (w psi 2^s) / 32768, formed as
+ * (w psi) / (32768 / 2^s) (|w psi| <= 2^30, so the quotient is exact in 32 bits).
  *
  * Both functions are total on every value of their argument types.
  *
@@ -75,22 +77,28 @@ typedef struct {
     qfoc_q15_t v_err;    /**< the inverter's voltage-error bound (drive.flux_v_err), Q15 of V_base */
     qfoc_q15_t w_min;    /**< the lowest speed caught (drive.of_speed), Q15 of w_base */
     qfoc_q15_t w_max;    /**< the highest speed caught (speed_max), Q15 of w_base */
+    uint8_t psi_shift;   /**< the flux base (drive.psi_shift): w psi is a voltage of
+                              2^psi_shift V_base; a value above 4 reads as 4 */
 } qfoc_catch_cfg_t;
 
 /*@
   logic integer CatchAbs(integer x) = (x < 0) ? -x : x;
-  // the back-EMF the speed implies, Q15
-  logic integer CatchEmf(integer w, integer psi) = (w * CatchAbs(psi)) / 32768;
+  // 32768 / 2^s: the divisor of w psi in the flux base 2^s V_base / w_base (s <= 4)
+  logic integer CatchDiv(integer s) =
+    (s == 0) ? 32768 : (s == 1) ? 16384 : (s == 2) ? 8192 : (s == 3) ? 4096 : 2048;
+  // the back-EMF the speed implies, Q15 of V_base
+  logic integer CatchEmf(integer w, integer psi, integer s) =
+    (w * CatchAbs(psi)) / CatchDiv(s);
   predicate CatchLock(qfoc_catch_meas_t *m, qfoc_catch_cfg_t *c) =
     CatchAbs(c->w_min) <= m->speed <= CatchAbs(c->w_max) &&
     CatchAbs(m->psi_mag - CatchAbs(c->psi_f)) <= CatchAbs(c->psi_tol) &&
-    CatchAbs(CatchAbs(m->u_mag) - CatchEmf(m->speed, c->psi_f)) <=
-      CatchAbs(c->v_err) + CatchEmf(m->speed, c->psi_f) / 4;
+    CatchAbs(CatchAbs(m->u_mag) - CatchEmf(m->speed, c->psi_f, c->psi_shift)) <=
+      CatchAbs(c->v_err) + CatchEmf(m->speed, c->psi_f, c->psi_shift) / 4;
   // the STILL threshold: twice the inverter's error, at least a quarter of the back-EMF
   // at the handover speed
   logic integer CatchVStill(qfoc_catch_cfg_t *c) =
-    (2 * CatchAbs(c->v_err) >= CatchEmf(CatchAbs(c->w_min), c->psi_f) / 4) ?
-      2 * CatchAbs(c->v_err) : CatchEmf(CatchAbs(c->w_min), c->psi_f) / 4;
+    (2 * CatchAbs(c->v_err) >= CatchEmf(CatchAbs(c->w_min), c->psi_f, c->psi_shift) / 4) ?
+      2 * CatchAbs(c->v_err) : CatchEmf(CatchAbs(c->w_min), c->psi_f, c->psi_shift) / 4;
   predicate CatchStill(qfoc_catch_meas_t *m, qfoc_catch_cfg_t *c) =
     CatchAbs(m->u_mag) <= CatchVStill(c);
   // one filter step: an eighth of the difference, rounded away from zero
@@ -104,7 +112,8 @@ typedef struct {
  * @param[in] m the measurement (any values)
  * @param[in] c the table's values (any values; each read as its magnitude)
  * @return QFOC_CATCH_LOCK, QFOC_CATCH_STILL or QFOC_CATCH_WAIT
- * Scaling and overflow: every quantity is formed in 32 bits; |w psi| < 2^30.
+ * Scaling and overflow: every quantity is formed in 32 bits; |w psi| <= 2^30 and the
+ * back-EMF |w psi| / (32768 / 2^s) <= 2^19.
  * Requirements: REQ-CATCH-001, REQ-CATCH-002.
  */
 /*@

@@ -45,6 +45,8 @@
 #define QFOC_DRIVE_LIN_ID_MAX ((uint8_t)0x3Bu)
 /** Largest 11-bit CAN identifier: 0x7FF (2047). */
 #define QFOC_DRIVE_CAN_ID_MAX ((uint16_t)0x7FFu)
+/** Largest flux-base shift: psi_base = 2^psi_shift V_base / w_base, at most 16 V_base / w_base. */
+#define QFOC_DRIVE_PSI_SHIFT_MAX ((uint8_t)4u)
 
 /** The drive configuration (params.h field `drive`). */
 typedef struct {
@@ -174,6 +176,14 @@ typedef struct {
     qfoc_q15_t flux_v_err;
     /** ... and the resistance error, a Q15 fraction of R, 0 .. 32767, times R |i|. */
     qfoc_q15_t flux_r_err;
+    /** The flux base (version 4): psi_base = 2^psi_shift V_base / w_base and
+        L_base = psi_base / I_base, 0 .. QFOC_DRIVE_PSI_SHIFT_MAX (specs/scaling.md
+        section 2).  Every flux and inductance of the table (psi_f, ld, lq, ld_hs, lq_hs,
+        flux_tol, pll.mag_min, flux.l) is in this base; a speed times a flux is a voltage
+        of 2^psi_shift V_base.  The tool chooses the smallest shift that holds the
+        machine's active flux below 1 pu, so that the DC-bus scale V_base can be the bus
+        sensor's own full scale (650 .. 900 V buses). */
+    uint8_t psi_shift;
 } qfoc_drive_cfg_t;
 
 #ifdef __FRAMAC__

@@ -8,18 +8,20 @@
  * application checks it with qfoc_params_check() and copies it to RAM
  * (formerly ParaRam) only when it is intact and every field is in range.
  *
- * Layout (version QFOC_PARAMS_VERSION = 3): the fields below, in this order:
+ * Layout (version QFOC_PARAMS_VERSION = 4): the fields below, in this order:
  * identity (magic, version), the PWM frequency and the record of the bases, the
  * parameter blocks of the control modules (svpwm, four PI controllers, flux observer,
  * PLL), the motor data and limits (alpha_vdc .. v_max), the drive configuration
  * `drive` (drive_cfg.h: start-up sequence, protection, command link, features; new
  * in version 2; MTPA speed, derating and the flux check's error model appended in
- * version 3), and the CRC last.  Version 1 had no `drive` field and version 2 not the
- * seven fields from drive.mtpa_speed on; a table of another version is refused as
+ * version 3; the flux base drive.psi_shift appended in version 4), and the CRC last.
+ * Version 1 had no `drive` field, version 2 not the seven fields from drive.mtpa_speed
+ * on and version 3 not drive.psi_shift; a table of another version is refused as
  * foreign (QFOC_PARAMS_ERR_ID), never read with this layout.
  * Scalings are those of specs/scaling.md: voltages Q15 of V_base, currents Q15 of
- * I_base, speeds Q15 of w_base = 2 pi f_base (electrical), inductances Q12 of
- * L_base = V_base / (I_base w_base), fluxes Q15 of psi_base = V_base / w_base.
+ * I_base, speeds Q15 of w_base = 2 pi f_base (electrical), fluxes Q15 of
+ * psi_base = 2^s V_base / w_base and inductances Q12 of L_base = psi_base / I_base,
+ * s = drive.psi_shift (the flux base, version 4).
  *
  * CRC: CRC-32 (ISO-HDLC / IEEE 802.3: polynomial 0x04C11DB7 reflected
  * (0xEDB88320), initial value 0xFFFFFFFF, final XOR 0xFFFFFFFF; check value
@@ -27,9 +29,9 @@
  * field before `crc`, in declaration order, sub-structures field by field, each
  * integer little-endian in its own width (uint8_t 1 byte, int16_t / uint16_t 2
  * bytes, uint32_t 4 bytes).  The serialisation does not depend on the compiler's
- * structure padding, so the tool computes the same CRC in any language.  Version 2:
- * 115 bytes up to v_max, then the 51 fields of `drive` in their declaration order
- * (drive_cfg.h: 4 one-byte and 47 two-byte fields, 98 bytes): 213 bytes in all.
+ * structure padding, so the tool computes the same CRC in any language.  Version 4:
+ * 115 bytes up to v_max, then the 52 fields of `drive` in their declaration order
+ * (drive_cfg.h: 5 one-byte and 47 two-byte fields, 99 bytes): 214 bytes in all.
  *
  * Start-up (qfoc_params_load()): the table is checked in this order, and the
  * first failure is the status returned:
@@ -58,7 +60,7 @@
 /** Table identifier: the ASCII bytes "QFOC" read as a little-endian uint32_t. */
 #define QFOC_PARAMS_MAGIC ((uint32_t)0x434F4651u)
 /** Layout version of qfoc_param_table_t. */
-#define QFOC_PARAMS_VERSION ((uint16_t)3u)
+#define QFOC_PARAMS_VERSION ((uint16_t)4u)
 
 /** qfoc_params_check() / qfoc_params_load(): the table is intact and in range. */
 #define QFOC_PARAMS_OK ((int32_t)0)
