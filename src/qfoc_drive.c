@@ -161,6 +161,25 @@ static qfoc_q15_t drv_emf(qfoc_q15_t w, qfoc_q15_t psi, int32_t k)
     return qfoc_q15_sat(v * k);
 }
 
+/* The flux observer's phase lead at the filtered speed (flux.h qfoc_flux_lead).  In the
+   flux base 2^s V_base / w_base the observer's parameters are g / 2^s and kg 2^s (the
+   recursion's decay g kg per sample is the same), so its high-pass corner in per unit of
+   w_base is kg / 2^s: the lead is that of an observer with this corner, rounded. */
+/*@
+  requires valid: \valid_read(f) && \valid_read(p);
+  requires flux: FluxValid(&f->flux);
+  assigns \nothing;
+*/
+static qfoc_angle_t drv_lead(const qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
+{
+    qfoc_flux_t o = f->flux;
+    const int32_t k = drv_psi_k(p->drive.psi_shift);
+    const int32_t kg = ((int32_t)o.params.kg + (k / 2)) / k;
+    /*@ assert kg: 0 <= kg <= 32767; */
+    o.params.kg = (qfoc_q15_t)kg;
+    return qfoc_flux_lead(&o, f->speed_f);
+}
+
 /* ================================================================== fast step */
 
 /*@
@@ -1829,7 +1848,7 @@ static void drv_tick_out(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_
         s->dt_dv = qfoc_dtc_speed_fade(s->dt_learn, w, qfoc_q15_sat(w_full));
     }
     /* the observer's phase lead at the present speed, for the fast step's rotor angle */
-    s->lead = qfoc_flux_lead(&d->f.flux, d->f.speed_f);
+    s->lead = drv_lead(&d->f, d->p);
     /* the voltage utilisation of the last command, for the fast step's field weakening */
     s->util = drv_utilisation(&d->f.u_last, d->f.vdc, d->p->svpwm.vdc_min);
     drv_count_run(s);

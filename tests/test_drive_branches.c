@@ -306,6 +306,45 @@ static void test_req_drv_006_decoupling_flux_base(void **state)
     }
 }
 
+/* REQ-DRV-006: the observer's phase lead in the flux base (drive_cfg.h psi_shift).  The
+   observer of a table in the base s carries kg 2^s (its recursion's decay g kg per sample
+   is that of the base 0), so its high-pass corner in per unit of w_base is kg 2^s / 2^s:
+   the tick's lead is atan2(kg, |w|) (flux.h) whatever s, within the lead's one count and
+   the corner's rounding; at s = 0 it is the lead of the table's kg exactly. */
+static void test_req_drv_006_lead_flux_base(void **state)
+{
+    rig_t r;
+    int s;
+    (void)state;
+    rig_closed_loop(&r, &qfoc_params_reference, deg_counts(0.0));
+    for (s = 0; s <= 4; s++) {
+        const int32_t speeds[3] = { 1500, 6000, -20000 };
+        int n;
+        for (n = 0; n < 3; n++) {
+            rig_t c;
+            const double kg = 1043.0;
+            double want;
+            long got;
+            long diff;
+            rig_clone(&c, &r);
+            c.table.drive.psi_shift = (uint8_t)s;
+            table_seal(&c.table);
+            c.d.f.flux.params.kg = (int16_t)(1043 << s);
+            emu_est(&c, speeds[n], psi_expected(&c), 0);
+            rig_tick(&c, true);
+            want = atan2(kg, fabs((double)speeds[n])) * 65536.0 / (8.0 * atan(1.0));
+            if (speeds[n] < 0) {
+                want = 65536.0 - want;
+            }
+            got = (long)c.d.s.lead;
+            diff = labs(got - lround(want));
+            print_message("psi_shift %d, w %d: lead %ld, atan2(kg, |w|) %.1f\n", s,
+                          (int)speeds[n], got, want);
+            assert_true(diff <= 1);
+        }
+    }
+}
+
 /* REQ-DRV-006, REQ-DRV-010: the open-loop frame advances ol_speed x k_theta per PWM
    period (2^32 per turn) and the output angle leads by 1.5 periods at that rate; the
    drive bounds k_theta to the PLL's range 1 .. 32767 itself, so a table whose k_theta
@@ -2067,6 +2106,7 @@ int main(void)
         cmocka_unit_test(test_req_drv_005_run_time_saturates),
         cmocka_unit_test(test_req_drv_006_k_theta_above_q15_bounded),
         cmocka_unit_test(test_req_drv_006_decoupling_flux_base),
+        cmocka_unit_test(test_req_drv_006_lead_flux_base),
         cmocka_unit_test(test_req_drv_006_align_ramp),
         cmocka_unit_test(test_req_drv_006_handover_conditions),
         cmocka_unit_test(test_req_drv_006_bumpless_transfer),

@@ -19,6 +19,7 @@
 #include "reference_params.h"
 #include "reference16k_params.h"
 #include "traction350_params.h"
+#include "ecomp800_params.h"
 
 #define TARGETS "specs/scenarios.toml"
 
@@ -31,6 +32,9 @@ static const scn_table_t tab_16k = {
 };
 static const scn_table_t tab_traction = {
     "traction350", &qfoc_params_traction350, "specs/motors/traction350.toml", ""
+};
+static const scn_table_t tab_ecomp800 = {
+    "ecomp800", &qfoc_params_ecomp800, "specs/motors/ecomp800.toml", ""
 };
 
 static scn_result_t res;
@@ -200,7 +204,8 @@ static void test_scn_011_robust_corners(void **state)
     }
 }
 
-/* REQ-SCN-012: the 16 kHz table and the second motor start with no code change. */
+/* REQ-SCN-012: the 16 kHz table, the traction motor and the 800 V e-compressor start with
+   no code change. */
 static void test_scn_012_other_tables(void **state)
 {
     (void)state;
@@ -208,6 +213,14 @@ static void test_scn_012_other_tables(void **state)
     assert_true(fabs(res.f_pwm_hz - 16000.0) < 1e-9);
     judged("t_target_s");
     run("cold_start", &tab_traction, "cold_start_traction350");
+    judged("t_target_s");
+    judged("angle_err_max_deg");
+    /* the 800 V e-compressor in a flux base of its own (psi_shift 1) on its bus sensor's
+       1100 V full scale */
+    assert_true(qfoc_params_ecomp800.drive.psi_shift >= 1u);
+    assert_true(qfoc_params_traction350.drive.psi_shift >= 1u);
+    run("cold_start", &tab_ecomp800, "cold_start_ecomp800");
+    assert_true(fabs(res.vdc_v - 800.0) < 1e-9);
     judged("t_target_s");
     judged("angle_err_max_deg");
 }
