@@ -11,7 +11,7 @@
 
 const qfoc_param_table_t qfoc_params_reference16k = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 3u, /* QFOC_PARAMS_VERSION */
+    .version = 4u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 16000u, /* f_pwm = 16000 Hz, T_s = 62.5 us */
     .v_base_mv = 500000u, /* V_base = 500 V */
     .i_base_ma = 40000u, /* I_base = 40 A */
@@ -136,7 +136,8 @@ const qfoc_param_table_t qfoc_params_reference16k = {
         .rpm_derate = 1000u, /* 1000 rpm (drive.derate_rpm, default) */
         .flux_band = 9830, /* 0.3 = 0.3 (drive.flux_band, default); stored 0.299988, error -0.00 % */
         .flux_v_err = 561, /* 0.0171123 = 8.55617 V / V_base 500 V (drive.flux_v_err_v, default); stored 0.0171204, error +0.05 % */
-        .flux_r_err = 9830 /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
+        .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
+        .psi_shift = 0u /* flux base psi_base = 2^0 V_base / w_base = 0.159155 Wb, L_base = psi_base / I_base = 3.97887 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.097 Wb = 0.6095 pu) */
     },
-    .crc = 0x797186B9u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x78AE7119u /* CRC-32/ISO-HDLC of every field above */
 };

@@ -10,7 +10,7 @@
 
 const qfoc_param_table_t qfoc_params_reference = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 3u, /* QFOC_PARAMS_VERSION */
+    .version = 4u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 8000u, /* f_pwm = 8000 Hz, T_s = 125 us */
     .v_base_mv = 500000u, /* V_base = 500 V */
     .i_base_ma = 40000u, /* I_base = 40 A */
@@ -135,7 +135,8 @@ const qfoc_param_table_t qfoc_params_reference = {
         .rpm_derate = 1000u, /* 1000 rpm (drive.derate_rpm, default) */
         .flux_band = 9830, /* 0.3 = 0.3 (drive.flux_band, default); stored 0.299988, error -0.00 % */
         .flux_v_err = 280, /* 0.00855617 = 4.27808 V / V_base 500 V (drive.flux_v_err_v, default); stored 0.00854492, error -0.13 % */
-        .flux_r_err = 9830 /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
+        .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
+        .psi_shift = 0u /* flux base psi_base = 2^0 V_base / w_base = 0.159155 Wb, L_base = psi_base / I_base = 3.97887 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.097 Wb = 0.6095 pu) */
     },
-    .crc = 0x8FF9F3F0u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x77580058u /* CRC-32/ISO-HDLC of every field above */
 };

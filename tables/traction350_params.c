@@ -10,32 +10,32 @@
 
 const qfoc_param_table_t qfoc_params_traction350 = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 3u, /* QFOC_PARAMS_VERSION */
+    .version = 4u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 16000u, /* f_pwm = 16000 Hz, T_s = 62.5 us */
-    .v_base_mv = 6000000u, /* V_base = 6000 V */
+    .v_base_mv = 1000000u, /* V_base = 1000 V */
     .i_base_ma = 600000u, /* I_base = 600 A */
     .f_base_mhz = 1000000u, /* f_base = 1000 Hz, w_base = 6283.19 rad/s */
     .svpwm = {
         .period = 2500u, /* f_timer / (2 f_pwm) = 8e+07 / (2 x 16000) ticks */
         .dt_comp = 40u, /* 40 = t_d f_timer / 2 = 1e-06 x 8e+07 / 2 (one compare count = 2 ticks of high time) */
         .i_deadband = 410, /* 0.0125 = 7.5 A / I_base */
-        .vdc_min = 1201 /* 0.0366667 = 220 V / V_base */
+        .vdc_min = 7209 /* 0.22 = 220 V / V_base */
     },
     .pi_id = {
-        .kp = 15729, /* kp 0.48 = k_cp = L_d / (2 T_sigma) = 0.0009 / (2 x 9.375e-05) = 4.8 ohm; x I_base / V_base = 600 / 6000; stored 0.480011, error +0.002 % */
-        .kp_shift = 0u, /* kp_real = kp / 32768 x 2^0 */
-        .ki = 11, /* ki T 0.000333333 = k_ci T = R / (2 T_sigma) T = 0.01 / (2 x 9.375e-05) x 6.25e-05 = 0.00333333 ohm; x I_base / V_base = 600 / 6000; stored 0.000335693, error +0.708 % */
+        .kp = 23593, /* kp 2.88 = k_cp = L_d / (2 T_sigma) = 0.0009 / (2 x 9.375e-05) = 4.8 ohm; x I_base / V_base = 600 / 1000; stored 2.88, error +0.000 % */
+        .kp_shift = 2u, /* kp_real = kp / 32768 x 2^2 */
+        .ki = 66, /* ki T 0.002 = k_ci T = R / (2 T_sigma) T = 0.01 / (2 x 9.375e-05) x 6.25e-05 = 0.00333333 ohm; x I_base / V_base = 600 / 1000; stored 0.00201416, error +0.708 % */
         .ki_shift = 0u, /* kiT_real = ki / 32768 x 2^0 */
-        .out_min = (int16_t)-2365, /* -0.0721741 pu: V_dc,max / sqrt 3 / V_base = 750 / sqrt 3 / 6000 */
-        .out_max = 2365 /* 0.0721741 pu: V_dc,max / sqrt 3 / V_base = 750 / sqrt 3 / 6000 */
+        .out_min = (int16_t)-14189, /* -0.433014 pu: V_dc,max / sqrt 3 / V_base = 750 / sqrt 3 / 1000 */
+        .out_max = 14189 /* 0.433014 pu: V_dc,max / sqrt 3 / V_base = 750 / sqrt 3 / 1000 */
     },
     .pi_iq = {
-        .kp = 20972, /* kp 1.28 = k_cp = L_q / (2 T_sigma) = 0.0024 / (2 x 9.375e-05) = 12.8 ohm; x I_base / V_base = 600 / 6000; stored 1.28003, error +0.002 % */
-        .kp_shift = 1u, /* kp_real = kp / 32768 x 2^1 */
-        .ki = 11, /* ki T 0.000333333 = k_ci T = R / (2 T_sigma) T = 0.01 / (2 x 9.375e-05) x 6.25e-05 = 0.00333333 ohm; x I_base / V_base = 600 / 6000; stored 0.000335693, error +0.708 % */
+        .kp = 31457, /* kp 7.68 = k_cp = L_q / (2 T_sigma) = 0.0024 / (2 x 9.375e-05) = 12.8 ohm; x I_base / V_base = 600 / 1000; stored 7.67993, error -0.001 % */
+        .kp_shift = 3u, /* kp_real = kp / 32768 x 2^3 */
+        .ki = 66, /* ki T 0.002 = k_ci T = R / (2 T_sigma) T = 0.01 / (2 x 9.375e-05) x 6.25e-05 = 0.00333333 ohm; x I_base / V_base = 600 / 1000; stored 0.00201416, error +0.708 % */
         .ki_shift = 0u, /* kiT_real = ki / 32768 x 2^0 */
-        .out_min = (int16_t)-2365, /* -0.0721741 pu: V_dc,max / sqrt 3 / V_base = 750 / sqrt 3 / 6000 */
-        .out_max = 2365 /* 0.0721741 pu: V_dc,max / sqrt 3 / V_base = 750 / sqrt 3 / 6000 */
+        .out_min = (int16_t)-14189, /* -0.433014 pu: V_dc,max / sqrt 3 / V_base = 750 / sqrt 3 / 1000 */
+        .out_max = 14189 /* 0.433014 pu: V_dc,max / sqrt 3 / V_base = 750 / sqrt 3 / 1000 */
     },
     .pi_speed = {
         .kp = 30535, /* kp 3.72745 = ksp = w_sc / (K_t b) = 2 pi x 8.70151 / (2.88 x 6.66667) = 2.84756 A s/rad (mech); / n_p x w_base / I_base; stored 3.72742, error -0.001 % */
@@ -54,11 +54,11 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .out_max = 0 /* 0 pu: i_d reference in [-i_max, 0] */
     },
     .flux = {
-        .gain = 25736, /* g 0.392699 = T w_base = 6283.19 / 16000 = gain / 2^(15+1) */
-        .gain_shift = 1u, /* right shift: g = gain / 2^(15+shift) */
-        .r = 33, /* 0.001 = R / Z_base = 0.01 / 10 */
-        .l = 6177, /* 1.50796 = L_q / L_base = 0.0024 / 0.00159155 (Q12) */
-        .kg = 522 /* 0.0159155 = K_gain / w_base = 100 / 6283.19 */
+        .gain = 25736, /* g 0.0490874 = T w_base / 2^s = 6283.19 / 16000 / 8 = gain / 2^(15+4) */
+        .gain_shift = 4u, /* right shift: g = gain / 2^(15+shift) */
+        .r = 197, /* 0.006 = R / Z_base = 0.01 / 1.66667 */
+        .l = 4632, /* 1.13097 = L_q / L_base = 0.0024 / 0.00212207 (Q12) */
+        .kg = 4172 /* 0.127324 = K_gain 2^s / w_base = 100 x 8 / 6283.19 */
     },
     .pll = {
         .pi = {
@@ -70,19 +70,19 @@ const qfoc_param_table_t qfoc_params_traction350 = {
             .out_max = 32767 /* 0.999969 pu: speed range (est_tune) */
         },
         .err_clamp = 24576, /* 0.75 = design.pll_clamp */
-        .mag_min = 412, /* 0.0125664 = 0.05 psi_f / psi_base */
+        .mag_min = 309, /* 0.00942478 = 0.05 psi_f / psi_base */
         .k_theta = 8192u, /* 8192 = round(f_base / f_pwm x 131072) = round(1000 / 16000 x 131072) */
         .speed_alpha = 257 /* 0.00785398 = 2 pi f_c / f_pwm = 2 pi x 20 / 16000 (2-34) */
     },
     .alpha_vdc = 1287, /* 0.0392699 = 2 pi f_c / f_pwm = 2 pi x 100 / 16000 (2-34) */
-    .ld = 2316, /* 0.565487 = L_d / L_base = 0.0009 / 0.00159155 (Q12) */
-    .lq = 6177, /* 1.50796 = L_q / L_base = 0.0024 / 0.00159155 (Q12) */
-    .psi_f = 8235, /* 0.251327 = psi_f / psi_base = 0.24 / 0.95493 */
+    .ld = 1737, /* 0.424115 = L_d / L_base = 0.0009 / 0.00212207 (Q12) */
+    .lq = 4632, /* 1.13097 = L_q / L_base = 0.0024 / 0.00212207 (Q12) */
+    .psi_f = 6177, /* 0.188496 = psi_f / psi_base = 0.24 / 1.27324 */
     .i_max = 18022, /* 0.55 = i_max / I_base = 330 / 600 */
     .i_trip = 22528, /* 0.6875 = i_trip / I_base = 412.5 / 600 */
     .speed_max = 26214, /* 0.8 = speed_max n_p / 60 / f_base = 6000 x 8 / 60 / 1000 */
-    .vdc_uv = 2703, /* 0.0825 = 495 V / V_base */
-    .vdc_ov = 4301, /* 0.13125 = 787.5 V / V_base */
+    .vdc_uv = 16220, /* 0.495 = 495 V / V_base */
+    .vdc_ov = 25805, /* 0.7875 = 787.5 V / V_base */
     .v_max = 30147, /* 0.92 = design.fw_v_max */
     .drive = {
         .pole_pairs = 8u, /* motor.pole_pairs */
@@ -108,7 +108,7 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .vdc_ms = 2u, /* 2 ms (drive.vdc_ms, default) */
         .temp_ms = 10u, /* 10 ms (drive.temp_ms, default) */
         .stall_err = 7550, /* 0.2304 = 1728 rpm x n_p / 60 / f_base = 8 / 60 / 1000 (0.3 x rated 0.768 pu); stored 0.230408, error +0.00 % */
-        .flux_tol = 4118, /* 0.125664 = 0.5 psi_f / psi_base = 0.5 x 0.24 / 0.95493; stored 0.125671, error +0.01 % */
+        .flux_tol = 3088, /* 0.0942478 = 0.5 psi_f / psi_base = 0.5 x 0.24 / 1.27324; stored 0.0942383, error -0.01 % */
         .stall_ms = 500u, /* 500 ms (drive.stall_ms, default) */
         .phase_alpha = 64, /* 0.0019635 = 2 pi f_c / f_pwm = 2 pi x 5 / 16000 (2-34); stored 0.00195312, error -0.53 % */
         .phase_i_min = 1802, /* 0.055 = 33 A / I_base = 33 / 600; stored 0.0549927, error -0.01 % */
@@ -123,8 +123,8 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .tc_speed_min = 2621, /* 0.08 = 600 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.0799866, error -0.02 % */
         .tc_speed_max = 26214, /* 0.8 = 6000 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.799988, error -0.00 % */
         .para_speed = 18350, /* 0.56 = 4200 rpm x n_p / 60 / f_base = 8 / 60 / 1000; stored 0.559998, error -0.00 % */
-        .ld_hs = 2316, /* 0.565487 = motor.ld_h (no ld_hs_h) / L_base = 0.0009 / 0.00159155 (Q12) */
-        .lq_hs = 6177, /* 1.50796 = motor.lq_h (no lq_hs_h) / L_base = 0.0024 / 0.00159155 (Q12) */
+        .ld_hs = 1737, /* 0.424115 = motor.ld_h (no ld_hs_h) / L_base = 0.0009 / 0.00212207 (Q12) */
+        .lq_hs = 4632, /* 1.13097 = motor.lq_h (no lq_hs_h) / L_base = 0.0024 / 0.00212207 (Q12) */
         .lin_id_cmd = 0x10u, /* LIN command frame (drive.lin_id_cmd, default) */
         .lin_id_status = 0x11u, /* LIN status frame (drive.lin_id_status, default) */
         .can_id_a = 0x310u, /* CAN status, even frames (drive.can_id_a, default) */
@@ -134,8 +134,9 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .t_pcb_derate = 900, /* 90 degC x 10 (drive.t_pcb_derate_degc, default) */
         .rpm_derate = 1000u, /* 1000 rpm (drive.derate_rpm, default) */
         .flux_band = 9830, /* 0.3 = 0.3 (drive.flux_band, default); stored 0.299988, error -0.00 % */
-        .flux_v_err = 83, /* 0.00254648 = 15.2789 V / V_base 6000 V (drive.flux_v_err_v, default); stored 0.00253296, error -0.53 % */
-        .flux_r_err = 9830 /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
+        .flux_v_err = 501, /* 0.0152789 = 15.2789 V / V_base 1000 V (drive.flux_v_err_v, default); stored 0.0152893, error +0.07 % */
+        .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
+        .psi_shift = 3u /* flux base psi_base = 2^3 V_base / w_base = 1.27324 Wb, L_base = psi_base / I_base = 2.12207 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.735 Wb = 0.5773 pu) */
     },
-    .crc = 0x21C10DD5u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x0603834Bu /* CRC-32/ISO-HDLC of every field above */
 };

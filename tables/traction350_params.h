@@ -10,7 +10,7 @@
 
 #include "qfoc/params.h"
 
-/** Parameter table of 350 kW PM-assisted SynRel traction machine (Zou 2023) (CRC 0x21C10DD5). */
+/** Parameter table of 350 kW PM-assisted SynRel traction machine (Zou 2023) (CRC 0x0603834B). */
 extern const qfoc_param_table_t qfoc_params_traction350;
 
 #endif /* QFOC_PARAMS_TRACTION350_H */

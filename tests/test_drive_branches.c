@@ -2069,6 +2069,8 @@ static void flux_plausibility_on(const qfoc_param_table_t *tab)
     assert_true(x.d.s.table_ok);
 }
 
+/* REQ-DRV-023: the fast flux plausibility check on the reference table (the cases of
+   flux_plausibility_on above). */
 static void test_req_drv_023_flux_plausibility(void **state)
 {
     (void)state;

@@ -7,7 +7,7 @@
  * serialisation written here from params.h's description, and against the published
  * check value 0xCBF43926 of "123456789".  The generated tables must pass the library's
  * check, agree with the estimator design of sim/estim.c, and every corruption must be
- * refused with the right status.  Layout version 3: the drive configuration
+ * refused with the right status.  Layout version 4: the drive configuration
  * (drive_cfg.h) is serialised after v_max, and its cross-field conditions with the
  * table's limits (params.h) are tested at their boundaries.
  */

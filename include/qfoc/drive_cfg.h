@@ -2,15 +2,15 @@
  * @file drive_cfg.h
  * @brief Drive configuration: the start-up sequence, protection, command-link and
  *        feature settings of the drive layer, stored in the parameter table (params.h,
- *        field `drive`, layout version 3: version 2 and the seven fields from mtpa_speed
- *        on).
+ *        field `drive`, layout version 4: version 2, the seven fields from mtpa_speed
+ *        on (version 3) and the flux base psi_shift (version 4)).
  *
  * Every number is an integer the tuning tool (tools/tune/qfoc_tune.py) derives from the
  * motor file (section [drive] overrides the documented defaults).  Unless a field says
  * otherwise the scalings are those of specs/scaling.md: currents Q15 of I_base, speeds
  * Q15 of the electrical base speed w_base = 2 pi f_base, fluxes Q15 of
- * psi_base = V_base / w_base, inductances Q12 of L_base, angles 65536 counts per
- * electrical turn, times in milliseconds of the 1 ms tick, temperatures in 0.1 degC.
+ * psi_base = 2^psi_shift V_base / w_base, inductances Q12 of L_base = psi_base / I_base,
+ * angles 65536 counts per electrical turn, times in milliseconds of the 1 ms tick, temperatures in 0.1 degC.
  *
  * qfoc_drive_cfg_is_valid() checks every field against the range its comment gives
  * (the ranges are what the drive's proofs assume: no zero debounce, no zero filter

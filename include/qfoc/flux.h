@@ -28,8 +28,14 @@
  *
  *     psi(k) = psi(k-1) + g (u(k) - R i(k) - kg psi(k-1)) - L (i(k) - i(k-1))
  *
- *     g  = T w_base            integration gain per sample (T = 1 / f_pwm)
- *     kg = K_gain / w_base     high-pass corner in per unit of w_base
+ *     g  = T w_base / 2^s      integration gain per sample (T = 1 / f_pwm)
+ *     kg = 2^s K_gain / w_base high-pass corner, 2^s times its per-unit value
+ *
+ * with s the table's flux base (drive_cfg.h psi_shift: psi_base = 2^s V_base / w_base;
+ * s = 0 for the reference motor, so g = T w_base and kg = K_gain / w_base there).  The
+ * decay per sample g kg, and so the high-pass corner K_gain, do not depend on s; the
+ * corner in per unit of w_base that qfoc_flux_lead() reads is kg / 2^s (the drive
+ * passes it so).
  *
  * How the constants of E2-19 .. E2-24 map onto the parameters:
  *  - 630 = V_max: the integration scale V_base / psi_base = w_base of the
@@ -63,14 +69,14 @@
  *
  * @par Per-unit scaling of the parameters (from the bases and f_pwm)
  * Bases (specs/scaling.md): V_base, I_base, w_base = 2 pi f_base,
- * psi_base = V_base / w_base, Z_base = V_base / I_base, L_base = Z_base / w_base.
+ * psi_base = 2^s V_base / w_base, Z_base = V_base / I_base, L_base = psi_base / I_base.
  *
- *     g     = T w_base = 2 pi f_base / f_pwm        gain = round(g 2^(15 + gain_shift))
+ *     g     = T w_base / 2^s                        gain = round(g 2^(15 + gain_shift))
  *     r     = R / Z_base                  Q15       r    = round(32768 R / Z_base)
  *     l     = L_q / L_base                Q12       l    = round(4096 L_q / L_base)
- *     kg    = K_gain / w_base             Q15       kg   = round(32768 K_gain / w_base)
+ *     kg    = 2^s K_gain / w_base         Q15       kg   = round(32768 kg)
  *
- * Reference motor (V_base = 500 V, I_base = 40 A, f_base = 500 Hz, f_pwm = 8 kHz;
+ * Reference motor (s = 0; V_base = 500 V, I_base = 40 A, f_base = 500 Hz, f_pwm = 8 kHz;
  * w_base = 3141.593 rad/s, psi_base = 0.159155 Wb, Z_base = 12.5 ohm,
  * L_base = 3.97887 mH; R = 0.35 ohm, L_d = 2.6 mH, L_q = 4.2 mH,
  * psi_f = 0.065 Wb = 0.40841 pu):

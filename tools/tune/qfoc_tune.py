@@ -18,7 +18,11 @@ What it does (every equation number is the source document's, chapter 2 unless n
    refuses the values of the physical keys outside their plausible ranges (PLAUSIBLE: a
    unit slip such as mH typed as H), with the value x 1e-3 or x 1e3 inside the range as
    "did you mean"; warns when L_q < L_d (an IPM motor has L_q > L_d).
-2. Derives the per-unit bases and every scale factor of specs/scaling.md.
+2. Derives the per-unit bases and every scale factor of specs/scaling.md, with the flux
+   base psi_base = 2^s V_base / w_base, L_base = psi_base / I_base (table layout 4,
+   drive.psi_shift): s = scaling.psi_shift, or the smallest s in 0 .. 4 for which every
+   flux-unit bound holds (derive_psi_shift()); a speed (pu) times a flux (pu) is then a
+   voltage of 2^s V_base, and the flux observer's g = T w_base / 2^s, kg = K_gain 2^s / w_base.
 3. Designs the loops:
    - current loops d and q (pole cancellation tau_c = L / R, K T = 0.5, so
      k_cp = L / (2 T_sigma), k_ci = R / (2 T_sigma), "Current Loop"),
@@ -34,7 +38,8 @@ What it does (every equation number is the source document's, chapter 2 unless n
    LEFT shift; flux.h: Q15 mantissa with a RIGHT shift), reporting the rounding error.
 4. Checks the fixed-point bounds of chapter 2 for this scaling: Clarke (2-5, 2-6),
    Park with exact angle (2-9, 2-10) and with angle error (2-11, 2-12), the flux
-   observer's steady state (2-25, 2-26), the inverse transforms with harmonics.
+   observer's steady state (2-25, 2-26), the fluxes and inductances in the flux base
+   (flux_unit_bounds()), the inverse transforms with harmonics.
 5. Analyses the loops (chapter 4) with scipy.signal: continuous models as the
    document writes them and discrete models (ZOH at T_s plus one sample of
    computation delay z^-1) with the quantised gains; phase and gain margins,
@@ -75,8 +80,11 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 TOOL_PATH = "tools/tune/qfoc_tune.py"
 Q15_MAX = 32767
 PARAMS_MAGIC = 0x434F4651          # "QFOC" little-endian (params.h QFOC_PARAMS_MAGIC)
-PARAMS_VERSION = 3                 # params.h QFOC_PARAMS_VERSION (3: MTPA speed, derating,
-                                   # the flux check's error model)
+PARAMS_VERSION = 4                 # params.h QFOC_PARAMS_VERSION (3: MTPA speed, derating,
+                                   # the flux check's error model; 4: the flux base
+                                   # drive.psi_shift)
+PSI_SHIFT_MAX = 4                  # drive_cfg.h QFOC_DRIVE_PSI_SHIFT_MAX: psi_base at most
+                                   # 2^4 V_base / w_base
 FLUX_STATE_MAX_Q15 = 524287        # (2^31 - 1) / 4096: flux state Q4.27 range in Q15 counts
 PM_MIN_DEG = 45.0                  # required phase margin of every discrete loop
 COARSE_GAIN_PCT = 1.0              # rounding errors above this are listed as warnings
@@ -171,6 +179,12 @@ RULE_VDC_OPERATING = ("the DC-bus protection thresholds lie outside the operatin
                       "limits.vdc_uv_v <= inverter.vdc_min_v and limits.vdc_ov_v >= "
                       "inverter.vdc_max_v, else the drive trips in normal operation")
 RULE_CURRENT = "params.h: drive.i_align, i_start, tc_amp_max <= i_max"
+RULE_PSI = (f"the flux base psi_base = 2^s V_base / w_base (s = scaling.psi_shift, an integer "
+            f"0 .. {PSI_SHIFT_MAX}, drive_cfg.h QFOC_DRIVE_PSI_SHIFT_MAX; L_base = psi_base / "
+            "I_base) holds every flux and inductance of the table: the flux-estimate bounds "
+            "2-25, 2-26 (the active flux psi_f + |L_d - L_q| i_max), psi_f, pll.mag_min and "
+            "drive.flux_tol below 1 pu (Q15), ld, lq, flux.l, drive.ld_hs and drive.lq_hs below "
+            "8 pu (Q12), and flux.kg = K_gain 2^s / w_base below 1 pu (Q15)")
 
 SCHEMA: tuple = (
     # [motor]
@@ -236,6 +250,13 @@ SCHEMA: tuple = (
     # [scaling]
     _k("scaling", "f_base_hz", "num", "Hz", POS, REQUIRED, "electrical frequency of speed 1.0",
        "specs/scaling.md section 2 (f_base); rule 'f_base'"),
+    _k("scaling", "psi_shift", "int", "", (0, PSI_SHIFT_MAX, "[]"),
+       f"the smallest shift in 0 .. {PSI_SHIFT_MAX} whose flux base holds the machine "
+       "(rule 'flux base')",
+       "flux base: psi_base = 2^psi_shift V_base / w_base, L_base = psi_base / I_base",
+       "drive.psi_shift; every flux (Q15 of psi_base) and inductance (Q12 of L_base) of the "
+       "table; a speed times a flux is a voltage of 2^psi_shift V_base (specs/scaling.md "
+       "section 2); rule 'flux base'"),
     # [design]: loop-design choices
     _k("design", "t_filter_current_s", "num", "s", NONNEG, 0.0,
        "current-sensing filter time constant T_filter of T_sigma", "current and speed loops"),
@@ -542,7 +563,7 @@ SECTION_TEXT = {
     "motor": "the machine (required)",
     "inverter": "the power stage (required)",
     "sensing": "the current and DC-bus measurement: the per-unit bases (required)",
-    "scaling": "the frequency base (required)",
+    "scaling": "the frequency base (required) and the flux base (optional)",
     "design": "loop-design choices (optional, every key has a default)",
     "limits": "protection limits (optional, every key has a default)",
     "drive": "drive configuration, include/qfoc/drive_cfg.h (optional, every key has a default)",
@@ -705,6 +726,9 @@ def load_config(path: Path, overrides: list[str]) -> dict:
                 raise InputError(f"{path}: missing [{k.section}] {k.key} ({k.desc})")
             cfg[k.section][k.key] = k.value_default
             continue
+        if k.name == "scaling.psi_shift":
+            cfg[k.section][k.key] = psi_shift_value(path, sec[k.key])
+            continue
         val = check_value(f"{path}: {k.name}", sec[k.key], k.kind, _constraint(k.rng))
         if k.kind != "str" and not in_range(val, k.rng):
             want = f"must be {fmt(k.rng[0])}" if k.rng[0] == k.rng[1] else \
@@ -725,6 +749,23 @@ def load_config(path: Path, overrides: list[str]) -> dict:
     if refusals:
         raise Refusal("\n".join(f"{path}: {r}" for r in refusals))
     return cfg
+
+
+def psi_shift_value(path: Path, value: object) -> int:
+    """scaling.psi_shift as typed: an integer 0 .. PSI_SHIFT_MAX, else refused (exit code 1,
+    whatever the type: the flux base of a table is not guessed from a malformed value)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        typed_text, why = repr(value) if isinstance(value, str) else str(value).lower(), \
+            "not a number"
+    elif not math.isfinite(float(value)) or not float(value).is_integer():
+        typed_text, why = fmt(float(value)), "not an integer"
+    elif not 0 <= int(value) <= PSI_SHIFT_MAX:
+        typed_text, why = str(int(value)), f"outside 0 .. {PSI_SHIFT_MAX}"
+    else:
+        return int(value)
+    raise Refusal(f"{path}: scaling.psi_shift = {typed_text}: {why}; the flux-base shift is an "
+                  f"integer 0 .. {PSI_SHIFT_MAX} (rule: docs/motor-file.md rule 'flux base': "
+                  f"{RULE_PSI}); leave the key out to have the tool derive it")
 
 
 def input_warnings(cfg: dict) -> list[str]:
@@ -850,22 +891,26 @@ FIELD_KEYS = {
     "vdc_ov": ("limits.vdc_ov_v", "sensing.vdc_full_scale_v"),
     "v_max": ("design.fw_v_max",),
     "pll.err_clamp": ("design.pll_clamp",),
-    "pll.mag_min": ("design.pll_mag_min", "motor.psi_f_wb"),
+    "pll.mag_min": ("design.pll_mag_min", "motor.psi_f_wb", "scaling.psi_shift"),
     "pll.k_theta": ("scaling.f_base_hz", "inverter.f_pwm_hz"),
     "pll.speed_alpha": ("design.speed_fc_hz", "inverter.f_pwm_hz"),
     "alpha_vdc": ("design.vdc_fc_hz", "inverter.f_pwm_hz"),
     "flux.r": ("motor.rs_ohm", "sensing.vdc_full_scale_v", "sensing.i_full_scale_a"),
-    "flux.l": ("motor.lq_h", "scaling.f_base_hz"),
-    "flux.kg": ("design.kg_rad_s", "scaling.f_base_hz"),
-    "ld": ("motor.ld_h", "scaling.f_base_hz"),
-    "lq": ("motor.lq_h", "scaling.f_base_hz"),
-    "psi_f": ("motor.psi_f_wb", "sensing.vdc_full_scale_v", "scaling.f_base_hz"),
+    "flux.gain": ("inverter.f_pwm_hz", "scaling.f_base_hz", "scaling.psi_shift"),
+    "flux.l": ("motor.lq_h", "scaling.f_base_hz", "scaling.psi_shift"),
+    "flux.kg": ("design.kg_rad_s", "scaling.f_base_hz", "scaling.psi_shift"),
+    "ld": ("motor.ld_h", "scaling.f_base_hz", "scaling.psi_shift"),
+    "lq": ("motor.lq_h", "scaling.f_base_hz", "scaling.psi_shift"),
+    "psi_f": ("motor.psi_f_wb", "sensing.vdc_full_scale_v", "scaling.f_base_hz",
+              "scaling.psi_shift"),
     "drive.pole_pairs": ("motor.pole_pairs",),
     "drive.k_rpm": ("motor.pole_pairs", "scaling.f_base_hz"),
     "drive.k_speed_rpm": ("motor.pole_pairs", "scaling.f_base_hz"),
     "drive.rpm_max": ("drive.rpm_max", "motor.max_speed_rpm", "limits.speed_max_rpm"),
-    "drive.ld_hs": ("motor.ld_hs_h", "motor.ld_h", "scaling.f_base_hz"),
-    "drive.lq_hs": ("motor.lq_hs_h", "motor.lq_h", "scaling.f_base_hz"),
+    "drive.ld_hs": ("motor.ld_hs_h", "motor.ld_h", "scaling.f_base_hz", "scaling.psi_shift"),
+    "drive.lq_hs": ("motor.lq_hs_h", "motor.lq_h", "scaling.f_base_hz", "scaling.psi_shift"),
+    "drive.psi_shift": ("scaling.psi_shift", "motor.psi_f_wb", "sensing.vdc_full_scale_v",
+                        "scaling.f_base_hz"),
 }
 for _k_ in SCHEMA:
     if _k_.section == "drive" and _k_.key != "rpm_max":
@@ -1057,6 +1102,12 @@ def motor_file_doc() -> str:
         "(or the smaller of motor.max_speed_rpm and limits.speed_max_rpm when drive.rpm_max is "
         "not set); drive.rpm_max, drive.of_speed_rpm, drive.stall_err_rpm and drive.para_speed_rpm <= "
         "limits.speed_max_rpm; drive.tc_speed_min_rpm <= drive.tc_speed_max_rpm.",
+        f"- 'flux base' (scaling.psi_shift): {RULE_PSI}.  Without the key the tool takes the "
+        "smallest shift that holds them (so a motor whose flux fits V_base / w_base keeps "
+        "s = 0); a shift too small for the machine fails the bound it breaks (report marked "
+        "FAILED); any value but an integer 0 .. 4 is refused with exit code 1 (whatever its "
+        "type), and so is a machine whose flux does not fit even s = 4, with its active flux "
+        "and the largest flux base 16 V_base / w_base.",
         "- inverter.vdc_min_v <= inverter.vdc_nominal_v <= inverter.vdc_max_v; "
         "motor.max_speed_rpm >= motor.rated_speed_rpm; drive.lin_id_status != drive.lin_id_cmd.",
         "- Then the table itself: the fixed-point bounds of chapter 2, the loop margins of "
@@ -1171,7 +1222,7 @@ def fmt(x: float, digits: int = 6) -> str:
 
 @dataclass
 class Bases:
-    """Per-unit bases (sim/motor.c sim_bases())."""
+    """Per-unit bases (sim/motor.c sim_bases(), with the flux base of table layout 4)."""
     v_base: float
     i_base: float
     f_base: float
@@ -1183,21 +1234,91 @@ class Bases:
     f_pwm: float
     t_s: float
     period: int
+    psi_shift: int = 0        # s of psi_base = 2^s V_base / w_base (drive.psi_shift)
+    shift_src: str = ""       # how s was chosen (the table comment and the report)
+
+    @property
+    def k_psi(self) -> int:
+        """2^s: a speed (pu of w_base) times a flux (pu of psi_base) is a voltage of
+        2^s V_base."""
+        return 1 << self.psi_shift
 
 
-def make_bases(cfg: dict) -> Bases:
-    """Derive the bases of specs/scaling.md section 2."""
+def make_bases(cfg: dict, psi_shift: int | None = None) -> Bases:
+    """Derive the bases of specs/scaling.md section 2 with the flux base 2^s V_base / w_base:
+    s = psi_shift when given, else scaling.psi_shift when the motor file sets it, else the
+    smallest shift that holds the machine (derive_psi_shift(); Refusal when none does)."""
+    if psi_shift is None:
+        typed_s = cfg["scaling"].get("psi_shift")
+        if typed_s is not None:
+            b = make_bases(cfg, typed_s)
+            b.shift_src = f"scaling.psi_shift = {typed_s}"
+            return b
+        return derive_psi_shift(cfg)
     v_base = cfg["sensing"]["vdc_full_scale_v"]
     i_base = cfg["sensing"]["i_full_scale_a"]
     f_base = cfg["scaling"]["f_base_hz"]
     w_base = 2.0 * math.pi * f_base
     f_pwm = cfg["inverter"]["f_pwm_hz"]
-    psi_base = v_base / w_base
+    # 2^s applied with ldexp (exact): with s = 0 every base is bit for bit that of layout 3
+    psi_base = math.ldexp(v_base / w_base, psi_shift)
     return Bases(v_base=v_base, i_base=i_base, f_base=f_base, w_base=w_base,
-                 psi_base=psi_base, z_base=v_base / i_base, l_base=v_base / i_base / w_base,
+                 psi_base=psi_base, z_base=v_base / i_base,
+                 l_base=math.ldexp(v_base / i_base / w_base, psi_shift),
                  t_base=1.5 * cfg["motor"]["pole_pairs"] * psi_base * i_base,
                  f_pwm=f_pwm, t_s=1.0 / f_pwm,
-                 period=int(round(cfg["inverter"]["f_timer_hz"] / (2.0 * f_pwm))))
+                 period=int(round(cfg["inverter"]["f_timer_hz"] / (2.0 * f_pwm))),
+                 psi_shift=psi_shift)
+
+
+def active_flux_wb(cfg: dict) -> float:
+    """The largest active flux the observer sees: psi_f + |L_d - L_q| i_max (Wb)."""
+    m = cfg["motor"]
+    return m["psi_f_wb"] + abs(m["ld_h"] - m["lq_h"]) * cfg["limits"]["i_max_a"]
+
+
+def derive_psi_shift(cfg: dict) -> Bases:
+    """The bases with the smallest flux-base shift s in 0 .. PSI_SHIFT_MAX for which every
+    flux-unit bound holds (flux_bounds(), flux_unit_bounds(): the flux-estimate bounds 2-25,
+    2-26, the fluxes below 1 pu, the inductances below 8 pu, kg below 1 pu).  Every bound but
+    kg's relaxes as s grows (kg = K_gain 2^s / w_base grows with it).  Refusal when no shift
+    holds the machine, naming the active flux and the largest flux base."""
+    first_fit = None
+    for s in range(PSI_SHIFT_MAX + 1):
+        b = make_bases(cfg, s)
+        ds = design_loops(cfg, b)
+        rows = flux_bounds(cfg, ds) + flux_unit_bounds(cfg, ds)
+        bad = [r for r in rows if not r.ok]
+        if not bad:
+            b.shift_src = (f"derived: the smallest shift 0 .. {PSI_SHIFT_MAX} that holds "
+                           "every flux-unit bound")
+            return b
+        if first_fit is None and all(r.name == "flux base: flux.kg" for r in bad):
+            first_fit = (s, bad)
+    b = make_bases(cfg, PSI_SHIFT_MAX)
+    if first_fit is not None:
+        s, bad = first_fit
+        raise Refusal(
+            f"no flux base holds this machine: the flux needs scaling.psi_shift >= {s}, and "
+            f"from there the flux observer's high-pass gain flux.kg = K_gain 2^s / w_base = "
+            f"{typed(cfg, 'design.kg_rad_s')} x 2^{s} / {fmt(b.w_base)} rad/s = "
+            f"{fmt(bad[0].value / 32768.0)} pu is not below 1 pu (Q15) (rule: docs/motor-file.md "
+            f"rule 'flux base': {RULE_PSI}); kg = K_gain psi_base / V_base: lower "
+            "design.kg_rad_s or raise sensing.vdc_full_scale_v")
+    ds = design_loops(cfg, b)
+    bad = [r for r in flux_bounds(cfg, ds) + flux_unit_bounds(cfg, ds) if not r.ok]
+    m = cfg["motor"]
+    raise Refusal(
+        f"the machine's flux does not fit even the largest flux base: the active flux psi_f + "
+        f"|L_d - L_q| i_max = {fmt(m['psi_f_wb'])} + |{fmt(m['ld_h'])} - {fmt(m['lq_h'])}| x "
+        f"{fmt(cfg['limits']['i_max_a'])} = {fmt(active_flux_wb(cfg))} Wb against psi_shift "
+        f"{PSI_SHIFT_MAX}: psi_base = 2^{PSI_SHIFT_MAX} V_base / w_base = {1 << PSI_SHIFT_MAX} x "
+        f"{fmt(b.v_base)} / {fmt(b.w_base)} = {fmt(b.psi_base)} Wb, where "
+        + "; ".join(f"{r.name} ({r.equation}): {fmt(r.value)} > {fmt(r.limit)} for "
+                    f"{r.worst_input}" for r in bad)
+        + f" (rule: docs/motor-file.md rule 'flux base': {RULE_PSI}); the machine needs a "
+        "larger sensing.vdc_full_scale_v or a lower scaling.f_base_hz (within the rule "
+        "'f_base')")
 
 
 def base_rows(cfg: dict, b: Bases) -> list[tuple[str, str, str]]:
@@ -1208,11 +1329,14 @@ def base_rows(cfg: dict, b: Bases) -> list[tuple[str, str, str]]:
         ("I_base", f"sensing.i_full_scale_a = {fmt(b.i_base)} A", f"{fmt(b.i_base)} A"),
         ("f_base", f"scaling.f_base_hz = {fmt(b.f_base)} Hz", f"{fmt(b.f_base)} Hz"),
         ("w_base", f"2 pi f_base = 2 pi x {fmt(b.f_base)}", f"{fmt(b.w_base)} rad/s"),
-        ("psi_base", f"V_base / w_base = {fmt(b.v_base)} / {fmt(b.w_base)}",
+        ("psi_shift", f"s, {b.shift_src}: active flux psi_f + |L_d - L_q| i_max = "
+                      f"{fmt(active_flux_wb(cfg))} Wb = {fmt(active_flux_wb(cfg) / b.psi_base, 4)} "
+                      "psi_base", str(b.psi_shift)),
+        ("psi_base", f"2^s V_base / w_base = {b.k_psi} x {fmt(b.v_base)} / {fmt(b.w_base)}",
          f"{fmt(b.psi_base)} Wb"),
         ("Z_base", f"V_base / I_base = {fmt(b.v_base)} / {fmt(b.i_base)}", f"{fmt(b.z_base)} ohm"),
-        ("L_base", f"Z_base / w_base = {fmt(b.z_base)} / {fmt(b.w_base)}",
-         f"{fmt(b.l_base * 1e3)} mH"),
+        ("L_base", f"psi_base / I_base = 2^s Z_base / w_base = {b.k_psi} x {fmt(b.z_base)} / "
+                   f"{fmt(b.w_base)}", f"{fmt(b.l_base * 1e3)} mH"),
         ("T_base", f"3/2 n_p psi_base I_base = 1.5 x {n_p} x {fmt(b.psi_base)} x {fmt(b.i_base)}",
          f"{fmt(b.t_base)} N m"),
         ("T_s", f"1 / f_pwm = 1 / {fmt(b.f_pwm)}", f"{fmt(b.t_s * 1e6)} us"),
@@ -1392,16 +1516,24 @@ def design_loops(cfg: dict, b: Bases) -> Design:
     g["alpha_vdc"] = g_q15("alpha_vdc", 2.0 * math.pi * d["vdc_fc_hz"] * t_s,
                            f"2 pi f_c / f_pwm = 2 pi x {fmt(d['vdc_fc_hz'])} / {fmt(b.f_pwm)} (2-34)")
 
-    # Flux observer (2-19 .. 2-24) exactly as est_tune(): g = T w_base, r = R / Z_base,
-    # l = L_q / L_base in Q12, kg = K_gain / w_base.
-    gval = t_s * b.w_base
+    # Flux observer (2-19 .. 2-24) as est_tune(), in the flux unit psi_base = 2^s V_base /
+    # w_base (flux.h: psi(k) = psi(k-1) + g (u - R i - kg psi(k-1)) - L (i(k) - i(k-1)), psi in
+    # psi_base, u and R i in V_base): g = T V_base / psi_base = T w_base / 2^s, r = R / Z_base,
+    # l = L_q / L_base in Q12, kg = K_gain psi_base / V_base = K_gain 2^s / w_base (g kg =
+    # T K_gain whatever s).  With s = 0 these are est_tune()'s, texts included.
+    gval = math.ldexp(t_s * b.w_base, -b.psi_shift)
     g["flux.gain"] = g_right("flux.gain", gval,
-                             f"T w_base = {fmt(b.w_base)} / {fmt(b.f_pwm)}")
+                             f"T w_base = {fmt(b.w_base)} / {fmt(b.f_pwm)}" if b.psi_shift == 0
+                             else f"T w_base / 2^s = {fmt(b.w_base)} / {fmt(b.f_pwm)} / "
+                                  f"{b.k_psi}")
     g["flux.r"] = g_q15("flux.r", R / b.z_base, f"R / Z_base = {fmt(R)} / {fmt(b.z_base)}")
     g["flux.l"] = Gain("flux.l", m["lq_h"] / b.l_base, qn(m["lq_h"] / b.l_base, 12), None, "q12",
                        f"L_q / L_base = {fmt(m['lq_h'])} / {fmt(b.l_base)} (Q12)")
-    g["flux.kg"] = g_q15("flux.kg", d["kg_rad_s"] / b.w_base,
-                         f"K_gain / w_base = {fmt(d['kg_rad_s'])} / {fmt(b.w_base)}")
+    g["flux.kg"] = g_q15("flux.kg", math.ldexp(d["kg_rad_s"] / b.w_base, b.psi_shift),
+                         f"K_gain / w_base = {fmt(d['kg_rad_s'])} / {fmt(b.w_base)}"
+                         if b.psi_shift == 0 else
+                         f"K_gain 2^s / w_base = {fmt(d['kg_rad_s'])} x {b.k_psi} / "
+                         f"{fmt(b.w_base)}")
 
     # Machine constants and limits.
     g["ld"] = Gain("ld", m["ld_h"] / b.l_base, qn(m["ld_h"] / b.l_base, 12), None, "q12",
@@ -1434,7 +1566,13 @@ def scale_factor_rows(cfg: dict, ds: Design) -> list[tuple[str, str, str]]:
     """(factor, derivation with numbers, value) rows of specs/scaling.md section 3."""
     b, g = ds.b, ds.gains
     lq = cfg["motor"]["lq_h"]
-    emf_l = lq / b.l_base / (b.t_s * b.w_base)
+    # back-EMF estimator (Q10, in V_base): L_q di/dt / V_base = L_q / (Z_base T) di_pu, and
+    # L_q / (Z_base T) = (L_q / L_base) 2^s / (T w_base) with the flux base of 2^s
+    emf_l = math.ldexp(lq / b.l_base / (b.t_s * b.w_base), b.psi_shift)
+    emf_text = (f"L_q / (L_base T w_base) = {fmt(lq)} / ({fmt(b.l_base)} x "
+                f"{fmt(b.t_s * b.w_base)})" if b.psi_shift == 0 else
+                f"L_q 2^s / (L_base T w_base) = L_q / (Z_base T) = {fmt(lq)} x {b.k_psi} / "
+                f"({fmt(b.l_base)} x {fmt(b.t_s * b.w_base)})")
     return [
         ("1/sqrt(3) (Clarke)", "round(32768 / sqrt 3) = round(18918.6)", "18919 / 32768"),
         ("sqrt(3)/2 (inverse Clarke)", "round(32768 sqrt 3 / 2) = round(28377.9)", "28378 / 32768"),
@@ -1442,8 +1580,7 @@ def scale_factor_rows(cfg: dict, ds: Design) -> list[tuple[str, str, str]]:
         ("flux gain g (2-19)", g["flux.gain"].derivation, g["flux.gain"].repr_text()),
         ("r = R_pu", g["flux.r"].derivation, g["flux.r"].repr_text()),
         ("l = L_q / L_base (flux, Q12)", g["flux.l"].derivation, g["flux.l"].repr_text()),
-        ("l (back-EMF, Q10)", f"L_q / (L_base T w_base) = {fmt(lq)} / ({fmt(b.l_base)} x "
-         f"{fmt(b.t_s * b.w_base)})", f"{qn(emf_l, 10)} / 1024"),
+        ("l (back-EMF, Q10)", emf_text, f"{qn(emf_l, 10)} / 1024"),
         ("speed low-pass alpha (2-34)", g["pll.speed_alpha"].derivation,
          g["pll.speed_alpha"].repr_text()),
         ("DC-bus low-pass alpha (2-34)", g["alpha_vdc"].derivation, g["alpha_vdc"].repr_text()),
@@ -1504,9 +1641,78 @@ def park_peak(a_alpha: float, a_beta: float, phi1: float, delta: float) -> float
     return max(closed, float(np.max(np.abs(i_d))), float(np.max(np.abs(i_q))))
 
 
+def flux_bounds(cfg: dict, ds: Design) -> list[Bound]:
+    """The flux observer's steady state (2-25, 2-26) in the flux unit psi_base = 2^s V_base /
+    w_base, with the quantised g and kg: at speed w (pu of w_base) the estimate is
+    |H| |psi_a|, H = (z - 1) / (z - 1 + g kg), z = exp(j w w_base T) = exp(j w g 2^s)
+    (flux.h; g = T w_base / 2^s); |psi_a| <= psi_f + |L_d - L_q| i_max (active flux, i_d down
+    to -i_max); a DC current offset i_off adds R i_off / kg (2-26 with u = 0).  psi_temp =
+    psi + L_q i (2-25) against the Q4.27 state range."""
+    b, g, m, d, lim = ds.b, ds.gains, cfg["motor"], cfg["design"], cfg["limits"]
+    bounds: list[Bound] = []
+    gq = g["flux.gain"].quantised
+    kgq = g["flux.kg"].quantised
+    psi_a = active_flux_wb(cfg) / b.psi_base
+    offset = g["flux.r"].quantised * (d["i_offset_a"] / b.i_base) / kgq if kgq > 0 else math.inf
+    li = g["flux.l"].quantised * lim["i_max_a"] / b.i_base
+    w_low = d["observer_min_speed_rpm"] * m["pole_pairs"] / 60.0 / b.f_base
+    w_top = g["speed_max"].real
+    for label, w in (("lowest observer speed", w_low), ("highest speed", w_top)):
+        wt = w * gq * b.k_psi                   # rad per sample: w w_base T
+        z = complex(math.cos(wt), math.sin(wt))
+        h = abs((z - 1.0) / (z - 1.0 + gq * kgq))
+        psi = (h * psi_a + offset) * 32768.0
+        where = (f"w = {fmt(w, 4)} pu ({fmt(w * b.f_base, 4)} Hz), |H| = {fmt(h, 5)}, "
+                 f"|psi_a| = {fmt(psi_a, 4)} pu, offset {fmt(d['i_offset_a'])} A")
+        if b.psi_shift:
+            where += f", psi_base = {fmt(b.psi_base)} Wb (psi_shift {b.psi_shift})"
+        bounds.append(Bound(f"flux estimate at {label}", "2-26 (psi = (u - R i) / kg)", psi,
+                            Q15_MAX, where, "output range +-1 pu"))
+        bounds.append(Bound(f"flux psi_temp at {label}", "2-25 (psi_temp = psi + L i)",
+                            psi + li * 32768.0, FLUX_STATE_MAX_Q15,
+                            where + f", L_q i_max = {fmt(li, 4)} pu", "state range Q4.27, 16 pu"))
+    return bounds
+
+
+def flux_unit_bounds(cfg: dict, ds: Design) -> list[Bound]:
+    """The table's fluxes and inductances in the flux base (rule 'flux base'): the fluxes
+    (psi_f, pll.mag_min, drive.flux_tol) below 1 pu in Q15, the inductances (ld, lq, flux.l,
+    drive.ld_hs, drive.lq_hs) below 8 pu in Q12 (no saturation), and the observer's
+    high-pass gain flux.kg = K_gain 2^s / w_base below 1 pu in Q15."""
+    b, g, m, d, dr = ds.b, ds.gains, cfg["motor"], cfg["design"], cfg["drive"]
+    base = (f"psi_base = 2^{b.psi_shift} V_base / w_base = {fmt(b.psi_base)} Wb, L_base = "
+            f"psi_base / I_base = {fmt(b.l_base * 1e3)} mH")
+    out = []
+
+    def row(name: str, eq: str, x: float, scale: float, what: str) -> None:
+        out.append(Bound(f"flux base: {name}", eq, x * scale, float(Q15_MAX),
+                         f"{what}, {base}", "Q15 below 1 pu" if scale == 32768.0
+                         else "Q12 below 8 pu"))
+
+    psi_f = m["psi_f_wb"]
+    row("psi_f", "psi_f / psi_base < 1 (Q15)", psi_f / b.psi_base, 32768.0,
+        f"psi_f = {fmt(psi_f)} Wb")
+    row("pll.mag_min", "pll_mag_min psi_f / psi_base < 1 (Q15)",
+        d["pll_mag_min"] * psi_f / b.psi_base, 32768.0,
+        f"{fmt(d['pll_mag_min'])} x psi_f = {fmt(d['pll_mag_min'] * psi_f)} Wb")
+    row("drive.flux_tol", "flux_tol_frac psi_f / psi_base < 1 (Q15)",
+        dr["flux_tol_frac"] * psi_f / b.psi_base, 32768.0,
+        f"{fmt(dr['flux_tol_frac'])} x psi_f = {fmt(dr['flux_tol_frac'] * psi_f)} Wb")
+    ld_hs = m["ld_hs_h"] if m["ld_hs_h"] is not None else m["ld_h"]
+    lq_hs = m["lq_hs_h"] if m["lq_hs_h"] is not None else m["lq_h"]
+    for name, key, l_h in (("ld", "motor.ld_h", m["ld_h"]), ("lq", "motor.lq_h", m["lq_h"]),
+                           ("flux.l", "motor.lq_h", m["lq_h"]),
+                           ("drive.ld_hs", "motor.ld_hs_h", ld_hs),
+                           ("drive.lq_hs", "motor.lq_hs_h", lq_hs)):
+        row(name, "L / L_base < 8 (Q12)", l_h / b.l_base, 4096.0, f"{key} = {fmt(l_h)} H")
+    row("flux.kg", "K_gain 2^s / w_base < 1 (Q15)", g["flux.kg"].real, 32768.0,
+        f"design.kg_rad_s = {fmt(d['kg_rad_s'])} rad/s, w_base = {fmt(b.w_base)} rad/s")
+    return out
+
+
 def check_bounds(cfg: dict, ds: Design) -> list[Bound]:
     """Every fixed-point bound of chapter 2 for this scaling."""
-    b, g, m, d, lim = ds.b, ds.gains, cfg["motor"], cfg["design"], cfg["limits"]
+    b, d, lim = ds.b, cfg["design"], cfg["limits"]
     bounds: list[Bound] = []
     i_trip = lim["i_trip_a"]
     amp = i_trip / b.i_base * 32768.0            # A of (2-1), Q15 counts
@@ -1546,29 +1752,7 @@ def check_bounds(cfg: dict, ds: Design) -> list[Bound]:
                             "angle error up to +-" + fmt(d["park_angle_err_deg"]) + " deg"
                             if dset is not None and len(dset) > 1 else "exact angle"))
 
-    # Flux observer steady state (2-25, 2-26) with the quantised g and kg: at speed w (pu)
-    # the estimate is |H| |psi_a|, H = (z - 1) / (z - 1 + g kg), z = exp(j w g) (flux.h);
-    # |psi_a| <= psi_f + |L_d - L_q| i_max (active flux, i_d down to -i_max); a DC current
-    # offset i_off adds R i_off / kg (2-26 with u = 0).  psi_temp = psi + L_q i (2-25)
-    # against the Q4.27 state range.
-    gq = g["flux.gain"].quantised
-    kgq = g["flux.kg"].quantised
-    psi_a = (m["psi_f_wb"] + abs(m["ld_h"] - m["lq_h"]) * lim["i_max_a"]) / b.psi_base
-    offset = g["flux.r"].quantised * (d["i_offset_a"] / b.i_base) / kgq if kgq > 0 else math.inf
-    li = g["flux.l"].quantised * lim["i_max_a"] / b.i_base
-    w_low = d["observer_min_speed_rpm"] * m["pole_pairs"] / 60.0 / b.f_base
-    w_top = g["speed_max"].real
-    for label, w in (("lowest observer speed", w_low), ("highest speed", w_top)):
-        z = complex(math.cos(w * gq), math.sin(w * gq))
-        h = abs((z - 1.0) / (z - 1.0 + gq * kgq))
-        psi = (h * psi_a + offset) * 32768.0
-        where = (f"w = {fmt(w, 4)} pu ({fmt(w * b.f_base, 4)} Hz), |H| = {fmt(h, 5)}, "
-                 f"|psi_a| = {fmt(psi_a, 4)} pu, offset {fmt(d['i_offset_a'])} A")
-        bounds.append(Bound(f"flux estimate at {label}", "2-26 (psi = (u - R i) / kg)", psi,
-                            Q15_MAX, where, "output range +-1 pu"))
-        bounds.append(Bound(f"flux psi_temp at {label}", "2-25 (psi_temp = psi + L i)",
-                            psi + li * 32768.0, FLUX_STATE_MAX_Q15,
-                            where + f", L_q i_max = {fmt(li, 4)} pu", "state range Q4.27, 16 pu"))
+    bounds += flux_bounds(cfg, ds) + flux_unit_bounds(cfg, ds)
 
     # Inverse Park with harmonics: U_d = M + A_d sin(wt + phi_d), U_q = N + A_q sin(wt + phi_q),
     # |(M, N)| = Z = V_dc,max / sqrt 3 (largest vector of the linear SVPWM range),
@@ -1634,7 +1818,7 @@ DRIVE_RANGES = {
     "lin_id_cmd": (0, 0x3B), "lin_id_status": (0, 0x3B), "can_id_a": (0, 0x7FF),
     "can_id_b": (0, 0x7FF), "mtpa_speed": (0, Q15_MAX), "t_ipm_derate": (-400, 2000),
     "t_pcb_derate": (-400, 2000), "flux_band": (1, Q15_MAX), "flux_v_err": (0, Q15_MAX),
-    "flux_r_err": (0, Q15_MAX),
+    "flux_r_err": (0, Q15_MAX), "psi_shift": (0, PSI_SHIFT_MAX),
 }
 
 
@@ -1882,6 +2066,11 @@ def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
                   f"({src('flux_v_err_v')})"),
         q15_field("flux_r_err", dr["flux_r_err"], f"{fmt(dr['flux_r_err'])} of R "
                   f"({src('flux_r_err')})"),
+        Field("psi_shift", "u8", b.psi_shift,
+              f"flux base psi_base = 2^{b.psi_shift} V_base / w_base = {fmt(b.psi_base)} Wb, "
+              f"L_base = psi_base / I_base = {fmt(b.l_base * 1e3)} mH ({b.shift_src}: active "
+              f"flux {fmt(active_flux_wb(cfg))} Wb = "
+              f"{fmt(active_flux_wb(cfg) / b.psi_base, 4)} pu)"),
     ]
     return fields, notes
 
@@ -2488,8 +2677,10 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
               f"(a decade below the current loop); integral-dominant: ki = w_fw / G_fw = "
               f"{fmt(ph['ki_fw'])} 1/s, kp = ki / ({fmt(cfg['design']['fw_zero_ratio'])} w_fw) = "
               f"{fmt(ph['kp_fw'])}.",
-              "- PLL (2-27, 2-28) and flux observer (2-19 .. 2-24): exactly as sim/estim.c "
-              "est_tune().", "",
+              "- PLL (2-27, 2-28) and flux observer (2-19 .. 2-24): as sim/estim.c est_tune() "
+              f"in the flux base psi_base = 2^s V_base / w_base, s = {b.psi_shift} "
+              "(g = T w_base / 2^s, kg = K_gain 2^s / w_base, l = L_q / L_base; with s = 0 "
+              "exactly est_tune()'s).", "",
               "Gains: `left` = pi.h (real = raw / 32768 x 2^shift, smallest shift), `right` = "
               "flux.h (real = raw / 2^(15 + shift), largest shift).", ""]
     lines += md_table(["quantity", "real value", "raw", "shift", "stored value", "rounding error",
@@ -2505,7 +2696,8 @@ def write_report(path: Path, cfg: dict, toml_rel: str, overrides: list[str], ds:
               "with the phase of i_v within 120 deg +- design.clarke_phase_dev_deg; Park angle "
               "error up to design.park_angle_err_deg; flux at the lowest observer speed and the "
               "highest speed with |psi_a| = psi_f + |L_d - L_q| i_max and a DC current offset "
-              "design.i_offset_a; inverse transforms at V_dc,max / sqrt 3 with harmonics "
+              "design.i_offset_a, in the flux base (the rows 'flux base: ...' hold the table's "
+              "fluxes below 1 pu, its inductances below 8 pu and kg below 1 pu); inverse transforms at V_dc,max / sqrt 3 with harmonics "
               "A_d = A_q = design.v_harmonic_fraction x |v|.", ""]
     lines += md_table(["bound", "equation", "value", "limit", "margin", "worst input"],
                       [[bd.name, bd.equation, fmt(bd.value), fmt(bd.limit),
@@ -2612,6 +2804,11 @@ def main(argv: list[str] | None = None) -> int:
 
     try:
         cfg = load_config(args.motor, args.overrides)
+        # the flux base: scaling.psi_shift, or the smallest shift that holds the machine
+        try:
+            b = make_bases(cfg)
+        except Refusal as exc:
+            raise Refusal(f"{args.motor}: {exc}") from exc
     except Refusal as exc:
         for line in str(exc).split("\n"):
             print(f"refused: {line}", file=sys.stderr)
@@ -2626,7 +2823,6 @@ def main(argv: list[str] | None = None) -> int:
     toml_rel = rel_to_repo(args.motor)
     out_dir = args.out_dir if args.out_dir else Path("build") / "tune" / name
 
-    b = make_bases(cfg)
     ds = design_loops(cfg, b)
     items = build_table(cfg, ds)
     bounds = check_bounds(cfg, ds) + range_checks(items)

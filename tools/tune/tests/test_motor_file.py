@@ -18,6 +18,7 @@ import qfoc_tune as qt  # noqa: E402
 
 REFERENCE = REPO / "specs" / "motors" / "reference.toml"
 SECOND = REPO / "specs" / "motors" / "traction350.toml"
+ECOMP = REPO / "specs" / "motors" / "ecomp800.toml"
 DOC = REPO / "docs" / "motor-file.md"
 
 
@@ -270,7 +271,7 @@ def test_refused_implausible_in_file(tmp_path, capsys):
 # REQ-TUNE-001: every plausible range belongs to a number key of the schema and holds the
 # values of both committed motor files (and their defaults); 0 stays accepted where the key
 # allows it (no dead time, no current filter).
-@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND, ECOMP])
 def test_plausible_ranges_accept_committed_motors(tmp_path, motor):
     for name in qt.PLAUSIBLE:
         assert qt.SCHEMA_BY_NAME[name].kind == "num"
@@ -339,10 +340,61 @@ def test_help_points_to_motor_file_doc(capsys):
 
 
 # REQ-TUNE-001: every key of the committed motor files is a key of the schema.
-@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND, ECOMP])
 def test_committed_motor_keys_in_schema(motor):
     import tomllib
     raw = tomllib.loads(motor.read_text())
     for section, keys in raw.items():
         for key in keys:
             assert f"{section}.{key}" in qt.SCHEMA_BY_NAME
+
+
+# REQ-TUNE-001: the simulator reads the same motor files (sim/motor.c sim_keys): every key it
+# requires is in each committed motor file, as a number.
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND, ECOMP])
+def test_committed_motor_has_sim_keys(motor):
+    import re
+    import tomllib
+    keys = re.findall(r'SIM_KEY\("([a-z_]+\.[a-z_0-9]+)"', (REPO / "sim" / "motor.c").read_text())
+    assert len(keys) >= 20
+    raw = tomllib.loads(motor.read_text())
+    for key in keys:
+        section, name = key.split(".")
+        assert isinstance(raw[section][name], (int, float)), key
+
+
+# REQ-TUNE-001: scaling.psi_shift is an integer 0 .. 4 (drive_cfg.h
+# QFOC_DRIVE_PSI_SHIFT_MAX); any other value, whatever its type, is refused with exit code 1,
+# naming the key and the value as typed.
+@pytest.mark.parametrize("value, shown, why", [
+    ("-1", "-1", "outside 0 .. 4"),
+    ("5", "5", "outside 0 .. 4"),
+    ("1.5", "1.5", "not an integer"),
+    ("x", "'x'", "not a number"),
+    ('"2"', "'2'", "not a number"),
+    ("true", "true", "not a number"),
+])
+def test_refused_psi_shift(tmp_path, capsys, value, shown, why):
+    err = refused(tmp_path, capsys, REFERENCE, "--set", f"scaling.psi_shift={value}")
+    assert (f"refused: {REFERENCE}: scaling.psi_shift = {shown}: {why}; the flux-base shift is "
+            "an integer 0 .. 4 (rule: docs/motor-file.md rule 'flux base'") in err
+
+
+# REQ-TUNE-001: the same in a motor file.
+def test_refused_psi_shift_in_file(tmp_path, capsys):
+    path = with_text(tmp_path, REFERENCE, "[scaling]\n", "[scaling]\npsi_shift = 7\n")
+    err = refused(tmp_path, capsys, path)
+    assert f"refused: {path}: scaling.psi_shift = 7: outside 0 .. 4" in err
+
+
+# REQ-TUNE-001: real DC-bus sensor full scales of 650 .. 900 V buses (1000 .. 1100 V) are
+# accepted; an over-voltage threshold the sensor cannot read stays refused: 1100 V full scale
+# reads at most 4095 / 4096 x 1100 = 1099.73 V.
+def test_bus_sensor_full_scale_800v(tmp_path, capsys):
+    for v in (1000, 1050, 1100):
+        cfg = qt.load_config(ECOMP, [f"sensing.vdc_full_scale_v={v}"])
+        assert cfg["sensing"]["vdc_full_scale_v"] == v
+    err = refused(tmp_path, capsys, ECOMP, "--set", "limits.vdc_ov_v=1099.9")
+    assert (f"refused: {ECOMP}: limits.vdc_ov_v = 1099.9 V: the DC-bus sensor cannot read this "
+            "over-voltage threshold: it is not below the largest reading 4095 codes x "
+            "sensing.vdc_full_scale_v 1100 V / 4096 = 1099.73 V") in err

@@ -18,6 +18,17 @@ import qfoc_tune as qt  # noqa: E402
 
 REFERENCE = REPO / "specs" / "motors" / "reference.toml"
 SECOND = REPO / "specs" / "motors" / "traction350.toml"
+ECOMP = REPO / "specs" / "motors" / "ecomp800.toml"
+
+
+def manifest():
+    """(name, motor file, overrides) of every line of tables/manifest.txt."""
+    out = []
+    for line in (REPO / "tables" / "manifest.txt").read_text().splitlines():
+        words = line.split()
+        if words and not words[0].startswith("#"):
+            out.append((words[0], REPO / words[1], words[2:]))
+    return out
 
 SIMPLE_MOTOR = """
 [motor]
@@ -162,8 +173,8 @@ def test_simple_motor_passes_and_table_compiles_layout(tmp_path):
     ds, path = simple_design(tmp_path)
     items = qt.build_table(ds.cfg, ds)
     # params.h serialisation: 4+2+2+4+4+4 + svpwm 8 + 4 PI x 10 + flux 9 + pll 18 + 10 x 2
-    # = 115, then the drive configuration (layout 3): 4 x 1 + 47 x 2 = 98 bytes
-    assert len(qt.serialise(items)) == 115 + 98
+    # = 115, then the drive configuration (layout 4): 5 x 1 + 47 x 2 = 99 bytes
+    assert len(qt.serialise(items)) == 115 + 99
     assert run(tmp_path, path) == 0
     text = (tmp_path / "tables" / "simple_params.c").read_text()
     assert "const qfoc_param_table_t qfoc_params_simple = {" in text
@@ -202,9 +213,9 @@ def test_missing_field_exit_2(tmp_path, capsys):
     assert "missing [motor] rs_ohm" in capsys.readouterr().err
 
 
-# REQ-TUNE-004, REQ-TUNE-005, REQ-TUNE-006: both motors pass every bound and loop check;
+# REQ-TUNE-004, REQ-TUNE-005, REQ-TUNE-006: the motors pass every bound and loop check;
 # the committed tables regenerate byte for byte.
-@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
+@pytest.mark.parametrize("motor", [REFERENCE, SECOND, ECOMP])
 def test_motor_passes_and_table_reproducible(tmp_path, motor):
     assert run(tmp_path, motor) == 0
     for ext in ("c", "h"):
@@ -252,7 +263,7 @@ DRIVE_LAYOUT = [
     ("tc_speed_max", "h"), ("para_speed", "h"), ("ld_hs", "h"), ("lq_hs", "h"),
     ("lin_id_cmd", "B"), ("lin_id_status", "B"), ("can_id_a", "H"), ("can_id_b", "H"),
     ("mtpa_speed", "h"), ("t_ipm_derate", "h"), ("t_pcb_derate", "h"), ("rpm_derate", "H"),
-    ("flux_band", "h"), ("flux_v_err", "h"), ("flux_r_err", "h"),
+    ("flux_band", "h"), ("flux_v_err", "h"), ("flux_r_err", "h"), ("psi_shift", "B"),
 ]
 
 
@@ -269,10 +280,10 @@ def c_values(text):
 # REQ-TUNE-006, REQ-PAR-006: the CRC in each committed table equals zlib's CRC-32 of an
 # independent serialisation: the 115-byte layout-1 part as the tool emits it, then the
 # drive fields packed here from DRIVE_LAYOUT (little-endian, own width).
-@pytest.mark.parametrize("motor", [REFERENCE, SECOND])
-def test_committed_crc_independent_with_drive(motor):
+@pytest.mark.parametrize("name", [n for n, _m, _o in manifest()])
+def test_committed_crc_independent_with_drive(name):
     import struct
-    text = (REPO / "tables" / f"{motor.stem}_params.c").read_text()
+    text = (REPO / "tables" / f"{name}_params.c").read_text()
     vals = c_values(text)
     names = [n for n, _ in vals]
     i = names.index("pole_pairs")
@@ -287,9 +298,9 @@ def test_committed_crc_independent_with_drive(motor):
             "f_pwm_hz": "H", "period": "H", "dt_comp": "H", "k_theta": "H"}
     data = b"".join(struct.pack("<" + fmts.get(n, "h"), v) for n, v in head)
     assert len(data) == 115
-    assert head[1] == ("version", 3)
+    assert head[1] == ("version", 4)
     data += b"".join(struct.pack("<" + f, v) for (_n, f), (_m, v) in zip(DRIVE_LAYOUT, drive))
-    assert len(data) == 213
+    assert len(data) == 214
     assert zlib.crc32(data) == crc
 
 
@@ -345,6 +356,9 @@ def test_drive_defaults_by_hand(tmp_path):
     assert (d["t_ipm_derate"], d["t_pcb_derate"], d["rpm_derate"]) == (1000, 900, 1000)
     assert d["flux_band"] == round(0.3 * 32768) == 9830 and d["flux_r_err"] == 9830
     assert d["flux_v_err"] == round(4 / math.pi * 1e-6 * 8000 * 420 / 500 * 32768) == 280
+    # layout 4: the flux base; the active flux 0.065 + 1.6e-3 x 20 = 0.097 Wb is below
+    # V_base / w_base = 0.159 Wb: s = 0
+    assert d["psi_shift"] == 0
 
 
 # REQ-TUNE-001, REQ-TUNE-006, REQ-PAR-006: the defaults round-trip: a motor file that
@@ -492,3 +506,205 @@ def test_speed_check_refuses_long_integral_time(tmp_path, capsys, motor, tau):
     assert f"design.speed_tau_s = {tau:g} s is too long for its crossover" in err
     assert not (tmp_path / "tables").exists()
     assert "Status: **FAILED**" in (tmp_path / "out" / "report.md").read_text()
+
+
+# ---- layout version 4: the flux base psi_base = 2^s V_base / w_base (REQ-TUNE-002) ----
+
+def motor_data(motor, overrides=()):
+    """The motor file's values (with the tool's documented defaults of i_max, i_offset, the
+    lowest observer speed and K_gain), read with tomllib only."""
+    import tomllib
+    raw = tomllib.loads(motor.read_text())
+    for o in overrides:
+        lhs, rhs = o.split("=")
+        sec, key = lhs.split(".")
+        raw.setdefault(sec, {})[key] = tomllib.loads(f"v = {rhs}")["v"]
+    m, sen, sc = raw["motor"], raw["sensing"], raw["scaling"]
+    lim, des = raw.get("limits", {}), raw.get("design", {})
+    return {
+        "n_p": m["pole_pairs"], "r": m["rs_ohm"], "ld": m["ld_h"], "lq": m["lq_h"],
+        "psi_f": m["psi_f_wb"], "ld_hs": m.get("ld_hs_h", m["ld_h"]),
+        "lq_hs": m.get("lq_hs_h", m["lq_h"]),
+        "i_max": lim.get("i_max_a", m["rated_current_a"]),
+        "top_rpm": lim.get("speed_max_rpm", m["max_speed_rpm"]),
+        "low_rpm": des.get("observer_min_speed_rpm", 0.1 * m["rated_speed_rpm"]),
+        "i_off": des.get("i_offset_a", sen["i_full_scale_a"] / 100),
+        "k_gain": des.get("kg_rad_s", 100.0),
+        "v_base": sen["vdc_full_scale_v"], "i_base": sen["i_full_scale_a"],
+        "f_base": sc["f_base_hz"], "f_pwm": raw["inverter"]["f_pwm_hz"],
+    }
+
+
+def expected_shift(md):
+    """The smallest s in 0 .. 4 whose flux base holds the observer's steady-state estimate
+    in webers (flux.h: |H| |psi_a| + R i_off / K_gain, H = (z - 1) / (z - 1 + T K_gain),
+    z = exp(j w_e T), at the lowest observer speed and the top speed) below psi_base and the
+    inductances below 8 L_base; with the ratio estimate / psi_base of the shift found and of
+    the shift below."""
+    import cmath
+    t = 1 / md["f_pwm"]
+    psi_a = md["psi_f"] + abs(md["ld"] - md["lq"]) * md["i_max"]
+    est = 0.0
+    for rpm in (md["low_rpm"], md["top_rpm"]):
+        z = cmath.exp(1j * rpm * md["n_p"] * 2 * math.pi / 60 * t)
+        est = max(est, abs((z - 1) / (z - 1 + t * md["k_gain"])) * psi_a
+                  + md["r"] * md["i_off"] / md["k_gain"])
+    w_base = 2 * math.pi * md["f_base"]
+    l_max = max(md["ld"], md["lq"], md["ld_hs"], md["lq_hs"])
+    for s in range(5):
+        psi_base = 2 ** s * md["v_base"] / w_base
+        if est < psi_base and l_max < 8 * psi_base / md["i_base"]:
+            below = est / (psi_base / 2) if s else None
+            return s, est / psi_base, below
+    return None, None, None
+
+
+def table_fields(name):
+    """{dotted field name: value} of a committed table."""
+    text = (REPO / "tables" / f"{name}_params.c").read_text()
+    out, stack = {}, []
+    import re
+    for line in text.splitlines():
+        m = re.match(r"\s*\.(\w+) = \{", line)
+        if m:
+            stack.append(m.group(1))
+            continue
+        if re.match(r"\s*\},?\s*$", line) and stack:
+            stack.pop()
+            continue
+        m = re.match(r"\s*\.(\w+) = (\(int16_t\))?(-?(?:0x[0-9A-Fa-f]+|\d+))u?[,\s]", line)
+        if m:
+            out[".".join(stack + [m.group(1)])] = int(m.group(3), 0)
+    return out
+
+
+# REQ-TUNE-002: the derived flux-base shift of every committed table is the smallest
+# that holds the flux, computed here in webers; each ratio is away from the boundary, so
+# that the tool's quantised arithmetic cannot decide otherwise.  The traction machine at
+# its real bus sensor (1000 V) needs s = 3, the 800 V e-compressor s = 1.
+@pytest.mark.parametrize("name, motor, overrides", manifest())
+def test_derived_shift_of_manifest_tables(name, motor, overrides):
+    md = motor_data(motor, overrides)
+    s, ratio, below = expected_shift(md)
+    assert s is not None and ratio < 0.95 and (below is None or below > 1.05)
+    assert table_fields(name)["drive.psi_shift"] == s
+    assert {"reference": 0, "reference16k": 0, "lowflux": 0, "traction350": 3,
+            "ecomp800": 1}.get(name, s) == s
+    # the table's flux is psi_f / (2^s V_base / w_base)
+    psi_base = 2 ** s * md["v_base"] / (2 * math.pi * md["f_base"])
+    assert table_fields(name)["psi_f"] == round(md["psi_f"] / psi_base * 32768)
+    assert table_fields(name)["lq"] == round(md["lq"] / (psi_base / md["i_base"]) * 4096)
+
+
+# REQ-TUNE-002: a speed times a flux is a voltage of 2^s V_base: w_pu psi_f,pu 2^s V_base
+# is the back-EMF w_e psi_f in volts, whatever the shift (the decoupling, the flying start's
+# back-EMF and the flux check rely on it).
+@pytest.mark.parametrize("name, motor", [("traction350", SECOND), ("ecomp800", ECOMP),
+                                         ("reference", REFERENCE)])
+def test_speed_times_flux_is_volts(name, motor):
+    md = motor_data(motor)
+    f = table_fields(name)
+    s = f["drive.psi_shift"]
+    v_base = f["v_base_mv"] / 1000
+    for w_raw in (f["speed_max"], f["drive.of_speed"], 16384):
+        w_pu, psi_pu = w_raw / 32768, f["psi_f"] / 32768
+        volts = w_pu * psi_pu * 2 ** s * v_base
+        w_e = w_pu * 2 * math.pi * f["f_base_mhz"] / 1000
+        assert volts == pytest.approx(w_e * md["psi_f"], rel=1e-3)
+    # the same without the factor 2^s would be wrong by it (s > 0 on these two machines)
+    if name != "reference":
+        assert s > 0
+
+
+# REQ-TUNE-002, REQ-TUNE-003: the flux observer in the flux unit: g = T w_base / 2^s and
+# kg = K_gain 2^s / w_base, so g 2^s = T w_base and kg / 2^s = K_gain / w_base within the
+# rounding of the stored mantissas; g kg = T K_gain whatever s.
+@pytest.mark.parametrize("name, motor", [("traction350", SECOND), ("ecomp800", ECOMP),
+                                         ("reference", REFERENCE)])
+def test_observer_gain_and_kg_in_flux_base(name, motor):
+    md = motor_data(motor)
+    f = table_fields(name)
+    s = f["drive.psi_shift"]
+    t = 1 / md["f_pwm"]
+    w_base = 2 * math.pi * md["f_base"]
+    g = f["flux.gain"] / 2 ** (15 + f["flux.gain_shift"])
+    kg = f["flux.kg"] / 32768
+    assert abs(g * 2 ** s - t * w_base) <= 0.5 / 2 ** (15 + f["flux.gain_shift"]) * 2 ** s
+    assert abs(kg / 2 ** s - md["k_gain"] / w_base) <= 0.5 / 32768 / 2 ** s
+    assert g * kg == pytest.approx(t * md["k_gain"], rel=1e-3)
+    # r = R / Z_base does not depend on s; l = L_q / L_base with L_base = psi_base / I_base
+    assert f["flux.r"] == round(md["r"] / (md["v_base"] / md["i_base"]) * 32768)
+    l_base = 2 ** s * md["v_base"] / w_base / md["i_base"]
+    assert f["flux.l"] == round(md["lq"] / l_base * 4096)
+
+
+# REQ-TUNE-002: scaling.psi_shift sets the shift: the derived value gives the same values,
+# a larger one scales every flux and inductance by 1 / 2^s and the observer's g and kg.
+def test_psi_shift_override(tmp_path):
+    assert run(tmp_path, SECOND, "--set", "scaling.psi_shift=3") == 0
+    assert c_values((tmp_path / "tables" / "traction350_params.c").read_text()) == \
+        c_values((REPO / "tables" / "traction350_params.c").read_text())
+    d = drive_of(tmp_path / "ref", REFERENCE, "--set", "scaling.psi_shift=2")
+    assert d["psi_shift"] == 2
+    psi_base = 4 * 500 / (2 * math.pi * 500)
+    assert d["flux_tol"] == round(0.5 * 0.065 / psi_base * 32768)
+    assert d["ld_hs"] == round(2.6e-3 / (psi_base / 40) * 4096)
+
+
+# REQ-TUNE-004: a shift too small for the machine fails with the bound it breaks: the
+# traction machine's active flux 0.24 + 1.5e-3 x 330 = 0.735 Wb is above 2^2 x 1000 / 6283
+# = 0.637 Wb (s = 2), and its psi_f 0.24 Wb above 1000 / 6283 = 0.159 Wb (s = 0).
+@pytest.mark.parametrize("shift, bounds", [
+    (2, ["flux estimate at lowest observer speed", "flux estimate at highest speed"]),
+    (0, ["flux estimate at highest speed", "flux base: psi_f", "flux base: lq"]),
+])
+def test_psi_shift_too_small_fails(tmp_path, capsys, shift, bounds):
+    md = motor_data(SECOND)
+    psi_base = 2 ** shift * md["v_base"] / (2 * math.pi * md["f_base"])
+    assert md["psi_f"] + (md["lq"] - md["ld"]) * md["i_max"] > psi_base
+    assert run(tmp_path, SECOND, "--set", f"scaling.psi_shift={shift}") == 1
+    err = capsys.readouterr().err
+    for name in bounds:
+        assert f"bound violated: {name} (" in err
+    assert not (tmp_path / "tables").exists()
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert "Status: **FAILED**" in report
+    # the e-compressor at s = 0: 0.098 + 4e-3 x 40 = 0.258 Wb > 1100 / (2 pi 750) = 0.233 Wb
+    assert run(tmp_path / "e", ECOMP, "--set", "scaling.psi_shift=0") == 1
+    assert "bound violated: flux estimate at highest speed (" in capsys.readouterr().err
+
+
+# REQ-TUNE-002: a machine whose flux does not fit even s = 4 is refused (exit code 1,
+# nothing written), naming its active flux and the largest flux base.  The simple motor with
+# f_base = 1000 Hz and psi_f = 0.3 Wb: 16 x 100 V / (2 pi 1000 Hz) = 0.2546 Wb < 0.3 Wb.
+def test_flux_beyond_largest_base_refused(tmp_path, capsys):
+    path = tmp_path / "strong.toml"
+    path.write_text(SIMPLE_MOTOR.replace("f_base_hz = 100.0", "f_base_hz = 1000.0")
+                    .replace("psi_f_wb = 0.05", "psi_f_wb = 0.3"))
+    rc = qt.main([str(path), "--out-dir", str(tmp_path / "out"), "--table-dir",
+                  str(tmp_path / "tables"), "--no-plots"])
+    err = capsys.readouterr().err
+    assert rc == 1
+    psi_base_max = 16 * 100 / (2 * math.pi * 1000)
+    assert psi_base_max < 0.3
+    assert "the machine's flux does not fit even the largest flux base" in err
+    assert "= 0.3 Wb against psi_shift 4" in err                  # L_d = L_q: psi_a = psi_f
+    assert f"psi_base = 2^4 V_base / w_base = 16 x 100 / {2 * math.pi * 1000:.6g} = " \
+           f"{psi_base_max:.6g} Wb" in err
+    assert "refused, no table written" in err
+    assert not (tmp_path / "tables").exists() and not (tmp_path / "out").exists()
+    # one step below: psi_f = 0.2 Wb fits s = 4 (0.2546 Wb), not s = 3 (0.1273 Wb)
+    path.write_text(path.read_text().replace("psi_f_wb = 0.3", "psi_f_wb = 0.2"))
+    cfg = qt.load_config(path, [])
+    assert qt.make_bases(cfg).psi_shift == 4
+
+
+# REQ-TUNE-002: the observer's high-pass gain kg = K_gain psi_base / V_base grows with the
+# shift; a flux that needs s = 3 with K_gain = 1000 rad/s (kg = 8 x 1000 / 6283 = 1.27) is
+# refused naming kg.
+def test_kg_beyond_one_refused(tmp_path, capsys):
+    rc = run(tmp_path, SECOND, "--set", "design.kg_rad_s=1000")
+    err = capsys.readouterr().err
+    assert rc == 1
+    assert "no flux base holds this machine: the flux needs scaling.psi_shift >= 3" in err
+    assert f"= {8 * 1000 / (2 * math.pi * 1000):.6g} pu is not below 1 pu" in err
