@@ -143,8 +143,43 @@ static qfoc_q15_t drv_li(int16_t l, qfoc_q15_t i)
 */
 static int32_t drv_psi_k(uint8_t s)
 {
-    const uint8_t e = (s < QFOC_DRIVE_PSI_SHIFT_MAX) ? s : QFOC_DRIVE_PSI_SHIFT_MAX;
-    return (int32_t)((uint32_t)1u << e);
+    int32_t k = 16;
+    if (s == 0u) {
+        k = 1;
+    } else if (s == 1u) {
+        k = 2;
+    } else if (s == 2u) {
+        k = 4;
+    } else if (s == 3u) {
+        k = 8;
+    } else {
+        /* 4 and above: the largest flux base */
+    }
+    return k;
+}
+
+/* A voltage (Q15 of V_base) in the flux base's units over a speed: v / 2^s rounded up
+   (a band built from it is never narrower than the voltage's). */
+/*@
+  requires v: v <= 65533;
+  assigns \nothing;
+  ensures range: \result <= v;
+*/
+static uint32_t drv_v_flux(uint32_t v, uint8_t s)
+{
+    uint32_t r = (v + 15u) / 16u;
+    if (s == 0u) {
+        r = v;
+    } else if (s == 1u) {
+        r = (v + 1u) / 2u;
+    } else if (s == 2u) {
+        r = (v + 3u) / 4u;
+    } else if (s == 3u) {
+        r = (v + 7u) / 8u;
+    } else {
+        /* 4 and above: the largest flux base */
+    }
+    return r;
 }
 
 /* A speed (Q15 of w_base) times a flux (Q15 of psi_base) as a voltage, Q15 of V_base:
@@ -164,19 +199,40 @@ static qfoc_q15_t drv_emf(qfoc_q15_t w, qfoc_q15_t psi, int32_t k)
 /* The flux observer's phase lead at the filtered speed (flux.h qfoc_flux_lead).  In the
    flux base 2^s V_base / w_base the observer's parameters are g / 2^s and kg 2^s (the
    recursion's decay g kg per sample is the same), so its high-pass corner in per unit of
-   w_base is kg / 2^s: the lead is that of an observer with this corner, rounded. */
+   w_base is kg / 2^s, rounded to nearest: the lead is that of an observer with this corner
+   (it depends on the corner and the speed alone; the other fields of the observer given
+   to qfoc_flux_lead are 0). */
 /*@
   requires valid: \valid_read(f) && \valid_read(p);
-  requires flux: FluxValid(&f->flux);
+  requires kg: 0 <= f->flux.params.kg <= 32767;
   assigns \nothing;
 */
 static qfoc_angle_t drv_lead(const qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
 {
-    qfoc_flux_t o = f->flux;
-    const int32_t k = drv_psi_k(p->drive.psi_shift);
-    const int32_t kg = ((int32_t)o.params.kg + (k / 2)) / k;
-    /*@ assert kg: 0 <= kg <= 32767; */
-    o.params.kg = (qfoc_q15_t)kg;
+    const uint8_t s = p->drive.psi_shift;
+    const int32_t kg = (int32_t)f->flux.params.kg;
+    int32_t c = (kg + 8) / 16;
+    qfoc_flux_t o;
+    if (s == 0u) {
+        c = kg;
+    } else if (s == 1u) {
+        c = (kg + 1) / 2;
+    } else if (s == 2u) {
+        c = (kg + 2) / 4;
+    } else if (s == 3u) {
+        c = (kg + 4) / 8;
+    } else {
+        /* 4 and above: the largest flux base */
+    }
+    o.params.gain = 0;
+    o.params.gain_shift = 0u;
+    o.params.r = 0;
+    o.params.l = 0;
+    o.params.kg = (qfoc_q15_t)c;
+    o.psi_alpha = 0;
+    o.psi_beta = 0;
+    o.i_prev.alpha = 0;
+    o.i_prev.beta = 0;
     return qfoc_flux_lead(&o, f->speed_f);
 }
 
@@ -847,13 +903,10 @@ static bool drv_flux_out(const qfoc_param_table_t *p, const qfoc_drive_fast_t *f
     const uint32_t rr = ((uint32_t)(int32_t)qfoc_q15_abs(c->flux_r_err) *
                          (uint32_t)(int32_t)qfoc_q15_abs(p->flux.r)) / 32768u;
     const uint32_t v = (uint32_t)(int32_t)qfoc_q15_abs(c->flux_v_err) + ((rr * i) / 32768u);
-    const uint32_t ks = (uint32_t)drv_psi_k(c->psi_shift);
     /*@ assert k: k <= 32766; */
     /*@ assert v: v <= 65533; */
-    /* the voltage in the flux base: v / 2^s rounded up (the band never narrower) */
-    const uint32_t vs = (v + ks - 1u) / ks;
-    /*@ assert vs: vs <= v; */
-    return qfoc_fault_band_over(dev, (qfoc_q15_t)k, (int32_t)vs, f->speed_f);
+    return qfoc_fault_band_over(dev, (qfoc_q15_t)k, (int32_t)drv_v_flux(v, c->psi_shift),
+                                f->speed_f);
 }
 
 /* ALIGN without current (REQ-DRV-025): the last command's voltage beyond twice what the
