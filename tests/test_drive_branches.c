@@ -2098,6 +2098,45 @@ static void test_req_drv_023_flux_plausibility_flux_base(void **state)
     print_message("flux band at 3000: %d in the base s = 0, %d in s = 2\n", (int)b0, (int)b2);
     assert_true(b2 < b0);
     flux_plausibility_on(&t);
+    {
+        /* every other base (a shift above 4, in a RAM copy changed after the start, reads
+           as 4 until the re-check refuses the table): at the band no STALL, one count
+           beyond it STALL in the second tick */
+        static const uint8_t shifts[5] = { 1u, 3u, 4u, 5u, 255u };
+        int n;
+        for (n = 0; n < 5; n++) {
+            rig_t base;
+            rig_t x;
+            int32_t band;
+            long k;
+            t = qfoc_params_reference;
+            t.drive.psi_shift = (shifts[n] <= 4u) ? shifts[n] : 4u;
+            table_seal(&t);
+            rig_closed_loop(&base, &t, deg_counts(-30.0));
+            base.d.f.i_dq.d = 0;
+            base.rpm = 3000u;
+            for (k = 0; (k < 5000) && ((base.d.s.speed_ref != base.d.s.speed_target) ||
+                                       (base.d.s.sm.t_sub < 200u)); k++) {
+                emu_closed_tick(&base, 0, 0);
+            }
+            base.table.drive.psi_shift = shifts[n];
+            band = flux_band_at(&base, base.d.s.speed_ref, psi_expected(&base));
+            rig_clone(&x, &base);
+            for (k = 0; k < 3; k++) {
+                emu_closed_tick(&x, 0, band);
+                assert_int_equal(x.d.s.sm.faults & QFOC_FAULT_STALL, 0u);
+            }
+            rig_clone(&x, &base);
+            for (k = 1; k <= 10; k++) {
+                emu_closed_tick(&x, 0, band + 1);
+                if (st(&x) == QFOC_STATE_ERROR) {
+                    break;
+                }
+            }
+            assert_int_equal(k, 2);
+            assert_int_equal(x.d.s.sm.faults & QFOC_FAULT_STALL, QFOC_FAULT_STALL);
+        }
+    }
 }
 
 int main(void)

@@ -1,0 +1,256 @@
+/**
+ * @file qfoc_drive_mon.c
+ * @brief The drive's tick-evaluated monitors (drive.h, REQ-DRV-008, REQ-DRV-023,
+ *        REQ-DRV-025): the bus and temperature thresholds, the fast step's new
+ *        over-current trips, stall and the flux plausibility check, phase loss and ALIGN
+ *        without current, the table's last check.  The tick (qfoc_drive.c) calls
+ *        qfoc_drive_mon_tick() once a millisecond, before the state machine.
+ */
+#include "qfoc/drive.h"
+#include "qfoc/q15.h"
+#include "qfoc/vector.h"
+#include "qfoc_drive_mon.h"
+
+/* public interface of the unit (qfoc_drive_mon.h) */
+qfoc_q15_t qfoc_drive_li(int16_t l, qfoc_q15_t i)
+{
+    return qfoc_q15_sat(((int32_t)l * (int32_t)i) / 4096);
+}
+
+/* Tick-evaluated faults of the bus and the temperatures, and the fast step's new trips
+   (fault.h; reaction times in drive.h, REQ-DRV-008). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
+  requires sep: \separated(&d->s, d->p) && \separated(&d->s, in);
+  assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.trip_seen;
+  ensures bits: \result <= QFOC_FAULT_OC + QFOC_FAULT_OV + QFOC_FAULT_UV +
+                           QFOC_FAULT_OT_IPM + QFOC_FAULT_OT_PCB;
+*/
+static uint16_t drv_faults_power(qfoc_drive_t *d, const qfoc_tick_in_t *in)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const bool run = (s->sm.state == QFOC_STATE_RUN);
+    const uint8_t trips = f->trip_count;
+    uint16_t w = 0u;
+
+    /* over-current, detected by the fast step */
+    if (trips != s->trip_seen) {
+        w = (uint16_t)(w + QFOC_FAULT_OC);
+        s->trip_seen = trips;
+    } else {
+        /* no new trip */
+    }
+    if (qfoc_debounce_step(&s->db_ov, qfoc_fault_over(f->vdc, p->vdc_ov), c->vdc_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_OV);
+    } else {
+        /* bus not high */
+    }
+    if (qfoc_debounce_step(&s->db_uv, run && qfoc_fault_under(f->vdc, p->vdc_uv), c->vdc_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_UV);
+    } else {
+        /* bus not low while running */
+    }
+    if (qfoc_debounce_step(&s->db_ot_ipm, qfoc_fault_over(in->t_ipm, c->t_ipm_max), c->temp_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_OT_IPM);
+    } else {
+        /* IPM cool */
+    }
+    if (qfoc_debounce_step(&s->db_ot_pcb, qfoc_fault_over(in->t_pcb, c->t_pcb_max), c->temp_ms)) {
+        w = (uint16_t)(w + QFOC_FAULT_OT_PCB);
+    } else {
+        /* PCB cool */
+    }
+    return w;
+}
+
+/* The fast flux plausibility check (REQ-DRV-023): the ticks of CLOSED_LOOP before it
+   applies (the handover's transient), and the ticks in a row outside the band that raise
+   STALL (the band: drv_flux_band).  The speed gate is 1.5 times the handover speed
+   of_speed.  The ALIGN check (REQ-DRV-025) raises PHASE after the same ticks in a row. */
+#define DRV_FLUX_BLANK_MS 100u
+#define DRV_FLUX_TICKS ((uint16_t)2u)
+
+/* A voltage (Q15 of V_base) in the flux base's units over a speed: v / 2^s rounded up
+   (a band built from it is never narrower than the voltage's). */
+/*@
+  requires v: v <= 65533;
+  assigns \nothing;
+  ensures range: \result <= v;
+*/
+static uint32_t drv_v_flux(uint32_t v, uint8_t s)
+{
+    uint32_t r = (v + 15u) / 16u;
+    if (s == 0u) {
+        r = v;
+    } else if (s == 1u) {
+        r = (v + 1u) / 2u;
+    } else if (s == 2u) {
+        r = (v + 3u) / 4u;
+    } else if (s == 3u) {
+        r = (v + 7u) / 8u;
+    } else {
+        /* 4 and above: the largest flux base */
+    }
+    return r;
+}
+
+/* The fast flux check's band (REQ-DRV-023), from the estimator's error model: outside it
+   when dev > flux_band psi_exp + (flux_v_err + flux_r_err R |i|) / (2^s |w|) (the magnet's
+   temperature and the inductances; the dead-time voltage the compensation misses and the
+   winding's resistance error over the speed, a voltage over a speed: a flux of 2^s times
+   the table's flux base), with k = floor(flux_band psi_exp / 32768) and
+   v = ceil((flux_v_err + floor(floor(flux_r_err R / 32768) |i| / 32768)) / 2^s):
+   qfoc_fault_band_over. */
+/*@
+  requires valid: \valid_read(p) && \valid_read(f);
+  assigns \nothing;
+*/
+static bool drv_flux_out(const qfoc_param_table_t *p, const qfoc_drive_fast_t *f,
+                         qfoc_q15_t psi_exp, qfoc_q15_t dev)
+{
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const uint32_t pe = (uint32_t)(int32_t)qfoc_q15_abs(psi_exp);
+    const uint32_t fb = (uint32_t)(int32_t)qfoc_q15_abs(c->flux_band);
+    const uint32_t k = (pe * fb) / 32768u;
+    const uint32_t i = (uint32_t)(int32_t)qfoc_vec_mag(f->i_dq.d, f->i_dq.q);
+    const uint32_t rr = ((uint32_t)(int32_t)qfoc_q15_abs(c->flux_r_err) *
+                         (uint32_t)(int32_t)qfoc_q15_abs(p->flux.r)) / 32768u;
+    const uint32_t v = (uint32_t)(int32_t)qfoc_q15_abs(c->flux_v_err) + ((rr * i) / 32768u);
+    /*@ assert k: k <= 32766; */
+    /*@ assert v: v <= 65533; */
+    return qfoc_fault_band_over(dev, (qfoc_q15_t)k, (int32_t)drv_v_flux(v, c->psi_shift),
+                                f->speed_f);
+}
+
+/* ALIGN without current (REQ-DRV-025): the last command's voltage beyond twice what the
+   d reference needs, 2 (R |id_ref| + flux_v_err) (the resistance drop and the dead-time
+   voltage the compensation may miss), while the largest filtered phase current (the phase
+   monitor's) is below a quarter of the reference: both current sensors dead, or a broken
+   connection, with the d PI driving the voltage up against a current it does not see. */
+/*@
+  requires valid: \valid_read(p) && \valid_read(f);
+  requires inv: DRV_PHASE(&f->phase);
+  assigns \nothing;
+*/
+static bool drv_align_open(const qfoc_param_table_t *p, const qfoc_drive_fast_t *f,
+                           qfoc_q15_t id_ref)
+{
+    const uint32_t ir = (uint32_t)(int32_t)qfoc_q15_abs(id_ref);
+    const uint32_t vr = ((uint32_t)(int32_t)qfoc_q15_abs(p->flux.r) * ir) / 32768u;
+    const uint32_t ve = (uint32_t)(int32_t)qfoc_q15_abs(p->drive.flux_v_err);
+    const uint32_t need = 2u * (vr + ve);
+    const uint32_t u = (uint32_t)(int32_t)qfoc_vec_mag(f->u_last.alpha, f->u_last.beta);
+    const uint32_t i = (uint32_t)(int32_t)qfoc_phase_mon_peak(&f->phase);
+    return (u > need) && ((i * 4u) < ir);
+}
+
+/* Tick-evaluated faults of the motor and the table: stall and flux plausibility, phase
+   loss, table re-check (fault.h; reaction times in drive.h, REQ-DRV-008, REQ-DRV-010,
+   REQ-DRV-023). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  requires inv: DRV_PHASE(&d->f.phase);
+  assigns d->s.db_stall, d->s.db_flux, d->s.db_phase, d->s.db_align;
+  ensures bits: \result <= QFOC_FAULT_STALL + QFOC_FAULT_PHASE + QFOC_FAULT_PARAM;
+*/
+static uint16_t drv_faults_motor(qfoc_drive_t *d)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const uint8_t st = s->sm.state;
+    const uint8_t sub = s->sm.sub;
+    const bool run = (st == QFOC_STATE_RUN);
+    const bool rotating = run && (sub != QFOC_SUB_ALIGN);
+    const bool closed = run && ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
+    const bool imbalanced = qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, c->phase_ratio);
+    /* ALIGN after its current ramp (the first half of align_ms), and OPEN_LOOP: the drive
+       imposes |i_align| or |i_start|, so the current must reach the sensors (REQ-DRV-018) */
+    const bool aligned = run && (sub == QFOC_SUB_ALIGN) &&
+                         ((uint32_t)s->sm.t_sub >= ((uint32_t)c->align_ms / 2u));
+    const bool open_loop = run && (sub == QFOC_SUB_OPEN_LOOP);
+    const int32_t i_imposed = aligned ? (int32_t)qfoc_q15_abs(c->i_align)
+                                      : (int32_t)qfoc_q15_abs(c->i_start);
+    /* at the alignment angle a healthy machine gives min / max = 1/2 >= ratio / 2 */
+    const qfoc_q15_t half_ratio = (qfoc_q15_t)(c->phase_ratio / 2);
+    const bool align_imbalanced = aligned &&
+                                  qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, half_ratio);
+    const bool no_current = (aligned || open_loop) &&
+                            (((int32_t)qfoc_phase_mon_peak(&f->phase) * 4) < i_imposed);
+    uint16_t w = 0u;
+    bool stall;
+    bool implausible;
+
+    /* stall / loss of synchronisation: speed error or flux magnitude off its expectation
+       psi_f + (L_d - L_q) i_d (the active flux the observer estimates); and the fast flux
+       plausibility check (REQ-DRV-023): in steady CLOSED_LOOP, the flux magnitude off its
+       expectation by more than DRV_FLUX_BAND_NUM / DRV_FLUX_BAND_DEN of it */
+    {
+        const qfoc_q15_t e_speed = qfoc_q15_sub(s->speed_ref, f->speed_f);
+        const qfoc_q15_t psi_exp = qfoc_q15_add(p->psi_f,
+                                                qfoc_drive_li((int16_t)qfoc_q15_sat((int32_t)p->ld - (int32_t)p->lq),
+                                                       f->i_dq.d));
+        const qfoc_q15_t e_psi = qfoc_q15_sub(f->psi_mag, psi_exp);
+        const bool bad_speed = qfoc_fault_abs_over(e_speed, c->stall_err);
+        const bool bad_flux = qfoc_fault_abs_over(e_psi, c->flux_tol);
+        const int32_t dev = (int32_t)qfoc_q15_abs(e_psi);
+        const bool steady = run && (sub == QFOC_SUB_CLOSED_LOOP) &&
+                            ((uint32_t)s->sm.t_sub >= DRV_FLUX_BLANK_MS) &&
+                            (((int32_t)qfoc_q15_abs(f->speed_f) * 2) >
+                             ((int32_t)qfoc_q15_abs(c->of_speed) * 3));
+        /* the rotor lost: in CLOSED_LOOP after the blank, the estimate below a quarter of
+           the handover speed and of the reference (far below where the observer's angle is
+           used at start-up); a seized compressor's estimate falls there within
+           milliseconds, before the lost angle unsettles the current loops */
+        const int32_t w2 = (int32_t)qfoc_q15_abs(f->speed_f) * 4;
+        const bool lost = run && (sub == QFOC_SUB_CLOSED_LOOP) &&
+                          ((uint32_t)s->sm.t_sub >= DRV_FLUX_BLANK_MS) &&
+                          (w2 < (int32_t)qfoc_q15_abs(c->of_speed)) &&
+                          (w2 < (int32_t)qfoc_q15_abs(s->speed_ref));
+        stall = closed && (bad_speed || bad_flux);
+        implausible = lost || (steady && (psi_exp > 0) &&
+                               drv_flux_out(p, f, psi_exp, (qfoc_q15_t)dev));
+    }
+    {
+        const bool slow = qfoc_debounce_step(&s->db_stall, stall, c->stall_ms);
+        const bool fast = qfoc_debounce_step(&s->db_flux, implausible, DRV_FLUX_TICKS);
+        if (slow || fast) {
+            w = (uint16_t)(w + QFOC_FAULT_STALL);
+        } else {
+            /* synchronised, the flux plausible */
+        }
+    }
+    {
+        const bool open_align = run && (sub == QFOC_SUB_ALIGN) && drv_align_open(p, f, s->id_ref);
+        const bool slow = qfoc_debounce_step(&s->db_phase,
+                                             (rotating && imbalanced) || align_imbalanced ||
+                                             no_current, c->phase_ms);
+        const bool fast = qfoc_debounce_step(&s->db_align, open_align, DRV_FLUX_TICKS);
+        if (slow || fast) {
+            w = (uint16_t)(w + QFOC_FAULT_PHASE);
+        } else {
+            /* balanced, the current where the voltage drives it */
+        }
+    }
+    if (!s->table_ok) {
+        w = (uint16_t)(w + QFOC_FAULT_PARAM);
+    } else {
+        /* table intact */
+    }
+    return w;
+}
+
+
+/* public interface of the unit (qfoc_drive_mon.h) */
+uint16_t qfoc_drive_mon_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
+{
+    const uint16_t w_power = drv_faults_power(d, in);
+    const uint16_t w_motor = drv_faults_motor(d);
+
+    return (uint16_t)(w_power + w_motor);
+}

@@ -1,0 +1,36 @@
+/**
+ * @file qfoc_drive_mon.h
+ * @brief Internal interface between the drive (qfoc_drive.c) and its tick-evaluated
+ *        monitors (qfoc_drive_mon.c); not part of the public API.
+ *
+ * Requirements: REQ-DRV-008, REQ-DRV-023, REQ-DRV-025.
+ */
+#ifndef QFOC_DRIVE_MON_H
+#define QFOC_DRIVE_MON_H
+
+#include "qfoc/drive.h"
+#include "qfoc/q15.h"
+
+/**
+ * @brief An inductance times a current: L (Q12 of L_base) x i (Q15 of I_base) -> Q15 flux
+ *        of psi_base, saturated (the drive's decoupling and bumpless transfer, the
+ *        monitors' expected flux).
+ */
+/*@
+  assigns \nothing;
+  ensures range: -32767 <= \result <= 32767;
+*/
+qfoc_q15_t qfoc_drive_li(int16_t l, qfoc_q15_t i);
+
+/**
+ * @brief The faults of one tick (fault.h; reaction times in drive.h, REQ-DRV-008): the
+ *        bus, the temperatures and the fast step's new trips, then stall, flux
+ *        plausibility, phase loss and the table check, each through its debounce.
+ * @param[in,out] d  the drive (its debounce counts and the trips seen are updated)
+ * @param[in]     in the tick's inputs (temperatures)
+ * @return the fault bits raised in this tick (OFFSET and TIMING are the drive's own)
+ */
+
+uint16_t qfoc_drive_mon_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
+
+#endif /* QFOC_DRIVE_MON_H */
