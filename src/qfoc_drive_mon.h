@@ -30,7 +30,14 @@ qfoc_q15_t qfoc_drive_li(int16_t l, qfoc_q15_t i);
  * @param[in]     in the tick's inputs (temperatures)
  * @return the fault bits raised in this tick (OFFSET and TIMING are the drive's own)
  */
-
+/*@
+  requires valid: \valid(d) && \valid_read(d->p) && \valid_read(in);
+  requires sep: \separated(&d->s, d->p) && \separated(&d->s, in);
+  requires inv: DRV_PHASE(&d->f.phase);
+  assigns d->s.db_ov, d->s.db_uv, d->s.db_ot_ipm, d->s.db_ot_pcb, d->s.db_stall, d->s.db_flux,
+          d->s.db_phase, d->s.db_align, d->s.trip_seen;
+  ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET - QFOC_FAULT_TIMING;
+*/
 uint16_t qfoc_drive_mon_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
 
 #endif /* QFOC_DRIVE_MON_H */
