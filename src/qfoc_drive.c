@@ -631,9 +631,10 @@ static void drv_off(qfoc_drive_fast_t *f)
 */
 static void drv_run_period(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
 {
-    if (!d->f.active || ((sub == QFOC_SUB_ALIGN) && (d->f.sub_last != QFOC_SUB_ALIGN))) {
-        /* RUN entered, or ALIGN after CATCH found the rotor standing: ALIGN starts from
-           the state of a RUN entry (REQ-DRV-027) */
+    if (!d->f.active || ((sub == QFOC_SUB_ALIGN) && (d->f.sub_last != QFOC_SUB_ALIGN)) ||
+        ((sub == QFOC_SUB_CATCH) && (d->f.sub_last != QFOC_SUB_CATCH))) {
+        /* RUN entered, ALIGN after CATCH found the rotor standing, or CATCH again for a
+           start retry: from the state of a RUN entry (REQ-DRV-027, REQ-SM-011) */
         drv_fast_restart(&d->f, d->p);
     } else {
         /* running on */
@@ -875,6 +876,29 @@ static bool drv_converged(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
                               p->drive.ho_dwell_ms);
 }
 
+/* The I/f start current of a start (REQ-SM-011): |i_start| raised by a quarter of itself
+   per retry taken, at most |i_max|. */
+/*@
+  requires valid: \valid_read(p);
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+*/
+static qfoc_q15_t drv_start_current(const qfoc_param_table_t *p, uint8_t retry)
+{
+    const int32_t i0 = (int32_t)qfoc_q15_abs(p->drive.i_start);
+    const int32_t im = (int32_t)qfoc_q15_abs(p->i_max);
+    const int32_t i = i0 + ((i0 * (int32_t)retry) / 4);
+    qfoc_q15_t r = (qfoc_q15_t)i0;
+    if (i <= im) {
+        r = (qfoc_q15_t)i;
+    } else if (i0 <= im) {
+        r = (qfoc_q15_t)im;
+    } else {
+        /* i_start above i_max (a table the check refuses): i_start */
+    }
+    return r;
+}
+
 /* Bumpless transfer (REQ-DRV-006): the q current that gives, with i_d = 0, the torque
    the rotor produces at the end of OPEN_LOOP.  The I/f current i lies on the q axis of
    the open-loop frame, delta = theta_ol - theta_est ahead of the rotor: in the rotor frame
@@ -941,8 +965,10 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
     } else {
         /* no clear */
     }
-    if ((st != QFOC_STATE_RUN) || (old_state != QFOC_STATE_RUN)) {
-        /* entering or leaving RUN (or not running): everything from zero */
+    if ((st != QFOC_STATE_RUN) || (old_state != QFOC_STATE_RUN) ||
+        ((sub == QFOC_SUB_CATCH) && (old_sub != QFOC_SUB_CATCH))) {
+        /* entering or leaving RUN (or not running), or a start retried through CATCH
+           (REQ-SM-011): everything from zero */
         s->speed_ref = 0;
         s->ol_speed = 0;
         s->id_ref = 0;
@@ -982,7 +1008,7 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
             /* ALIGN ended before its half-current hold: nothing learnt */
         }
         s->id_ref = 0;
-        s->iq_ref = qfoc_q15_abs(p->drive.i_start);
+        s->iq_ref = drv_start_current(p, s->sm.retry);
     } else if ((sub == QFOC_SUB_CLOSED_LOOP) && (old_sub == QFOC_SUB_CATCH)) {
         /* a coasting rotor caught (REQ-DRV-027): the speed reference from its measured
            speed, within [0, speed_max]; no torque acted in CATCH, so the speed PI starts
@@ -1825,6 +1851,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->sm_cfg.ol_timeout_ms = c->ol_timeout_ms;
     s->sm_cfg.cl_hold_ms = c->cl_hold_ms;
     s->sm_cfg.clear_ms = c->clear_ms;
+    s->sm_cfg.retries = c->ho_retries;
     s->sm_in.faults = 0u;
     s->sm_in.bus_ok = false;
     s->sm_in.calib_done = false;

@@ -78,7 +78,8 @@ static bool qfoc_drive_cfg_feat_ok(const qfoc_drive_cfg_t *c)
     return ctrl && ids;
 }
 
-/* MTPA speed, derating windows, the flux check's error model, the flux base (REQ-DCFG-005); a window's
+/* MTPA speed, derating windows, the flux check's error model, the flux base, the start
+   retries (REQ-DCFG-005); a window's
    start below its trip temperature bounds it above by QFOC_DRIVE_TEMP_MAX */
 /*@ requires valid_c: \valid_read(c);
     assigns \nothing;
@@ -90,7 +91,8 @@ static bool qfoc_drive_cfg_derate_ok(const qfoc_drive_cfg_t *c)
                         && (c->t_pcb_derate < c->t_pcb_max)
                         && (c->rpm_derate >= c->rpm_min) && (c->rpm_derate <= c->rpm_max);
     const bool model = (c->mtpa_speed >= 0) && (c->flux_band >= 1) && (c->flux_v_err >= 0)
-                       && (c->flux_r_err >= 0) && (c->psi_shift <= QFOC_DRIVE_PSI_SHIFT_MAX);
+                       && (c->flux_r_err >= 0) && (c->psi_shift <= QFOC_DRIVE_PSI_SHIFT_MAX)
+                       && (c->ho_retries <= QFOC_DRIVE_HO_RETRIES_MAX);
     return window && model;
 }
 

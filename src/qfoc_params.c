@@ -221,7 +221,7 @@ static uint32_t qfoc_crc_drive_feat(uint32_t crc, const qfoc_drive_cfg_t *d)
     return qfoc_crc_2x16(c, d->can_id_a, d->can_id_b);
 }
 
-/* drive configuration, versions 3 and 4: mtpa_speed .. flux_r_err, psi_shift */
+/* drive configuration, versions 3 and 4: mtpa_speed .. flux_r_err, psi_shift, ho_retries */
 /*@ requires valid_d: \valid_read(d);
     assigns \nothing; */
 static uint32_t qfoc_crc_drive_v3(uint32_t crc, const qfoc_drive_cfg_t *d)
@@ -230,7 +230,8 @@ static uint32_t qfoc_crc_drive_v3(uint32_t crc, const qfoc_drive_cfg_t *d)
     c = qfoc_crc_2x16(c, qfoc_bits16(d->t_pcb_derate), d->rpm_derate);
     c = qfoc_crc_2x16(c, qfoc_bits16(d->flux_band), qfoc_bits16(d->flux_v_err));
     c = qfoc_crc_u16(c, qfoc_bits16(d->flux_r_err));
-    return qfoc_crc_u8(c, d->psi_shift);
+    c = qfoc_crc_u8(c, d->psi_shift);
+    return qfoc_crc_u8(c, d->ho_retries);
 }
 
 /* public interface, also called by qfoc_params_check (DEV-002) */

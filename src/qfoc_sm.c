@@ -69,6 +69,7 @@ void qfoc_sm_init(qfoc_sm_t *sm)
     sm->first_fault = 0u;
     sm->t_state = 0u;
     sm->t_sub = 0u;
+    sm->retry = 0u;
 }
 
 /*@
@@ -192,10 +193,10 @@ static void sm_precharge_rule(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfo
   requires valid: \valid(sm) && \valid_read(in);
   requires sep: \separated(sm, in);
   requires inv: SmValid(sm) && sm->state == QFOC_STATE_STOP;
-  assigns sm->state, sm->sub, sm->t_state, sm->t_sub;
+  assigns sm->state, sm->sub, sm->t_state, sm->t_sub, sm->retry;
   ensures inv: SmValid(sm);
   ensures run_entry: sm->state == QFOC_STATE_RUN ==>
-      in->run_request && sm->sub == QFOC_SUB_CATCH && sm->t_state == 0;
+      in->run_request && sm->sub == QFOC_SUB_CATCH && sm->t_state == 0 && sm->retry == 0;
   ensures where: sm->state == QFOC_STATE_STOP || sm->state == QFOC_STATE_RUN ||
       (sm->state == QFOC_STATE_PRECHARGE && sm->sub == QFOC_SUB_BUS_WAIT);
   ensures not_running: sm->sub != QFOC_SUB_CLOSED_LOOP;
@@ -206,6 +207,7 @@ static void sm_stop_rule(qfoc_sm_t *sm, const qfoc_sm_in_t *in)
         sm_enter(sm, QFOC_STATE_PRECHARGE, QFOC_SUB_BUS_WAIT);
     } else if (in->run_request) {
         sm_enter(sm, QFOC_STATE_RUN, QFOC_SUB_CATCH);
+        sm->retry = 0u;
     } else {
         /* ready */
     }
@@ -215,7 +217,9 @@ static void sm_stop_rule(qfoc_sm_t *sm, const qfoc_sm_in_t *in)
   requires valid: \valid(sm) && \valid_read(cfg) && \valid_read(in);
   requires sep: \separated(sm, cfg, in);
   requires inv: SmValid(sm) && sm->state == QFOC_STATE_RUN;
-  assigns sm->state, sm->sub, sm->t_state, sm->t_sub;
+  requires no_stall: sm->sub == QFOC_SUB_OPEN_LOOP && sm->t_sub >= cfg->ol_timeout_ms ==>
+      sm->retry < cfg->retries;
+  assigns sm->state, sm->sub, sm->t_state, sm->t_sub, sm->retry;
   ensures inv: SmValid(sm);
   ensures where: sm->state == QFOC_STATE_RUN || sm->state == QFOC_STATE_STOP;
   ensures to_stop: sm->state == QFOC_STATE_STOP ==> sm->t_state == 0 &&
@@ -237,7 +241,12 @@ static void sm_stop_rule(qfoc_sm_t *sm, const qfoc_sm_in_t *in)
       \old(sm->sub) == QFOC_SUB_ALIGN ||
       (\old(sm->sub) == QFOC_SUB_CATCH && in->catch_still && !in->catch_lock);
   ensures catch_origin: sm->state == QFOC_STATE_RUN && sm->sub == QFOC_SUB_CATCH ==>
-      \old(sm->sub) == QFOC_SUB_CATCH;
+      \old(sm->sub) == QFOC_SUB_CATCH || \old(sm->sub) == QFOC_SUB_OPEN_LOOP;
+  ensures retry: \old(sm->sub) == QFOC_SUB_OPEN_LOOP && sm->sub == QFOC_SUB_CATCH ==>
+      \old(sm->t_sub) >= cfg->ol_timeout_ms && \old(sm->retry) < cfg->retries &&
+      sm->retry == \old(sm->retry) + 1 && sm->t_sub == 0;
+  ensures retry_kept: !(\old(sm->sub) == QFOC_SUB_OPEN_LOOP && sm->sub == QFOC_SUB_CATCH) ==>
+      sm->retry == \old(sm->retry);
   ensures time: sm->state == QFOC_STATE_RUN && \old(sm->sub) != QFOC_SUB_CATCH ==>
       sm->t_state == \old(sm->t_state);
   ensures align_time: sm->sub == QFOC_SUB_ALIGN && \old(sm->sub) == QFOC_SUB_CATCH ==>
@@ -270,6 +279,12 @@ static void sm_run_rule(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_i
             sm_enter(sm, QFOC_STATE_STOP, QFOC_SUB_NONE);
         } else if (in->converged && (sm->t_state >= cfg->cl_hold_ms)) {
             sm_enter_sub(sm, QFOC_SUB_CLOSED_LOOP);
+        } else if (sm->t_sub >= cfg->ol_timeout_ms) {
+            /* no handover in ol_timeout_ms with a retry left (sm_faults raises STALL on
+               the last): the rotor goes through CATCH again (coasting down, or standing
+               for a new ALIGN) and the next I/f start (REQ-SM-011) */
+            sm_enter_sub(sm, QFOC_SUB_CATCH);
+            sm->retry = (uint8_t)(sm->retry + 1u);
         } else {
             /* accelerating, waiting for the observer */
         }
@@ -317,6 +332,9 @@ static uint16_t sm_set_bit(uint16_t w, uint16_t bit)
   ensures bits: \result <= QFOC_SM_FAULT_ALL;
   ensures drive: SmMask(in->faults) <= \result;
   ensures none: \result == 0 ==> SmMask(in->faults) == 0;
+  ensures retry_left: \result == 0 && sm->state == QFOC_STATE_RUN &&
+      sm->sub == QFOC_SUB_OPEN_LOOP && sm->t_sub >= cfg->ol_timeout_ms ==>
+      sm->retry < cfg->retries;
 */
 static uint16_t sm_faults(const qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_in_t *in)
 {
@@ -328,7 +346,9 @@ static uint16_t sm_faults(const qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const q
                         (sm->sub == QFOC_SUB_CATCH));
     const bool stopped = (sm->state == QFOC_STATE_RUN) && (sm->sub == QFOC_SUB_STOPPING) &&
                          in->stop_reached;
-    if (open_loop && (sm->t_sub >= cfg->ol_timeout_ms)) {
+    /* CATCH without a verdict, or OPEN_LOOP without a handover and no retry left */
+    if (open_loop && (sm->t_sub >= cfg->ol_timeout_ms) &&
+        ((sm->sub == QFOC_SUB_CATCH) || (sm->retry >= cfg->retries))) {
         f = sm_set_bit(f, QFOC_SM_FAULT_STALL);
     } else {
         /* no open-loop timeout */

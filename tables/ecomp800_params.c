@@ -136,7 +136,8 @@ const qfoc_param_table_t qfoc_params_ecomp800 = {
         .flux_band = 9830, /* 0.3 = 0.3 (drive.flux_band, default); stored 0.299988, error -0.00 % */
         .flux_v_err = 819, /* 0.0250018 = 27.502 V / V_base 1100 V (drive.flux_v_err_v, default); stored 0.0249939, error -0.03 % */
         .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
-        .psi_shift = 1u /* flux base psi_base = 2^1 V_base / w_base = 0.466854 Wb, L_base = psi_base / I_base = 5.83568 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.258 Wb = 0.5526 pu) */
+        .psi_shift = 1u, /* flux base psi_base = 2^1 V_base / w_base = 0.466854 Wb, L_base = psi_base / I_base = 5.83568 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.258 Wb = 0.5526 pu) */
+        .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
     },
-    .crc = 0x42180544u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x4DFF132Du /* CRC-32/ISO-HDLC of every field above */
 };

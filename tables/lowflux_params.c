@@ -136,7 +136,8 @@ const qfoc_param_table_t qfoc_params_lowflux = {
         .flux_band = 9830, /* 0.3 = 0.3 (drive.flux_band, default); stored 0.299988, error -0.00 % */
         .flux_v_err = 701, /* 0.0213904 = 10.6952 V / V_base 500 V (drive.flux_v_err_v, default); stored 0.0213928, error +0.01 % */
         .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
-        .psi_shift = 0u /* flux base psi_base = 2^0 V_base / w_base = 0.132629 Wb, L_base = psi_base / I_base = 5.30516 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.063 Wb = 0.475 pu) */
+        .psi_shift = 0u, /* flux base psi_base = 2^0 V_base / w_base = 0.132629 Wb, L_base = psi_base / I_base = 5.30516 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.063 Wb = 0.475 pu) */
+        .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
     },
-    .crc = 0xC22CB79Fu /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x5C7E2CC3u /* CRC-32/ISO-HDLC of every field above */
 };

@@ -137,7 +137,8 @@ const qfoc_param_table_t qfoc_params_reference16k = {
         .flux_band = 9830, /* 0.3 = 0.3 (drive.flux_band, default); stored 0.299988, error -0.00 % */
         .flux_v_err = 561, /* 0.0171123 = 8.55617 V / V_base 500 V (drive.flux_v_err_v, default); stored 0.0171204, error +0.05 % */
         .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
-        .psi_shift = 0u /* flux base psi_base = 2^0 V_base / w_base = 0.159155 Wb, L_base = psi_base / I_base = 3.97887 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.097 Wb = 0.6095 pu) */
+        .psi_shift = 0u, /* flux base psi_base = 2^0 V_base / w_base = 0.159155 Wb, L_base = psi_base / I_base = 3.97887 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.097 Wb = 0.6095 pu) */
+        .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
     },
-    .crc = 0x78AE7119u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x581F8810u /* CRC-32/ISO-HDLC of every field above */
 };

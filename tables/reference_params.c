@@ -136,7 +136,8 @@ const qfoc_param_table_t qfoc_params_reference = {
         .flux_band = 9830, /* 0.3 = 0.3 (drive.flux_band, default); stored 0.299988, error -0.00 % */
         .flux_v_err = 280, /* 0.00855617 = 4.27808 V / V_base 500 V (drive.flux_v_err_v, default); stored 0.00854492, error -0.13 % */
         .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
-        .psi_shift = 0u /* flux base psi_base = 2^0 V_base / w_base = 0.159155 Wb, L_base = psi_base / I_base = 3.97887 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.097 Wb = 0.6095 pu) */
+        .psi_shift = 0u, /* flux base psi_base = 2^0 V_base / w_base = 0.159155 Wb, L_base = psi_base / I_base = 3.97887 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.097 Wb = 0.6095 pu) */
+        .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
     },
-    .crc = 0x77580058u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x59CB0F67u /* CRC-32/ISO-HDLC of every field above */
 };

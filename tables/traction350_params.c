@@ -136,7 +136,8 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .flux_band = 9830, /* 0.3 = 0.3 (drive.flux_band, default); stored 0.299988, error -0.00 % */
         .flux_v_err = 501, /* 0.0152789 = 15.2789 V / V_base 1000 V (drive.flux_v_err_v, default); stored 0.0152893, error +0.07 % */
         .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
-        .psi_shift = 3u /* flux base psi_base = 2^3 V_base / w_base = 1.27324 Wb, L_base = psi_base / I_base = 2.12207 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.735 Wb = 0.5773 pu) */
+        .psi_shift = 3u, /* flux base psi_base = 2^3 V_base / w_base = 1.27324 Wb, L_base = psi_base / I_base = 2.12207 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.735 Wb = 0.5773 pu) */
+        .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
     },
-    .crc = 0x0603834Bu /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0xDD04153Au /* CRC-32/ISO-HDLC of every field above */
 };

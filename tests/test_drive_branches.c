@@ -345,6 +345,63 @@ static void test_req_drv_006_lead_flux_base(void **state)
     }
 }
 
+/* REQ-SM-011, REQ-DRV-006: the start retries on the drive.  An observer that never agrees
+   with the open-loop frame (120 degrees off it) never hands over: each OPEN_LOOP lasts
+   exactly ol_timeout_ms, then the drive goes back to CATCH (references and current loops
+   from zero, as at a RUN entry), ALIGN and a new open loop whose start current is |i_start|
+   raised by a quarter per retry, at most i_max; after 1 + ho_retries open loops, STALL. */
+static void test_req_sm_011_drive_start_retries(void **state)
+{
+    rig_t r;
+    long k;
+    long t_ol = -1;
+    int starts = 0;
+    uint8_t last = QFOC_SUB_NONE;
+    const int32_t i0 = qfoc_params_reference.drive.i_start;
+    const int32_t im = qfoc_params_reference.i_max;
+    const int n = 1 + (int)qfoc_params_reference.drive.ho_retries;
+    (void)state;
+    assert_int_equal(qfoc_params_reference.drive.ho_retries, 2);
+    rig_init(&r);
+    rig_to_stop(&r);
+    r.power_on = true;
+    for (k = 0; (k < 40000) && (st(&r) != QFOC_STATE_ERROR); k++) {
+        /* one fast step a millisecond (it restarts its state on the way back to CATCH:
+           the PWM stays on and the current loops start from zero) */
+        rig_fast(&r);
+        if ((sub(&r) == QFOC_SUB_CATCH) && (last == QFOC_SUB_CATCH)) {
+            assert_int_equal(r.d.f.pi_iq.integ, 0);
+        }
+        emu_est(&r, (int32_t)r.d.s.ol_speed, psi_ok(&r.table), deg_counts(120.0));
+        rig_tick(&r, true);
+        if ((st(&r) == QFOC_STATE_RUN) && (sub(&r) != last)) {
+            if (sub(&r) == QFOC_SUB_OPEN_LOOP) {
+                const int32_t want = (i0 + (i0 * starts) / 4 < im) ? i0 + (i0 * starts) / 4 : im;
+                assert_int_equal(r.d.s.iq_ref, want);
+                assert_int_equal(r.d.s.sm.retry, starts);
+                starts++;
+                t_ol = 0;
+            } else if (sub(&r) == QFOC_SUB_CATCH && last == QFOC_SUB_OPEN_LOOP) {
+                /* the retry: after exactly ol_timeout_ms, from zero */
+                assert_int_equal(t_ol, (long)qfoc_params_reference.drive.ol_timeout_ms - 1);
+                assert_int_equal(r.d.s.iq_ref, 0);
+                assert_int_equal(r.d.s.id_ref, 0);
+                assert_int_equal(r.d.s.speed_ref, 0);
+                assert_int_equal(r.d.s.ol_speed, 0);
+            }
+            last = sub(&r);
+        } else if (last == QFOC_SUB_OPEN_LOOP) {
+            t_ol++;
+        }
+        assert_true(sub(&r) != QFOC_SUB_CLOSED_LOOP);
+    }
+    print_message("start retries: %d open loops, then faults 0x%04x\n", starts,
+                  (unsigned)r.d.s.sm.faults);
+    assert_int_equal(starts, n);
+    assert_int_equal(st(&r), QFOC_STATE_ERROR);
+    assert_int_equal(r.d.s.sm.faults, QFOC_FAULT_STALL);
+}
+
 /* REQ-DRV-006, REQ-DRV-010: the open-loop frame advances ol_speed x k_theta per PWM
    period (2^32 per turn) and the output angle leads by 1.5 periods at that rate; the
    drive bounds k_theta to the PLL's range 1 .. 32767 itself, so a table whose k_theta
@@ -2148,6 +2205,7 @@ int main(void)
         cmocka_unit_test(test_req_drv_006_k_theta_above_q15_bounded),
         cmocka_unit_test(test_req_drv_006_decoupling_flux_base),
         cmocka_unit_test(test_req_drv_006_lead_flux_base),
+        cmocka_unit_test(test_req_sm_011_drive_start_retries),
         cmocka_unit_test(test_req_drv_006_align_ramp),
         cmocka_unit_test(test_req_drv_006_handover_conditions),
         cmocka_unit_test(test_req_drv_006_bumpless_transfer),

@@ -87,6 +87,7 @@ static const fdesc_t fields[] = {
     FD(flux_v_err, T_I16, 0, 32767),
     FD(flux_r_err, T_I16, 0, 32767),
     FD(psi_shift, T_U8, 0, 4),
+    FD(ho_retries, T_U8, 0, 3),
 };
 #define NFIELDS (sizeof fields / sizeof fields[0])
 

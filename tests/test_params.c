@@ -130,6 +130,7 @@ static void put_drive(ser_t *s, const qfoc_drive_cfg_t *d)
     put(s, (uint16_t)d->flux_v_err, 2);
     put(s, (uint16_t)d->flux_r_err, 2);
     put(s, d->psi_shift, 1);
+    put(s, d->ho_retries, 1);
 }
 
 /* params.h: every field before crc, declaration order, little-endian, own width */
@@ -172,7 +173,7 @@ static uint32_t table_crc_ref(const qfoc_param_table_t *t)
     put(&s, (uint16_t)t->vdc_ov, 2);
     put(&s, (uint16_t)t->v_max, 2);
     put_drive(&s, &t->drive);
-    assert_int_equal(s.n, 214u);   /* params.h: 115 bytes up to v_max, 99 of drive */
+    assert_int_equal(s.n, 215u);   /* params.h: 115 bytes up to v_max, 100 of drive */
     return crc_ref(s.b, s.n);
 }
 
@@ -280,7 +281,7 @@ static const tfield_t tfields[] = {
     TF(drive.tc_speed_max), TF(drive.para_speed), TF(drive.ld_hs), TF(drive.lq_hs),
     TF(drive.lin_id_cmd), TF(drive.lin_id_status), TF(drive.can_id_a), TF(drive.can_id_b),
     TF(drive.mtpa_speed), TF(drive.t_ipm_derate), TF(drive.t_pcb_derate), TF(drive.rpm_derate),
-    TF(drive.flux_band), TF(drive.flux_v_err), TF(drive.flux_r_err), TF(drive.psi_shift),
+    TF(drive.flux_band), TF(drive.flux_v_err), TF(drive.flux_r_err), TF(drive.psi_shift), TF(drive.ho_retries),
     TF(crc),
 };
 #define NTFIELDS (sizeof tfields / sizeof tfields[0])
@@ -320,7 +321,7 @@ static void test_par_002_bit_flips_refused(void **state)
             flips++;
         }
     }
-    assert_int_equal(bytes, 214u);   /* the list covers the whole serialisation */
+    assert_int_equal(bytes, 215u);   /* the list covers the whole serialisation */
     print_message("params: %u single-bit flips over %u fields refused\n", (unsigned)flips,
                   (unsigned)NTFIELDS);
 }

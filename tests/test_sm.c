@@ -14,7 +14,9 @@
 #include "test_util.h"
 #include "qfoc/sm.h"
 
-static const qfoc_sm_cfg_t cfg = { 200u, 300u, 2000u, 2000u, 5000u };
+static const qfoc_sm_cfg_t cfg = { 200u, 300u, 2000u, 2000u, 5000u, 0u };
+/* the same times with two start retries (REQ-SM-011) */
+static const qfoc_sm_cfg_t cfg_retry = { 200u, 300u, 2000u, 2000u, 5000u, 2u };
 
 static qfoc_sm_in_t quiet(void)
 {
@@ -537,11 +539,17 @@ static void test_sm_010_catch(void **state)
 
 /* REQ-SM-009: random sequences against an independent model of the rules. */
 typedef struct {
-    int st, sub, faults, t_state, t_sub;
+    int st, sub, faults, t_state, t_sub, retry;
 } model_t;
+
+/* the times the model and the machine share in the random run: two retries, and an
+   open-loop timeout short enough for a start to run out of them many times */
+static const qfoc_sm_cfg_t cfg_rand = { 200u, 300u, 600u, 500u, 5000u, 2u };
+static const qfoc_sm_cfg_t *mcfg = &cfg_rand;
 
 static void model_step(model_t *m, const qfoc_sm_in_t *in)
 {
+    const qfoc_sm_cfg_t cfg = *mcfg;
     const int f_in = in->faults & 0x7FF;
     int f = f_in;
     m->t_state = (m->t_state < 65535) ? m->t_state + 1 : 65535;
@@ -555,8 +563,10 @@ static void model_step(model_t *m, const qfoc_sm_in_t *in)
         }
         return;
     }
-    /* STALL: OPEN_LOOP without a handover, or CATCH without a verdict, for ol_timeout_ms */
-    if (m->st == 2 && (m->sub == 4 || m->sub == 7) && m->t_sub >= (int)cfg.ol_timeout_ms) {
+    /* STALL: OPEN_LOOP without a handover and no retry left, or CATCH without a verdict,
+       for ol_timeout_ms */
+    if (m->st == 2 && m->t_sub >= (int)cfg.ol_timeout_ms &&
+        ((m->sub == 4 && m->retry >= (int)cfg.retries) || m->sub == 7)) {
         f |= 0x20;
     }
     /* LINK: lost before the closed loop (CATCH, ALIGN, OPEN_LOOP), or a lost-link stop done */
@@ -586,6 +596,7 @@ static void model_step(model_t *m, const qfoc_sm_in_t *in)
             GO(0, 1);
         } else if (in->run_request) {
             GO(2, 7);                        /* every start looks for a turning rotor */
+            m->retry = 0;
         }
         break;
     default:
@@ -608,6 +619,9 @@ static void model_step(model_t *m, const qfoc_sm_in_t *in)
                 GO(1, 0);
             } else if (in->converged && m->t_state >= (int)cfg.cl_hold_ms) {
                 GOSUB(5);
+            } else if (m->t_sub >= (int)cfg.ol_timeout_ms) {
+                GOSUB(7);                    /* a retry: CATCH again, t_state runs on */
+                m->retry++;
             }
         } else if (m->sub == 5) {
             if (!in->run_request) {
@@ -637,7 +651,7 @@ static void test_sm_009_random_against_model(void **state)
 {
     qfoc_sm_t sm;
     qfoc_sm_in_t in;
-    model_t m = { 0, 1, 0, 0, 0 };
+    model_t m = { 0, 1, 0, 0, 0, 0 };
     long k;
     long visits[8] = { 0 };
     long caught = 0;
@@ -646,6 +660,9 @@ static void test_sm_009_random_against_model(void **state)
     long catch_link = 0;
     bool still_spell = false;
     bool lock_spell = false;
+    bool stuck_spell = false;
+    long retries = 0;
+    long ol_stall = 0;
     (void)state;
     qfoc_sm_init(&sm);
     in = quiet();
@@ -656,6 +673,8 @@ static void test_sm_009_random_against_model(void **state)
         const qfoc_sm_t old = sm;
         still_spell = (flip == 10u || flip == 11u) ? !still_spell : still_spell;
         lock_spell = (flip == 12u) ? !lock_spell : lock_spell;
+        /* spells without convergence, for OPEN_LOOP's timeout, its retries and its STALL */
+        stuck_spell = (flip == 13u) ? !stuck_spell : stuck_spell;
         in.catch_still = still_spell && ((c % 4u) != 0u);
         in.catch_lock = lock_spell && (((c >> 2) % 8u) == 0u);
         /* persistent conditions that change now and then, rare faults */
@@ -663,22 +682,28 @@ static void test_sm_009_random_against_model(void **state)
         in.bus_ok = (flip == 0u) ? !in.bus_ok : (in.bus_ok || ((r % 50u) == 0u));
         in.calib_done = (flip == 1u) ? !in.calib_done : (in.calib_done || ((r % 300u) == 0u));
         /* the run request held longer in CATCH, for its timeout to be reached */
-        in.run_request = (flip < ((sm.sub == QFOC_SUB_CATCH) ? 1u : 8u)) ? !in.run_request
-                                                                         : in.run_request;
+        in.run_request = (flip < (((sm.sub == QFOC_SUB_CATCH) || stuck_spell) ? 1u : 8u))
+                             ? !in.run_request : in.run_request;
         in.link_lost = (flip == 9u) ? !in.link_lost : (in.link_lost && ((r % 100u) != 0u));
         in.fault_clear = ((r >> 3) & 0x1u) != 0u;
         in.table_ok = ((r >> 4) & 0x3Fu) != 0u;
-        in.converged = ((r >> 10) & 0x3u) != 0u;
+        in.converged = !stuck_spell && (((r >> 10) & 0x3u) != 0u);
         in.stop_reached = ((r >> 12) & 0x3FFu) == 0u;
-        qfoc_sm_step(&sm, &cfg, &in);
+        qfoc_sm_step(&sm, mcfg, &in);
         model_step(&m, &in);
         assert_int_equal(sm.state, m.st);
         assert_int_equal(sm.sub, m.sub);
         assert_int_equal(sm.faults, m.faults);
         assert_int_equal(sm.t_state, m.t_state);
         assert_int_equal(sm.t_sub, m.t_sub);
+        assert_int_equal(sm.retry, m.retry);
         assert_true(qfoc_sm_is_valid(&sm));
         visits[sm.sub]++;
+        if (old.state == QFOC_STATE_RUN && old.sub == QFOC_SUB_OPEN_LOOP) {
+            retries += (sm.sub == QFOC_SUB_CATCH) ? 1 : 0;
+            ol_stall += (sm.state == QFOC_STATE_ERROR &&
+                         (sm.faults & QFOC_SM_FAULT_STALL) != 0u) ? 1 : 0;
+        }
         if (old.state == QFOC_STATE_RUN && old.sub == QFOC_SUB_CATCH) {
             caught += (sm.sub == QFOC_SUB_CLOSED_LOOP) ? 1 : 0;
             standing += (sm.sub == QFOC_SUB_ALIGN) ? 1 : 0;
@@ -691,8 +716,10 @@ static void test_sm_009_random_against_model(void **state)
     print_message("sub-state visits: none %ld wait %ld calib %ld align %ld ol %ld cl %ld "
                   "stopping %ld catch %ld\n", visits[0], visits[1], visits[2], visits[3],
                   visits[4], visits[5], visits[6], visits[7]);
-    print_message("out of CATCH: caught %ld standing %ld stall %ld link %ld\n",
-                  caught, standing, catch_stall, catch_link);
+    print_message("out of CATCH: caught %ld standing %ld stall %ld link %ld; out of OPEN_LOOP: "
+                  "retries %ld stall %ld\n", caught, standing, catch_stall, catch_link,
+                  retries, ol_stall);
+    assert_true(retries > 20 && ol_stall > 5);
     for (k = 0; k < 8; k++) {
         assert_true(visits[k] > 1000);
     }
@@ -700,6 +727,82 @@ static void test_sm_009_random_against_model(void **state)
     assert_true(standing > 100);
     assert_true(catch_stall > 10);
     assert_true(catch_link > 10);
+}
+
+/* REQ-SM-011: the start retries, with two (cfg_retry): an OPEN_LOOP without a handover for
+   ol_timeout_ms goes to CATCH (the retry counted, t_sub restarted, t_state running on), a
+   standing rotor to ALIGN and OPEN_LOOP again; the third timeout is STALL, in exactly the
+   tick ol_timeout_ms after the last OPEN_LOOP entry.  A handover on a retry keeps the
+   count; a new RUN entry starts it at 0.  Without retries (cfg) the first timeout is
+   STALL (test_sm_008). */
+static void step_r(qfoc_sm_t *sm, const qfoc_sm_in_t *in, int n)
+{
+    int k;
+    for (k = 0; k < n; k++) {
+        qfoc_sm_step(sm, &cfg_retry, in);
+    }
+}
+
+static void test_sm_011_start_retries(void **state)
+{
+    qfoc_sm_t sm;
+    qfoc_sm_in_t in;
+    int r;
+    (void)state;
+    to_catch(&sm, &in);
+    in.catch_still = true;
+    for (r = 0; r <= 2; r++) {
+        uint16_t t_state;
+        step_r(&sm, &in, 1);                          /* CATCH: standing */
+        assert_int_equal(sm.sub, QFOC_SUB_ALIGN);
+        assert_int_equal(sm.t_state, 0);
+        step_r(&sm, &in, 300);
+        assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
+        step_r(&sm, &in, 1999);                       /* t_sub 1999: no timeout yet */
+        assert_int_equal(sm.state, QFOC_STATE_RUN);
+        assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
+        assert_int_equal(sm.retry, r);
+        t_state = sm.t_state;
+        step_r(&sm, &in, 1);
+        if (r < 2) {
+            assert_int_equal(sm.state, QFOC_STATE_RUN);
+            assert_int_equal(sm.sub, QFOC_SUB_CATCH);
+            assert_int_equal(sm.retry, r + 1);
+            assert_int_equal(sm.t_sub, 0);
+            assert_int_equal(sm.t_state, t_state + 1);
+            assert_int_equal(sm.faults, 0u);
+        } else {
+            assert_int_equal(sm.state, QFOC_STATE_ERROR);
+            assert_int_equal(sm.faults, QFOC_SM_FAULT_STALL);
+        }
+    }
+    /* a handover on the first retry keeps the count; the next RUN entry starts at 0 */
+    to_catch(&sm, &in);
+    in.catch_still = true;
+    step_r(&sm, &in, 301 + 2000);
+    assert_int_equal(sm.sub, QFOC_SUB_CATCH);
+    assert_int_equal(sm.retry, 1);
+    step_r(&sm, &in, 301);
+    assert_int_equal(sm.sub, QFOC_SUB_OPEN_LOOP);
+    in.converged = true;
+    step_r(&sm, &in, 2000);
+    assert_int_equal(sm.sub, QFOC_SUB_CLOSED_LOOP);
+    assert_int_equal(sm.retry, 1);
+    in.run_request = false;
+    in.stop_reached = true;
+    step_r(&sm, &in, 2);
+    assert_int_equal(sm.state, QFOC_STATE_STOP);
+    in.run_request = true;
+    step_r(&sm, &in, 1);
+    assert_int_equal(sm.sub, QFOC_SUB_CATCH);
+    assert_int_equal(sm.retry, 0);
+    /* CATCH's own timeout is STALL whatever the retries left */
+    in.catch_still = false;
+    in.converged = false;
+    step_r(&sm, &in, 2000);
+    assert_int_equal(sm.state, QFOC_STATE_ERROR);
+    assert_int_equal(sm.faults, QFOC_SM_FAULT_STALL);
+    assert_true(qfoc_sm_is_valid(&sm));
 }
 
 int main(void)
@@ -715,6 +818,7 @@ int main(void)
         cmocka_unit_test(test_sm_008_own_faults),
         cmocka_unit_test(test_sm_009_random_against_model),
         cmocka_unit_test(test_sm_010_catch),
+        cmocka_unit_test(test_sm_011_start_retries),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -47,6 +47,8 @@
 #define QFOC_DRIVE_CAN_ID_MAX ((uint16_t)0x7FFu)
 /** Largest flux-base shift: psi_base = 2^psi_shift V_base / w_base, at most 16 V_base / w_base. */
 #define QFOC_DRIVE_PSI_SHIFT_MAX ((uint8_t)4u)
+/** Largest number of start retries after an open loop without a handover. */
+#define QFOC_DRIVE_HO_RETRIES_MAX ((uint8_t)3u)
 
 /** The drive configuration (params.h field `drive`). */
 typedef struct {
@@ -184,6 +186,11 @@ typedef struct {
         machine's active flux below 1 pu, so that the DC-bus scale V_base can be the bus
         sensor's own full scale (650 .. 900 V buses). */
     uint8_t psi_shift;
+    /** Start retries (version 4): an OPEN_LOOP that has not handed over after
+        ol_timeout_ms goes back through CATCH and ALIGN to a new I/f start, with the start
+        current raised by a quarter of i_start per retry (at most i_max), this many times
+        before STALL (sm.h, REQ-SM-011), 0 .. QFOC_DRIVE_HO_RETRIES_MAX. */
+    uint8_t ho_retries;
 } qfoc_drive_cfg_t;
 
 #ifdef __FRAMAC__

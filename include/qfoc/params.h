@@ -14,9 +14,10 @@
  * PLL), the motor data and limits (alpha_vdc .. v_max), the drive configuration
  * `drive` (drive_cfg.h: start-up sequence, protection, command link, features; new
  * in version 2; MTPA speed, derating and the flux check's error model appended in
- * version 3; the flux base drive.psi_shift appended in version 4), and the CRC last.
+ * version 3; the flux base drive.psi_shift and the start retries drive.ho_retries
+ * appended in version 4), and the CRC last.
  * Version 1 had no `drive` field, version 2 not the seven fields from drive.mtpa_speed
- * on and version 3 not drive.psi_shift; a table of another version is refused as
+ * on and version 3 not drive.psi_shift and drive.ho_retries; a table of another version is refused as
  * foreign (QFOC_PARAMS_ERR_ID), never read with this layout.
  * Scalings are those of specs/scaling.md: voltages Q15 of V_base, currents Q15 of
  * I_base, speeds Q15 of w_base = 2 pi f_base (electrical), fluxes Q15 of
@@ -30,8 +31,8 @@
  * integer little-endian in its own width (uint8_t 1 byte, int16_t / uint16_t 2
  * bytes, uint32_t 4 bytes).  The serialisation does not depend on the compiler's
  * structure padding, so the tool computes the same CRC in any language.  Version 4:
- * 115 bytes up to v_max, then the 52 fields of `drive` in their declaration order
- * (drive_cfg.h: 5 one-byte and 47 two-byte fields, 99 bytes): 214 bytes in all.
+ * 115 bytes up to v_max, then the 53 fields of `drive` in their declaration order
+ * (drive_cfg.h: 6 one-byte and 47 two-byte fields, 100 bytes): 215 bytes in all.
  *
  * Start-up (qfoc_params_load()): the table is checked in this order, and the
  * first failure is the status returned:

@@ -25,7 +25,12 @@
  *                                       restarts: the start is timed from ALIGN);
  *                                       else it waits;
  *                                       ALIGN: fixed angle, d-current ramp
- *                                       (formerly park); OPEN_LOOP: I/f start;
+ *                                       (formerly park); OPEN_LOOP: I/f start,
+ *                                       back to CATCH after ol_timeout_ms
+ *                                       without a handover while start retries
+ *                                       are left (cfg->retries; the count
+ *                                       `retry` is 0 at the RUN entry and the
+ *                                       state time runs on, REQ-SM-011);
  *                                       CLOSED_LOOP: sensorless speed control;
  *                                       STOPPING: speed ramp down, then STOP
  *   ERROR      NONE                     PWM off; faults latched; left only after
@@ -34,8 +39,8 @@
  * Transition rules, evaluated in this order in one step (times count whole ticks):
  *  1. The state and sub-state times advance by one tick (saturating at 65535).
  *  2. Outside ERROR, the faults of this tick are collected: the drive's (in->faults),
- *     plus STALL when OPEN_LOOP has lasted ol_timeout_ms without a handover or CATCH
- *     as long without a verdict, plus LINK
+ *     plus STALL when OPEN_LOOP has lasted ol_timeout_ms without a handover and no
+ *     start retry is left, or CATCH as long without a verdict, plus LINK
  *     when the command link is lost in CATCH, ALIGN or OPEN_LOOP, or when a stop caused by the
  *     lost link completes.  Any fault: ERROR, the fault word and the first-fault record
  *     are the faults of this tick (REQ-SM-002).
@@ -44,10 +49,11 @@
  *     the state time has reached clear_ms, the fault-clear request is present, no fault
  *     was detected in this tick, and the parameter table is intact; the fault word and
  *     the first-fault record are then cleared (formerly Faultclear, REQ-SM-003).
- *  4. Otherwise the state's own rule applies (REQ-SM-004 .. REQ-SM-008).
- * A transition sets both times to 0.
+ *  4. Otherwise the state's own rule applies (REQ-SM-004 .. REQ-SM-011).
+ * A transition sets both times to 0, but the handover (CLOSED_LOOP from OPEN_LOOP or
+ * CATCH) and a start retry (CATCH from OPEN_LOOP) keep the state time running.
  *
- * Requirements: REQ-SM-001 .. REQ-SM-010.
+ * Requirements: REQ-SM-001 .. REQ-SM-011.
  */
 #ifndef QFOC_SM_H
 #define QFOC_SM_H
@@ -84,6 +90,7 @@ typedef struct {
     uint16_t ol_timeout_ms;  /**< OPEN_LOOP without handover this long: STALL */
     uint16_t cl_hold_ms;     /**< no handover before this long after RUN entry (2 s) */
     uint16_t clear_ms;       /**< ERROR this long before a clear is accepted (5 s) */
+    uint8_t retries;         /**< OPEN_LOOP timeouts retried through CATCH before STALL */
 } qfoc_sm_cfg_t;
 
 /** What the drive evaluated in this tick. */
@@ -109,6 +116,7 @@ typedef struct {
     uint16_t first_fault; /**< faults of the tick that entered ERROR (0 outside ERROR) */
     uint16_t t_state;     /**< ticks since the state was entered, saturating */
     uint16_t t_sub;       /**< ticks since the sub-state was entered, saturating */
+    uint8_t retry;        /**< start retries taken since the RUN entry (REQ-SM-011) */
 } qfoc_sm_t;
 
 #ifdef __FRAMAC__
@@ -146,7 +154,7 @@ bool qfoc_sm_is_valid(const qfoc_sm_t *sm);
   assigns *sm;
   ensures valid: SmValid(sm);
   ensures state: sm->state == QFOC_STATE_PRECHARGE && sm->sub == QFOC_SUB_BUS_WAIT;
-  ensures clean: sm->faults == 0 && sm->t_state == 0 && sm->t_sub == 0;
+  ensures clean: sm->faults == 0 && sm->t_state == 0 && sm->t_sub == 0 && sm->retry == 0;
 */
 void qfoc_sm_init(qfoc_sm_t *sm);
 
@@ -177,8 +185,8 @@ void qfoc_sm_fail(qfoc_sm_t *sm, uint16_t faults);
  * Contract clauses: fault_to_error (REQ-SM-002); error_exit, error_latched
  * (REQ-SM-003); stop_entry (REQ-SM-004); run_entry (REQ-SM-005); to_open_loop,
  * to_closed_loop, closed_loop_origin, stopping_origin (REQ-SM-006, REQ-SM-007);
- * to_align, to_caught, catch_origin (REQ-SM-010).
- * Requirements: REQ-SM-002 .. REQ-SM-010.
+ * to_align, to_caught, catch_origin (REQ-SM-010); retry, retry_kept (REQ-SM-011).
+ * Requirements: REQ-SM-002 .. REQ-SM-011.
  */
 /*@
   requires valid: \valid(sm) && \valid_read(cfg) && \valid_read(in);
@@ -196,7 +204,8 @@ void qfoc_sm_fail(qfoc_sm_t *sm, uint16_t faults);
   ensures error_latched: \old(sm->state) == QFOC_STATE_ERROR && sm->state == QFOC_STATE_ERROR ==>
       sm->faults == \old(sm->faults) && sm->first_fault == \old(sm->first_fault);
   ensures run_entry: \old(sm->state) != QFOC_STATE_RUN && sm->state == QFOC_STATE_RUN ==>
-      \old(sm->state) == QFOC_STATE_STOP && in->run_request && sm->sub == QFOC_SUB_CATCH;
+      \old(sm->state) == QFOC_STATE_STOP && in->run_request && sm->sub == QFOC_SUB_CATCH &&
+      sm->retry == 0;
   ensures to_align: sm->sub == QFOC_SUB_ALIGN && \old(sm->sub) != QFOC_SUB_ALIGN ==>
       \old(sm->sub) == QFOC_SUB_CATCH && in->catch_still && !in->catch_lock &&
       sm->t_state == 0;
@@ -204,7 +213,16 @@ void qfoc_sm_fail(qfoc_sm_t *sm, uint16_t faults);
       in->catch_lock;
   ensures catch_origin: sm->state == QFOC_STATE_RUN && sm->sub == QFOC_SUB_CATCH ==>
       \old(sm->state) == QFOC_STATE_STOP ||
-      (\old(sm->state) == QFOC_STATE_RUN && \old(sm->sub) == QFOC_SUB_CATCH);
+      (\old(sm->state) == QFOC_STATE_RUN && \old(sm->sub) == QFOC_SUB_CATCH) ||
+      (\old(sm->state) == QFOC_STATE_RUN && \old(sm->sub) == QFOC_SUB_OPEN_LOOP);
+  ensures retry: \old(sm->state) == QFOC_STATE_RUN && \old(sm->sub) == QFOC_SUB_OPEN_LOOP &&
+      sm->sub == QFOC_SUB_CATCH ==>
+      SmTick(\old(sm->t_sub)) >= cfg->ol_timeout_ms && \old(sm->retry) < cfg->retries &&
+      sm->retry == \old(sm->retry) + 1 && sm->t_sub == 0 &&
+      sm->t_state == SmTick(\old(sm->t_state));
+  ensures retry_kept: \old(sm->state) == QFOC_STATE_RUN && sm->state == QFOC_STATE_RUN &&
+      !(\old(sm->sub) == QFOC_SUB_OPEN_LOOP && sm->sub == QFOC_SUB_CATCH) ==>
+      sm->retry == \old(sm->retry);
   ensures to_open_loop: sm->sub == QFOC_SUB_OPEN_LOOP && \old(sm->sub) != QFOC_SUB_OPEN_LOOP ==>
       \old(sm->sub) == QFOC_SUB_ALIGN && SmTick(\old(sm->t_sub)) >= cfg->align_ms;
   ensures to_closed_loop: sm->sub == QFOC_SUB_CLOSED_LOOP && \old(sm->sub) == QFOC_SUB_OPEN_LOOP ==>

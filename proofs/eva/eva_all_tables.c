@@ -110,6 +110,7 @@ static void eva_drive_cfg(qfoc_drive_cfg_t *c)
     c->flux_v_err = eva_i16;
     c->flux_r_err = eva_i16;
     c->psi_shift = eva_u8;
+    c->ho_retries = eva_u8;
 }
 
 /* the whole table, every field any value of its type */
@@ -313,7 +314,8 @@ static bool eva_cfg_derate_ok(const qfoc_drive_cfg_t *c)
            && (c->t_ipm_derate < c->t_ipm_max) && (c->t_pcb_derate >= QFOC_DRIVE_TEMP_MIN)
            && (c->t_pcb_derate < c->t_pcb_max) && (c->rpm_derate >= c->rpm_min)
            && (c->rpm_derate <= c->rpm_max) && (c->flux_band >= 1) && (c->flux_v_err >= 0)
-           && (c->flux_r_err >= 0) && (c->psi_shift <= QFOC_DRIVE_PSI_SHIFT_MAX);
+           && (c->flux_r_err >= 0) && (c->psi_shift <= QFOC_DRIVE_PSI_SHIFT_MAX)
+           && (c->ho_retries <= QFOC_DRIVE_HO_RETRIES_MAX);
 }
 
 /*@

@@ -192,7 +192,7 @@ static const fld_t drive_fields[] = {
     D(f.trip), D(f.active), D(f.hs), D(f.phase_k), D(f.i_abc.u), D(f.i_abc.v), D(f.i_abc.w),
     D(f.out.cmp), D(f.out.enable), D(f.same_u), D(f.same_v), D(f.n_fast),
     D(s.sm.state), D(s.sm.sub), D(s.sm.faults), D(s.sm.first_fault), D(s.sm.t_state),
-    D(s.sm.t_sub), F_PI(qfoc_drive_t, s.pi_speed),
+    D(s.sm.t_sub), D(s.sm.retry), F_PI(qfoc_drive_t, s.pi_speed),
     F_PI(qfoc_drive_t, s.fw.pi), F_LPF(qfoc_drive_t, s.fw.util_lpf), D(s.fw.level), D(s.fw.id_ref), D(s.tc.params.gain), D(s.tc.params.amp_max),
     D(s.tc.params.speed_min), D(s.tc.params.speed_max), D(s.tc.params.pole_pairs), D(s.tc.a),
     D(s.tc.b), D(s.link.cfg.id_cmd), D(s.link.cfg.id_status), D(s.link.cfg.rpm_max),
@@ -209,7 +209,8 @@ static const fld_t drive_fields[] = {
     D(s.status.substate), D(s.status.faults), D(s.status.speed_rpm), D(s.status.vdc_dv),
     D(s.status.current_ca), D(s.status.temp_dc), D(s.cmd.power_on), D(s.cmd.fault_clear),
     D(s.cmd.target_rpm), D(s.sm_cfg.precharge_ms), D(s.sm_cfg.align_ms), D(s.sm_cfg.ol_timeout_ms),
-    D(s.sm_cfg.cl_hold_ms), D(s.sm_cfg.clear_ms), D(s.sm_in.faults), D(s.sm_in.bus_ok),
+    D(s.sm_cfg.cl_hold_ms), D(s.sm_cfg.clear_ms), D(s.sm_cfg.retries), D(s.sm_in.faults),
+    D(s.sm_in.bus_ok),
     D(s.sm_in.calib_done), D(s.sm_in.run_request), D(s.sm_in.link_lost), D(s.sm_in.fault_clear),
     D(s.sm_in.table_ok), D(s.sm_in.converged), D(s.sm_in.stop_reached), D(s.out.tx),
     D(s.out.tx_len), D(s.out.can.id), D(s.out.can.dlc), D(s.out.can.data), D(s.out.can_send),
@@ -332,9 +333,15 @@ static void fttis(const qfoc_param_table_t *p)
     spec_ms[M_STALL] = (double)c->stall_ms + 1.0;
     snprintf(spec_text[M_STALL], sizeof spec_text[0], "stall_ms %u + 1 ms tick",
              (unsigned)c->stall_ms);
-    spec_ms[M_STALL_OL] = (double)c->align_ms + (double)c->ol_timeout_ms + 1.0;
-    snprintf(spec_text[M_STALL_OL], sizeof spec_text[0], "align_ms %u + ol_timeout_ms %u + 1 ms "
-             "tick, from the run command", (unsigned)c->align_ms, (unsigned)c->ol_timeout_ms);
+    /* each start: CATCH on the standing rotor (the filter's fall from full scale, at most
+       80 ticks, and the dwell), ALIGN and the open loop; 1 + ho_retries starts (REQ-SM-011) */
+    spec_ms[M_STALL_OL] = (1.0 + (double)c->ho_retries) *
+                          (80.0 + (double)c->ho_dwell_ms + (double)c->align_ms +
+                           (double)c->ol_timeout_ms) + 1.0;
+    snprintf(spec_text[M_STALL_OL], sizeof spec_text[0], "(1 + ho_retries %u) x (CATCH 80 + "
+             "ho_dwell_ms %u + align_ms %u + ol_timeout_ms %u) + 1 ms tick, from the run command",
+             (unsigned)c->ho_retries, (unsigned)c->ho_dwell_ms, (unsigned)c->align_ms,
+             (unsigned)c->ol_timeout_ms);
     spec_ms[M_PHASE] = (double)c->phase_ms + 1.0 + tau_ph * log(32768.0 / (double)c->phase_ratio);
     snprintf(spec_text[M_PHASE], sizeof spec_text[0], "phase_ms %u + 1 ms tick + the monitor's "
              "decay to phase_ratio (tau %.1f ms x ln(1 / %.2f))", (unsigned)c->phase_ms, tau_ph,

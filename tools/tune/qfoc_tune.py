@@ -366,6 +366,11 @@ SCHEMA: tuple = (
     _k("drive", "ol_timeout_ms", "int", "ms", (1, 60000, "[]"), 4000,
        "no handover this long after OPEN_LOOP entry: stall (the handover waits for cl_hold_ms "
        "after RUN entry)", "drive.ol_timeout_ms"),
+    _k("drive", "ho_retries", "int", "", (0, 3, "[]"), 2,
+       "start retries: an OPEN_LOOP without a handover after ol_timeout_ms goes back "
+       "through CATCH and ALIGN to a new I/f start with the start current raised by a "
+       "quarter per retry (at most i_max), this many times before STALL",
+       "drive.ho_retries"),
     _k("drive", "cl_hold_ms", "int", "ms", (0, 60000, "[]"), 2000,
        "no ramp to the target before this long after RUN entry (2 s, specs/equations.md section 8.3)",
        "drive.cl_hold_ms"),
@@ -1818,7 +1823,7 @@ DRIVE_RANGES = {
     "lin_id_cmd": (0, 0x3B), "lin_id_status": (0, 0x3B), "can_id_a": (0, 0x7FF),
     "can_id_b": (0, 0x7FF), "mtpa_speed": (0, Q15_MAX), "t_ipm_derate": (-400, 2000),
     "t_pcb_derate": (-400, 2000), "flux_band": (1, Q15_MAX), "flux_v_err": (0, Q15_MAX),
-    "flux_r_err": (0, Q15_MAX), "psi_shift": (0, PSI_SHIFT_MAX),
+    "flux_r_err": (0, Q15_MAX), "psi_shift": (0, PSI_SHIFT_MAX), "ho_retries": (0, 3),
 }
 
 
@@ -2071,6 +2076,8 @@ def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
               f"L_base = psi_base / I_base = {fmt(b.l_base * 1e3)} mH ({b.shift_src}: active "
               f"flux {fmt(active_flux_wb(cfg))} Wb = "
               f"{fmt(active_flux_wb(cfg) / b.psi_base, 4)} pu)"),
+        Field("ho_retries", "u8", int(dr["ho_retries"]),
+              f"{int(dr['ho_retries'])} start retries ({src('ho_retries')})"),
     ]
     return fields, notes
 

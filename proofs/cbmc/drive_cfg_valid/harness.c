@@ -52,7 +52,8 @@ static bool ref_valid(const qfoc_drive_cfg_t *c)
         && (c->t_pcb_derate >= -400) && (c->t_pcb_derate < c->t_pcb_max)
         && (c->rpm_derate >= c->rpm_min) && (c->rpm_derate <= c->rpm_max)
         && (c->flux_band >= 1) && (c->flux_v_err >= 0) && (c->flux_r_err >= 0)
-        && (c->psi_shift <= QFOC_DRIVE_PSI_SHIFT_MAX);
+        && (c->psi_shift <= QFOC_DRIVE_PSI_SHIFT_MAX)
+        && (c->ho_retries <= QFOC_DRIVE_HO_RETRIES_MAX);
     return speed && start && prot && feat && derate;
 }
 

@@ -1,7 +1,7 @@
 /*
  * CBMC harness: the drive state machine alone, 40 ticks from ANY valid state with
  * any times and any inputs at every tick, the flying start's verdicts (catch_lock,
- * catch_still) included (REQ-SM-001 .. REQ-SM-010).
+ * catch_still) and the start retries included (REQ-SM-001 .. REQ-SM-011).
  *
  * Asserted at every tick, against the previous state:
  *  - the invariant holds (REQ-SM-001);
@@ -17,12 +17,15 @@
  *    start is timed from ALIGN); CLOSED_LOOP from CATCH only on catch_lock, RUN's time
  *    running on (REQ-SM-010);
  *  - CATCH lasting ol_timeout_ms is STALL, a link lost in CATCH is LINK (REQ-SM-008);
+ *  - OPEN_LOOP lasting ol_timeout_ms without a handover goes to CATCH with the retry
+ *    counted while retries are left, and is STALL when none is; the count changes only
+ *    there and starts at 0 on a RUN entry (REQ-SM-011);
  *  - OPEN_LOOP only from ALIGN after align_ms; CLOSED_LOOP only from OPEN_LOOP (converged,
  *    cl_hold_ms reached), CATCH (caught) or STOPPING; STOPPING only from CLOSED_LOOP
  *    (REQ-SM-006, REQ-SM-007);
  *  - and over the whole run: a CLOSED_LOOP reached from STOP went either through CATCH
- *    straight to CLOSED_LOOP (caught), or through CATCH, ALIGN and OPEN_LOOP in that order
- *    (tracked by the harness).
+ *    straight to CLOSED_LOOP (caught), or through CATCH, ALIGN and OPEN_LOOP in that order,
+ *    a retry going back to CATCH (tracked by the harness).
  */
 #include "qfoc/sm.h"
 #include "../harness_util.h"
@@ -62,6 +65,7 @@ int main(void)
     sm.first_fault = nondet_uint16();
     sm.t_state = nondet_uint16();
     sm.t_sub = nondet_uint16();
+    sm.retry = nondet_uint8();
     __CPROVER_assume(qfoc_sm_is_valid(&sm));
     /* small times so that every timed transition is reachable within 40 ticks */
     cfg.precharge_ms = (uint16_t)(nondet_uint16() % 8u);
@@ -69,6 +73,7 @@ int main(void)
     cfg.ol_timeout_ms = (uint16_t)(nondet_uint16() % 16u);
     cfg.cl_hold_ms = (uint16_t)(nondet_uint16() % 16u);
     cfg.clear_ms = (uint16_t)(nondet_uint16() % 16u);
+    cfg.retries = (uint8_t)(nondet_uint8() % 4u);
     if (sm.state == QFOC_STATE_STOP) {
         from_stop = true;
     }
@@ -100,13 +105,39 @@ int main(void)
         }
         if ((old.state != QFOC_STATE_RUN) && (sm.state == QFOC_STATE_RUN)) {
             __CPROVER_assert(old.state == QFOC_STATE_STOP && in.run_request &&
-                             sm.sub == QFOC_SUB_CATCH && sm.t_state == 0u && sm.t_sub == 0u,
+                             sm.sub == QFOC_SUB_CATCH && sm.t_state == 0u && sm.t_sub == 0u &&
+                             sm.retry == 0u,
                              "REQ-SM-005 RUN from STOP in CATCH");
         }
         if ((sm.state == QFOC_STATE_RUN) && (sm.sub == QFOC_SUB_CATCH)) {
             __CPROVER_assert(old.state == QFOC_STATE_STOP ||
-                             (old.state == QFOC_STATE_RUN && old.sub == QFOC_SUB_CATCH),
-                             "REQ-SM-010 CATCH only from STOP or CATCH");
+                             (old.state == QFOC_STATE_RUN && old.sub == QFOC_SUB_CATCH) ||
+                             (old.state == QFOC_STATE_RUN && old.sub == QFOC_SUB_OPEN_LOOP),
+                             "REQ-SM-010 REQ-SM-011 CATCH only from STOP, CATCH or a retry");
+        }
+        if ((old.state == QFOC_STATE_RUN) && (old.sub == QFOC_SUB_OPEN_LOOP) &&
+            (sm.sub == QFOC_SUB_CATCH)) {
+            __CPROVER_assert(sm.state == QFOC_STATE_RUN && ts_old >= cfg.ol_timeout_ms &&
+                             old.retry < cfg.retries && sm.retry == old.retry + 1u &&
+                             sm.t_sub == 0u && sm.t_state == t_old && in.run_request &&
+                             f == 0u && !in.link_lost,
+                             "REQ-SM-011 a retry after ol_timeout_ms with retries left");
+        }
+        if ((old.state == QFOC_STATE_RUN) && (old.sub == QFOC_SUB_OPEN_LOOP) &&
+            (ts_old >= cfg.ol_timeout_ms) && in.run_request && (f == 0u) && !in.link_lost &&
+            !(in.converged && (t_old >= cfg.cl_hold_ms))) {
+            if (old.retry < cfg.retries) {
+                __CPROVER_assert(sm.state == QFOC_STATE_RUN && sm.sub == QFOC_SUB_CATCH,
+                                 "REQ-SM-011 OPEN_LOOP timeout with a retry left: CATCH");
+            } else {
+                __CPROVER_assert(sm.state == QFOC_STATE_ERROR &&
+                                 sm.faults == QFOC_SM_FAULT_STALL,
+                                 "REQ-SM-008 REQ-SM-011 OPEN_LOOP timeout, no retry left: STALL");
+            }
+        }
+        if ((old.state == QFOC_STATE_RUN) && (sm.state == QFOC_STATE_RUN) &&
+            !((old.sub == QFOC_SUB_OPEN_LOOP) && (sm.sub == QFOC_SUB_CATCH))) {
+            __CPROVER_assert(sm.retry == old.retry, "REQ-SM-011 the count kept");
         }
         if ((sm.sub == QFOC_SUB_ALIGN) && (old.sub != QFOC_SUB_ALIGN)) {
             __CPROVER_assert(old.state == QFOC_STATE_RUN && old.sub == QFOC_SUB_CATCH &&
@@ -159,8 +190,8 @@ int main(void)
         } else if (sm.state != QFOC_STATE_RUN) {
             from_stop = false;
             seq = 0;
-        } else if (from_stop && (sm.sub == QFOC_SUB_CATCH) && (seq <= 1)) {
-            seq = 1;
+        } else if (from_stop && (sm.sub == QFOC_SUB_CATCH) && ((seq <= 1) || (seq == 3))) {
+            seq = 1;   /* the RUN entry, or a retry after OPEN_LOOP */
         } else if (from_stop && (sm.sub == QFOC_SUB_ALIGN) && (seq == 1 || seq == 2)) {
             seq = 2;
         } else if (from_stop && (sm.sub == QFOC_SUB_OPEN_LOOP) && (seq == 2 || seq == 3)) {

@@ -173,8 +173,8 @@ def test_simple_motor_passes_and_table_compiles_layout(tmp_path):
     ds, path = simple_design(tmp_path)
     items = qt.build_table(ds.cfg, ds)
     # params.h serialisation: 4+2+2+4+4+4 + svpwm 8 + 4 PI x 10 + flux 9 + pll 18 + 10 x 2
-    # = 115, then the drive configuration (layout 4): 5 x 1 + 47 x 2 = 99 bytes
-    assert len(qt.serialise(items)) == 115 + 99
+    # = 115, then the drive configuration (layout 4): 6 x 1 + 47 x 2 = 100 bytes
+    assert len(qt.serialise(items)) == 115 + 100
     assert run(tmp_path, path) == 0
     text = (tmp_path / "tables" / "simple_params.c").read_text()
     assert "const qfoc_param_table_t qfoc_params_simple = {" in text
@@ -263,7 +263,7 @@ DRIVE_LAYOUT = [
     ("tc_speed_max", "h"), ("para_speed", "h"), ("ld_hs", "h"), ("lq_hs", "h"),
     ("lin_id_cmd", "B"), ("lin_id_status", "B"), ("can_id_a", "H"), ("can_id_b", "H"),
     ("mtpa_speed", "h"), ("t_ipm_derate", "h"), ("t_pcb_derate", "h"), ("rpm_derate", "H"),
-    ("flux_band", "h"), ("flux_v_err", "h"), ("flux_r_err", "h"), ("psi_shift", "B"),
+    ("flux_band", "h"), ("flux_v_err", "h"), ("flux_r_err", "h"), ("psi_shift", "B"), ("ho_retries", "B"),
 ]
 
 
@@ -300,7 +300,7 @@ def test_committed_crc_independent_with_drive(name):
     assert len(data) == 115
     assert head[1] == ("version", 4)
     data += b"".join(struct.pack("<" + f, v) for (_n, f), (_m, v) in zip(DRIVE_LAYOUT, drive))
-    assert len(data) == 214
+    assert len(data) == 215
     assert zlib.crc32(data) == crc
 
 
@@ -359,6 +359,16 @@ def test_drive_defaults_by_hand(tmp_path):
     # layout 4: the flux base; the active flux 0.065 + 1.6e-3 x 20 = 0.097 Wb is below
     # V_base / w_base = 0.159 Wb: s = 0
     assert d["psi_shift"] == 0
+    # the start retries: the documented default 2, and a value outside 0 .. 3 refused
+    assert d["ho_retries"] == 2
+
+
+# REQ-TUNE-001: drive.ho_retries as typed: 0 .. 3 in the table, outside refused naming the key
+def test_ho_retries_range(tmp_path):
+    assert drive_of(tmp_path / "r0", REFERENCE, "--set", "drive.ho_retries=0")["ho_retries"] == 0
+    assert drive_of(tmp_path / "r3", REFERENCE, "--set", "drive.ho_retries=3")["ho_retries"] == 3
+    for bad in ("4", "-1"):
+        assert run(tmp_path, REFERENCE, "--set", f"drive.ho_retries={bad}") != 0
 
 
 # REQ-TUNE-001, REQ-TUNE-006, REQ-PAR-006: the defaults round-trip: a motor file that
