@@ -737,7 +737,8 @@ static const sweep_t sweeps[] = {
     { C_TEMP_IN, S_RUN, K_T_IPM, 0, 0, 0.5, 0.0, "IPM 40 -> %.0f degC (limit 110)", 2, { 105.0, 110.0 } },
     { C_TEMP_IN, S_RUN, K_T_PCB, 0, 0, 0.5, 0.0, "PCB 35 -> %.0f degC (limit 100)", 2, { 95.0, 100.0 } },
     { C_STALL, S_RUN, K_SEIZE, 0, 0, 1.0, 0.0, "load %.0f x nominal", 3, { 2.0, 3.0, 5.0 } },
-    { C_LOCKED, S_STOP, K_LOCK, 0, 0, 7.0, 0.0, "rotor locked at %.0f deg", 3, { 0.0, 100.0, 220.0 } },
+    /* the three starts of a locked rotor (ho_retries 2): STALL after about 13.3 s */
+    { C_LOCKED, S_STOP, K_LOCK, 0, 0, 21.0, 0.0, "rotor locked at %.0f deg", 3, { 0.0, 100.0, 220.0 } },
     { C_OPEN_RUN, S_RUN, K_OPEN, 2, 3, 0.5, 0.0, "phase %s open at 3000 rpm", 1, { 0.0 } },
     { C_OPEN_START, S_STOP, K_OPEN, 2, 3, 0.6, 0.0, "phase %s open from the run command", 1, { 0.0 } },
     { C_OFFSET, S_COLD, K_OFFSET, 1, 2, 0.6, 0.0, "%s offset %+.0f counts at power-up", 6,
