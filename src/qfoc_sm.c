@@ -313,6 +313,7 @@ static void sm_run_rule(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_i
   requires bit: bit == QFOC_SM_FAULT_STALL || bit == QFOC_SM_FAULT_LINK;
   assigns \nothing;
   ensures bits: w <= \result <= QFOC_SM_FAULT_ALL;
+  ensures set: \result >= 1;
 */
 static uint16_t sm_set_bit(uint16_t w, uint16_t bit)
 {
