@@ -1118,7 +1118,9 @@ static void drv_run(qfoc_drive_t *d)
         const uint32_t t = (uint32_t)s->sm.t_sub;
         const qfoc_q15_t u_now = qfoc_q15_sat(d->f.pi_id.integ / 65536);
         const int32_t ia = (int32_t)qfoc_q15_abs(c->i_align);
-        const int32_t step = (half > 0) ? ((ia + half - 1) / half) : ia;
+        /* the ramp's step, ceil(ia / half), at most ia: saturated, a no-op the proof
+           needs no division bound for */
+        const qfoc_q15_t step = qfoc_q15_sat((half > 0) ? ((ia + half - 1) / half) : ia);
         const qfoc_q15_t lo = (qfoc_q15_t)(ia / 2);
         if (t == (((uint32_t)c->align_ms * 5u) / 8u)) {
             s->dt_u0 = u_now;
@@ -1130,7 +1132,7 @@ static void drv_run(qfoc_drive_t *d)
         if ((t < q3) || ((s->id_ref != lo) && (s->id_ref != (qfoc_q15_t)ia))) {
             /* the ramp and the full-current hold (also a ramp not done by three quarters,
                which only a table changed after the start can give) */
-            s->id_ref = qfoc_ramp_toward(s->id_ref, (qfoc_q15_t)ia, (qfoc_q15_t)step);
+            s->id_ref = qfoc_ramp_toward(s->id_ref, (qfoc_q15_t)ia, step);
         } else if (s->id_ref == (qfoc_q15_t)ia) {
             s->dt_u = u_now;
             s->id_ref = lo;
