@@ -877,7 +877,7 @@ static bool drv_converged(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
 }
 
 /* The I/f start current of a start (REQ-SM-011): |i_start| raised by a quarter of itself
-   per retry taken, at most |i_max|. */
+   per retry taken, at most |i_max| (which the table's check keeps at or above |i_start|). */
 /*@
   requires valid: \valid_read(p);
   assigns \nothing;
@@ -888,15 +888,7 @@ static qfoc_q15_t drv_start_current(const qfoc_param_table_t *p, uint8_t retry)
     const int32_t i0 = (int32_t)qfoc_q15_abs(p->drive.i_start);
     const int32_t im = (int32_t)qfoc_q15_abs(p->i_max);
     const int32_t i = i0 + ((i0 * (int32_t)retry) / 4);
-    qfoc_q15_t r = (qfoc_q15_t)i0;
-    if (i <= im) {
-        r = (qfoc_q15_t)i;
-    } else if (i0 <= im) {
-        r = (qfoc_q15_t)im;
-    } else {
-        /* i_start above i_max (a table the check refuses): i_start */
-    }
-    return r;
+    return (qfoc_q15_t)((i <= im) ? i : im);
 }
 
 /* Bumpless transfer (REQ-DRV-006): the q current that gives, with i_d = 0, the torque
@@ -965,10 +957,9 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
     } else {
         /* no clear */
     }
-    if ((st != QFOC_STATE_RUN) || (old_state != QFOC_STATE_RUN) ||
-        ((sub == QFOC_SUB_CATCH) && (old_sub != QFOC_SUB_CATCH))) {
-        /* entering or leaving RUN (or not running), or a start retried through CATCH
-           (REQ-SM-011): everything from zero */
+    if ((st != QFOC_STATE_RUN) || (old_state != QFOC_STATE_RUN) || (sub == QFOC_SUB_CATCH)) {
+        /* entering or leaving RUN (or not running), or a start retried through CATCH (within
+           RUN, CATCH is entered only from OPEN_LOOP, REQ-SM-011): everything from zero */
         s->speed_ref = 0;
         s->ol_speed = 0;
         s->id_ref = 0;
