@@ -641,7 +641,8 @@ static void model_step(model_t *m, const qfoc_sm_in_t *in)
 }
 
 /* REQ-SM-001, REQ-SM-002, REQ-SM-003, REQ-SM-004, REQ-SM-005, REQ-SM-006, REQ-SM-007,
-   REQ-SM-008, REQ-SM-009, REQ-SM-010: random tick sequences against the model above,
+   REQ-SM-008, REQ-SM-009, REQ-SM-010, REQ-SM-011: random tick sequences against the model
+   above (with two start retries),
    which states every rule (faults, Faultclear, PRECHARGE, STOP, the flying-start CATCH,
    start-up, stopping, the machine's own faults, times); the invariant is checked after
    every tick.  CATCH's verdicts come in spells (a rotor that stands, one that can be
@@ -729,12 +730,7 @@ static void test_sm_009_random_against_model(void **state)
     assert_true(catch_link > 10);
 }
 
-/* REQ-SM-011: the start retries, with two (cfg_retry): an OPEN_LOOP without a handover for
-   ol_timeout_ms goes to CATCH (the retry counted, t_sub restarted, t_state running on), a
-   standing rotor to ALIGN and OPEN_LOOP again; the third timeout is STALL, in exactly the
-   tick ol_timeout_ms after the last OPEN_LOOP entry.  A handover on a retry keeps the
-   count; a new RUN entry starts it at 0.  Without retries (cfg) the first timeout is
-   STALL (test_sm_008). */
+/* the machine stepped n ticks with cfg_retry */
 static void step_r(qfoc_sm_t *sm, const qfoc_sm_in_t *in, int n)
 {
     int k;
@@ -743,6 +739,12 @@ static void step_r(qfoc_sm_t *sm, const qfoc_sm_in_t *in, int n)
     }
 }
 
+/* REQ-SM-011: the start retries, with two (cfg_retry): an OPEN_LOOP without a handover for
+   ol_timeout_ms goes to CATCH (the retry counted, t_sub restarted, t_state running on), a
+   standing rotor to ALIGN and OPEN_LOOP again; the third timeout is STALL, in exactly the
+   tick ol_timeout_ms after the last OPEN_LOOP entry.  A handover on a retry keeps the
+   count; a new RUN entry starts it at 0.  Without retries (cfg) the first timeout is
+   STALL (test_sm_008). */
 static void test_sm_011_start_retries(void **state)
 {
     qfoc_sm_t sm;
