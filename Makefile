@@ -84,10 +84,12 @@ $(BUILD)/host/examples/host_plant: examples/host_plant.c $(HDRS) $(SIM_SRCS) $(S
 	$(CC) $(TEST_CFLAGS) -O2 -Isim -Itables $< $(SIM_SRCS) tables/reference_params.c \
 	    $(BUILD)/host/libqfoc.a -lm -o $@
 
-## test: CMocka unit tests against double-precision references, then the examples
+## test: CMocka unit tests against double-precision references, then the examples, then the
+##       public headers from C++ (cxx-check)
 test: deps $(TEST_BINS) $(EXAMPLE_BINS)
 	@sh tools/gates/run_tests.sh $(TEST_BINS)
 	@for e in $(EXAMPLE_BINS); do echo "==== $$e"; $$e || { echo "example $$e failed"; exit 1; }; done
+	@sh tools/gates/cxx_check.sh $(BUILD)/host/libqfoc.a
 
 # ---------------------------------------------------------------- coverage
 # Library objects built with --coverage (one -c per file, so gcc names the notes
@@ -210,8 +212,13 @@ $(BUILD)/host/qfoc_demo $(BUILD)/host/qfoc_robust $(BUILD)/host/qfoc_faults: $(B
 	$(CC) $(SIM_APP_CFLAGS) $< $(BUILD)/host/gen/tables_registry.c $(SIM_SRCS) $(TABLE_SRCS) \
 	    $(BUILD)/host/libqfoc.a -lm -o $@
 
+## deps-demo: only the demo's packages (make, gcc, python3 with numpy and matplotlib)
+.PHONY: deps-demo
+deps-demo:
+	@sh tools/setup/deps.sh --demo
+
 ## demo: the compressor drive simulated with the library in the loop: build/demo/index.html
-demo: deps $(BUILD)/host/qfoc_demo
+demo: deps-demo $(BUILD)/host/qfoc_demo
 	@rm -rf $(BUILD)/demo
 	@$(BUILD)/host/qfoc_demo --out $(BUILD)/demo
 	@$(PYTHON) tools/demo/demo_report.py $(BUILD)/demo

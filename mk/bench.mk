@@ -18,11 +18,13 @@ BENCH_HDRS  := tools/bench/harness.h tools/bench/replay.h
 
 # The recordings: the host build of the drive in closed loop with the plant model
 # (reference motor and table).  fwtc: field weakening and torque compensation active at
-# once (the compensation works from 600 to 6000 rpm, so a low bus forces field weakening
-# below 6000 rpm: the lowest operating bus, 250 V, since MTPA's d current lowers the voltage
-# the reference needs); fw8000: deep field weakening at the top speed.
-BENCH_FWTC_ARGS   := --vdc 250 --rpm 5800 --load 3.0 --pulse 0.3 --need-tc
-BENCH_FWTC_TITLE  := CLOSED_LOOP at 5800 rpm and 250 V, field weakening and torque compensation active
+# once.  The compensation's window ends at the table's tc_speed_max (5160 rpm, derived by
+# the tool from the loops' phase, docs/tune.md), so field weakening must start below it:
+# the lowest operating bus (250 V) and a load above nominal (4.7 N m, +-10 % at 1x, which
+# keeps the d current negative through the pulsation's trough); fw8000: deep field
+# weakening at the top speed.
+BENCH_FWTC_ARGS   := --vdc 250 --rpm 5150 --load 4.7 --pulse 0.1 --need-tc
+BENCH_FWTC_TITLE  := CLOSED_LOOP at 5150 rpm and 250 V, field weakening and torque compensation active
 BENCH_FW8000_ARGS := --vdc 320 --rpm 8000 --load 4.5
 BENCH_FW8000_TITLE := CLOSED_LOOP at 8000 rpm and 320 V, deep field weakening
 

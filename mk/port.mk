@@ -3,7 +3,8 @@
 #
 #   make firmware               build/s32k144/qfoc_compressor.{elf,map,bin}, 8 kHz table;
 #                               checks the flash configuration field (check_image.py) and
-#                               runs the image from reset in an emulator (boot_check.py)
+#                               runs the image from reset in an emulator (boot_check.py); and
+#                               the calibration description .a2l beside it (mk/a2l.mk)
 #   make firmware FW_PWM_KHZ=16 build/s32k144/qfoc_compressor_16k.*, the 16 kHz table
 #   make port-test              tests/test_port.c on the host (fake registers, CMocka)
 
@@ -27,8 +28,13 @@ endif
 FW_ELF       := $(FW_DIR)/$(FW_NAME).elf
 FW_MAP       := $(FW_DIR)/$(FW_NAME).map
 FW_BIN       := $(FW_DIR)/$(FW_NAME).bin
+# the calibration description beside the image (mk/a2l.mk, tools/a2l/)
+FW_A2L       := $(FW_DIR)/$(FW_NAME).a2l
 FW_OBJ_DIR   := $(FW_DIR)/obj-$(FW_PWM_KHZ)k
-FW_CFLAGS    := $(ARM_CFLAGS) $(FW_DEFS) -Iport_s32k -Itables
+# -g: the DWARF the calibration description (tools/a2l/) reads the table's and the drive's
+# layout from; it adds debug sections only (the image, .bin, is the same), with the checkout's
+# path mapped to '.' so that the ELF does not depend on where the tree lies.
+FW_CFLAGS    := $(ARM_CFLAGS) $(FW_DEFS) -Iport_s32k -Itables -g -fdebug-prefix-map=$(CURDIR)=.
 FW_OBJS      := $(patsubst port_s32k/%.c,$(FW_OBJ_DIR)/%.o,$(PORT_SRCS)) \
                 $(patsubst port_s32k/%.S,$(FW_OBJ_DIR)/%.o,$(PORT_ASMS)) \
                 $(FW_OBJ_DIR)/$(notdir $(FW_TABLE_SRC:.c=.o))
@@ -38,16 +44,16 @@ FW_LDFLAGS   := -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -nost
 
 .PHONY: firmware port-test
 
-$(FW_OBJ_DIR)/%.o: port_s32k/%.c $(PORT_HDRS) $(HDRS) $(TABLE_HDRS)
+$(FW_OBJ_DIR)/%.o: port_s32k/%.c $(PORT_HDRS) $(HDRS) $(TABLE_HDRS) mk/port.mk
 	@mkdir -p $(@D)
 	$(ARM_CC) $(FW_CFLAGS) -c $< -o $@
 
 # The assembly module (reset.S): preprocessed, then assembled for the same core.
-$(FW_OBJ_DIR)/%.o: port_s32k/%.S
+$(FW_OBJ_DIR)/%.o: port_s32k/%.S mk/port.mk
 	@mkdir -p $(@D)
 	$(ARM_CC) $(FW_CFLAGS) -c $< -o $@
 
-$(FW_OBJ_DIR)/%.o: tables/%.c $(HDRS) $(TABLE_HDRS)
+$(FW_OBJ_DIR)/%.o: tables/%.c $(HDRS) $(TABLE_HDRS) mk/port.mk
 	@mkdir -p $(@D)
 	$(ARM_CC) $(FW_CFLAGS) -c $< -o $@
 
@@ -58,10 +64,10 @@ $(FW_ELF): $(FW_OBJS) $(BUILD)/target/libqfoc.a $(FW_LD) mk/port.mk
 $(FW_BIN): $(FW_ELF)
 	arm-none-eabi-objcopy -O binary $< $@
 
-## firmware: S32K144 image build/s32k144/qfoc_compressor.{elf,map,bin}, sizes, FSEC and boot checks
-firmware: deps $(FW_BIN)
+## firmware: S32K144 image build/s32k144/qfoc_compressor.{elf,map,bin,a2l}, sizes, FSEC and boot checks
+firmware: deps $(FW_BIN) $(FW_A2L)
 	@$(PYTHON) port_s32k/check_image.py $(FW_BIN)
-	@$(PYTHON) port_s32k/boot_check.py $(FW_ELF) --period $(FW_PERIOD)
+	@$(PYTHON) port_s32k/boot_check.py $(FW_ELF) --period $(FW_PERIOD) --json $(BUILD)/s32k144/firmware.json
 	@arm-none-eabi-size -A $(FW_ELF) | awk ' \
 	  $$1==".isr_vector"||$$1==".flash_config"||$$1==".text"||$$1==".ARM.exidx" {flash+=$$2} \
 	  $$1==".data" {flash+=$$2; ram+=$$2} $$1==".bss" {ram+=$$2} \

@@ -34,6 +34,8 @@ enabled, and the fault output latched: qfoc_hal_pwm_write() with the enable true
 six outputs masked.  Exit status 0 when every check passes.
 """
 import argparse
+import json
+import os
 import struct
 import sys
 
@@ -215,10 +217,25 @@ def failed_setup(elf, how):
     return errors
 
 
+def image_sizes(path):
+    """Flash (vectors, flash configuration, code, unwind table, .data's load image) and RAM
+    (.data + .bss) of the image, bytes: the sections `make firmware` sums."""
+    flash = ram = 0
+    with open(path, "rb") as f:
+        for sec in ELFFile(f).iter_sections():
+            if sec.name in (".isr_vector", ".flash_config", ".text", ".ARM.exidx", ".data"):
+                flash += sec["sh_size"]
+            if sec.name in (".data", ".bss"):
+                ram += sec["sh_size"]
+    return flash, ram
+
+
 def main(argv):
     ap = argparse.ArgumentParser(description="run the S32K144 image from reset in an emulator")
     ap.add_argument("elf")
     ap.add_argument("--period", type=int, default=5000, help="expected FTM3_MOD (svpwm.period)")
+    ap.add_argument("--json", help="write the image's sizes and the instruction counts here "
+                                   "(the source of the figures the documents quote)")
     args = ap.parse_args(argv[1:])
     b = Boot(args.elf)
     n_boot = b.run_reset()
@@ -271,6 +288,14 @@ def main(argv):
           "interrupt functions: ADC-complete %d, FTM3 period %d, 1 ms tick %d instructions (PRECHARGE); "
           "failed watchdog set-up and refused table: gate driver off, fault output latched"
           % (args.elf, n_boot, args.period, n_adc, n_ftm, n_tick))
+    if args.json:
+        flash, ram = image_sizes(args.elf)
+        with open(args.json, "w", encoding="utf-8") as f:
+            json.dump({"elf": os.path.basename(args.elf), "flash_bytes": flash, "ram_bytes": ram,
+                       "boot_instructions": n_boot, "isr_adc_instructions": n_adc,
+                       "isr_ftm3_instructions": n_ftm, "isr_tick_instructions": n_tick,
+                       "state": "PRECHARGE"}, f, indent=1)
+            f.write("\n")
     return 0
 
 

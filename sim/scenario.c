@@ -97,6 +97,7 @@ typedef struct {
     FILE *trace;
     FILE *zoom;
     double i_trip_a;
+    double i_max_a;            /* the table's current-vector limit */
     /* trackers, updated every millisecond */
     double ipk_ms;             /* peak |phase current| of the last ms */
     double ipk_all;            /* ... since the start */
@@ -427,6 +428,7 @@ static int scn_rig(scn_ctx_t *c, const scn_table_t *tab, const qfoc_param_table_
         return -1;
     }
     c->i_trip_a = scn_q15_a(c->ds, (double)table->i_trip);
+    c->i_max_a = scn_q15_a(c->ds, (double)table->i_max);
     c->r->f_pwm_hz = m->f_pwm_hz;
     c->r->vdc_v = vdc;
     snprintf(c->r->motor, sizeof c->r->motor, "%s", m->name);
@@ -514,6 +516,8 @@ static void scn_common_metrics(scn_ctx_t *c)
     scn_metric(c, "i_peak_a", "peak phase current", "A", c->ipk_all);
     scn_metric(c, "i_peak_pct_trip", "peak phase current / over-current trip level", "%",
                c->ipk_all / c->i_trip_a * 100.0);
+    scn_metric(c, "i_peak_pct_imax", "peak phase current / the table's current limit i_max", "%",
+               c->ipk_all / c->i_max_a * 100.0);
 }
 
 /* ------------------------------------------------------------------ scenarios */

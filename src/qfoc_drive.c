@@ -32,6 +32,10 @@
 #define DRV_SCAN_FIRST ((uint8_t)(DRV_MS100_LAST - QFOC_PARAMS_SCAN_STEPS))
 /** A quarter turn, 90 electrical degrees, in angle units. */
 #define DRV_QUARTER_TURN ((int32_t)16384)
+/* The current references move from ALIGN's d current to the I/f q current over at most
+   this many ticks (REQ-DRV-006): a step would overshoot the current loop and jerk a held
+   rotor; a ramp of a few current-loop time constants does neither. */
+#define DRV_OL_RAMP_MS ((int32_t)16)
 /** motorParaChange hysteresis: switch back below para_speed x 15/16. */
 #define DRV_HS_HYST_DIV ((int32_t)16)
 
@@ -358,7 +362,8 @@ static bool drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff, qf
         ref->d = qfoc_q15_sat((int32_t)d->s.id_ref);
         ref->q = 0;
     } else if (sub == QFOC_SUB_OPEN_LOOP) {
-        ref->d = 0;
+        /* ALIGN's d current ramping out, the I/f current ramping in (drv_run) */
+        ref->d = qfoc_q15_sat((int32_t)d->s.id_ref);
         ref->q = qfoc_q15_sat((int32_t)d->s.iq_ref);
     } else {
         const int32_t q = (int32_t)d->s.iq_ref + (int32_t)ff;
@@ -796,9 +801,51 @@ static uint16_t drv_calibrate(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
 /* Samples of 2 ms of fast steps: a current code unchanged that long is stuck. */
 #define DRV_STUCK_MS 2u
 
+/* Whether a healthy phase current can hold one code for DRV_STUCK_MS (REQ-DRV-020).  A
+   noise-free sinusoid of amplitude A codes at electrical speed w holds a code longest at its
+   peak, for at most 2 acos(1 - 1/A) / w; that is below the window T = DRV_STUCK_MS when
+   A (1 - cos(w T / 2)) > 1.  The monitor judges only where A (1 - cos(w T / 2)) >= 3/2: the
+   sampled run ends up to one period after the dwell (a factor 1.14 at 8 kHz and 50 Hz), and
+   A is taken as max(|i_d|, |i_q|) <= |i_dq|, never above the amplitude.  In Q15 counts of
+   current (16 per code): i (1 - cos) / 2 >= 12, the product rounded by qfoc_q15_mul.  Inside the
+   table's dead band (svpwm.i_deadband) the current is no sinusoid: the dead time clamps it
+   near its zero crossings, where it holds the zero code longer; the monitor judges only
+   from there up.  The angle w T / 2
+   is |speed_f| k_theta per period (2^32 per turn) over half the window, at most half a turn
+   (from there a period is shorter than the window). */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p);
+  assigns \nothing;
+*/
+static bool drv_stuck_judged(const qfoc_drive_t *d)
+{
+    const qfoc_drive_fast_t *const f = &d->f;
+    /* f_pwm <= 65535: at most 65 periods in half the window */
+    const uint32_t half32 = ((uint32_t)d->p->f_pwm_hz / 1000u) * (DRV_STUCK_MS / 2u);
+    const uint64_t half = (uint64_t)half32;
+    const uint64_t inc = (uint64_t)drv_ol_increment(qfoc_q15_abs(f->speed_f), d->p->pll.k_theta);
+    /* inc <= 32767^2 < 2^30, x 65: < 2^37 in uint64; in 2^16 per turn */
+    const uint64_t th16 = (inc * half) / 65536u;
+    const qfoc_angle_t th = (th16 >= 32768u) ? (qfoc_angle_t)32768u : (qfoc_angle_t)th16;
+    const int32_t ad = (int32_t)qfoc_q15_abs(f->i_dq.d);
+    const int32_t aq = (int32_t)qfoc_q15_abs(f->i_dq.q);
+    const int32_t i_pk = (ad > aq) ? ad : aq;
+    qfoc_sincos_t sc;
+    qfoc_q15_t half_vers;
+    qfoc_q15_t crit;
+    qfoc_sincos(th, &sc);
+    /* (1 - cos) / 2 in Q15: (32768 - cos) / 2, cos in -32767 .. 32767 */
+    half_vers = (qfoc_q15_t)((32768 - (int32_t)sc.cosine) / 2);
+    /* i (1 - cos) / 2 >= 12 Q15 counts: A (1 - cos) >= 3/2 with A = i / 16 codes */
+    crit = qfoc_q15_mul((qfoc_q15_t)i_pk, half_vers);
+    return (crit >= (qfoc_q15_t)((3 * DRV_I_PER_CODE) / 4)) &&
+           (i_pk >= (int32_t)d->p->svpwm.i_deadband);
+}
+
 /* The stuck-sample monitor (REQ-DRV-020): in CLOSED_LOOP and STOPPING, while the stall
-   condition is false, one current code unchanged for DRV_STUCK_MS ms of fast steps while
-   the other's moved gives OFFSET.  Read while the fast step may pre-empt: each count is one
+   condition is false and the current is one a healthy phase cannot hold on a code for the
+   window (drv_stuck_judged), one current code unchanged for DRV_STUCK_MS ms of fast steps
+   while the other's moved gives OFFSET.  Read while the fast step may pre-empt: each count is one
    16-bit word. */
 /*@
   requires valid: \valid_read(d) && \valid_read(d->p);
@@ -821,7 +868,7 @@ static bool drv_sensor_fault(const qfoc_drive_t *d)
     /* not while the stall condition holds (db_stall counting): a rotor at standstill
        carries a DC current, which STALL reports */
     const bool rotating = (d->s.db_stall.count == 0u);
-    return closed && rotating && stuck;
+    return closed && rotating && stuck && drv_stuck_judged(d);
 }
 
 /* The timing monitor (REQ-DRV-021): in RUN, the fast steps since the previous tick against
@@ -851,7 +898,9 @@ static bool drv_timing_fault(qfoc_drive_t *d)
    theta_ol - theta_est in [-90 deg, 0]: -90 deg without load (the rotor's d axis on the
    current), towards 0 as the load grows; past 0 the rotor falls behind the frame and
    slips (delta sweeps through +180 deg).  The observer has converged on a rotor that
-   follows the frame when, for ho_dwell_ms: the filtered estimated speed is within 1/4 of
+   follows the frame when, for ho_dwell_ms: the I/f ramp has reached the handover speed
+   of_speed (the minimum speed: below it the back-EMF is not known to dominate the
+   inverter's voltage error), the filtered estimated speed is within 1/4 of
    the frame speed, the flux magnitude is at least the PLL's mag_min, and
    -(90 deg + ho_angle) < delta < ho_angle.  delta is not required to be small: a
    pulsating load swings it by tens of degrees; the transfer presets the speed PI with
@@ -872,7 +921,10 @@ static bool drv_converged(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
     const bool speed_ok = (ew <= tol) && (ew >= -tol);
     const bool mag_ok = (f->psi_mag >= p->pll.mag_min);
     const bool angle_ok = (dth < ho) && (dth > -(DRV_QUARTER_TURN + ho));
-    return qfoc_debounce_step(&s->db_ho, open_loop && speed_ok && mag_ok && angle_ok,
+    /* the minimum speed: the I/f ramp has reached the handover speed */
+    const bool ramp_done = (s->ol_speed >= qfoc_q15_abs(p->drive.of_speed));
+    return qfoc_debounce_step(&s->db_ho,
+                              open_loop && ramp_done && speed_ok && mag_ok && angle_ok,
                               p->drive.ho_dwell_ms);
 }
 
@@ -998,8 +1050,8 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         } else {
             /* ALIGN ended before its half-current hold: nothing learnt */
         }
-        s->id_ref = 0;
-        s->iq_ref = drv_start_current(p, s->sm.retry);
+        /* the d reference ramps out from ALIGN's, the q reference in from 0 (drv_run) */
+        s->iq_ref = 0;
     } else if ((sub == QFOC_SUB_CLOSED_LOOP) && (old_sub == QFOC_SUB_CATCH)) {
         /* a coasting rotor caught (REQ-DRV-027): the speed reference from its measured
            speed, within [0, speed_max]; no torque acted in CATCH, so the speed PI starts
@@ -1077,6 +1129,109 @@ static void drv_iref(qfoc_drive_t *d)
     }
 }
 
+/* OPEN_LOOP's references (REQ-DRV-006): the d current to 0 and the q current to the
+   start current, each by ceil(i_max / DRV_OL_RAMP_MS) per tick (i_start <= i_max,
+   i_align <= i_max), and the I/f frame speed to of_speed at of_accel. */
+/*@
+  requires valid: \valid(s) && \valid_read(p);
+  requires sep: \separated(s, p);
+  assigns s->id_ref, s->iq_ref, s->ol_speed;
+*/
+static void drv_open_loop_refs(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
+{
+    const int32_t im = (int32_t)qfoc_q15_abs(p->i_max);
+    const qfoc_q15_t step = qfoc_q15_sat((im + DRV_OL_RAMP_MS - 1) / DRV_OL_RAMP_MS);
+    s->id_ref = qfoc_ramp_toward(s->id_ref, 0, step);
+    s->iq_ref = qfoc_ramp_toward(s->iq_ref, drv_start_current(p, s->sm.retry), step);
+    s->ol_speed = qfoc_ramp_toward(s->ol_speed, qfoc_q15_abs(p->drive.of_speed),
+                                   p->drive.of_accel);
+}
+
+/* ALIGN's d reference (REQ-DRV-006, REQ-DRV-026). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  assigns d->s.id_ref, d->s.dt_u, d->s.dt_u0, d->s.dt_u1;
+*/
+static void drv_align_refs(qfoc_drive_t *d)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_drive_cfg_t *const c = &d->p->drive;
+    /* d-current ramp over the first half of align_ms, hold to three quarters, then half
+       the current for the last quarter: the d voltages at five and seven eighths and
+       at the end of the full-current hold are kept for the learning of the inverter's
+       error (REQ-DRV-026) */
+    const int32_t half = (int32_t)c->align_ms / 2;
+    const uint32_t q3 = ((uint32_t)c->align_ms * 3u) / 4u;
+    const uint32_t t = (uint32_t)s->sm.t_sub;
+    const qfoc_q15_t u_now = qfoc_q15_sat(d->f.pi_id.integ / 65536);
+    const int32_t ia = (int32_t)qfoc_q15_abs(c->i_align);
+    /* the ramp's step, ceil(ia / half), at most ia: saturated, a no-op the proof
+       needs no division bound for */
+    const qfoc_q15_t step = qfoc_q15_sat((half > 0) ? ((ia + half - 1) / half) : ia);
+    const qfoc_q15_t lo = (qfoc_q15_t)(ia / 2);
+    if (t == (((uint32_t)c->align_ms * 5u) / 8u)) {
+        s->dt_u0 = u_now;
+    } else if (t == (((uint32_t)c->align_ms * 7u) / 8u)) {
+        s->dt_u1 = u_now;
+    } else {
+        /* no eighth */
+    }
+    if ((t < q3) || ((s->id_ref != lo) && (s->id_ref != (qfoc_q15_t)ia))) {
+        /* the ramp and the full-current hold (also a ramp not done by three quarters,
+           which only a table changed after the start can give) */
+        s->id_ref = qfoc_ramp_toward(s->id_ref, (qfoc_q15_t)ia, step);
+    } else if (s->id_ref == (qfoc_q15_t)ia) {
+        s->dt_u = u_now;
+        s->id_ref = lo;
+    } else {
+        /* the half-current hold */
+    }
+}
+
+/* CLOSED_LOOP's and STOPPING's references: the speed ramp, the speed loop, the reference
+   block and the torque compensation's learning (REQ-DRV-006, REQ-DRV-009). */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  requires inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
+  assigns d->s.pi_speed.integ, d->s.pi_speed.limited, d->s.pi_speed.params.out_min,
+          d->s.pi_speed.params.out_max, d->s.fw.pi.integ, d->s.fw.pi.limited,
+          d->s.fw.util_lpf.state, d->s.fw.id_ref, d->s.tc, d->s.speed_ref,
+          d->s.id_ref, d->s.iq_ref, d->s.iq_lim, d->s.clamp_seen;
+  ensures inv: DRV_PI(&d->s.pi_speed) && DRV_FW(&d->s.fw) && DRV_TC(&d->s.tc);
+*/
+static void drv_closed_refs(qfoc_drive_t *d)
+{
+    qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_drive_cfg_t *const c = &d->p->drive;
+    const uint8_t sub = s->sm.sub;
+    const qfoc_q15_t stop_speed = qfoc_q15_abs(c->of_speed);
+    qfoc_q15_t target = s->speed_ref;
+    if (sub == QFOC_SUB_STOPPING) {
+        target = stop_speed;
+    } else if ((s->sm.t_state >= c->cl_hold_ms) || s->caught) {
+        target = s->speed_target;
+    } else {
+        /* the 2 s of specs/equations.md section 8.3: hold the handover speed */
+    }
+    s->speed_ref = qfoc_ramp_toward(s->speed_ref, target, c->speed_ramp);
+    const uint8_t clamps = d->f.clamp_count;
+    /* the speed loop within the q limit of the last tick's d reference */
+    qfoc_pi_set_limit(&s->pi_speed, s->iq_lim);
+    s->iq_ref = qfoc_pi_step(&s->pi_speed, qfoc_q15_sub(s->speed_ref, d->f.speed_f));
+    drv_iref(d);
+    if (clamps == s->clamp_seen) {
+        /* no period of the last millisecond hit the current limit: learn (a clamped
+           feed-forward would wind the coefficients up, trqcomp.h) */
+        qfoc_trqcomp_learn(&s->tc, d->f.theta_m, qfoc_q15_sub(s->speed_ref, d->f.speed),
+                           d->f.speed_f);
+    } else {
+        /* limited: hold the coefficients */
+    }
+    s->clamp_seen = clamps;
+}
+
 /* References of the running sub-states, speed loop and torque compensation
    (REQ-DRV-006, REQ-DRV-009). */
 /*@
@@ -1093,70 +1248,16 @@ static void drv_iref(qfoc_drive_t *d)
 static void drv_run(qfoc_drive_t *d)
 {
     qfoc_drive_slow_t *const s = &d->s;
-    const qfoc_param_table_t *const p = d->p;
-    const qfoc_drive_cfg_t *const c = &p->drive;
     const uint8_t sub = s->sm.sub;
     if ((s->sm.state != QFOC_STATE_RUN) || (sub == QFOC_SUB_CATCH)) {
         /* nothing runs; CATCH keeps the zero references and the zero q limit of RUN
            entry (zero-current control, REQ-DRV-027) */
     } else if (sub == QFOC_SUB_ALIGN) {
-        /* d-current ramp over the first half of align_ms, hold to three quarters, then half
-           the current for the last quarter: the d voltages at five and seven eighths and
-           at the end of the full-current hold are kept for the learning of the inverter's
-           error (REQ-DRV-026) */
-        const int32_t half = (int32_t)c->align_ms / 2;
-        const uint32_t q3 = ((uint32_t)c->align_ms * 3u) / 4u;
-        const uint32_t t = (uint32_t)s->sm.t_sub;
-        const qfoc_q15_t u_now = qfoc_q15_sat(d->f.pi_id.integ / 65536);
-        const int32_t ia = (int32_t)qfoc_q15_abs(c->i_align);
-        /* the ramp's step, ceil(ia / half), at most ia: saturated, a no-op the proof
-           needs no division bound for */
-        const qfoc_q15_t step = qfoc_q15_sat((half > 0) ? ((ia + half - 1) / half) : ia);
-        const qfoc_q15_t lo = (qfoc_q15_t)(ia / 2);
-        if (t == (((uint32_t)c->align_ms * 5u) / 8u)) {
-            s->dt_u0 = u_now;
-        } else if (t == (((uint32_t)c->align_ms * 7u) / 8u)) {
-            s->dt_u1 = u_now;
-        } else {
-            /* no eighth */
-        }
-        if ((t < q3) || ((s->id_ref != lo) && (s->id_ref != (qfoc_q15_t)ia))) {
-            /* the ramp and the full-current hold (also a ramp not done by three quarters,
-               which only a table changed after the start can give) */
-            s->id_ref = qfoc_ramp_toward(s->id_ref, (qfoc_q15_t)ia, step);
-        } else if (s->id_ref == (qfoc_q15_t)ia) {
-            s->dt_u = u_now;
-            s->id_ref = lo;
-        } else {
-            /* the half-current hold */
-        }
+        drv_align_refs(d);
     } else if (sub == QFOC_SUB_OPEN_LOOP) {
-        s->ol_speed = qfoc_ramp_toward(s->ol_speed, qfoc_q15_abs(c->of_speed), c->of_accel);
+        drv_open_loop_refs(s, d->p);
     } else {
-        const qfoc_q15_t stop_speed = qfoc_q15_abs(c->of_speed);
-        qfoc_q15_t target = s->speed_ref;
-        if (sub == QFOC_SUB_STOPPING) {
-            target = stop_speed;
-        } else if ((s->sm.t_state >= c->cl_hold_ms) || s->caught) {
-            target = s->speed_target;
-        } else {
-            /* the 2 s of specs/equations.md section 8.3: hold the handover speed */
-        }
-        s->speed_ref = qfoc_ramp_toward(s->speed_ref, target, c->speed_ramp);
-        const uint8_t clamps = d->f.clamp_count;
-        /* the speed loop within the q limit of the last tick's d reference */
-        qfoc_pi_set_limit(&s->pi_speed, s->iq_lim);
-        s->iq_ref = qfoc_pi_step(&s->pi_speed, qfoc_q15_sub(s->speed_ref, d->f.speed_f));
-        drv_iref(d);
-        if (clamps == s->clamp_seen) {
-            /* no period of the last millisecond hit the current limit: learn (a clamped
-               feed-forward would wind the coefficients up, trqcomp.h) */
-            qfoc_trqcomp_learn(&s->tc, d->f.theta_m, qfoc_q15_sub(s->speed_ref, d->f.speed),
-                               d->f.speed_f);
-        } else {
-            /* limited: hold the coefficients */
-        }
-        s->clamp_seen = clamps;
+        drv_closed_refs(d);
     }
 }
 

@@ -2,7 +2,7 @@
  * @file qfoc_fault.c
  * @brief Fault-detection primitives (see include/qfoc/fault.h).
  *
- * Requirements: REQ-FAULT-001 .. REQ-FAULT-006 (specs/requirements/fault.md).
+ * Requirements: REQ-FAULT-001 .. REQ-FAULT-009 (specs/requirements/fault.md).
  */
 #include "qfoc/fault.h"
 #include "qfoc/q15.h"
@@ -227,4 +227,67 @@ bool qfoc_fault_abs_over(qfoc_q15_t x, qfoc_q15_t limit)
     /* |x| in [0, 32768], exact in 32 bits (no saturation of -32768) */
     const int32_t mag = (x < 0) ? -(int32_t)x : (int32_t)x;
     return (mag > (int32_t)limit);
+}
+
+const char *qfoc_fault_name(uint16_t bit)
+{
+    /* the texts, each in static read-only storage of its exact size */
+    static const char txt_oc[] = "OC";
+    static const char txt_ov[] = "OV";
+    static const char txt_uv[] = "UV";
+    static const char txt_ot_ipm[] = "OT_IPM";
+    static const char txt_ot_pcb[] = "OT_PCB";
+    static const char txt_stall[] = "STALL";
+    static const char txt_phase[] = "PHASE";
+    static const char txt_offset[] = "OFFSET";
+    static const char txt_link[] = "LINK";
+    static const char txt_param[] = "PARAM";
+    static const char txt_timing[] = "TIMING";
+    static const char txt_none[] = "none";
+    /* the longest text: QFOC_FAULT_NAME_LEN_MAX characters and the terminating zero */
+    static const char txt_unknown[QFOC_FAULT_NAME_LEN_MAX + 1u] = "unknown";
+    const char *name;
+    switch (bit) {
+    case QFOC_FAULT_OC:
+        name = txt_oc;
+        break;
+    case QFOC_FAULT_OV:
+        name = txt_ov;
+        break;
+    case QFOC_FAULT_UV:
+        name = txt_uv;
+        break;
+    case QFOC_FAULT_OT_IPM:
+        name = txt_ot_ipm;
+        break;
+    case QFOC_FAULT_OT_PCB:
+        name = txt_ot_pcb;
+        break;
+    case QFOC_FAULT_STALL:
+        name = txt_stall;
+        break;
+    case QFOC_FAULT_PHASE:
+        name = txt_phase;
+        break;
+    case QFOC_FAULT_OFFSET:
+        name = txt_offset;
+        break;
+    case QFOC_FAULT_LINK:
+        name = txt_link;
+        break;
+    case QFOC_FAULT_PARAM:
+        name = txt_param;
+        break;
+    case QFOC_FAULT_TIMING:
+        name = txt_timing;
+        break;
+    case 0u:
+        name = txt_none;
+        break;
+    default:
+        /* several bits, or a bit no fault uses */
+        name = txt_unknown;
+        break;
+    }
+    return name;
 }

@@ -289,6 +289,26 @@ static bool qfoc_trqcomp_in_window(const qfoc_trqcomp_t *tc, qfoc_q15_t speed)
 }
 
 /**
+ * @brief The second harmonic learns only while its frequency is at most the first's at
+ *        speed_max: 2 |speed| <= speed_max (REQ-TC-005).
+ */
+/*@
+  requires valid_tc: \valid_read(tc);
+  assigns \nothing;
+  ensures result: \result <==> 2 * TcAbs(speed) <= tc->params.speed_max;
+*/
+static bool qfoc_trqcomp_learns_2x(const qfoc_trqcomp_t *tc, qfoc_q15_t speed)
+{
+    int32_t mag = (int32_t)speed;
+    if (mag < 0) {
+        mag = -mag;
+    } else {
+        /* already non-negative */
+    }
+    return (2 * mag) <= (int32_t)tc->params.speed_max;
+}
+
+/**
  * @brief The second harmonic from the first: sin 2x = 2 sin x cos x,
  *        cos 2x = cos^2 x - sin^2 x, each rounded to Q15 (qfoc_q15_from_q30).
  *
@@ -389,10 +409,16 @@ void qfoc_trqcomp_learn(qfoc_trqcomp_t *tc, qfoc_angle_t theta_m, qfoc_q15_t spe
                                       qfoc_trqcomp_signed(h1.sine, forward), g, amp);
         tc->b[0] = qfoc_trqcomp_adapt(tc->b[0], speed_err,
                                       qfoc_trqcomp_signed(h1.cosine, !forward), g, amp);
-        tc->a[1] = qfoc_trqcomp_adapt(tc->a[1], speed_err,
-                                      qfoc_trqcomp_signed(h2.sine, forward), g, amp);
-        tc->b[1] = qfoc_trqcomp_adapt(tc->b[1], speed_err,
-                                      qfoc_trqcomp_signed(h2.cosine, !forward), g, amp);
+        if (qfoc_trqcomp_learns_2x(tc, speed)) {
+            tc->a[1] = qfoc_trqcomp_adapt(tc->a[1], speed_err,
+                                          qfoc_trqcomp_signed(h2.sine, forward), g, amp);
+            tc->b[1] = qfoc_trqcomp_adapt(tc->b[1], speed_err,
+                                          qfoc_trqcomp_signed(h2.cosine, !forward), g, amp);
+        } else {
+            /* above half the window's top: the second harmonic held (its frequency beyond
+               the first's at speed_max, where the learning law's phase model is not
+               known to hold) */
+        }
     } else {
         /* outside the speed window: coefficients held */
     }

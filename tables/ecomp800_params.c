@@ -121,7 +121,7 @@ const qfoc_param_table_t qfoc_params_ecomp800 = {
         .tc_gain = 492, /* 0.0150146 = drive.tc_gain_q15 / 32768 (trqcomp.md) */
         .tc_amp_max = 8192, /* 0.25 = 20 A / I_base = 20 / 80; stored 0.25, error +0.00 % */
         .tc_speed_min = 1748, /* 0.0533333 = 600 rpm x n_p / 60 / f_base = 4 / 60 / 750; stored 0.0533447, error +0.02 % */
-        .tc_speed_max = 17476, /* 0.533333 = 6000 rpm x n_p / 60 / f_base = 4 / 60 / 750; stored 0.533325, error -0.00 % */
+        .tc_speed_max = 16515, /* 0.504 = 5670 rpm x n_p / 60 / f_base = 4 / 60 / 750; stored 0.503998, error -0.00 % */
         .para_speed = 18350, /* 0.56 = 6300 rpm x n_p / 60 / f_base = 4 / 60 / 750; stored 0.559998, error -0.00 % */
         .ld_hs = 1755, /* 0.428399 = motor.ld_h (no ld_hs_h) / L_base = 0.0025 / 0.00583568 (Q12) */
         .lq_hs = 4562, /* 1.11384 = motor.lq_h (no lq_hs_h) / L_base = 0.0065 / 0.00583568 (Q12) */
@@ -139,5 +139,5 @@ const qfoc_param_table_t qfoc_params_ecomp800 = {
         .psi_shift = 1u, /* flux base psi_base = 2^1 V_base / w_base = 0.466854 Wb, L_base = psi_base / I_base = 5.83568 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.258 Wb = 0.5526 pu) */
         .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
     },
-    .crc = 0x4DFF132Du /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x86F1C21Fu /* CRC-32/ISO-HDLC of every field above */
 };

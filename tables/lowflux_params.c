@@ -121,7 +121,7 @@ const qfoc_param_table_t qfoc_params_lowflux = {
         .tc_gain = 492, /* 0.0150146 = drive.tc_gain_q15 / 32768 (trqcomp.md) */
         .tc_amp_max = 7864, /* 0.24 = 6 A / I_base = 6 / 25; stored 0.23999, error -0.00 % */
         .tc_speed_min = 2185, /* 0.0666667 = 600 rpm x n_p / 60 / f_base = 4 / 60 / 600; stored 0.0666809, error +0.02 % */
-        .tc_speed_max = 19661, /* 0.6 = 5400 rpm x n_p / 60 / f_base = 4 / 60 / 600; stored 0.600006, error +0.00 % */
+        .tc_speed_max = 19479, /* 0.594444 = 5350 rpm x n_p / 60 / f_base = 4 / 60 / 600; stored 0.594452, error +0.00 % */
         .para_speed = 18350, /* 0.56 = 5040 rpm x n_p / 60 / f_base = 4 / 60 / 600; stored 0.559998, error -0.00 % */
         .ld_hs = 2316, /* 0.565487 = motor.ld_h (no ld_hs_h) / L_base = 0.003 / 0.00530516 (Q12) */
         .lq_hs = 3474, /* 0.84823 = motor.lq_h (no lq_hs_h) / L_base = 0.0045 / 0.00530516 (Q12) */
@@ -139,5 +139,5 @@ const qfoc_param_table_t qfoc_params_lowflux = {
         .psi_shift = 0u, /* flux base psi_base = 2^0 V_base / w_base = 0.132629 Wb, L_base = psi_base / I_base = 5.30516 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.063 Wb = 0.475 pu) */
         .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
     },
-    .crc = 0x5C7E2CC3u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x4567D20Bu /* CRC-32/ISO-HDLC of every field above */
 };

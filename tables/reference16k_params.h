@@ -11,7 +11,7 @@
 
 #include "qfoc/params.h"
 
-/** Parameter table of qfoc reference compressor IPM (CRC 0x581F8810). */
+/** Parameter table of qfoc reference compressor IPM (CRC 0xD66874BB). */
 extern const qfoc_param_table_t qfoc_params_reference16k;
 
 #endif /* QFOC_PARAMS_REFERENCE16K_H */

@@ -121,7 +121,7 @@ const qfoc_param_table_t qfoc_params_reference = {
         .tc_gain = 492, /* 0.0150146 = drive.tc_gain_q15 / 32768 (trqcomp.md) */
         .tc_amp_max = 8192, /* 0.25 = 10 A / I_base = 10 / 40; stored 0.25, error +0.00 % */
         .tc_speed_min = 1966, /* 0.06 = 600 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.0599976, error -0.00 % */
-        .tc_speed_max = 19661, /* 0.6 = 6000 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.600006, error +0.00 % */
+        .tc_speed_max = 16908, /* 0.516 = 5160 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.515991, error -0.00 % */
         .para_speed = 18350, /* 0.56 = 5600 rpm x n_p / 60 / f_base = 3 / 60 / 500; stored 0.559998, error -0.00 % */
         .ld_hs = 2677, /* 0.653451 = motor.ld_h (no ld_hs_h) / L_base = 0.0026 / 0.00397887 (Q12) */
         .lq_hs = 4324, /* 1.05558 = motor.lq_h (no lq_hs_h) / L_base = 0.0042 / 0.00397887 (Q12) */
@@ -139,5 +139,5 @@ const qfoc_param_table_t qfoc_params_reference = {
         .psi_shift = 0u, /* flux base psi_base = 2^0 V_base / w_base = 0.159155 Wb, L_base = psi_base / I_base = 3.97887 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.097 Wb = 0.6095 pu) */
         .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
     },
-    .crc = 0x59CB0F67u /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x7354E38Fu /* CRC-32/ISO-HDLC of every field above */
 };

@@ -168,6 +168,20 @@ static inline void rig_ms(rig_t *r, int n)
     }
 }
 
+/* The tick of the handover, counted from the tick that entered ALIGN, for an observer
+   that follows the frame from the start (drive.h, REQ-DRV-006): ALIGN lasts align_ms
+   ticks, the I/f ramp of_accel per tick reaches of_speed after ceil(of_speed / of_accel)
+   ticks, that tick is the first of the ho_dwell_ms converged ticks; and not before
+   cl_hold_ms. */
+static inline long rig_ho_tick(const qfoc_param_table_t *t)
+{
+    const long w = (long)((t->drive.of_speed < 0) ? -t->drive.of_speed : t->drive.of_speed);
+    const long a = (long)t->drive.of_accel;
+    const long conv = (long)t->drive.align_ms + ((w + a - 1) / a) +
+                      (long)t->drive.ho_dwell_ms - 1;
+    return (conv > (long)t->drive.cl_hold_ms) ? conv : (long)t->drive.cl_hold_ms;
+}
+
 /* REQ-DRV-027 (flying start, catch.h): the ticks a standing rotor spends in CATCH, from
    the tick that entered RUN to the tick that enters ALIGN, when the loops' voltage
    command stays 0 (the rig's samples at the offsets, or ticks without fast steps).

@@ -33,6 +33,7 @@
 #include "qfoc/iref.h"
 #include "reference_params.h"
 #include "reference16k_params.h"
+#include "traction350_params.h"
 #include "drive_sim.h"
 
 #define PI_D 3.14159265358979323846
@@ -153,7 +154,7 @@ static void rig_closed_loop(rig_t *r, const qfoc_param_table_t *t, int32_t dth)
     rig_init_table(r, t, 1000u);
     rig_to_stop(r);
     r->rpm = 1000u;
-    assert_int_equal(run_to_handover(r, dth), (long)t->drive.cl_hold_ms);
+    assert_int_equal(run_to_handover(r, dth), rig_ho_tick(t));
 }
 
 /* The target speed of a command, (rpm k_rpm) / 4096 rounded to nearest (REQ-DRV-009) */
@@ -349,7 +350,9 @@ static void test_req_drv_006_lead_flux_base(void **state)
    with the open-loop frame (120 degrees off it) never hands over: each OPEN_LOOP lasts
    exactly ol_timeout_ms, then the drive goes back to CATCH (references and current loops
    from zero, as at a RUN entry), ALIGN and a new open loop whose start current is |i_start|
-   raised by a quarter per retry, at most i_max; after 1 + ho_retries open loops, STALL. */
+   raised by a quarter per retry, at most i_max; after 1 + ho_retries open loops, STALL.
+   In every open loop the q reference ramps from 0 to that current and the d reference
+   from ALIGN's half current to 0, each by ceil(i_max / 16) per tick. */
 static void test_req_sm_011_drive_start_retries(void **state)
 {
     rig_t r;
@@ -360,6 +363,9 @@ static void test_req_sm_011_drive_start_retries(void **state)
     const int32_t i0 = qfoc_params_reference.drive.i_start;
     const int32_t im = qfoc_params_reference.i_max;
     const int n = 1 + (int)qfoc_params_reference.drive.ho_retries;
+    const int32_t step = (im + 15) / 16;
+    const int32_t id0 = qfoc_params_reference.drive.i_align / 2;
+    int32_t want = 0;
     (void)state;
     assert_int_equal(qfoc_params_reference.drive.ho_retries, 2);
     rig_init(&r);
@@ -376,8 +382,9 @@ static void test_req_sm_011_drive_start_retries(void **state)
         rig_tick(&r, true);
         if ((st(&r) == QFOC_STATE_RUN) && (sub(&r) != last)) {
             if (sub(&r) == QFOC_SUB_OPEN_LOOP) {
-                const int32_t want = (i0 + (i0 * starts) / 4 < im) ? i0 + (i0 * starts) / 4 : im;
-                assert_int_equal(r.d.s.iq_ref, want);
+                want = (i0 + (i0 * starts) / 4 < im) ? i0 + (i0 * starts) / 4 : im;
+                assert_int_equal(r.d.s.iq_ref, (step < want) ? step : want);
+                assert_int_equal(r.d.s.id_ref, (id0 > step) ? id0 - step : 0);
                 assert_int_equal(r.d.s.sm.retry, starts);
                 starts++;
                 t_ol = 0;
@@ -392,6 +399,11 @@ static void test_req_sm_011_drive_start_retries(void **state)
             last = sub(&r);
         } else if (last == QFOC_SUB_OPEN_LOOP) {
             t_ol++;
+            /* t_ol + 1 ramp steps taken (while the open loop lasts) */
+            if ((st(&r) == QFOC_STATE_RUN) && (sub(&r) == QFOC_SUB_OPEN_LOOP)) {
+                assert_int_equal(r.d.s.iq_ref, (step * (t_ol + 1) < want) ? step * (t_ol + 1) : want);
+                assert_int_equal(r.d.s.id_ref, (id0 > step * (t_ol + 1)) ? id0 - step * (t_ol + 1) : 0);
+            }
         }
         assert_true(sub(&r) != QFOC_SUB_CLOSED_LOOP);
     }
@@ -541,8 +553,8 @@ static void test_req_drv_006_handover_conditions(void **state)
     }
     /* CATCH finds the rotor standing (REQ-DRV-027): the start-up is timed from ALIGN */
     (void)rig_catch_ticks(&r);
-    /* flux magnitude one count below mag_min: no handover after cl_hold_ms */
-    for (k = 0; k < (long)t->drive.cl_hold_ms + 400; k++) {
+    /* flux magnitude one count below mag_min: no handover after the ramp and the dwell */
+    for (k = 0; k < rig_ho_tick(t) + 400; k++) {
         emu_est(&r, r.d.s.ol_speed, mag - 1, 0);
         rig_tick(&r, true);
         if (st(&r) == QFOC_STATE_RUN) {
@@ -551,7 +563,7 @@ static void test_req_drv_006_handover_conditions(void **state)
         assert_int_equal(r.d.s.sm.faults, 0u);
     }
     assert_int_equal(sub(&r), QFOC_SUB_OPEN_LOOP);
-    assert_true(t_run > (long)t->drive.cl_hold_ms + 100);
+    assert_true(t_run > rig_ho_tick(t) + 100);
     assert_int_equal(r.d.s.ol_speed, t->drive.of_speed);
     /* each other condition one count outside its bound */
     for (cond = 0; cond < 4; cond++) {
@@ -586,6 +598,50 @@ static void test_req_drv_006_handover_conditions(void **state)
             }
         }
         assert_int_equal(sub(&c), QFOC_SUB_CLOSED_LOOP);
+    }
+}
+
+/* REQ-DRV-006 (drive_cfg.h cl_hold_ms): the handover comes at convergence, the first
+   tick at which the observer has followed the frame for ho_dwell_ms with the I/f ramp at
+   of_speed (the minimum speed), unless cl_hold_ms after the ALIGN entry is later: no hold
+   (cl_hold_ms 0), the reference table's 2 s, a hold one tick after convergence, and no hold
+   with a ramp four times as steep (earlier convergence). */
+static void test_req_drv_006_handover_at_convergence(void **state)
+{
+    int cas;
+    (void)state;
+    for (cas = 0; cas < 4; cas++) {
+        rig_t r;
+        qfoc_param_table_t t = qfoc_params_reference;
+        const long w = (long)t.drive.of_speed;
+        const long conv0 = (long)t.drive.align_ms + ((w + (long)t.drive.of_accel - 1) /
+                                                     (long)t.drive.of_accel) +
+                           (long)t.drive.ho_dwell_ms - 1;
+        long expect = conv0;
+        assert_int_equal(t.drive.cl_hold_ms, 2000u);
+        assert_true(conv0 < 2000 - 100);
+        t.drive.cl_hold_ms = 0u;
+        if (cas == 1) {
+            t.drive.cl_hold_ms = 2000u;
+            expect = 2000;
+        } else if (cas == 2) {
+            t.drive.cl_hold_ms = (uint16_t)(conv0 + 1);
+            expect = conv0 + 1;
+        } else if (cas == 3) {
+            t.drive.of_accel = (qfoc_q15_t)(4 * t.drive.of_accel);
+            expect = (long)t.drive.align_ms + ((w + (long)t.drive.of_accel - 1) /
+                                               (long)t.drive.of_accel) +
+                     (long)t.drive.ho_dwell_ms - 1;
+            assert_true(expect < conv0 - 500);
+        } else {
+            /* no hold */
+        }
+        table_seal(&t);
+        rig_init_table(&r, &t, 1000u);
+        rig_to_stop(&r);
+        r.rpm = 1000u;
+        assert_int_equal(run_to_handover(&r, 0), expect);
+        assert_int_equal(r.d.s.ol_speed, t.drive.of_speed);
     }
 }
 
@@ -633,7 +689,7 @@ static void test_req_drv_006_bumpless_transfer(void **state)
         rig_to_stop(&r);
         r.rpm = 1000u;
         assert_int_equal(target_q15(r.rpm, t.drive.k_rpm), t.drive.of_speed);
-        assert_int_equal(run_to_handover(&r, dth), (long)t.drive.cl_hold_ms);
+        assert_int_equal(run_to_handover(&r, dth), rig_ho_tick(&t));
         /* the speed reference starts at the estimate: zero error in this tick */
         assert_int_equal(r.d.s.speed_ref, r.d.f.speed_f);
         expect = bumpless_ref(&t, (double)t.drive.i_start, dth);
@@ -665,7 +721,7 @@ static void test_req_drv_006_bumpless_transfer(void **state)
         rig_init(&r);
         rig_to_stop(&r);
         r.rpm = 1000u;
-        assert_int_equal(run_to_handover(&r, dth), (long)t->drive.cl_hold_ms);
+        assert_int_equal(run_to_handover(&r, dth), rig_ho_tick(t));
         got = r.d.s.iq_ref;
         print_message("bumpless random: delta %.1f deg, expected %.1f, reference %d\n",
                       (double)dth * 360.0 / 65536.0, expect, got);
@@ -738,7 +794,8 @@ static void test_req_drv_013_tc_learning_held_when_clamped(void **state)
 {
     rig_t r;
     const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
-    const int32_t w = (c->tc_speed_min + c->tc_speed_max) / 2;   /* inside the window */
+    /* inside the window, and below half its top (where both harmonics learn) */
+    const int32_t w = (c->tc_speed_min + (c->tc_speed_max / 2)) / 2;
     const int32_t err = 1000;
     const uint16_t theta_m = 8192u;                              /* 45 deg mechanical */
     qfoc_trqcomp_t before;
@@ -1486,6 +1543,86 @@ static uint16_t code_sine(long k, int ch)
     return (uint16_t)lround((double)QFOC_ADC_MID + 20.0 * cos(th + 0.3));
 }
 
+/* REQ-DRV-020: the stuck-sample monitor judges only a current a healthy phase cannot hold
+   on one code for the 2 ms window.  Over a grid of speeds (either sign, up to beyond half
+   a turn per millisecond) and currents (split over d and q, around the dead band), one
+   tick with one channel held for the window and the other moving raises OFFSET exactly
+   when, in double precision, 2 A (1 - cos(w T / 2)) >= 3 with A = max(|i_d|, |i_q|) / 16
+   codes, w T / 2 at most half a turn, and max(|i_d|, |i_q|) >= i_deadband (cases within
+   5 % of the bound skipped: the drive rounds the product to a Q15 count of 12, the angle
+   to 2^-16 turn and the cosine to Q15).  Every judged case is one where a noise-free sinusoid of that amplitude holds a
+   code for less than the window, 2 acos(1 - 1/A) / w < T: the gate never judges a current
+   a healthy motor could hold. */
+static void test_req_drv_020_stuck_judged(void **state)
+{
+    /* the traction table's f_base of 1000 Hz turns more than half a turn in 1 ms at speed */
+    const qfoc_param_table_t *const tabs[3] = { &qfoc_params_reference, &qfoc_params_reference16k,
+                                                &qfoc_params_traction350 };
+    static const int32_t speeds[] = { 300, 1638, 3277, 6554, 9830, 16384, 26214, 32767, -3277,
+                                      -9830, -32767 };
+    static const int32_t amps[] = { 0, 200, 409, 410, 480, 640, 800, 1200, 2000, 4000, 12000 };
+    int t;
+    long judged = 0;
+    long not_judged = 0;
+    (void)state;
+    for (t = 0; t < 3; t++) {
+        rig_t base;
+        const qfoc_param_table_t *const tab = tabs[t];
+        const uint32_t n_stuck = (tab->f_pwm_hz / 1000u) * 2u;
+        const double half = (double)(tab->f_pwm_hz / 1000u);   /* periods in 1 ms */
+        const double t_win = 2e-3;
+        size_t i;
+        size_t j;
+        int split;
+        rig_closed_loop(&base, tab, 0);
+        base.motor_current = false;   /* the test plays the sample counts */
+        for (i = 0; i < sizeof speeds / sizeof speeds[0]; i++) {
+            for (j = 0; j < sizeof amps / sizeof amps[0]; j++) {
+                for (split = 0; split < 3; split++) {
+                    rig_t r;
+                    const int32_t w = speeds[i];
+                    const int32_t id = (split == 0) ? amps[j] : ((split == 1) ? -amps[j] / 2 : 0);
+                    const int32_t iq = (split == 0) ? amps[j] / 3 : amps[j];
+                    const double ipk = fmax(fabs((double)id), fabs((double)iq));
+                    const double a = ipk / 16.0;
+                    const double k = (double)((tab->pll.k_theta > 32767u) ? 32767u : tab->pll.k_theta);
+                    const double x = fmin(PI_D, fabs((double)w) * k * half * 2.0 * PI_D / 4294967296.0);
+                    const double crit = 2.0 * a * (1.0 - cos(x));
+                    const bool expect = (crit >= 3.0) && (ipk >= (double)tab->svpwm.i_deadband);
+                    if ((fabs(crit - 3.0) < 0.15) || (w == -32767 && split == 2 && j == 0)) {
+                        continue;
+                    }
+                    rig_clone(&r, &base);
+                    r.d.f.i_dq.d = (int16_t)id;
+                    r.d.f.i_dq.q = (int16_t)iq;
+                    /* the flux the drive expects at this i_d: no stall condition */
+                    emu_est(&r, w, (int32_t)lround((double)tab->psi_f +
+                                                   ((double)tab->ld - (double)tab->lq) *
+                                                   (double)id / 4096.0), 0);
+                    r.d.s.speed_ref = (int16_t)w;
+                    r.d.f.same_u = (uint16_t)n_stuck;
+                    r.d.f.same_v = 0u;
+                    rig_reguard(&r);
+                    rig_tick(&r, true);
+                    assert_int_equal(r.d.s.db_stall.count, 0u);
+                    assert_int_equal((r.d.s.sm.faults & QFOC_FAULT_OFFSET) != 0u, expect);
+                    if (expect) {
+                        const double wr = fabs((double)w) * k * (double)tab->f_pwm_hz * 2.0 * PI_D /
+                                          4294967296.0;   /* rad/s */
+                        const double dwell = (a >= 1.0) ? 2.0 * acos(1.0 - 1.0 / a) / wr : 1e9;
+                        assert_true(dwell < t_win);
+                        judged++;
+                    } else {
+                        not_judged++;
+                    }
+                }
+            }
+        }
+    }
+    print_message("stuck monitor gate: %ld cases judged, %ld not\n", judged, not_judged);
+    assert_true(judged > 40 && not_judged > 40);
+}
+
 /* REQ-DRV-020: one current code unchanged for 2 ms of fast steps (16 at 8 kHz, 32 at
    16 kHz) while the other moves: OFFSET and ERROR at the first tick that sees it, the PWM
    off in the next period; one run shorter, both held, the stall condition or a healthy
@@ -2208,6 +2345,7 @@ int main(void)
         cmocka_unit_test(test_req_sm_011_drive_start_retries),
         cmocka_unit_test(test_req_drv_006_align_ramp),
         cmocka_unit_test(test_req_drv_006_handover_conditions),
+        cmocka_unit_test(test_req_drv_006_handover_at_convergence),
         cmocka_unit_test(test_req_drv_006_bumpless_transfer),
         cmocka_unit_test(test_req_drv_006_stopping_ramp_down),
         cmocka_unit_test(test_req_drv_006_speed_hold_before_cl_hold),
@@ -2218,6 +2356,7 @@ int main(void)
         cmocka_unit_test(test_req_drv_018_no_current),
         cmocka_unit_test(test_req_drv_019_object_check),
         cmocka_unit_test(test_req_drv_020_stuck_sample),
+        cmocka_unit_test(test_req_drv_020_stuck_judged),
         cmocka_unit_test(test_req_drv_021_fast_steps_per_tick),
         cmocka_unit_test(test_req_drv_022_reference_guard),
         cmocka_unit_test(test_req_drv_023_flux_plausibility),

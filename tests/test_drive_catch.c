@@ -328,7 +328,7 @@ static void test_req_drv_027_standing_rotor_floor(void **state)
 /* REQ-DRV-027: a standing rotor on the plant (held by the nominal compressor load): the
    current stays at the noise in CATCH, CATCH goes to ALIGN after about the rig's count
    (the loops' voltage is the noise's, not 0) and never to CLOSED_LOOP, and the start
-   reaches CLOSED_LOOP cl_hold_ms after the ALIGN entry. */
+   reaches CLOSED_LOOP at the convergence tick after the ALIGN entry (rig_ho_tick). */
 static void test_req_drv_027_standing_rotor_plant(void **state)
 {
     dsim_t *ds = malloc(sizeof *ds);
@@ -349,7 +349,7 @@ static void test_req_drv_027_standing_rotor_plant(void **state)
     assert_true(o.ms_catch >= n - 2 && o.ms_catch <= n + 20);
     assert_true(fabs(o.rpm_exit) < 1.0);
     assert_true(o.i_peak < 0.1 * i_max_a);
-    assert_int_equal(o.ms_cl, o.ms_catch + (long)t->drive.cl_hold_ms);
+    assert_int_equal(o.ms_cl, o.ms_catch + rig_ho_tick(t));
     free(ds);
 }
 
@@ -443,8 +443,8 @@ static void test_req_drv_027_reverse_rotation(void **state)
         assert_true(o.ms_catch > rig_catch_still_ticks(t));
         assert_true(o.ms_backwards > rig_catch_still_ticks(t) / 2);
         assert_true(o.i_peak < 0.5 * i_max_a);
-        /* the normal start from there: CLOSED_LOOP cl_hold_ms after the ALIGN entry */
-        assert_int_equal(o.ms_cl, o.ms_catch + (long)t->drive.cl_hold_ms);
+        /* the normal start from there: CLOSED_LOOP at convergence (rig_ho_tick) */
+        assert_int_equal(o.ms_cl, o.ms_catch + rig_ho_tick(t));
         assert_int_equal(ds->drv.s.sm.sub, QFOC_SUB_CLOSED_LOOP);
         assert_false(ds->drv.s.caught);
         assert_true(dsim_rpm(ds) > 2000.0);

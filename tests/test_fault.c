@@ -9,7 +9,10 @@
  *    within 0.75 LSB of it (filter.h: 1/4 LSB state error + 1/2 LSB rounding); the
  *    criterion max >= i_min && min < ratio / 32768 max evaluated in double on the
  *    filtered magnitudes;
- *  - thresholds: x > limit, x < limit, |x| > limit in double (exact).
+ *  - thresholds: x > limit, x < limit, |x| > limit in double (exact);
+ *  - fault-bit names: the header's own macro names, QFOC_FAULT_<name> -> "<name>" (made
+ *    by the preprocessor from the macro names, not typed), and the rule of fault.h for
+ *    every other value: 0 "none", anything but a single defined bit "unknown".
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -17,6 +20,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 #include <math.h>
+#include <string.h>
 
 #include "qfoc/fault.h"
 #define TEST_SEED 777u
@@ -523,6 +527,101 @@ static void test_fault_008_band_over(void **state)
     assert_true(qfoc_fault_band_over(4949, 4015, 280, 9830));
 }
 
+/* Each defined fault bit with its expected name: the macro's name without QFOC_FAULT_. */
+#define FAULT_NAMED(m) { QFOC_FAULT_##m, #m }
+static const struct {
+    uint16_t bit;
+    const char *name;
+} fault_names_ref[] = {
+    FAULT_NAMED(OC), FAULT_NAMED(OV), FAULT_NAMED(UV), FAULT_NAMED(OT_IPM),
+    FAULT_NAMED(OT_PCB), FAULT_NAMED(STALL), FAULT_NAMED(PHASE), FAULT_NAMED(OFFSET),
+    FAULT_NAMED(LINK), FAULT_NAMED(PARAM), FAULT_NAMED(TIMING)
+};
+#define FAULT_NAMES_REF_N (sizeof(fault_names_ref) / sizeof(fault_names_ref[0]))
+
+/* the name fault.h promises for any value: a single defined bit its entry, 0 "none",
+   everything else "unknown" */
+static const char *fault_name_ref(uint32_t v)
+{
+    const char *want = "unknown";
+    size_t k;
+    if (v == 0u) {
+        want = "none";
+    }
+    for (k = 0u; k < FAULT_NAMES_REF_N; k++) {
+        if (v == fault_names_ref[k].bit) {
+            want = fault_names_ref[k].name;
+        }
+    }
+    return want;
+}
+
+/* REQ-FAULT-009: every defined bit has its own name (the macro's), short, distinct from the
+   others and from the texts of no fault and of an unknown value; the reference list covers
+   QFOC_FAULT_ALL exactly (a bit added to fault.h without a name fails here) */
+static void test_fault_009_name_each_bit(void **state)
+{
+    uint16_t covered = 0u;
+    size_t k;
+    size_t j;
+    (void)state;
+    for (k = 0u; k < FAULT_NAMES_REF_N; k++) {
+        const char *got = qfoc_fault_name(fault_names_ref[k].bit);
+        assert_non_null(got);
+        assert_string_equal(got, fault_names_ref[k].name);
+        assert_true(strlen(got) >= 2u);
+        assert_true(strlen(got) <= QFOC_FAULT_NAME_LEN_MAX);
+        assert_string_not_equal(got, "none");
+        assert_string_not_equal(got, "unknown");
+        for (j = 0u; j < k; j++) {
+            assert_string_not_equal(got, qfoc_fault_name(fault_names_ref[j].bit));
+        }
+        /* one bit each, in order from bit 0 */
+        assert_int_equal(fault_names_ref[k].bit, 1u << k);
+        covered = (uint16_t)(covered | fault_names_ref[k].bit);
+    }
+    assert_int_equal(covered, QFOC_FAULT_ALL);
+    /* spelled out, as the safety manual's fault table writes them */
+    assert_string_equal(qfoc_fault_name(0x0001u), "OC");
+    assert_string_equal(qfoc_fault_name(0x0008u), "OT_IPM");
+    assert_string_equal(qfoc_fault_name(0x0010u), "OT_PCB");
+    assert_string_equal(qfoc_fault_name(0x0400u), "TIMING");
+    /* the longest text is QFOC_FAULT_NAME_LEN_MAX long */
+    assert_int_equal(strlen(qfoc_fault_name(0x0800u)), QFOC_FAULT_NAME_LEN_MAX);
+}
+
+/* REQ-FAULT-009: total: every one of the 65536 values against the reference rule, with the
+   corners named: 0, two bits, the union of all bits, each undefined bit, the top bit, 0xFFFF;
+   the same value gives the same constant text at every call */
+static void test_fault_009_name_every_value(void **state)
+{
+    uint32_t v;
+    uint32_t n_unknown = 0u;
+    uint32_t b;
+    (void)state;
+    for (v = 0u; v <= 0xFFFFu; v++) {
+        const char *got = qfoc_fault_name((uint16_t)v);
+        assert_non_null(got);
+        assert_true(strlen(got) <= QFOC_FAULT_NAME_LEN_MAX);
+        assert_string_equal(got, fault_name_ref(v));
+        assert_ptr_equal(got, qfoc_fault_name((uint16_t)v));
+        n_unknown += (strcmp(got, "unknown") == 0) ? 1u : 0u;
+    }
+    /* all but 0 and the 11 single bits */
+    assert_int_equal(n_unknown, 65536u - 1u - FAULT_NAMES_REF_N);
+    assert_string_equal(qfoc_fault_name(0u), "none");
+    assert_string_equal(qfoc_fault_name((uint16_t)(QFOC_FAULT_OC | QFOC_FAULT_OV)), "unknown");
+    assert_string_equal(qfoc_fault_name((uint16_t)(QFOC_FAULT_LINK | QFOC_FAULT_TIMING)), "unknown");
+    assert_string_equal(qfoc_fault_name(QFOC_FAULT_ALL), "unknown");
+    for (b = 11u; b < 16u; b++) {
+        /* the undefined bits 0x0800 .. 0x8000, alone and with a defined bit */
+        assert_string_equal(qfoc_fault_name((uint16_t)(1u << b)), "unknown");
+        assert_string_equal(qfoc_fault_name((uint16_t)((1u << b) | QFOC_FAULT_OC)), "unknown");
+    }
+    assert_string_equal(qfoc_fault_name(0x8000u), "unknown");
+    assert_string_equal(qfoc_fault_name(0xFFFFu), "unknown");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -538,6 +637,8 @@ int main(void)
         cmocka_unit_test(test_phase_mon_round_robin),
         cmocka_unit_test(test_phase_mon_init_valid),
         cmocka_unit_test(test_fault_thresholds),
+        cmocka_unit_test(test_fault_009_name_each_bit),
+        cmocka_unit_test(test_fault_009_name_every_value),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -598,7 +598,9 @@ static void test_par_006_reference_drive_defaults(void **state)
     assert_int_equal(d->tc_gain, 492);
     assert_int_equal(d->tc_amp_max, (int16_t)floor(0.5 * 20.0 / ib * 32768.0 + 0.5));
     assert_int_equal(d->tc_speed_min, (int16_t)floor(600.0 * rpm_pu * 32768.0 + 0.5));
-    assert_int_equal(d->tc_speed_max, (int16_t)floor(6000.0 * rpm_pu * 32768.0 + 0.5));
+    /* the window's top derived by the tool from the learning law's phase model (5160 rpm
+       on this motor, below the rated 6000 rpm; tools/tune/tests check the derivation) */
+    assert_int_equal(d->tc_speed_max, (int16_t)floor(5160.0 * rpm_pu * 32768.0 + 0.5));
     assert_int_equal(d->para_speed, (int16_t)floor(0.7 * 8000.0 * rpm_pu * 32768.0 + 0.5));
     assert_int_equal(d->ld_hs, qfoc_params_reference.ld);
     assert_int_equal(d->lq_hs, qfoc_params_reference.lq);

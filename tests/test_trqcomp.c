@@ -460,8 +460,12 @@ static void test_tc_learn_vs_reference(void **state)
         /* the law of the header: a_h with +sigma sin(h x), b_h with -sigma cos(h x) */
         reg[0] = sigma * sin(x);
         reg[1] = -sigma * cos(x);
-        reg[2] = sigma * sin(2.0 * x);
-        reg[3] = -sigma * cos(2.0 * x);
+        /* the second harmonic only while 2 |speed| <= speed_max */
+        {
+            const double h2 = (2.0 * fabs((double)speed) <= (double)p.speed_max) ? 1.0 : 0.0;
+            reg[2] = h2 * sigma * sin(2.0 * x);
+            reg[3] = -h2 * sigma * cos(2.0 * x);
+        }
         qfoc_trqcomp_learn(&tc, th, e, speed);
         assert_true(qfoc_trqcomp_is_valid(&tc));
         now[0] = tc.a[0];
@@ -492,7 +496,8 @@ static void test_tc_learn_vs_reference(void **state)
 }
 
 /* REQ-TC-005, REQ-TC-006, REQ-TC-007: coefficients held outside the window, for zero gain
-   and zero error; -32768 error and speed; the learning direction. */
+   and zero error; -32768 error and speed; the learning direction; the second harmonic held
+   above half the window's top. */
 static void test_tc_learn_corners(void **state)
 {
     qfoc_trqcomp_t tc;
@@ -547,6 +552,20 @@ static void test_tc_learn_corners(void **state)
     assert_int_equal(tc.b[0], 0);
     assert_int_equal(tc.a[1], 0);
     assert_int_equal(tc.b[1], 0);
+    /* the second harmonic learns up to 2 |speed| = speed_max, either direction, and is held
+       above while the first learns */
+    {
+        const int16_t half = (int16_t)(TC_SPEED_MAX_DEFAULT / 2);
+        const int16_t sp[4] = { half, (int16_t)-half, (int16_t)(half + 1), (int16_t)-(half + 1) };
+        for (i = 0u; i < 4u; i++) {
+            p = default_params();
+            (void)qfoc_trqcomp_init(&tc, &p);
+            qfoc_trqcomp_learn(&tc, 0u, 1000, sp[i]);
+            assert_int_equal(tc.b[0], ((sp[i] > 0) ? -1 : 1) * 2 * 492 * 1000);
+            assert_int_equal(tc.b[1], (i < 2u) ? (((sp[i] > 0) ? -1 : 1) * 2 * 492 * 1000) : 0);
+            assert_int_equal(tc.a[1], 0);
+        }
+    }
     /* gain 0: held */
     p = default_params();
     p.gain = 0;

@@ -58,6 +58,10 @@
 #include "qfoc/types.h"
 #include "qfoc/fault.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Verdicts of qfoc_catch_verdict(). */
 #define QFOC_CATCH_WAIT  ((uint8_t)0u)  /**< turning, not catchable: keep zero current */
 #define QFOC_CATCH_STILL ((uint8_t)1u)  /**< standing: the normal start (ALIGN) */
@@ -172,5 +176,9 @@ void qfoc_catch_reset(qfoc_catch_t *k);
 */
 uint8_t qfoc_catch_step(qfoc_catch_t *k, qfoc_q15_t u, qfoc_q15_t speed, qfoc_q15_t psi,
                         const qfoc_catch_cfg_t *c, uint16_t dwell);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_CATCH_H */

@@ -43,15 +43,17 @@
  *     3/4 align_ms and half of it for the last quarter; the two d voltages give the
  *     inverter's residual voltage error (dtc.h, REQ-DRV-026).
  *   - RUN / OPEN_LOOP (I/f): current i_start on the q axis of an imposed frame whose
- *     speed ramps at of_accel to of_speed; the estimator (flux observer + PLL) runs
+ *     speed ramps at of_accel to of_speed (the q current ramping in from 0 and ALIGN's d
+ *     current out, each by ceil(i_max / 16) per tick); the estimator (flux observer + PLL) runs
  *     throughout.
- *   - handover to CLOSED_LOOP when, for ho_dwell_ms, the filtered estimated speed is
+ *   - handover to CLOSED_LOOP when, for ho_dwell_ms, the open-loop speed has reached
+ *     of_speed (the minimum speed), the filtered estimated speed is
  *     within 1/4 of the open-loop speed, the observer's flux magnitude is at least the
  *     PLL's mag_min, and the angle delta = theta_ol - theta_est between the open-loop
  *     frame and the estimated rotor lies in (-(90 deg + ho_angle), ho_angle): a rotor
  *     following the frame settles at K i cos(delta) = T_load with delta in [-90, 0] deg,
- *     a slipping one sweeps through +180 deg; and not before cl_hold_ms after the start
- *     (2 s, specs/equations.md section 8.3).  The speed PI is preset to the q current that gives, with
+ *     a slipping one sweeps through +180 deg; and not before cl_hold_ms after the ALIGN
+ *     entry (2 s in the generated tables, specs/equations.md section 8.3; 0: at convergence).  The speed PI is preset to the q current that gives, with
  *     i_d = 0, the torque the rotor carries, for a bumpless transfer.
  *   - CLOSED_LOOP: speed reference ramps at speed_ramp to the target; speed PI every
  *     1 ms on the filtered estimate; the tick turns its q current into the current
@@ -91,7 +93,8 @@
  *          stuck current sensors), for phase_ms: ERROR align_ms / 2 + phase_ms after
  *          the start, before the motor is accelerated (REQ-DRV-018);
  *   OFFSET offset calibration out of its window (PRECHARGE); and, in CLOSED_LOOP and
- *          STOPPING while the stall condition is false (REQ-DRV-020): one current code
+ *          STOPPING while the stall condition is false and the current is one a healthy
+ *          phase cannot hold on a code for 2 ms (REQ-DRV-020): one current code
  *          unchanged for 2 ms of fast steps while the other channel's code moved (a
  *          stuck sample or a sensor stuck at any value: where a healthy phase current is
  *          slowest, at its peak, the other phase's is near its steepest; a rotor at
@@ -163,6 +166,10 @@
 #include "qfoc/sm.h"
 #include "qfoc/catch.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Largest ADC code (12 bits). */
 #define QFOC_ADC_MAX ((uint16_t)4095u)
 /** ADC code of zero current (mid-scale). */
@@ -214,8 +221,8 @@ typedef struct {
     uint32_t theta_ol;        /**< open-loop angle, 2^32 per turn */
     qfoc_dq_t i_dq;           /**< measured currents in the control frame */
     qfoc_q15_t vdc;           /**< filtered DC bus */
-    uint16_t adc_iu;          /**< last raw current samples (offset calibration) */
-    uint16_t adc_iv;
+    uint16_t adc_iu;          /**< last raw sample of i_u, ADC code (offset calibration) */
+    uint16_t adc_iv;          /**< last raw sample of i_v, ADC code (offset calibration) */
     qfoc_angle_t theta_est;   /**< estimated rotor angle (lead-corrected) */
     qfoc_angle_t theta_m;     /**< mechanical angle (torque compensation) */
     qfoc_q15_t speed;         /**< PLL speed, unfiltered */
@@ -244,21 +251,21 @@ typedef struct {
     qfoc_fw_t fw;             /**< field weakening (1 ms, REQ-DRV-006) */
     qfoc_trqcomp_t tc;        /**< torque compensation */
     qfoc_link_t link;         /**< command link */
-    qfoc_debounce_t db_ov;    /**< debounce of each tick-evaluated fault */
-    qfoc_debounce_t db_uv;
-    qfoc_debounce_t db_ot_ipm;
-    qfoc_debounce_t db_ot_pcb;
-    qfoc_debounce_t db_stall;
+    qfoc_debounce_t db_ov;    /**< debounce of OV (each tick-evaluated fault has its own) */
+    qfoc_debounce_t db_uv;    /**< debounce of UV */
+    qfoc_debounce_t db_ot_ipm; /**< debounce of OT_IPM */
+    qfoc_debounce_t db_ot_pcb; /**< debounce of OT_PCB */
+    qfoc_debounce_t db_stall; /**< debounce of STALL (speed or flux error) */
     qfoc_debounce_t db_flux;  /**< the fast flux plausibility check (REQ-DRV-023) */
-    qfoc_debounce_t db_phase;
+    qfoc_debounce_t db_phase; /**< debounce of PHASE */
     qfoc_debounce_t db_align; /**< ALIGN without current (REQ-DRV-025) */
     qfoc_debounce_t db_ho;    /**< handover condition dwell */
     qfoc_catch_t catch_st;    /**< flying start: CATCH's filter and dwells (catch.h) */
-    uint32_t off_sum_u;       /**< offset calibration sums */
-    uint32_t off_sum_v;
+    uint32_t off_sum_u;       /**< offset calibration: sum of the i_u samples */
+    uint32_t off_sum_v;       /**< offset calibration: sum of the i_v samples */
     uint16_t off_n;           /**< samples summed */
-    uint16_t offset_u;        /**< calibrated offsets, ADC codes */
-    uint16_t offset_v;
+    uint16_t offset_u;        /**< calibrated offset of i_u, ADC code */
+    uint16_t offset_v;        /**< calibrated offset of i_v, ADC code */
     qfoc_q15_t speed_target;  /**< commanded speed, Q15 electrical */
     qfoc_q15_t speed_ref;     /**< ramped speed reference */
     qfoc_q15_t ol_speed;      /**< open-loop frame speed */
@@ -487,6 +494,8 @@ int32_t qfoc_drive_command(qfoc_drive_t *d, const qfoc_cmd_t *cmd);
 
 /**
  * @brief State of the state machine: QFOC_STATE_PRECHARGE .. QFOC_STATE_ERROR (sm.h).
+ * @param[in] d the motor object
+ * @return the state, one of the QFOC_STATE_* codes
  * Requirements: REQ-DRV-017.
  */
 /*@
@@ -499,6 +508,8 @@ uint8_t qfoc_drive_state(const qfoc_drive_t *d);
 /**
  * @brief Sub-state (sm.h): QFOC_SUB_ALIGN, QFOC_SUB_OPEN_LOOP, QFOC_SUB_CLOSED_LOOP or
  *        QFOC_SUB_STOPPING in RUN; QFOC_SUB_CALIB in PRECHARGE's calibration.
+ * @param[in] d the motor object
+ * @return the sub-state, one of the QFOC_SUB_* codes
  * Requirements: REQ-DRV-017.
  */
 /*@
@@ -511,6 +522,8 @@ uint8_t qfoc_drive_substate(const qfoc_drive_t *d);
 /**
  * @brief Fault word: the QFOC_FAULT_* bits (fault.h) of the tick that entered ERROR,
  *        latched until the fault clear (0 outside ERROR).
+ * @param[in] d the motor object
+ * @return the fault word (qfoc_fault_name() names a single bit)
  * Requirements: REQ-DRV-017.
  */
 /*@
@@ -525,6 +538,8 @@ uint16_t qfoc_drive_faults(const qfoc_drive_t *d);
  *        ERROR), for the diagnostic record of the root cause.  The fault word latches at
  *        the same value when ERROR is entered (a later fault changes neither), so the two
  *        are equal in this release; read this one for the root cause.
+ * @param[in] d the motor object
+ * @return the first-fault word (qfoc_fault_name() names a single bit)
  * Requirements: REQ-DRV-017.
  */
 /*@
@@ -558,6 +573,8 @@ void qfoc_drive_status(const qfoc_drive_t *d, qfoc_status_t *st);
 /**
  * @brief |Estimated speed|, mechanical rpm (the filtered estimate, as of the last tick;
  *        0 while the PWM is off, when the estimator has no input).
+ * @param[in] d the motor object
+ * @return the speed magnitude, mechanical rpm
  * Requirements: REQ-DRV-017.
  */
 /*@
@@ -570,6 +587,8 @@ uint16_t qfoc_drive_speed_rpm(const qfoc_drive_t *d);
 /**
  * @brief Commanded speed in effect, mechanical rpm: the target of the last command
  *        taken (frame or qfoc_drive_command()), 0 before the first.
+ * @param[in] d the motor object
+ * @return the commanded speed, mechanical rpm
  * Requirements: REQ-DRV-017.
  */
 /*@
@@ -582,6 +601,8 @@ uint16_t qfoc_drive_target_rpm(const qfoc_drive_t *d);
 /**
  * @brief Run request in effect: the last command's power_on while the link is alive
  *        (false before the first command and while the link is lost).
+ * @param[in] d the motor object
+ * @return true when a run is requested
  * Requirements: REQ-DRV-017.
  */
 /*@
@@ -595,6 +616,8 @@ bool qfoc_drive_run_requested(const qfoc_drive_t *d);
  * @brief Thermal derating in effect: after the last tick, the IPM or the PCB temperature
  *        held the speed limit below rpm_max (it falls linearly from rpm_max at the
  *        derating temperature to rpm_derate at the trip; false before the first tick).
+ * @param[in] d the motor object
+ * @return true when the speed limit is derated
  * Requirements: REQ-DRV-024.
  */
 /*@
@@ -607,6 +630,8 @@ bool qfoc_drive_derated(const qfoc_drive_t *d);
 /**
  * @brief Estimated electrical rotor angle, 65536 per electrical turn (the fast step's
  *        last estimate; 0 = the d axis on phase u).
+ * @param[in] d the motor object
+ * @return the estimated angle, 65536 counts per electrical turn
  * Requirements: REQ-DRV-017.
  */
 /*@
@@ -635,6 +660,8 @@ void qfoc_drive_currents_q15(const qfoc_drive_t *d, qfoc_dq_t *i_dq);
 /**
  * @brief Filtered DC-bus voltage, Q15 of V_base (the table's v_base_mv: 32767 = V_base);
  *        qfoc_drive_status() gives it in 0.1 V.
+ * @param[in] d the motor object
+ * @return the filtered DC-bus voltage, Q15 of V_base
  * Requirements: REQ-DRV-017.
  */
 /*@
@@ -643,5 +670,9 @@ void qfoc_drive_currents_q15(const qfoc_drive_t *d, qfoc_dq_t *i_dq);
   ensures result: \result == d->f.vdc;
 */
 qfoc_q15_t qfoc_drive_vdc_q15(const qfoc_drive_t *d);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_DRIVE_H */

@@ -25,19 +25,25 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Largest number of pole pairs. */
 #define QFOC_DRIVE_POLE_PAIRS_MAX ((uint8_t)16u)
 /** Largest time setting in milliseconds (one minute). */
 #define QFOC_DRIVE_MS_MAX ((uint16_t)60000u)
-/** Offset calibration: 2^4 .. 2^10 current samples averaged. */
+/** Offset calibration: at least 2^4 current samples averaged. */
 #define QFOC_DRIVE_OFFSET_SHIFT_MIN ((uint8_t)4u)
+/** Offset calibration: at most 2^10 current samples averaged. */
 #define QFOC_DRIVE_OFFSET_SHIFT_MAX ((uint8_t)10u)
 /** Largest offset window: |offset - 2048| of a 12-bit converter, 2^11 - 1 counts. */
 #define QFOC_DRIVE_OFFSET_WINDOW_MAX ((uint16_t)2047u)
 /** Largest handover angle: a quarter turn, 16384 / 65536 = 90 degrees electrical. */
 #define QFOC_DRIVE_HO_ANGLE_MAX ((uint16_t)16384u)
-/** Temperature thresholds, 0.1 degC: -40.0 degC .. 200.0 degC. */
+/** Lowest temperature threshold, 0.1 degC: -40.0 degC. */
 #define QFOC_DRIVE_TEMP_MIN ((int16_t)-400)
+/** Highest temperature threshold, 0.1 degC: 200.0 degC. */
 #define QFOC_DRIVE_TEMP_MAX ((int16_t)2000)
 /** Largest DC-bus and temperature debounce, ms (1 ms tick). */
 #define QFOC_DRIVE_DEBOUNCE_MAX ((uint16_t)10u)
@@ -233,5 +239,9 @@ typedef struct {
   ensures result: \result <==> DriveCfgValid(c);
 */
 bool qfoc_drive_cfg_is_valid(const qfoc_drive_cfg_t *c);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_DRIVE_CFG_H */

@@ -38,6 +38,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** The smallest |s_d(i_hi) - 2 s_d(i_lo)| (Q15) for which qfoc_dtc_learn() solves for dV:
     1/2.  Below it the alignment currents lie inside the dead band, where the error's shape
     is linear in the current like the resistance and cannot be told from it; the result is
@@ -166,5 +170,9 @@ qfoc_q15_t qfoc_dtc_speed_fade(qfoc_q15_t dv, qfoc_q15_t w, qfoc_q15_t w_full);
   ensures zero: dv == 0 ==> e->alpha == 0 && e->beta == 0;
 */
 void qfoc_dtc_error(qfoc_q15_t dv, const qfoc_abc_t *i, qfoc_q15_t i_db, qfoc_ab_t *e);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_DTC_H */

@@ -169,6 +169,10 @@
 #include "qfoc/types.h"
 #include "qfoc/filter.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** qfoc_emf_init() / qfoc_dob_init() status: parameters accepted. */
 #define QFOC_EMF_OK ((int32_t)0)
 /** qfoc_emf_init() / qfoc_dob_init() status: parameters rejected, safe state set. */
@@ -659,5 +663,9 @@ void qfoc_dob_step(qfoc_dob_t *d, const qfoc_ab_t *u, const qfoc_ab_t *i,
   ensures zero_speed: (QfocSat15(w) == 0 || d->params.k_theta == 0) ==> \result == 0;
 */
 qfoc_angle_t qfoc_dob_lag(const qfoc_dob_t *d, qfoc_q15_t w);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_EMF_H */

@@ -25,13 +25,19 @@
  *
  * All functions are total on every value of their input types.
  *
- * Requirements: REQ-FAULT-001 .. REQ-FAULT-008 (specs/requirements/fault.md).
+ * qfoc_fault_name() gives each bit its short name for a log or a diagnostic.
+ *
+ * Requirements: REQ-FAULT-001 .. REQ-FAULT-009 (specs/requirements/fault.md).
  */
 #ifndef QFOC_FAULT_H
 #define QFOC_FAULT_H
 
 #include "qfoc/types.h"
 #include "qfoc/filter.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* ---- fault word bits (REQ-FAULT-001) ------------------------------------- */
 #define QFOC_FAULT_OC     ((uint16_t)0x0001u)  /**< phase over-current (fast step) */
@@ -52,6 +58,10 @@
 #define QFOC_FAULT_TIMING ((uint16_t)0x0400u)  /**< fast steps per tick out of range in RUN
                                                    (REQ-DRV-021) */
 #define QFOC_FAULT_ALL    ((uint16_t)0x07FFu)  /**< every fault bit above */
+
+/** Longest text of qfoc_fault_name(), in characters without the terminating '\0'
+    ("unknown"); a buffer of QFOC_FAULT_NAME_LEN_MAX + 1 characters holds any of them. */
+#define QFOC_FAULT_NAME_LEN_MAX (7u)
 
 /** Phase-monitor init status: coefficient accepted. */
 #define QFOC_FAULT_OK ((int32_t)0)
@@ -475,5 +485,88 @@ bool qfoc_fault_abs_over(qfoc_q15_t x, qfoc_q15_t limit);
        (dev - \max(k, 0)) * \abs(w) > 32768 * ((v < 0) ? 0 : ((v > 65535) ? 65535 : v)));
 */
 bool qfoc_fault_band_over(qfoc_q15_t dev, qfoc_q15_t k, int32_t v, qfoc_q15_t w);
+
+/**
+ * @brief The short name of one fault bit, for a log, a diagnostic or a display.
+ * @param[in] bit a fault word value, any uint16_t; normally one of the QFOC_FAULT_*
+ *                bits (a word with several bits is named bit by bit, below)
+ * @return a pointer to a constant, zero-terminated text of at most
+ *         QFOC_FAULT_NAME_LEN_MAX (7) characters, valid for the program's lifetime,
+ *         read only, never NULL:
+ *         - a single defined bit: its name, the macro's name without QFOC_FAULT_:
+ *           QFOC_FAULT_OC "OC", QFOC_FAULT_OV "OV", QFOC_FAULT_UV "UV",
+ *           QFOC_FAULT_OT_IPM "OT_IPM", QFOC_FAULT_OT_PCB "OT_PCB",
+ *           QFOC_FAULT_STALL "STALL", QFOC_FAULT_PHASE "PHASE",
+ *           QFOC_FAULT_OFFSET "OFFSET", QFOC_FAULT_LINK "LINK",
+ *           QFOC_FAULT_PARAM "PARAM", QFOC_FAULT_TIMING "TIMING";
+ *         - 0 (no fault): "none";
+ *         - anything else (two or more bits, a bit above QFOC_FAULT_ALL): "unknown".
+ *
+ * The names are those of the safety manual's fault table; they do not change between
+ * releases (a new fault bit gets a new name).
+ * The lower-case texts "none" and "unknown" cannot be taken for a fault's name.  A
+ * word with several bits, such as the fault word of qfoc_drive_faults(), is named bit
+ * by bit:
+ * @code
+ *   for (uint16_t b = 1u; b <= QFOC_FAULT_ALL; b = (uint16_t)(b << 1u)) {
+ *       if ((faults & b) != 0u) { log_text(qfoc_fault_name(b)); }
+ *   }
+ * @endcode
+ *
+ * Bad input: none; every value is named ("unknown" when it is not a single defined
+ * bit).  Reads and writes no memory; the texts are constants of the library.
+ *
+ * Requirements: REQ-FAULT-009.
+ */
+/*@
+  assigns \nothing;
+  ensures valid: \valid_read(\result);
+  behavior oc:
+    assumes bit == QFOC_FAULT_OC;
+    ensures name: FaultText2(\result, 'O', 'C');
+  behavior ov:
+    assumes bit == QFOC_FAULT_OV;
+    ensures name: FaultText2(\result, 'O', 'V');
+  behavior uv:
+    assumes bit == QFOC_FAULT_UV;
+    ensures name: FaultText2(\result, 'U', 'V');
+  behavior ot_ipm:
+    assumes bit == QFOC_FAULT_OT_IPM;
+    ensures name: FaultText6(\result, 'O', 'T', '_', 'I', 'P', 'M');
+  behavior ot_pcb:
+    assumes bit == QFOC_FAULT_OT_PCB;
+    ensures name: FaultText6(\result, 'O', 'T', '_', 'P', 'C', 'B');
+  behavior stall:
+    assumes bit == QFOC_FAULT_STALL;
+    ensures name: FaultText5(\result, 'S', 'T', 'A', 'L', 'L');
+  behavior phase:
+    assumes bit == QFOC_FAULT_PHASE;
+    ensures name: FaultText5(\result, 'P', 'H', 'A', 'S', 'E');
+  behavior offset:
+    assumes bit == QFOC_FAULT_OFFSET;
+    ensures name: FaultText6(\result, 'O', 'F', 'F', 'S', 'E', 'T');
+  behavior link:
+    assumes bit == QFOC_FAULT_LINK;
+    ensures name: FaultText4(\result, 'L', 'I', 'N', 'K');
+  behavior param:
+    assumes bit == QFOC_FAULT_PARAM;
+    ensures name: FaultText5(\result, 'P', 'A', 'R', 'A', 'M');
+  behavior timing:
+    assumes bit == QFOC_FAULT_TIMING;
+    ensures name: FaultText6(\result, 'T', 'I', 'M', 'I', 'N', 'G');
+  behavior none:
+    assumes bit == 0;
+    ensures name: FaultText4(\result, 'n', 'o', 'n', 'e');
+  behavior unknown:
+    assumes bit != 0 && !FaultNamedBit(bit);
+    ensures name: FaultText7(\result, 'u', 'n', 'k', 'n', 'o', 'w', 'n');
+  complete behaviors;
+  disjoint behaviors;
+*/
+const char *qfoc_fault_name(uint16_t bit);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_FAULT_H */

@@ -69,6 +69,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Filter init status: coefficients accepted. */
 #define QFOC_FILTER_OK ((int32_t)0)
 /** Filter init status: coefficients rejected, instance set to the safe state. */
@@ -323,5 +327,9 @@ void qfoc_leaky_reset(qfoc_leaky_int_t *f, qfoc_q15_t value);
   disjoint behaviors;
 */
 qfoc_q15_t qfoc_leaky_step(qfoc_leaky_int_t *f, qfoc_q15_t x);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_FILTER_H */

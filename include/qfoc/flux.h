@@ -153,6 +153,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** qfoc_flux_init() status: parameters accepted. */
 #define QFOC_FLUX_OK ((int32_t)0)
 /** qfoc_flux_init() status: parameters rejected, instance set to the safe state. */
@@ -448,5 +452,9 @@ void qfoc_flux_step(qfoc_flux_t *o, const qfoc_ab_t *u, const qfoc_ab_t *i,
   disjoint behaviors;
 */
 qfoc_angle_t qfoc_flux_lead(const qfoc_flux_t *o, qfoc_q15_t w);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_FLUX_H */

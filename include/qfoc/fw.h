@@ -49,6 +49,10 @@
 #include "qfoc/pi.h"
 #include "qfoc/filter.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** qfoc_fw_init() status: parameters accepted. */
 #define QFOC_FW_OK ((int32_t)0)
 /** qfoc_fw_init() status: parameters rejected, instance set to the safe state. */
@@ -223,5 +227,9 @@ void qfoc_fw_reset(qfoc_fw_t *fw);
   disjoint behaviors;
 */
 qfoc_q15_t qfoc_fw_step(qfoc_fw_t *fw, qfoc_q15_t utilisation, bool enable);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_FW_H */

@@ -46,6 +46,10 @@
 #include "qfoc/drive.h"
 #include "qfoc/link.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /**
  * @brief Write the compare values and the output enable of the next PWM period.
  * @param[in] pwm compare values u, v, w in timer ticks (0..period; larger values are
@@ -231,5 +235,9 @@ void qfoc_hal_fault_output(void);
  */
 /*@ assigns \nothing; */
 bool qfoc_hal_fault_latched(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_HAL_H */

@@ -36,6 +36,10 @@
 #include "qfoc/types.h"
 #include "qfoc/vector.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Inputs of the reference generation of one tick. */
 typedef struct {
     qfoc_q15_t i_max;   /**< current-vector limit, Q15 of I_base (a value <= 0 reads as 0) */
@@ -154,5 +158,9 @@ uint16_t qfoc_iref_derate(uint16_t hi, uint16_t lo, int16_t t, int16_t t_start, 
                   ((in->i_max > 0) ? in->i_max : 0) * ((in->i_max > 0) ? in->i_max : 0);
 */
 void qfoc_iref_step(const qfoc_iref_in_t *in, qfoc_iref_out_t *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_IREF_H */

@@ -41,6 +41,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Decoding status: well-formed command frame. */
 #define QFOC_LINK_OK ((int32_t)0)
 /** Decoding status: length is not the command frame length (7 bytes). */
@@ -524,5 +528,9 @@ bool qfoc_link_lost(const qfoc_link_t *l);
   ensures payload: LinPayload(st, &f->data[0]);
 */
 void qfoc_can_status(qfoc_link_t *l, const qfoc_status_t *st, qfoc_can_frame_t *f);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_LINK_H */

@@ -58,6 +58,10 @@
 #include "qfoc/pll.h"
 #include "qfoc/drive_cfg.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Table identifier: the ASCII bytes "QFOC" read as a little-endian uint32_t. */
 #define QFOC_PARAMS_MAGIC ((uint32_t)0x434F4651u)
 /** Layout version of qfoc_param_table_t. */
@@ -77,8 +81,9 @@
     above it never trips: the table is refused (REQ-PAR-003). */
 #define QFOC_PARAMS_VDC_READ_MAX ((qfoc_q15_t)32760)
 
-/** Bounds of f_pwm_hz. */
+/** Lowest f_pwm_hz, Hz. */
 #define QFOC_PARAMS_F_PWM_MIN ((uint16_t)1000u)
+/** Highest f_pwm_hz, Hz. */
 #define QFOC_PARAMS_F_PWM_MAX ((uint16_t)40000u)
 
 /** The constant parameter table of one motor and inverter. */
@@ -288,5 +293,9 @@ int32_t qfoc_params_scan_step(uint32_t *crc, const qfoc_param_table_t *t, uint8_
     ParamsIdOk{Pre}(rom) && ParamsValid{Pre}(rom) && ParamsIdOk(ram) && ParamsValid(ram);
 */
 int32_t qfoc_params_load(qfoc_param_table_t *ram, const qfoc_param_table_t *rom);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_PARAMS_H */

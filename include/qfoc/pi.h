@@ -46,6 +46,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** qfoc_pi_init() status: parameters accepted. */
 #define QFOC_PI_OK ((int32_t)0)
 /** qfoc_pi_init() status: parameters rejected, instance set to the safe state. */
@@ -268,5 +272,9 @@ void qfoc_pi_set_limit(qfoc_pi_t *pi, qfoc_q15_t lim);
   disjoint behaviors;
 */
 qfoc_q15_t qfoc_pi_step(qfoc_pi_t *pi, qfoc_q15_t error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_PI_H */

@@ -216,6 +216,10 @@
 #include "qfoc/filter.h"
 #include "qfoc/vector.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** qfoc_pll_init() status: parameters accepted. */
 #define QFOC_PLL_OK ((int32_t)0)
 /** qfoc_pll_init() status: parameters rejected, instance set to the safe state. */
@@ -544,5 +548,9 @@ void qfoc_pll_step(qfoc_pll_t *pll, const qfoc_ab_t *psi, qfoc_pll_out_t *out);
   disjoint behaviors;
 */
 void qfoc_pll_step_emf(qfoc_pll_t *pll, const qfoc_ab_t *emf, qfoc_pll_out_t *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_PLL_H */

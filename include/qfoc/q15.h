@@ -26,6 +26,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Q30 magnitude from which a Q30 -> Q15 conversion saturates: 32767.5 * 32768. */
 #define QFOC_Q30_SAT_LIMIT (1073725440L)
 /** Largest Q31 magnitude that rounds (x / 65536) into the Q15 range: 32767.5 x 65536 - 1. */
@@ -94,6 +98,8 @@ static inline qfoc_q31_t qfoc_q31_sat(int64_t x)
 /**
  * @brief Saturating addition a + b.
  * Requirement: REQ-Q15-002.
+ * @param[in] a, b addends, Q1.15 (any int16_t)
+ * @return a + b saturated to [-32767, 32767]
  *
  * Scaling and overflow: 1.15 + 1.15 summed exactly in 32 bits (|sum| <= 65536),
  * then saturated to [-32767, 32767].
@@ -119,6 +125,9 @@ static inline qfoc_q15_t qfoc_q15_add(qfoc_q15_t a, qfoc_q15_t b)
 /**
  * @brief Saturating subtraction a - b.
  * Requirement: REQ-Q15-002.
+ * @param[in] a minuend, Q1.15 (any int16_t)
+ * @param[in] b subtrahend, Q1.15 (any int16_t)
+ * @return a - b saturated to [-32767, 32767]
  *
  * Scaling and overflow: as qfoc_q15_add; |a - b| <= 65535 in 32 bits.
  */
@@ -143,6 +152,8 @@ static inline qfoc_q15_t qfoc_q15_sub(qfoc_q15_t a, qfoc_q15_t b)
 /**
  * @brief Saturating negation -a (-(-32768) gives 32767).
  * Requirement: REQ-Q15-003.
+ * @param[in] a Q1.15 (any int16_t)
+ * @return -a, in [-32767, 32767]
  */
 /*@
   assigns \nothing;
@@ -165,6 +176,8 @@ static inline qfoc_q15_t qfoc_q15_neg(qfoc_q15_t a)
 /**
  * @brief Saturating absolute value |a| (|-32768| gives 32767).
  * Requirement: REQ-Q15-003.
+ * @param[in] a Q1.15 (any int16_t)
+ * @return |a|, in [0, 32767]
  */
 /*@
   assigns \nothing;
@@ -237,6 +250,8 @@ static inline qfoc_q15_t qfoc_q15_from_q30(int32_t x)
 /**
  * @brief Q15 x Q15 -> Q15 multiplication, rounded and saturated.
  * Requirement: REQ-Q15-005.
+ * @param[in] a, b factors, Q1.15 (any int16_t)
+ * @return a b / 32768 rounded to nearest (ties away from zero), in [-32767, 32767]
  *
  * Scaling and overflow: 1.15 x 1.15 = 2.30 exact in 32 bits (|a b| <= 2^30),
  * rounded to nearest (ties away from zero) to 1.15 by qfoc_q15_from_q30; only
@@ -262,6 +277,8 @@ static inline qfoc_q15_t qfoc_q15_mul(qfoc_q15_t a, qfoc_q15_t b)
 /**
  * @brief Saturating Q31 addition.
  * Requirement: REQ-Q15-006.
+ * @param[in] a, b addends, Q1.31 (any int32_t)
+ * @return a + b, formed in 64 bits, saturated to [-(2^31 - 1), 2^31 - 1]
  */
 /*@
   assigns \nothing;
@@ -300,6 +317,7 @@ static inline qfoc_q31_t qfoc_q31_mac(qfoc_q31_t acc, qfoc_q15_t a, qfoc_q15_t b
  *        [-32767, 32767]: x / 65536 rounded to nearest (ties away from zero).
  * Requirement: REQ-Q15-008.
  * @param[in] x Q1.31, |x| <= QFOC_Q31_ROUND_MAX (required: the caller proves it)
+ * @return x / 65536 rounded to nearest (ties away from zero), in [-32767, 32767]
  *
  * Scaling and overflow: x + 2^31 + 2^15 (less 1 for a negative x, which turns the
  * round-half-up of the unsigned quotient into ties away from zero) lies in
@@ -325,6 +343,8 @@ static inline qfoc_q15_t qfoc_q15_round_q31(int32_t x)
  * @brief Convert Q31 to Q15: x / 65536 rounded to nearest (ties away from zero),
  *        saturated to [-32767, 32767].
  * Requirement: REQ-Q15-008.
+ * @param[in] x Q1.31 (any int32_t)
+ * @return x / 65536 rounded to nearest (ties away from zero), in [-32767, 32767]
  *
  * Scaling and overflow: 1.31 -> 1.15 drops 16 fraction bits; x is first clamped to
  * the last values that round into [-32767, 32767], then rounded by
@@ -352,6 +372,8 @@ static inline qfoc_q15_t qfoc_q15_from_q31(qfoc_q31_t x)
 /**
  * @brief Convert Q15 to Q31 (exact: x * 65536).
  * Requirement: REQ-Q15-008.
+ * @param[in] x Q1.15 (any int16_t)
+ * @return x * 65536, Q1.31 (exact, no saturation needed)
  */
 /*@
   assigns \nothing;
@@ -361,5 +383,9 @@ static inline qfoc_q31_t qfoc_q31_from_q15(qfoc_q15_t x)
 {
     return (qfoc_q31_t)x * 65536;
 }
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_Q15_H */

@@ -18,6 +18,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifdef __FRAMAC__
 /* ACSL logic of this module, read by Frama-C only (DEV-001). */
 /* cppcheck-suppress misra-c2012-20.1 ; DEV-001 */
@@ -74,5 +78,9 @@
   disjoint behaviors;
 */
 qfoc_q15_t qfoc_ramp_toward(qfoc_q15_t value, qfoc_q15_t target, qfoc_q15_t step);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_RAMP_H */

@@ -61,11 +61,15 @@
 #include "qfoc/types.h"
 #include "qfoc/fault.h"
 
-/** States (the four of specs/equations.md section 8.3). */
-#define QFOC_STATE_PRECHARGE ((uint8_t)0u)
-#define QFOC_STATE_STOP      ((uint8_t)1u)
-#define QFOC_STATE_RUN       ((uint8_t)2u)
-#define QFOC_STATE_ERROR     ((uint8_t)3u)
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* States (the four of specs/equations.md section 8.3). */
+#define QFOC_STATE_PRECHARGE ((uint8_t)0u)  /**< PWM off: DC bus settling, then the offset calibration */
+#define QFOC_STATE_STOP      ((uint8_t)1u)  /**< PWM off, ready: left on a run request */
+#define QFOC_STATE_RUN       ((uint8_t)2u)  /**< the motor driven: sub-states CATCH .. STOPPING */
+#define QFOC_STATE_ERROR     ((uint8_t)3u)  /**< PWM off, faults latched until a fault clear */
 
 /** Sub-states (one code space). */
 #define QFOC_SUB_NONE        ((uint8_t)0u)  /**< STOP, ERROR */
@@ -77,9 +81,11 @@
 #define QFOC_SUB_STOPPING    ((uint8_t)6u)  /**< RUN: ramp down before STOP */
 #define QFOC_SUB_CATCH       ((uint8_t)7u)  /**< RUN: flying-start detection (catch.h) */
 
-/** Fault bits raised by the state machine itself (the fault word of fault.h). */
-#define QFOC_SM_FAULT_STALL QFOC_FAULT_STALL
-#define QFOC_SM_FAULT_LINK  QFOC_FAULT_LINK
+/* Fault bits raised by the state machine itself (the fault word of fault.h). */
+#define QFOC_SM_FAULT_STALL QFOC_FAULT_STALL  /**< OPEN_LOOP or CATCH for ol_timeout_ms without a
+                                                   handover or a verdict, no start retry left */
+#define QFOC_SM_FAULT_LINK  QFOC_FAULT_LINK   /**< command link lost in CATCH, ALIGN or OPEN_LOOP, or
+                                                   a stop for a lost link completed */
 /** Every defined fault bit. */
 #define QFOC_SM_FAULT_ALL   QFOC_FAULT_ALL
 
@@ -88,7 +94,7 @@ typedef struct {
     uint16_t precharge_ms;   /**< DC bus above the UV threshold this long: CALIB */
     uint16_t align_ms;       /**< ALIGN duration */
     uint16_t ol_timeout_ms;  /**< OPEN_LOOP without handover this long: STALL */
-    uint16_t cl_hold_ms;     /**< no handover before this long after RUN entry (2 s) */
+    uint16_t cl_hold_ms;     /**< no handover before this long after the ALIGN entry (2 s; 0: at convergence) */
     uint16_t clear_ms;       /**< ERROR this long before a clear is accepted (5 s) */
     uint8_t retries;         /**< OPEN_LOOP timeouts retried through CATCH before STALL */
 } qfoc_sm_cfg_t;
@@ -236,5 +242,9 @@ void qfoc_sm_fail(qfoc_sm_t *sm, uint16_t faults);
       in->calib_done && in->bus_ok && \old(sm->sub) == QFOC_SUB_CALIB;
 */
 void qfoc_sm_step(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_in_t *in);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_SM_H */

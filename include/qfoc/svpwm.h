@@ -71,6 +71,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifdef __FRAMAC__
 #include "svpwm.acsl"
 #endif
@@ -80,10 +84,10 @@
 /** Largest supported PWM period in counter ticks (keeps period * 65536 in int32). */
 #define QFOC_SVPWM_PERIOD_MAX ((uint16_t)32767u)
 
-/** Index of phase u, v, w in qfoc_svpwm_out_t::cmp. */
-#define QFOC_SVPWM_U (0u)
-#define QFOC_SVPWM_V (1u)
-#define QFOC_SVPWM_W (2u)
+/* Index of phase u, v, w in qfoc_svpwm_out_t::cmp. */
+#define QFOC_SVPWM_U (0u)  /**< index of phase u in qfoc_svpwm_out_t::cmp */
+#define QFOC_SVPWM_V (1u)  /**< index of phase v in qfoc_svpwm_out_t::cmp */
+#define QFOC_SVPWM_W (2u)  /**< index of phase w in qfoc_svpwm_out_t::cmp */
 
 /** Configuration of the SVPWM stage (constant while running). */
 typedef struct {
@@ -204,6 +208,15 @@ void qfoc_svpwm_step(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q1
  * scaling it.  Any input value is accepted; an invalid configuration gives the safe
  * pattern of qfoc_svpwm_step().
  *
+ * @param[in]  cfg   configuration, as for qfoc_svpwm_step()
+ * @param[in]  v_ab  voltage command, Q15 of the voltage base, any int16 values
+ * @param[in]  vdc   DC-bus voltage, Q15 of the same voltage base, any value (below
+ *                   vdc_min, vdc_min is used and vdc_low is set)
+ * @param[in]  i_abc phase currents, Q15 of the current base, any values; only their
+ *                   sign and magnitude relative to i_deadband are used
+ * @param[out] out   compare values, sector and flags (with a valid configuration:
+ *                   utilisation 0, limited false)
+ *
  * Drive use: every PWM period, after the circle limit V_dc / sqrt 3 of the current
  * loop (qfoc_circle_limit) and the inverse Park transform, which keep the vector in
  * the linear range (up to the rounding of the rotation); the utilisation for field
@@ -241,5 +254,9 @@ void qfoc_svpwm_step(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q1
 */
 void qfoc_svpwm_step_lin(const qfoc_svpwm_cfg_t *cfg, const qfoc_ab_t *v_ab, qfoc_q15_t vdc,
                          const qfoc_abc_t *i_abc, qfoc_svpwm_out_t *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_SVPWM_H */

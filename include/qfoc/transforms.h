@@ -19,7 +19,7 @@
  * to nearest (ties away from zero); outside, each output saturates independently
  * to +-32767.
  *
- * Aliasing: input and output structs must not overlap (\separated in the contracts).
+ * Aliasing: input and output structs must not overlap (`\separated` in the contracts).
  * The implementation reads every input into a local before writing any output.
  *
  * Requirements: REQ-TRF-001 .. REQ-TRF-010 (specs/requirements/transforms.md).
@@ -28,6 +28,10 @@
 #define QFOC_TRANSFORMS_H
 
 #include "qfoc/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 #ifdef __FRAMAC__
 #include "transforms.acsl"
@@ -237,5 +241,9 @@ void qfoc_inv_park(const qfoc_dq_t *in, const qfoc_sincos_t *sc, qfoc_ab_t *out)
   disjoint behaviors w_exact, w_saturated;
 */
 void qfoc_inv_clarke(const qfoc_ab_t *in, qfoc_abc_t *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_TRANSFORMS_H */

@@ -31,6 +31,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifdef __FRAMAC__
 #include "trig.acsl"
 #endif
@@ -210,5 +214,9 @@ void qfoc_sincos(qfoc_angle_t theta, qfoc_sincos_t *out);
   disjoint behaviors;
 */
 qfoc_angle_t qfoc_atan2(qfoc_q15_t y, qfoc_q15_t x);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_TRIG_H */

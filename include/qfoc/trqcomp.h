@@ -94,6 +94,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Status: parameters accepted. */
 #define QFOC_TRQCOMP_OK ((int32_t)0)
 /** Status: parameters rejected, instance set to the safe state. */
@@ -336,7 +340,11 @@ void qfoc_trqcomp_reset(qfoc_trqcomp_t *tc);
  *     a_h = clamp(a_h + 2 gain round(e x sigma s_h / 32768), +-amp_max x 65536)
  *     b_h = clamp(b_h + 2 gain round(e x (-sigma c_h) / 32768), +-amp_max x 65536)
  *
- * only while speed_min <= |speed| <= speed_max; outside, nothing changes.
+ * only while speed_min <= |speed| <= speed_max; outside, nothing changes.  The second
+ * harmonic (h = 2) learns only while also 2 |speed| <= speed_max: every learned
+ * frequency is then at most the first harmonic's at speed_max, the frequency up to
+ * which the table's window keeps the law's phase error small (the tool derives
+ * speed_max from it); above, a_2 and b_2 are held (and still output).
  *
  * Integration rule: the drive skips this call in a tick in which the i_q
  * reference (speed PI output + qfoc_trqcomp_output()) was clamped to +-i_max in
@@ -372,6 +380,8 @@ void qfoc_trqcomp_reset(qfoc_trqcomp_t *tc);
     ensures step_b0: \abs(tc->b[0] - \old(tc->b[0])) <= 2 * 32767 * tc->params.gain;
     ensures step_a1: \abs(tc->a[1] - \old(tc->a[1])) <= 2 * 32767 * tc->params.gain;
     ensures step_b1: \abs(tc->b[1] - \old(tc->b[1])) <= 2 * 32767 * tc->params.gain;
+    ensures held_2x: 2 * TcAbs(speed) > tc->params.speed_max ==>
+                     tc->a[1] == \old(tc->a[1]) && tc->b[1] == \old(tc->b[1]);
   complete behaviors;
   disjoint behaviors;
 */
@@ -449,5 +459,9 @@ qfoc_q15_t qfoc_trqcomp_output(const qfoc_trqcomp_t *tc, qfoc_angle_t theta_m, q
   ensures range: 0 <= \result <= 65535;
 */
 qfoc_angle_t qfoc_trqcomp_phase1(const qfoc_trqcomp_t *tc);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_TRQCOMP_H */

@@ -18,6 +18,10 @@
 #include <stdint.h>
 #include <stdbool.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifdef __FRAMAC__
 /* Shared ACSL logic; seen only by Frama-C (the file holds comments only). */
 #include "qfoc.acsl"
@@ -29,32 +33,36 @@ typedef uint16_t qfoc_angle_t; /**< electrical angle, 65536 counts per turn */
 
 #define QFOC_Q15_MAX ((qfoc_q15_t)32767)   /**< +0.999969 */
 #define QFOC_Q15_MIN ((qfoc_q15_t)-32767)  /**< -0.999969, symmetric range */
-#define QFOC_Q31_MAX ((qfoc_q31_t)2147483647)
+#define QFOC_Q31_MAX ((qfoc_q31_t)2147483647)   /**< +0.9999999995 */
 #define QFOC_Q31_MIN ((qfoc_q31_t)-2147483647)  /**< symmetric range */
 
 /** Three phase quantities u, v, w (specs/equations.md section 1). */
 typedef struct {
-    qfoc_q15_t u;
-    qfoc_q15_t v;
-    qfoc_q15_t w;
+    qfoc_q15_t u;  /**< phase u */
+    qfoc_q15_t v;  /**< phase v */
+    qfoc_q15_t w;  /**< phase w */
 } qfoc_abc_t;
 
 /** Stationary two-axis frame (alpha along phase u). */
 typedef struct {
-    qfoc_q15_t alpha;
-    qfoc_q15_t beta;
+    qfoc_q15_t alpha;  /**< alpha axis, along phase u */
+    qfoc_q15_t beta;   /**< beta axis, 90 degrees ahead of alpha */
 } qfoc_ab_t;
 
 /** Rotating frame aligned with the rotor flux (d) and 90 degrees ahead (q). */
 typedef struct {
-    qfoc_q15_t d;
-    qfoc_q15_t q;
+    qfoc_q15_t d;  /**< direct axis, along the rotor flux */
+    qfoc_q15_t q;  /**< quadrature axis, 90 degrees ahead of d */
 } qfoc_dq_t;
 
 /** Sine and cosine of an angle, Q15, each in [-32767, 32767]. */
 typedef struct {
-    qfoc_q15_t sine;
-    qfoc_q15_t cosine;
+    qfoc_q15_t sine;    /**< sin(theta) */
+    qfoc_q15_t cosine;  /**< cos(theta) */
 } qfoc_sincos_t;
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_TYPES_H */

@@ -15,6 +15,10 @@
 
 #include "qfoc/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifdef __FRAMAC__
 #include "vector.acsl"
 #endif
@@ -139,5 +143,9 @@ qfoc_q15_t qfoc_vec_mag(qfoc_q15_t x, qfoc_q15_t y);
   disjoint behaviors;
 */
 bool qfoc_circle_limit(const qfoc_dq_t *in, qfoc_q15_t vmax, qfoc_dq_t *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_VECTOR_H */

@@ -27,6 +27,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Major version: incompatible interface changes. */
 #define QFOC_VERSION_MAJOR ((uint8_t)0u)
 /** Minor version: compatible additions. */
@@ -79,5 +83,9 @@ uint32_t qfoc_version(void);
   ensures terminated: \result[sizeof(QFOC_VERSION_STRING) - 1] == '\0';
 */
 const char *qfoc_version_string(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* QFOC_VERSION_H */

@@ -18,6 +18,9 @@
  *   combined   every axis at once, on the reference or the low-flux motor
  *   flying     a restart with the rotor coasting at -30..+60 % of the rated speed, light load
  *              (0..20 % of nominal), the reference or the low-flux motor (REQ-DRV-027)
+ *   ecomp800   a third motor, the 800 V e-compressor (table ecomp800, L_q / L_d = 2.6, bus
+ *              650..900 V): every axis at once (psi_f +-15 %, dead time 0..2 x, breakaway
+ *              0..60 %) with the base draws
  *
  * usage: qfoc_robust --count N [--axis-count M] [--seed0 S] [--jobs J] [--out DIR]
  *                    [--targets FILE]
@@ -89,15 +92,22 @@ static const axis_t axes[] = {
                 "light load (0..20 % of nominal: the pressure equalised), base draws otherwise, the "
                 "reference or the low-flux motor (flying start, REQ-DRV-027)",
       NULL, PSI_ERR, 1.0, 1.0, 0.0, -0.3, 0.6, 0.2 },
+    { "ecomp800", "a third motor, the 800 V e-compressor (L_q / L_d = 2.6, 16 kHz, bus drawn over "
+                  "its 650..900 V): every axis at once (psi_f +-15 %, dead time 0..2 x, breakaway "
+                  "0..60 %), base draws otherwise", "ecomp800", 0.15, 0.0, 2.0, 0.6, 0.0, 0.0, 1.0 },
 };
 #define N_AXES ((int)(sizeof axes / sizeof axes[0]))
 
 typedef struct {
     const scn_table_t *tab;
     double nominal_nm;
+    double vdc_min;        /* the motor file's bus range, V */
+    double vdc_max;
 } motor_t;
 
-static motor_t motors[2];  /* reference, lowflux */
+#define N_MOTORS 3
+static const char *const motor_names[N_MOTORS] = { "reference", "lowflux", "ecomp800" };
+static motor_t motors[N_MOTORS];
 
 typedef struct {
     scn_start_t st;
@@ -170,9 +180,18 @@ static int draw(uint32_t seed, rec_t *r)
         r->x.w0_frac = uni(&s, ax->w0_lo, ax->w0_hi);
     }
     if (ax->table == NULL) {
-        r->motor = (int)(mix(&s) >> 63);
+        r->motor = (int)(mix(&s) >> 63);   /* the reference or the low-flux motor */
     } else {
-        r->motor = (strcmp(ax->table, "reference") == 0) ? 0 : 1;
+        int k;
+        r->motor = 0;
+        for (k = 0; k < N_MOTORS; k++) {
+            r->motor = (strcmp(ax->table, motor_names[k]) == 0) ? k : r->motor;
+        }
+    }
+    if (motors[r->motor].vdc_min != VDC_MIN || motors[r->motor].vdc_max != VDC_MAX) {
+        /* the same draw over the motor's own bus range (the base axis's motors have 250..420 V) */
+        const motor_t *m = &motors[r->motor];
+        r->st.vdc_v = m->vdc_min + (r->st.vdc_v - VDC_MIN) * (m->vdc_max - m->vdc_min) / (VDC_MAX - VDC_MIN);
     }
     r->st.load_nm = load_frac * motors[r->motor].nominal_nm;
     r->x.t_break_nm = r->brk_frac * motors[r->motor].nominal_nm;
@@ -182,10 +201,10 @@ static int draw(uint32_t seed, rec_t *r)
 /* The tables of the campaign and their motors' nominal torques. */
 static int find_motors(void)
 {
-    static const char *const names[2] = { "reference", "lowflux" };
+    const char *const *names = motor_names;
     int k;
     int t;
-    for (k = 0; k < 2; k++) {
+    for (k = 0; k < N_MOTORS; k++) {
         sim_motor_t m;
         motors[k].tab = NULL;
         for (t = 0; t < scn_n_tables; t++) {
@@ -199,6 +218,8 @@ static int find_motors(void)
             return -1;
         }
         motors[k].nominal_nm = m.nominal_torque_nm;
+        motors[k].vdc_min = m.vdc_min_v;
+        motors[k].vdc_max = m.vdc_max_v;
     }
     return 0;
 }

@@ -4,7 +4,7 @@
 usage: figures.py [--root DIR] [--write]
 
 Every count quoted in specs/safety-manual.md, specs/tool-confidence.md,
-specs/tool-confidence.json, specs/asr.toml and README.md (WP goals, CBMC harnesses and
+specs/tool-confidence.json, specs/asr.toml, README.md and port_s32k/README.md (WP goals, CBMC harnesses and
 properties, requirements, tests, target-equivalence groups and vectors, MISRA deviations,
 limitations, ...) is registered below (FIGURES: file and template) and compared with the
 figure computed from its source:
@@ -15,7 +15,8 @@ figure computed from its source:
               the Makefile and tools/gates/check.sh, the safety manual's own limitation table
   built       build/trace/trace.json (make trace writes it before this check runs),
               build/target_test/target.txt, build/junit/*.xml, build/coverage/summary.txt,
-              build/bench/bench.json, build/robustness/campaign.json: checked only when
+              build/bench/bench.json, build/robustness/campaign.json,
+              build/s32k144/firmware.json (make firmware): checked only when
               present (the output says which were not); the occurrences of such a figure
               must still agree with each other in every document
 
@@ -43,6 +44,7 @@ TCM = "specs/tool-confidence.md"
 TCJ = "specs/tool-confidence.json"
 ASR = "specs/asr.toml"
 README = "README.md"
+PORT = "port_s32k/README.md"
 
 # (file, template): {name} is a figure of values(); spaces match any white space (line
 # breaks of the markdown).  Every match of the template in the file is checked.
@@ -85,6 +87,7 @@ FIGURES = [
     (MANUAL, "a drive links {bench.flash_drive} B of it"),
     (MANUAL, "Code: {bench.flash_lib} B for all of `src/`, of which a drive firmware links {bench.flash_drive} B"),
     (MANUAL, "`qfoc_drive_t` of {bench.ram_motor} B in RAM and one parameter table of {bench.table_bytes} B"),
+    (MANUAL, "`sizeof` {bench.table_bytes} bytes on the Cortex-M4F"),
     (MANUAL, "fast step: {bench.stack_fast} B;"),
     (MANUAL, "tick: {bench.stack_tick} B;"),
     (MANUAL, "init: {bench.stack_init} B."),
@@ -147,12 +150,20 @@ FIGURES = [
     (README, "{tt.groups} groups, {tt.vectors} golden vectors"),
     (README, "the {scenarios.count} scenarios of `make demo`"),
     (README, "`robustness` ({robust.check} starts)"),
+    (README, "`build/s32k144/qfoc_compressor.elf` (+ `.map`, `.bin`): {fw.flash} B of flash, {fw.ram} B of RAM"),
+    (MANUAL, "The reference image uses {fw.flash} B of flash and {fw.ram} B of RAM"),
+    (MANUAL, "*derived*: {fw.isr_adc} for the whole interrupt in PRECHARGE"),
+    (PORT, "| {fw.flash} B of 512 KiB"),
+    (PORT, "| {fw.ram} B of 32 KiB |"),
+    (PORT, "loop in {fw.boot} instructions; in PRECHARGE the ADC-complete interrupt executes {fw.isr_adc} "
+           "instructions, the FTM3 period interrupt {fw.isr_ftm} and the 1 ms tick {fw.isr_tick}"),
 ]
 
 # Counts the scan below finds that are not figures of a result (file, text, reason).
 NOT_FIGURES = [
     (README, "| 1 requirements |", "the number of a section of the evidence page"),
     (README, "| 5 tests |", "the number of a section of the evidence page"),
+    (PORT, "at\n0 starts both PDBs", "the counter value at which the trigger fires"),
 ]
 
 # A count in a document: a number (or 'N of M', 'N / M') before a counted noun, possibly
@@ -352,6 +363,12 @@ def values(root="."):
     put("bench.limits", len(limited) if rows else None, "build/bench/bench.json")
     put("bench.limits_met", sum(1 for r in limited if r.get("result") == "OK") if rows else None,
         "build/bench/bench.json")
+    fw = _read(root, "build/s32k144/firmware.json")
+    fwj = json.loads(fw) if fw else {}
+    for name, key in (("fw.flash", "flash_bytes"), ("fw.ram", "ram_bytes"),
+                      ("fw.boot", "boot_instructions"), ("fw.isr_adc", "isr_adc_instructions"),
+                      ("fw.isr_ftm", "isr_ftm3_instructions"), ("fw.isr_tick", "isr_tick_instructions")):
+        put(name, fwj.get(key), "build/s32k144/firmware.json (make firmware)")
     cov = _read(root, "build/coverage/summary.txt") or ""
     for kind in ("lines", "branches", "functions"):
         m = re.search(rf"^{kind}: [\d.]+% \((\d+) out of (\d+)\)", cov, re.M)

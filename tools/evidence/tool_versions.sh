@@ -72,6 +72,7 @@ sha() {
 
 # ---------------------------------------------------------------- host compiler and coverage
 line gcc gcc --version
+line g++ g++ --version
 line gcov gcov --version
 line lcov lcov --version
 line gcovr gcovr --version
@@ -144,6 +145,9 @@ line debootstrap debootstrap --version
 line qemu-system-arm qemu-system-arm --version
 pymod unicorn unicorn
 pymod pyelftools elftools
+
+# ---------------------------------------------------------------- API reference
+line doxygen doxygen --version
 
 # ---------------------------------------------------------------- Python
 line python3-debian "$PY" --version

@@ -57,8 +57,10 @@ gate target   make --no-print-directory target
 gate tgt-test make --no-print-directory target-test
 gate bench    make --no-print-directory bench
 gate trace    make --no-print-directory trace
+gate docs     make --no-print-directory docs
 gate report   make --no-print-directory estimator-report
 gate tune     make --no-print-directory tune-check
+gate a2l      make --no-print-directory a2l-check
 gate demo     make --no-print-directory demo
 gate robust   make --no-print-directory robustness ROBUST_COUNT=24
 gate repro    make --no-print-directory repro
@@ -70,8 +72,10 @@ gate_wait eva
 # The evidence bundle last: it collects what the gates above wrote, and fails when one of
 # its summary rows is red (a gate's result missing or failed).
 gate evidence make --no-print-directory evidence EVIDENCE_STRICT=1
-# The release package after it: it packages that bundle, then is unpacked and checked.
-gate release  sh -c 'make --no-print-directory release && make --no-print-directory release-check'
+# The release package after it (tools/release/check_gate.sh): make release's refusals tested,
+# then the package of this commit with the results the gates above rewrote in proofs/,
+# packed with a bundle of that state, unpacked and checked (make release-check).
+gate release  make --no-print-directory release-gate
 
 echo
 echo "==================== summary ($(( $(date +%s) - start_all )) s)"

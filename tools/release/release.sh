@@ -3,28 +3,44 @@
 #
 #   sh tools/release/release.sh ARM_LIB EVIDENCE_DIR
 #
-# ARM_LIB is the Cortex-M4F libqfoc.a built by the Makefile with its ARM_CFLAGS (passed in
-# the environment as ARM_CFLAGS, recorded in the package), EVIDENCE_DIR the bundle of
-# `make evidence`.  The version is QFOC_VERSION_STRING of include/qfoc/version.h.
+# ARM_LIB is the Cortex-M4F libqfoc.a built by the Makefile with its ARM_CFLAGS, EVIDENCE_DIR
+# the bundle of `make evidence`.  The environment passes the Makefile's flags (WARN, CFLAGS,
+# ARM_CFLAGS), which the package's own Makefile and BUILDINFO.txt record.  The version is
+# QFOC_VERSION_STRING of include/qfoc/version.h.
+#
+# Refusal first (tools/release/release_ready.py tree): nothing is packaged, exit 1, every
+# reason printed, unless the working tree is a clean git checkout (git status empty, untracked
+# files included; build/ and dist/ set aside) and the evidence bundle is of HEAD, made in a
+# clean tree, every summary row green (no result missing, failed or STALE), its stamped
+# results still current, its MANIFEST.sha256 intact.
 #
 # Package layout (qfoc-<version>/):
-#   README.md CHANGELOG.md LICENSE NOTICE   the project's documents
+#   README.md Makefile                      the package's own (tools/release/pkg/): what is
+#                                           inside, what it needs, how to build it; the
+#                                           Makefile builds the host and Cortex-M4F libraries,
+#                                           the example and the S32K144 image from this tree
+#   RELEASE.txt                             version, commit, commit date, the evidence's summary
+#   CHANGELOG.md LICENSE NOTICE             the project's documents
 #   CMakeLists.txt cmake/                   the CMake build and its Cortex-M4F toolchain file
 #   include/ src/ specs/                    headers with contracts, sources, requirements and
 #                                           specifications (the safety manual is
 #                                           specs/safety-manual.md)
 #   tables/                                 the generated parameter tables and their manifest
-#   tools/tune/qfoc_tune.py                 the tuning tool (Python 3 with numpy, scipy and
-#                                           matplotlib; it imports nothing of its own)
+#   tools/tune/qfoc_tune.py                 the tuning tool (Python 3 with numpy and scipy,
+#                                           matplotlib for the plots; it imports nothing of
+#                                           its own)
+#   docs/                                   the porting guide, the motor-file format
+#   docs/api/                               the API reference (make docs: doxygen HTML of
+#                                           include/qfoc/, 0 warnings)
+#   port_s32k/ misra/                       the S32K144 reference port; the MISRA records
+#   examples/host_minimal.c                 the integration example the package builds
 #   lib/cortex-m4f/libqfoc.a                the library for Cortex-M4F, and BUILDINFO.txt with
 #                                           its compiler, flags and SHA-256 (checked against
 #                                           build/repro/repro.json when make repro has run)
-#   evidence/                               the verification evidence bundle
-#   docs/ examples/                         when the repository has them
+#   evidence/                               the verification evidence bundle of the commit
 #   SHA256SUMS                              sha256sum of every other file of the package
 #
-# Only the files git tracks are packaged from the source trees (no build product, no
-# editor file); outside a git work tree every file of those trees is.  The tarball is
+# Only the files git tracks are packaged (no build product, no editor file).  The tarball is
 # deterministic: names sorted, every mtime the commit time of the version (the last commit
 # that changed include/qfoc/version.h; SOURCE_DATE_EPOCH overrides it), owner and group 0,
 # modes 0644 / 0755, gzip without name or time stamp: two runs over the same inputs give
@@ -39,21 +55,22 @@ STAGE_ROOT=${RELEASE_STAGE:-build/release}
 PY=/usr/bin/python3
 [ -x "$PY" ] || PY=python3
 
+# the refusal: a clean checkout of HEAD and green evidence of it, or nothing
+"$PY" tools/release/release_ready.py tree --root "$TOP" --evidence "$EVIDENCE" || exit 1
+
 VERSION=$(sed -n 's/^#define QFOC_VERSION_STRING "\([0-9]*\.[0-9]*\.[0-9]*\)".*/\1/p' include/qfoc/version.h)
 [ -n "$VERSION" ] || { echo "release: no QFOC_VERSION_STRING in include/qfoc/version.h"; exit 1; }
 NAME=qfoc-$VERSION
 [ -f "$ARM_LIB" ] || { echo "release: $ARM_LIB missing"; exit 1; }
-[ -f "$EVIDENCE/index.html" ] && [ -f "$EVIDENCE/evidence.json" ] || {
-    echo "release: no evidence bundle in $EVIDENCE (run make evidence after the gates)"; exit 1; }
+[ -f "$EVIDENCE/index.html" ] || { echo "release: no index.html in the evidence bundle $EVIDENCE"; exit 1; }
+: "${ARM_CFLAGS:?release: ARM_CFLAGS not set (run make release)}"
+: "${CFLAGS:?release: CFLAGS not set (run make release)}"
+: "${WARN:?release: WARN not set (run make release)}"
 
-if git rev-parse --is-inside-work-tree > /dev/null 2>&1; then
-    in_git=1
-else
-    in_git=0
-fi
+COMMIT=$(git rev-parse HEAD)
 if [ -n "${SOURCE_DATE_EPOCH:-}" ]; then
     EPOCH=$SOURCE_DATE_EPOCH
-elif [ "$in_git" = 1 ] && [ -n "$(git log -1 --format=%ct -- include/qfoc/version.h)" ]; then
+elif [ -n "$(git log -1 --format=%ct -- include/qfoc/version.h)" ]; then
     EPOCH=$(git log -1 --format=%ct -- include/qfoc/version.h)
 else
     EPOCH=0
@@ -63,33 +80,51 @@ PKG=$STAGE_ROOT/$NAME
 rm -rf "$STAGE_ROOT"
 mkdir -p "$PKG" "$DIST"
 
-# list_files PATH...: the tracked files under each path (every file outside git), sorted
-list_files() {
+# copy_files PATH...: the tracked files under each path into the package, same paths
+copy_files() {
     for d in "$@"; do
         [ -e "$d" ] || continue
-        if [ "$in_git" = 1 ]; then
-            git ls-files -- "$d"
-        else
-            find "$d" -type f
-        fi
-    done | LC_ALL=C sort -u
-}
-
-# copy_files PATH...: those files into the package, under the same paths
-copy_files() {
-    list_files "$@" | while IFS= read -r f; do
+        git ls-files -- "$d"
+    done | LC_ALL=C sort -u | while IFS= read -r f; do
         [ -f "$f" ] || continue
         mkdir -p "$PKG/$(dirname "$f")"
         cp "$f" "$PKG/$f"
     done
 }
 
-copy_files README.md CHANGELOG.md LICENSE NOTICE CMakeLists.txt cmake include src specs tables \
-           tools/tune/qfoc_tune.py docs examples
-for f in README.md CHANGELOG.md LICENSE NOTICE CMakeLists.txt include/qfoc/version.h \
-         specs/safety-manual.md tools/tune/qfoc_tune.py tables/reference_params.c; do
+copy_files CHANGELOG.md LICENSE NOTICE CMakeLists.txt cmake include src specs tables \
+           tools/tune/qfoc_tune.py docs examples/host_minimal.c port_s32k misra
+for f in CHANGELOG.md LICENSE NOTICE CMakeLists.txt include/qfoc/version.h \
+         specs/safety-manual.md tools/tune/qfoc_tune.py tables/reference_params.c \
+         tables/manifest.txt examples/host_minimal.c port_s32k/README.md port_s32k/s32k144.ld \
+         misra/deviations.md docs/porting.md; do
     [ -f "$PKG/$f" ] || { echo "release: $f is not in the package (not tracked by git?)"; exit 1; }
 done
+
+# the API reference, as make docs built it from these headers
+DOCS_HTML=${DOCS_HTML:-build/docs/html}
+[ -f "$DOCS_HTML/index.html" ] || { echo "release: no API reference in $DOCS_HTML (make docs)"; exit 1; }
+mkdir -p "$PKG/docs/api"
+cp -R "$DOCS_HTML/." "$PKG/docs/api/"
+
+# the package's own README and Makefile, with the version and the Makefile's flags
+# subst TEMPLATE OUT: @VERSION@, @VERSION_MM@, @WARN@, @CFLAGS@, @ARM_CFLAGS@ replaced
+subst() {
+    VERSION=$VERSION WARN=$WARN CFLAGS=$CFLAGS ARM_CFLAGS=$ARM_CFLAGS "$PY" -c '
+import os, re, sys
+text = open(sys.argv[1], encoding="utf-8").read()
+v = os.environ["VERSION"]
+for key, val in (("@VERSION_MM@", ".".join(v.split(".")[:2])), ("@VERSION@", v),
+                 ("@WARN@", os.environ["WARN"]), ("@CFLAGS@", os.environ["CFLAGS"]),
+                 ("@ARM_CFLAGS@", os.environ["ARM_CFLAGS"])):
+    text = text.replace(key, " ".join(val.split()))
+left = re.findall(r"@[A-Z_]+@", text)
+if left:
+    sys.exit("release: placeholders left in " + sys.argv[1] + ": " + " ".join(left))
+open(sys.argv[2], "w", encoding="utf-8").write(text)' "$1" "$2"
+}
+subst tools/release/pkg/README.md "$PKG/README.md"
+subst tools/release/pkg/Makefile "$PKG/Makefile"
 
 # the Cortex-M4F library with its build record
 mkdir -p "$PKG/lib/cortex-m4f"
@@ -98,9 +133,11 @@ LIB_SHA=$(sha256sum "$PKG/lib/cortex-m4f/libqfoc.a" | cut -d' ' -f1)
 {
     echo "qfoc $VERSION: lib/cortex-m4f/libqfoc.a"
     echo "sha256: $LIB_SHA"
+    echo "commit: $COMMIT"
     echo "compiler: $(arm-none-eabi-gcc --version | head -n 1)"
-    echo "flags: ${ARM_CFLAGS:-}"
-    echo "built from: src/*.c of this package, one object per source, arm-none-eabi-ar rcs"
+    # shellcheck disable=SC2086
+    echo "flags:" $ARM_CFLAGS
+    echo "built from: src/*.c of this package, one object per source, arm-none-eabi-ar rcs (make target)"
     echo "reproducible: make repro builds it twice from the same sources and compares the bytes"
 } > "$PKG/lib/cortex-m4f/BUILDINFO.txt"
 
@@ -120,12 +157,22 @@ print(next((a["sha256"] for a in d["artefacts"] if a["file"] == "target/libqfoc.
     fi
 fi
 
-# the evidence bundle, as make evidence wrote it (its red rows said here, packaged as they are)
-red=$("$PY" -c 'import json, sys
-print(json.load(open(sys.argv[1])).get("red", "?"))' "$EVIDENCE/evidence.json" 2>/dev/null || echo "?")
-[ "$red" = 0 ] || echo "release: warning: the evidence bundle has $red red summary rows (run the gates, then make evidence)"
+# the evidence bundle, as make evidence wrote it (green: release_ready.py checked it)
 mkdir -p "$PKG/evidence"
 cp -R "$EVIDENCE/." "$PKG/evidence/"
+rows=$("$PY" -c 'import json, sys
+d = json.load(open(sys.argv[1]))
+print("%s of %s summary rows green, made %s" % (d["green"], len(d["summary"]), d["date"]))' "$EVIDENCE/evidence.json")
+
+# what the release is
+{
+    echo "qfoc $VERSION"
+    echo "commit: $COMMIT"
+    echo "commit date: $(git log -1 --format=%cI "$COMMIT")"
+    echo "subject: $(git log -1 --format=%s "$COMMIT")"
+    echo "evidence: evidence/index.html, of commit $COMMIT in a clean tree: $rows"
+    echo "library: lib/cortex-m4f/libqfoc.a sha256 $LIB_SHA"
+} > "$PKG/RELEASE.txt"
 
 # normalised modes: directories and scripts 0755, other files 0644
 find "$PKG" -type d -exec chmod 0755 {} +

@@ -6,6 +6,16 @@
 #   sh tools/setup/deps.sh --tune     only what the tuning tool needs (make tune, make tune-check):
 #                                     make and Debian's python3 with numpy, scipy, matplotlib, pytest
 #   sh tools/setup/deps.sh --tune --check   the same, check only
+#   sh tools/setup/deps.sh --a2l      only what the calibration description needs (make a2l,
+#                                     make a2l-check): make, the ARM tool chain and Debian's
+#                                     python3 with numpy, pyelftools, pytest
+#   sh tools/setup/deps.sh --a2l --check    the same, check only
+#   sh tools/setup/deps.sh --docs     only what the API reference needs (make docs): make and doxygen
+#   sh tools/setup/deps.sh --docs --check   the same, check only
+#   sh tools/setup/deps.sh --demo     only what make demo needs: make, gcc and Debian's python3
+#                                     with numpy and matplotlib
+#   sh tools/setup/deps.sh --release  only what make release needs: make, git, gcc, the ARM
+#                                     tool chain, doxygen (the API reference it carries), python3
 #
 # Idempotent: when every tool is present it returns within a second.
 # CBMC 6.x is not in bookworm; tools/setup/install-cbmc.sh puts trixie's build into
@@ -22,15 +32,16 @@ PKGS="make gcc frama-c-base why3 z3 cvc4 cppcheck lcov gcovr libcmocka-dev \
 gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi \
 python3 python3-matplotlib python3-numpy python3-scipy python3-pytest \
 qemu-system-arm python3-unicorn python3-pyelftools clang-tidy debootstrap \
-debian-archive-keyring dpkg-dev cmake cadical clang"
+debian-archive-keyring dpkg-dev cmake cadical clang g++ doxygen"
 
 # command that must exist for each tool (same order is not required)
 need_cmds() {
     for c in gcc make frama-c why3 z3 cvc4 cppcheck lcov gcovr arm-none-eabi-gcc python3 dpkg-deb \
-             qemu-system-arm clang-tidy debootstrap cmake cadical clang; do
+             qemu-system-arm clang-tidy debootstrap cmake cadical clang g++ doxygen; do
         command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
     done
     [ -f /usr/include/cmocka.h ] || { echo "missing: libcmocka-dev"; return 1; }
+    need_a2l >/dev/null || { need_a2l; return 1; }
     "$PY" -c "import matplotlib, numpy" >/dev/null 2>&1 || { echo "missing: python3-matplotlib"; return 1; }
     "$PY" -c "import scipy.signal, pytest" >/dev/null 2>&1 || { echo "missing: python3-scipy or python3-pytest"; return 1; }
     "$PY" -c "import unicorn, elftools" >/dev/null 2>&1 || { echo "missing: python3-unicorn or python3-pyelftools"; return 1; }
@@ -50,27 +61,92 @@ need_tune() {
     return 0
 }
 
-if [ "${1:-}" = "--tune" ]; then
-    if [ "${2:-}" = "--check" ]; then
-        need_tune >/dev/null
+# One light target (--tune, --a2l, --docs): its packages only.
+#   light_target ARG1 ARG2 FLAG CHECK_FN PKGS WHAT
+# ARG1 and ARG2 are the script's own arguments; returns when ARG1 is not FLAG.
+light_target() {
+    _a1=$1; _a2=$2
+    shift 2
+    [ "$_a1" = "$1" ] || return 0
+    if [ "$_a2" = "--check" ]; then
+        "$2" >/dev/null
         exit $?
     fi
-    if need_tune >/dev/null 2>&1; then
-        echo "deps: tuning tool's packages present"
+    if "$2" >/dev/null 2>&1; then
+        echo "deps: $4 packages present"
         exit 0
     fi
     if [ "$(id -u)" != 0 ]; then
-        echo "deps: $(need_tune) and this is not root. Run:" >&2
-        echo "  sudo apt-get update && sudo apt-get install -y --no-install-recommends $TUNE_PKGS" >&2
+        echo "deps: $("$2") and this is not root. Run:" >&2
+        echo "  sudo apt-get update && sudo apt-get install -y --no-install-recommends $3" >&2
         exit 1
     fi
     export DEBIAN_FRONTEND=noninteractive
     apt-get update -q
     # shellcheck disable=SC2086
-    apt-get install -y -q --no-install-recommends $TUNE_PKGS
-    need_tune
+    apt-get install -y -q --no-install-recommends $3
+    "$2"
     exit $?
-fi
+}
+
+# The calibration description alone (tools/a2l/qfoc_a2l.py, its tests, and the firmware image
+# it describes: the ARM tool chain with newlib's nano.specs).
+A2L_PKGS="make gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi \
+python3 python3-numpy python3-pyelftools python3-pytest"
+
+need_a2l() {
+    for c in make arm-none-eabi-gcc arm-none-eabi-objcopy; do
+        command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
+    done
+    [ -f /usr/lib/arm-none-eabi/newlib/nano.specs ] || { echo "missing: libnewlib-arm-none-eabi"; return 1; }
+    "$PY" -c "import numpy, elftools, pytest" >/dev/null 2>&1 ||
+        { echo "missing: python3-numpy, python3-pyelftools or python3-pytest"; return 1; }
+    return 0
+}
+
+light_target "${1:-}" "${2:-}" --a2l need_a2l "$A2L_PKGS" "calibration description's"
+
+# The API reference alone (Doxyfile, mk/docs.mk): no compiler, no verification chain.
+DOCS_PKGS="make doxygen"
+
+need_docs() {
+    for c in make doxygen; do
+        command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
+    done
+    return 0
+}
+
+light_target "${1:-}" "${2:-}" --docs need_docs "$DOCS_PKGS" "API reference's"
+
+# The demo alone (sim/, the host library, tools/demo/demo_report.py).
+DEMO_PKGS="make gcc libc6-dev python3 python3-numpy python3-matplotlib"
+
+need_demo() {
+    for c in make gcc; do
+        command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
+    done
+    "$PY" -c "import numpy, matplotlib" >/dev/null 2>&1 ||
+        { echo "missing: python3-numpy or python3-matplotlib"; return 1; }
+    return 0
+}
+
+light_target "${1:-}" "${2:-}" --demo need_demo "$DEMO_PKGS" "demo's"
+
+# The release package alone (tools/release/release.sh): the Cortex-M4F library, the API
+# reference, the package's checks.
+RELEASE_PKGS="make git gcc libc6-dev gcc-arm-none-eabi libnewlib-arm-none-eabi \
+binutils-arm-none-eabi doxygen python3"
+
+need_release() {
+    for c in make git gcc arm-none-eabi-gcc doxygen; do
+        command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
+    done
+    return 0
+}
+
+light_target "${1:-}" "${2:-}" --release need_release "$RELEASE_PKGS" "release's"
+
+light_target "${1:-}" "${2:-}" --tune need_tune "$TUNE_PKGS" "tuning tool's"
 
 if [ "${1:-}" = "--check" ]; then
     need_cmds >/dev/null

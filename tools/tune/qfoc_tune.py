@@ -365,14 +365,17 @@ SCHEMA: tuple = (
        "handover: angle condition held this long", "drive.ho_dwell_ms"),
     _k("drive", "ol_timeout_ms", "int", "ms", (1, 60000, "[]"), 4000,
        "no handover this long after OPEN_LOOP entry: stall (the handover waits for cl_hold_ms "
-       "after RUN entry)", "drive.ol_timeout_ms"),
+       "after the ALIGN entry)", "drive.ol_timeout_ms"),
     _k("drive", "ho_retries", "int", "", (0, 3, "[]"), 2,
        "start retries: an OPEN_LOOP without a handover after ol_timeout_ms goes back "
        "through CATCH and ALIGN to a new I/f start with the start current raised by a "
        "quarter per retry (at most i_max), this many times before STALL",
        "drive.ho_retries"),
     _k("drive", "cl_hold_ms", "int", "ms", (0, 60000, "[]"), 2000,
-       "no ramp to the target before this long after RUN entry (2 s, specs/equations.md section 8.3)",
+       "no handover and no ramp to the target before this long after the ALIGN entry; the "
+       "handover comes at convergence (the I/f ramp at of_speed and the estimator locked "
+       "for ho_dwell_ms) once this time has passed; 0: at convergence alone (2 s: "
+       "specs/equations.md section 8.3)",
        "drive.cl_hold_ms"),
     _k("drive", "t_ipm_max_degc", "num", "degC", (-40, 200, "[)"), 110.0,
        "IPM over-temperature",
@@ -416,9 +419,13 @@ SCHEMA: tuple = (
     _k("drive", "tc_speed_min_rpm", "num", "rpm", NONNEG, 600.0,
        "torque compensation from this speed (the learning law's phase error stays below "
        "44 deg above it)", "drive.tc_speed_min; rule 'speeds'"),
-    _k("drive", "tc_speed_max_rpm", "num", "rpm", NONNEG, "motor.rated_speed_rpm",
-       "torque compensation up to this speed (above the rated speed field weakening needs the "
-       "current headroom)", "drive.tc_speed_max; rule 'speeds'"),
+    _k("drive", "tc_speed_max_rpm", "num", "rpm", NONNEG,
+       "the highest speed <= motor.rated_speed_rpm with the phase error <= 50 deg",
+       "torque compensation up to this speed (the second harmonic learns up to half of it): "
+       "its learning law converges while the phase of the current loop, the speed-PI-closed "
+       "mechanics, the PLL's speed estimate and the tick's half sample stays within 90 deg "
+       "of the model's -90 deg; the default keeps 50 deg, and a window with 90 deg or more "
+       "anywhere is refused", "drive.tc_speed_max; rule 'speeds'"),
     _k("drive", "para_speed_rpm", "num", "rpm", POS, "0.7 x motor.max_speed_rpm",
        "high-speed inductances (motor.ld_hs_h, lq_hs_h) above this speed",
        "drive.para_speed; rule 'speeds'"),
@@ -1424,6 +1431,68 @@ class Design:
     phys: dict = field(default_factory=dict)   # physical design values for the report/analysis
 
 
+# Torque compensation (include/qfoc/trqcomp.h): the learning law correlates the speed
+# error with regressors shifted by the model phase -90 degrees; it converges while the
+# true phase of the path from the feed-forward current to the learner's speed error stays
+# within 90 degrees of it (cos delta > 0).  That path is the current loop (closed loop
+# 1 / (1 + 2 T_sigma s) by the design rule of design_loops()), the mechanics closed by the
+# speed PI (on the filtered estimate), the PLL's speed estimate and the tick's half-sample
+# delay.  The library learns the first harmonic over [speed_min, speed_max] and the second
+# up to speed_max / 2, so the highest learned frequency is the first harmonic's at
+# speed_max.  TC_DELTA_MAX_DEG leaves 40 degrees for what the model leaves out (the
+# plant's spread of inertia and friction, the estimator's dynamics under parameter error).
+TC_DELTA_MAX_DEG = 50.0
+
+
+def tc_phase_error_deg(cfg: dict, ds: "Design", rpm: float, h: int) -> float:
+    """delta = psi_true - psi_model (degrees) of harmonic h at rpm (positive rotation)."""
+    m, d = cfg["motor"], cfg["design"]
+    w = h * rpm * 2.0 * math.pi / 60.0      # the harmonic's time frequency, rad/s
+    s = 1j * w
+    ph = ds.phys
+    kp = ph["ksp"]                          # A s/rad (mechanical)
+    ki = kp / ph["tau_s"]
+    f_speed = 1.0 / (1.0 + s / (2.0 * math.pi * d["speed_fc_hz"]))
+    g = 1.0 / (m["j_kgm2"] * s + m["b_nms"] + ds.k_t * (kp + ki / s) * f_speed)
+    wn = 2.0 * math.pi * d["pll_wn_hz"]
+    zeta = d["pll_zeta"]
+    pll = (2.0 * zeta * wn * s + wn * wn) / (s * s + 2.0 * zeta * wn * s + wn * wn)
+    cur = 1.0 / (1.0 + 2.0 * ds.t_sigma * s)
+    phase = math.degrees(float(np.angle(cur * g * pll))) - math.degrees(w * 0.5e-3)
+    delta = phase + 90.0
+    return (delta + 180.0) % 360.0 - 180.0
+
+
+def tc_worst_phase(cfg: dict, ds: "Design", lo: float, hi: float) -> tuple:
+    """The largest |delta| of the learned harmonics over the window [lo, hi] (the first
+    over [lo, hi], the second over [lo, hi / 2]), in 10 rpm steps: (deg, rpm, h)."""
+    worst = (0.0, lo, 1)
+    for h, top in ((1, hi), (2, hi / 2.0)):
+        rpm = lo
+        while rpm <= top + 1e-9:
+            dv = abs(tc_phase_error_deg(cfg, ds, rpm, h))
+            if dv > worst[0]:
+                worst = (dv, rpm, h)
+            rpm += 10.0
+    return worst
+
+
+def tc_speed_limit_rpm(cfg: dict, ds: "Design", lo: float, hi: float) -> float:
+    """The highest top <= hi (10 rpm steps from lo) up to which the first harmonic and the
+    second at half the speed keep |delta| <= TC_DELTA_MAX_DEG (or <= the first harmonic's at
+    lo, where that is larger: the window's lower end is the user's)."""
+    bound = max(TC_DELTA_MAX_DEG, abs(tc_phase_error_deg(cfg, ds, lo, 1)))
+    top = lo
+    rpm = lo
+    while rpm <= hi + 1e-9:
+        if abs(tc_phase_error_deg(cfg, ds, rpm, 1)) > bound or \
+                (rpm / 2.0 >= lo and abs(tc_phase_error_deg(cfg, ds, rpm / 2.0, 2)) > bound):
+            break
+        top = rpm
+        rpm += 10.0
+    return min(top, hi)
+
+
 def design_loops(cfg: dict, b: Bases) -> Design:
     """Design every loop and quantise every gain (the rules of specs/equations.md section 7)."""
     m, inv, d, lim = cfg["motor"], cfg["inverter"], cfg["design"], cfg["limits"]
@@ -1564,6 +1633,12 @@ def design_loops(cfg: dict, b: Bases) -> Design:
                               f"t_d f_timer / 2 = {fmt(inv['dead_time_s'])} x "
                               f"{fmt(inv['f_timer_hz'])} / 2 (one compare count = 2 ticks "
                               f"of high time)")
+    # the torque compensation's window: by default up to the speed where the learning law's
+    # phase model holds with margin (tc_speed_limit_rpm; the same value on every call)
+    if "drive.tc_speed_max_rpm" in cfg["defaulted"]:
+        dr_tc = cfg["drive"]
+        dr_tc["tc_speed_max_rpm"] = tc_speed_limit_rpm(cfg, ds, dr_tc["tc_speed_min_rpm"],
+                                                       dr_tc["tc_speed_max_rpm"])
     return ds
 
 
@@ -1790,6 +1865,44 @@ def check_bounds(cfg: dict, ds: Design) -> list[Bound]:
 CTYPES = {"u8": (1, False), "u16": (2, False), "i16": (2, True), "u32": (4, False)}
 
 
+@dataclass(frozen=True)
+class Phys:
+    """The physical meaning of a table field's integer: physical value = raw x factor, in
+    unit (the motor file's unit of key when the field holds a motor-file value).  The
+    calibration description (tools/a2l/qfoc_a2l.py) takes its conversions from here."""
+    factor: float             # the physical value of one LSB
+    unit: str                 # "-": a ratio or a plain integer
+    real: float               # the physical value the integer represents before rounding
+    rep: str                  # the representation: Q format and base, e.g. "Q15 of I_base"
+    key: str | None = None    # the motor-file key (section.key) whose value real is
+    lsb: float = 0.5          # the rounding bound in LSB: 0.5 rounded, 1 rounded down
+    fixed: bool = False       # part of the identity or of the representation of other
+                              # fields (a base, a shift, the rate they are per): not
+                              # changed alone
+
+
+def q_phys(frac_bits: int, base: float, base_name: str, unit: str, real: float,
+           key: str | None = None) -> Phys:
+    """A Q15 (or Q12) value of a base: raw / 2^frac_bits x base (a ratio: base_name "")."""
+    return Phys(base / float(1 << frac_bits), unit, real,
+                f"Q{frac_bits}" + (f" of {base_name}" if base_name else ""), key)
+
+
+def int_phys(value: float, unit: str = "-", key: str | None = None, rep: str = "integer",
+             factor: float = 1.0, lsb: float = 0.5, fixed: bool = False) -> Phys:
+    """A plain integer in a unit (ms, rpm, 0.1 degC, counts)."""
+    return Phys(factor, unit, value, rep, key, lsb, fixed)
+
+
+def gain_phys(gn: "Gain", scale: float, unit: str, base: str) -> Phys:
+    """A pi.h (left shift) or flux.h (right shift) mantissa with the table's shift: the
+    physical gain is the per-unit gain times scale."""
+    lsb = math.ldexp(1.0, gn.shift - 15) if gn.kind == "left" else math.ldexp(1.0, -15 - gn.shift)
+    rep = (f"mantissa / 32768 x 2^{gn.shift}" if gn.kind == "left"
+           else f"mantissa / 2^(15+{gn.shift})") + f" x {base}"
+    return Phys(lsb * scale, unit, gn.real * scale, rep)
+
+
 @dataclass
 class Field:
     """One integer field of qfoc_param_table_t."""
@@ -1797,6 +1910,7 @@ class Field:
     ctype: str
     value: int
     comment: str
+    phys: Phys | None = None  # its physical meaning (every field of the table has one)
 
 
 @dataclass
@@ -1855,14 +1969,18 @@ def drive_range_text(name: str, flat: dict) -> str:
     return text
 
 
-def range_checks(table: list) -> list[Bound]:
+def range_checks(table: list, ranges: dict | None = None) -> list[Bound]:
     """Field ranges documented in params.h, pi.h, svpwm.h, flux.h, pll.h and drive_cfg.h,
     and the cross-field conditions of params.h between the drive configuration and the
-    table's limits."""
+    table's limits.  ranges, when given, receives the range (low, high) of every field
+    checked (field_ranges())."""
     flat = {name: f.value for name, f in flatten(table)}
     out = []
 
     def need(name: str, lo: int, hi: int, eq: str = "params.h range") -> None:
+        if ranges is not None:
+            lo0, hi0 = ranges.get(name, (lo, hi))
+            ranges[name] = (max(lo, lo0), min(hi, hi0))
         v = flat[name]
         if not lo <= v <= hi:
             out.append(Bound(f"table field {name}", eq, float(v), float(hi),
@@ -1917,6 +2035,17 @@ def range_checks(table: list) -> list[Bound]:
     return out
 
 
+def field_ranges(table: list) -> dict[str, tuple[int, int]]:
+    """The admissible integer range (low, high) of every field of the table, as
+    range_checks() checks it (the library's range check: params.h, the modules' headers,
+    drive_cfg.h); a bound that is another field of the table is taken at its value in this
+    table.  The identity at its one value, crc over its type."""
+    ranges = {"magic": (PARAMS_MAGIC, PARAMS_MAGIC),
+              "version": (PARAMS_VERSION, PARAMS_VERSION), "crc": (0, 0xFFFFFFFF)}
+    range_checks(table, ranges)
+    return ranges
+
+
 def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
     """The qfoc_drive_cfg_t content (drive_cfg.h order) with the derivation of every value,
     and the notes the report lists (defaults that had to be adjusted)."""
@@ -1931,20 +2060,45 @@ def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
     def amps(a: float) -> str:
         return f"{fmt(a)} A / I_base = {fmt(a)} / {fmt(b.i_base)}"
 
-    def q15_field(name: str, x: float, text: str) -> Field:
+    def q15_field(name: str, x: float, text: str, phys: Phys) -> Field:
         raw = q15(x)
         if x != 0 and abs(raw / 32768.0 - x) > COARSE_GAIN_PCT / 100.0 * abs(x):
             notes.append(f"drive.{name}: rounding error {(raw / 32768.0 - x) / x * 100:+.2f} % "
                          f"(raw {raw}): the value is close to the Q15 resolution")
         err = "" if x == 0 else f"; stored {fmt(raw / 32768.0)}, error " \
                                 f"{(raw / 32768.0 - x) / x * 100:+.2f} %"
-        return Field(name, "i16", raw, f"{fmt(x)} = {text}{err}")
+        return Field(name, "i16", raw, f"{fmt(x)} = {text}{err}", phys)
 
     def src(key: str) -> str:
         return f"drive.{key}" + (", default" if f"drive.{key}" in cfg["defaulted"] else "")
 
     def ms_field(name: str, key: str) -> Field:
-        return Field(name, "u16", int(dr[key]), f"{int(dr[key])} ms ({src(key)})")
+        return Field(name, "u16", int(dr[key]), f"{int(dr[key])} ms ({src(key)})",
+                     int_phys(dr[key], "ms", f"drive.{key}"))
+
+    # The physical meaning of the fields (Phys): speeds Q15 of w_base in mechanical rpm,
+    # currents Q15 of I_base, low-pass coefficients 2 pi f_c / f_s as their corner frequency.
+    rpm_pu = b.f_base * 60.0 / n_p          # mechanical rpm of 1 pu (w_base electrical)
+    rpm_base = "w_base (60 f_base / n_p rpm)"
+
+    def rpm_phys(key: str) -> Phys:
+        return q_phys(15, rpm_pu, rpm_base, "rpm", dr[key], f"drive.{key}")
+
+    def ramp_phys(key: str) -> Phys:
+        return q_phys(15, rpm_pu * 1e3, rpm_base + " per ms", "rpm/s", dr[key], f"drive.{key}")
+
+    def amp_phys(key: str) -> Phys:
+        return q_phys(15, b.i_base, "I_base", "A", dr[key], f"drive.{key}")
+
+    def ratio_phys(key: str) -> Phys:
+        return q_phys(15, 1.0, "", "-", dr[key], f"drive.{key}")
+
+    def fc_phys(key: str, f_s: float, s_name: str) -> Phys:
+        return Phys(f_s / (2.0 * math.pi) / 32768.0, "Hz", dr[key],
+                    f"Q15 of 2 pi f_c / {s_name} (low-pass corner f_c)", f"drive.{key}")
+
+    def degc_phys(key: str) -> Phys:
+        return int_phys(dr[key], "degC", f"drive.{key}", "0.1 degC", 0.1)
 
     k_rpm_real = n_p * 32768.0 / (60.0 * b.f_base) * 4096.0
     # rounded down (at most 1 / 4096 of a speed LSB per rpm low), so that the motor's
@@ -1970,6 +2124,15 @@ def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
         why = f"{rpm_max} rpm (drive.rpm_max)"
     ds.phys["drive.rpm_max"] = rpm_max
     ds.phys["drive_notes"] = notes
+    if dr["rpm_max"] is not None:
+        rpm_max_phys = int_phys(dr["rpm_max"], "rpm", "drive.rpm_max", lsb=1.0)
+    elif rpm_max == int(math.floor(m["max_speed_rpm"])):
+        rpm_max_phys = int_phys(m["max_speed_rpm"], "rpm", "motor.max_speed_rpm", lsb=1.0)
+    else:
+        rpm_max_phys = int_phys(rpm_max, "rpm")
+    mtpa_x = dr["mtpa_speed_rpm"] * n_p / 60.0 / b.f_base * 32768.0
+    mtpa_phys = q_phys(15, rpm_pu, rpm_base, "rpm", dr["mtpa_speed_rpm"], "drive.mtpa_speed_rpm") \
+        if rnd(mtpa_x) <= Q15_MAX else q_phys(15, rpm_pu, rpm_base, "rpm", Q15_MAX / 32768.0 * rpm_pu)
     rpm_min = int(math.floor(dr["rpm_min"]))
     ld_hs_h = m["ld_hs_h"] if m["ld_hs_h"] is not None else m["ld_h"]
     lq_hs_h = m["lq_hs_h"] if m["lq_hs_h"] is not None else m["lq_h"]
@@ -1977,124 +2140,162 @@ def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
     lq_src = "motor.lq_hs_h" if m["lq_hs_h"] is not None else "motor.lq_h (no lq_hs_h)"
     rated_e = m["rated_speed_rpm"] * n_p / 60.0 / b.f_base
     fields = [
-        Field("pole_pairs", "u8", n_p, "motor.pole_pairs"),
+        Field("pole_pairs", "u8", n_p, "motor.pole_pairs",
+              int_phys(n_p, "-", "motor.pole_pairs", fixed=True)),
         Field("k_rpm", "u16", k_rpm, f"{fmt(k_rpm_real)} = n_p 32768 / (60 f_base) x 4096 = "
-              f"{n_p} x 32768 / (60 x {fmt(b.f_base)}) x 4096 (Q12)"),
+              f"{n_p} x 32768 / (60 x {fmt(b.f_base)}) x 4096 (Q12)",
+              Phys(1.0 / 4096.0, "-", k_rpm_real / 4096.0,
+                   "Q12: Q15 speed counts per rpm, n_p 32768 / (60 f_base)", lsb=1.0, fixed=True)),
         Field("k_speed_rpm", "u16", k_speed, f"{fmt(k_speed_real)} = 60 f_base / (n_p 32768) x "
-              f"32768 = 60 x {fmt(b.f_base)} / {n_p} (Q15)"),
-        Field("rpm_min", "u16", rpm_min, f"{rpm_min} rpm ({src('rpm_min')})"),
-        Field("rpm_max", "u16", rpm_max, why),
+              f"32768 = 60 x {fmt(b.f_base)} / {n_p} (Q15)",
+              Phys(1.0 / 32768.0, "rpm", k_speed_real / 32768.0,
+                   "Q15: rpm per Q15 speed count, 60 f_base / (n_p 32768)", fixed=True)),
+        Field("rpm_min", "u16", rpm_min, f"{rpm_min} rpm ({src('rpm_min')})",
+              int_phys(dr["rpm_min"], "rpm", "drive.rpm_min", lsb=1.0)),
+        Field("rpm_max", "u16", rpm_max, why, rpm_max_phys),
         q15_field("speed_ramp", dr["accel_rpm_s"] * 1e-3 * n_p / 60.0 / b.f_base,
-                  f"{fmt(dr['accel_rpm_s'])} rpm/s x 1 ms x {rpm_q15} (per ms)"),
+                  f"{fmt(dr['accel_rpm_s'])} rpm/s x 1 ms x {rpm_q15} (per ms)",
+                  ramp_phys("accel_rpm_s")),
         ms_field("precharge_ms", "precharge_ms"),
         Field("offset_shift", "u8", int(dr["offset_shift"]),
-              f"2^{int(dr['offset_shift'])} = {2 ** int(dr['offset_shift'])} samples per offset"),
+              f"2^{int(dr['offset_shift'])} = {2 ** int(dr['offset_shift'])} samples per offset",
+              int_phys(dr["offset_shift"], "-", "drive.offset_shift", "log2 of the samples")),
         Field("offset_window", "u16", int(dr["offset_window_counts"]),
               f"{int(dr['offset_window_counts'])} counts = "
               f"{fmt(dr['offset_window_counts'] / 2048.0 * 100.0, 3)} % of 2048 = "
-              f"{fmt(dr['offset_window_counts'] / 2048.0 * b.i_base, 4)} A"),
-        q15_field("i_align", dr["i_align_a"] / b.i_base, amps(dr["i_align_a"])),
+              f"{fmt(dr['offset_window_counts'] / 2048.0 * b.i_base, 4)} A",
+              int_phys(dr["offset_window_counts"], "ADC codes", "drive.offset_window_counts")),
+        q15_field("i_align", dr["i_align_a"] / b.i_base, amps(dr["i_align_a"]),
+                  amp_phys("i_align_a")),
         ms_field("align_ms", "align_ms"),
-        q15_field("i_start", dr["i_start_a"] / b.i_base, amps(dr["i_start_a"])),
+        q15_field("i_start", dr["i_start_a"] / b.i_base, amps(dr["i_start_a"]),
+                  amp_phys("i_start_a")),
         q15_field("of_accel", dr["of_accel_rpm_s"] * 1e-3 * n_p / 60.0 / b.f_base,
-                  f"{fmt(dr['of_accel_rpm_s'])} rpm/s x 1 ms x {rpm_q15} (per ms)"),
+                  f"{fmt(dr['of_accel_rpm_s'])} rpm/s x 1 ms x {rpm_q15} (per ms)",
+                  ramp_phys("of_accel_rpm_s")),
         q15_field("of_speed", dr["of_speed_rpm"] * n_p / 60.0 / b.f_base,
-                  f"{fmt(dr['of_speed_rpm'])} rpm x {rpm_q15}"),
+                  f"{fmt(dr['of_speed_rpm'])} rpm x {rpm_q15}", rpm_phys("of_speed_rpm")),
         Field("ho_angle", "u16", rnd(dr["ho_angle_deg"] / 360.0 * 65536.0),
               f"{fmt(dr['ho_angle_deg'] / 360.0 * 65536.0)} = {fmt(dr['ho_angle_deg'])} deg / "
-              f"360 x 65536"),
+              f"360 x 65536",
+              Phys(360.0 / 65536.0, "deg", dr["ho_angle_deg"], "65536 counts per electrical turn",
+                   "drive.ho_angle_deg")),
         ms_field("ho_dwell_ms", "ho_dwell_ms"),
         ms_field("ol_timeout_ms", "ol_timeout_ms"),
         ms_field("cl_hold_ms", "cl_hold_ms"),
         Field("t_ipm_max", "i16", rnd(dr["t_ipm_max_degc"] * 10.0),
-              f"{fmt(dr['t_ipm_max_degc'])} degC x 10"),
+              f"{fmt(dr['t_ipm_max_degc'])} degC x 10", degc_phys("t_ipm_max_degc")),
         Field("t_pcb_max", "i16", rnd(dr["t_pcb_max_degc"] * 10.0),
-              f"{fmt(dr['t_pcb_max_degc'])} degC x 10"),
+              f"{fmt(dr['t_pcb_max_degc'])} degC x 10", degc_phys("t_pcb_max_degc")),
         ms_field("vdc_ms", "vdc_ms"),
         ms_field("temp_ms", "temp_ms"),
         q15_field("stall_err", dr["stall_err_rpm"] * n_p / 60.0 / b.f_base,
                   f"{fmt(dr['stall_err_rpm'])} rpm x {rpm_q15}"
                   + (f" (0.3 x rated {fmt(rated_e, 4)} pu)" if "drive.stall_err_rpm"
-                     in cfg["defaulted"] else "")),
+                     in cfg["defaulted"] else ""), rpm_phys("stall_err_rpm")),
         q15_field("flux_tol", dr["flux_tol_frac"] * m["psi_f_wb"] / b.psi_base,
                   f"{fmt(dr['flux_tol_frac'])} psi_f / psi_base = {fmt(dr['flux_tol_frac'])} x "
-                  f"{fmt(m['psi_f_wb'])} / {fmt(b.psi_base)}"),
+                  f"{fmt(m['psi_f_wb'])} / {fmt(b.psi_base)}",
+                  q_phys(15, b.psi_base, "psi_base", "Wb", dr["flux_tol_frac"] * m["psi_f_wb"])),
         ms_field("stall_ms", "stall_ms"),
         q15_field("phase_alpha", 2.0 * math.pi * dr["phase_fc_hz"] / b.f_pwm,
-                  f"2 pi f_c / f_pwm = 2 pi x {fmt(dr['phase_fc_hz'])} / {fmt(b.f_pwm)} (2-34)"),
+                  f"2 pi f_c / f_pwm = 2 pi x {fmt(dr['phase_fc_hz'])} / {fmt(b.f_pwm)} (2-34)",
+                  fc_phys("phase_fc_hz", b.f_pwm, "f_pwm")),
         q15_field("phase_i_min", dr["phase_i_min_a"] / b.i_base,
-                  amps(dr["phase_i_min_a"])),
-        q15_field("phase_ratio", dr["phase_ratio"], src("phase_ratio")),
+                  amps(dr["phase_i_min_a"]), amp_phys("phase_i_min_a")),
+        q15_field("phase_ratio", dr["phase_ratio"], src("phase_ratio"), ratio_phys("phase_ratio")),
         ms_field("phase_ms", "phase_ms"),
         ms_field("link_timeout_ms", "link_timeout_ms"),
         ms_field("clear_ms", "clear_ms"),
         q15_field("fw_level", dr["fw_level"], "FWK_LVL, " + (
             "design.fw_v_max (default)" if "drive.fw_level" in cfg["defaulted"] else
-            "drive.fw_level")),
+            "drive.fw_level"), ratio_phys("fw_level")),
         q15_field("fw_alpha", 2.0 * math.pi * dr["fw_fc_hz"] * T_TICK_S,
                   f"2 pi f_c T_tick = 2 pi x {fmt(dr['fw_fc_hz'])} x {fmt(T_TICK_S)} (2-34; the "
-                  "1 ms tick)"),
+                  "1 ms tick)", fc_phys("fw_fc_hz", 1.0 / T_TICK_S, "f_tick")),
         Field("tc_gain", "i16", int(dr["tc_gain_q15"]),
-              f"{fmt(dr['tc_gain_q15'] / 32768.0)} = drive.tc_gain_q15 / 32768 (trqcomp.md)"),
+              f"{fmt(dr['tc_gain_q15'] / 32768.0)} = drive.tc_gain_q15 / 32768 (trqcomp.md)",
+              Phys(1.0 / 32768.0, "-", dr["tc_gain_q15"] / 32768.0, "Q15")),
         q15_field("tc_amp_max", dr["tc_amp_max_a"] / b.i_base,
-                  amps(dr["tc_amp_max_a"])),
+                  amps(dr["tc_amp_max_a"]), amp_phys("tc_amp_max_a")),
         q15_field("tc_speed_min", dr["tc_speed_min_rpm"] * n_p / 60.0 / b.f_base,
-                  f"{fmt(dr['tc_speed_min_rpm'])} rpm x {rpm_q15}"),
+                  f"{fmt(dr['tc_speed_min_rpm'])} rpm x {rpm_q15}", rpm_phys("tc_speed_min_rpm")),
         q15_field("tc_speed_max", dr["tc_speed_max_rpm"] * n_p / 60.0 / b.f_base,
-                  f"{fmt(dr['tc_speed_max_rpm'])} rpm x {rpm_q15}"),
+                  f"{fmt(dr['tc_speed_max_rpm'])} rpm x {rpm_q15}", rpm_phys("tc_speed_max_rpm")),
         q15_field("para_speed", dr["para_speed_rpm"] * n_p / 60.0 / b.f_base,
-                  f"{fmt(dr['para_speed_rpm'])} rpm x {rpm_q15}"),
+                  f"{fmt(dr['para_speed_rpm'])} rpm x {rpm_q15}", rpm_phys("para_speed_rpm")),
         Field("ld_hs", "i16", qn(ld_hs_h / b.l_base, 12),
               f"{fmt(ld_hs_h / b.l_base)} = {ld_src} / L_base = {fmt(ld_hs_h)} / "
-              f"{fmt(b.l_base)} (Q12)"),
+              f"{fmt(b.l_base)} (Q12)",
+              q_phys(12, b.l_base, "L_base", "H", ld_hs_h,
+                     "motor.ld_hs_h" if m["ld_hs_h"] is not None else "motor.ld_h")),
         Field("lq_hs", "i16", qn(lq_hs_h / b.l_base, 12),
               f"{fmt(lq_hs_h / b.l_base)} = {lq_src} / L_base = {fmt(lq_hs_h)} / "
-              f"{fmt(b.l_base)} (Q12)"),
-        Field("lin_id_cmd", "u8", int(dr["lin_id_cmd"]), f"LIN command frame ({src('lin_id_cmd')})"),
+              f"{fmt(b.l_base)} (Q12)",
+              q_phys(12, b.l_base, "L_base", "H", lq_hs_h,
+                     "motor.lq_hs_h" if m["lq_hs_h"] is not None else "motor.lq_h")),
+        Field("lin_id_cmd", "u8", int(dr["lin_id_cmd"]), f"LIN command frame ({src('lin_id_cmd')})",
+              int_phys(dr["lin_id_cmd"], "-", "drive.lin_id_cmd", "LIN frame identifier")),
         Field("lin_id_status", "u8", int(dr["lin_id_status"]),
-              f"LIN status frame ({src('lin_id_status')})"),
-        Field("can_id_a", "u16", int(dr["can_id_a"]), f"CAN status, even frames ({src('can_id_a')})"),
-        Field("can_id_b", "u16", int(dr["can_id_b"]), f"CAN status, odd frames ({src('can_id_b')})"),
+              f"LIN status frame ({src('lin_id_status')})",
+              int_phys(dr["lin_id_status"], "-", "drive.lin_id_status", "LIN frame identifier")),
+        Field("can_id_a", "u16", int(dr["can_id_a"]), f"CAN status, even frames ({src('can_id_a')})",
+              int_phys(dr["can_id_a"], "-", "drive.can_id_a", "CAN identifier (11 bits)")),
+        Field("can_id_b", "u16", int(dr["can_id_b"]), f"CAN status, odd frames ({src('can_id_b')})",
+              int_phys(dr["can_id_b"], "-", "drive.can_id_b", "CAN identifier (11 bits)")),
         Field("mtpa_speed", "i16", min(rnd(dr["mtpa_speed_rpm"] * n_p / 60.0 / b.f_base * 32768.0),
                                        Q15_MAX),
               f"{fmt(dr['mtpa_speed_rpm'])} rpm x {rpm_q15} x 32768, at most 32767 "
-              f"({src('mtpa_speed_rpm')})"),
+              f"({src('mtpa_speed_rpm')})", mtpa_phys),
         Field("t_ipm_derate", "i16", rnd(dr["t_ipm_derate_degc"] * 10.0),
-              f"{fmt(dr['t_ipm_derate_degc'])} degC x 10 ({src('t_ipm_derate_degc')})"),
+              f"{fmt(dr['t_ipm_derate_degc'])} degC x 10 ({src('t_ipm_derate_degc')})",
+              degc_phys("t_ipm_derate_degc")),
         Field("t_pcb_derate", "i16", rnd(dr["t_pcb_derate_degc"] * 10.0),
-              f"{fmt(dr['t_pcb_derate_degc'])} degC x 10 ({src('t_pcb_derate_degc')})"),
+              f"{fmt(dr['t_pcb_derate_degc'])} degC x 10 ({src('t_pcb_derate_degc')})",
+              degc_phys("t_pcb_derate_degc")),
         Field("rpm_derate", "u16", int(math.floor(dr["derate_rpm"])),
-              f"{int(math.floor(dr['derate_rpm']))} rpm ({src('derate_rpm')})"),
-        q15_field("flux_band", dr["flux_band"], f"{fmt(dr['flux_band'])} ({src('flux_band')})"),
+              f"{int(math.floor(dr['derate_rpm']))} rpm ({src('derate_rpm')})",
+              int_phys(dr["derate_rpm"], "rpm", "drive.derate_rpm", lsb=1.0)),
+        q15_field("flux_band", dr["flux_band"], f"{fmt(dr['flux_band'])} ({src('flux_band')})",
+                  ratio_phys("flux_band")),
         q15_field("flux_v_err", dr["flux_v_err_v"] / b.v_base,
                   f"{fmt(dr['flux_v_err_v'])} V / V_base {fmt(b.v_base)} V "
-                  f"({src('flux_v_err_v')})"),
+                  f"({src('flux_v_err_v')})",
+                  q_phys(15, b.v_base, "V_base", "V", dr["flux_v_err_v"], "drive.flux_v_err_v")),
         q15_field("flux_r_err", dr["flux_r_err"], f"{fmt(dr['flux_r_err'])} of R "
-                  f"({src('flux_r_err')})"),
+                  f"({src('flux_r_err')})", ratio_phys("flux_r_err")),
         Field("psi_shift", "u8", b.psi_shift,
               f"flux base psi_base = 2^{b.psi_shift} V_base / w_base = {fmt(b.psi_base)} Wb, "
               f"L_base = psi_base / I_base = {fmt(b.l_base * 1e3)} mH ({b.shift_src}: active "
               f"flux {fmt(active_flux_wb(cfg))} Wb = "
-              f"{fmt(active_flux_wb(cfg) / b.psi_base, 4)} pu)"),
+              f"{fmt(active_flux_wb(cfg) / b.psi_base, 4)} pu)",
+              int_phys(b.psi_shift, "-", "scaling.psi_shift" if cfg["scaling"].get("psi_shift")
+                       is not None else None, "s of psi_base = 2^s V_base / w_base", fixed=True)),
         Field("ho_retries", "u8", int(dr["ho_retries"]),
-              f"{int(dr['ho_retries'])} start retries ({src('ho_retries')})"),
+              f"{int(dr['ho_retries'])} start retries ({src('ho_retries')})",
+              int_phys(dr["ho_retries"], "-", "drive.ho_retries")),
     ]
     return fields, notes
 
 
 def gain_fields(prefix: str, kp: Gain, ki: Gain, out_min: int, out_max: int,
-                limit_note: str) -> list[Field]:
-    """The six fields of a qfoc_pi_params_t."""
+                limit_note: str, units: tuple) -> list[Field]:
+    """The six fields of a qfoc_pi_params_t.  units: the physical meaning, ((scale, unit,
+    base) of kp, the same of ki T, Phys of out_min, Phys of out_max): the physical gain is
+    the per-unit gain times scale."""
     def note(gn: Gain) -> str:
         return (f"{fmt(gn.real)} = {gn.derivation}; stored {fmt(gn.quantised)}, "
                 f"error {gn.rel_err * 100:+.3f} %")
+    (kp_s, ki_s, out_lo, out_hi) = units
     return [
-        Field("kp", "i16", kp.raw, f"kp {note(kp)}"),
-        Field("kp_shift", "u8", kp.shift, f"kp_real = kp / 32768 x 2^{kp.shift}"),
-        Field("ki", "i16", ki.raw, f"ki T {note(ki)}"),
-        Field("ki_shift", "u8", ki.shift, f"kiT_real = ki / 32768 x 2^{ki.shift}"),
-        Field("out_min", "i16", out_min, f"{fmt(out_min / 32768.0)} pu: {limit_note}"),
-        Field("out_max", "i16", out_max, f"{fmt(out_max / 32768.0)} pu: {limit_note}"),
+        Field("kp", "i16", kp.raw, f"kp {note(kp)}", gain_phys(kp, *kp_s)),
+        Field("kp_shift", "u8", kp.shift, f"kp_real = kp / 32768 x 2^{kp.shift}",
+              int_phys(kp.shift, rep="left shift of kp", fixed=True)),
+        Field("ki", "i16", ki.raw, f"ki T {note(ki)}", gain_phys(ki, *ki_s)),
+        Field("ki_shift", "u8", ki.shift, f"kiT_real = ki / 32768 x 2^{ki.shift}",
+              int_phys(ki.shift, rep="left shift of ki", fixed=True)),
+        Field("out_min", "i16", out_min, f"{fmt(out_min / 32768.0)} pu: {limit_note}", out_lo),
+        Field("out_max", "i16", out_max, f"{fmt(out_max / 32768.0)} pu: {limit_note}", out_hi),
     ]
 
 
@@ -2106,60 +2307,133 @@ def qnote(gn: Gain) -> str:
 def build_table(cfg: dict, ds: Design) -> list:
     """The qfoc_param_table_t content in declaration order (crc excluded)."""
     b, g = ds.b, ds.gains
+    m, inv, d, lim = cfg["motor"], cfg["inverter"], cfg["design"], cfg["limits"]
     v_out = g["pi_id.out"].raw
     i_max = g["i_max"].raw
+    # The physical meaning of every field (Phys): currents Q15 of I_base, voltages of V_base,
+    # speeds of w_base in mechanical rpm, fluxes of psi_base, inductances Q12 of L_base,
+    # gains in SI units with the table's shifts, low-pass coefficients as corner frequencies.
+    n_p, f_timer = m["pole_pairs"], inv["f_timer_hz"]
+    rpm_pu = b.f_base * 60.0 / n_p
+    rpm_base = "w_base (60 f_base / n_p rpm)"
+    v_lim = g["pi_id.out"].real * b.v_base
+
+    def volts(real: float, key: str | None = None) -> Phys:
+        return q_phys(15, b.v_base, "V_base", "V", real, key)
+
+    def amps(real: float, key: str | None = None) -> Phys:
+        return q_phys(15, b.i_base, "I_base", "A", real, key)
+
+    def ratio(real: float, key: str | None = None) -> Phys:
+        return q_phys(15, 1.0, "", "-", real, key)
+
+    def corner(key: str) -> Phys:
+        return Phys(b.f_pwm / (2.0 * math.pi) / 32768.0, "Hz", d[key],
+                    "Q15 of 2 pi f_c / f_pwm (low-pass corner f_c)", f"design.{key}")
+
+    speed_units = ((b.i_base * n_p / b.w_base, "A s/rad", "I_base n_p / w_base"),
+                   (b.i_base * n_p / b.w_base / d["speed_t_sam_s"], "A/rad",
+                    "I_base n_p / w_base / T_sam"),
+                   amps(-lim["i_max_a"]), amps(lim["i_max_a"], "limits.i_max_a"))
+    cur_units = ((b.v_base / b.i_base, "ohm", "V_base / I_base"),
+                 (b.v_base / b.i_base * b.f_pwm, "ohm/s", "V_base / I_base / T_s"),
+                 volts(-v_lim), volts(v_lim))
+    fw_units = ((b.i_base, "A", "I_base (per unit of voltage utilisation)"),
+                (b.i_base / T_TICK_S, "A/s", "I_base / T_tick (per unit of voltage utilisation)"),
+                amps(-lim["i_max_a"]), amps(0.0))
+    pll_units = ((b.w_base, "1/s", "w_base (rad/s per rad of angle error)"),
+                 (b.w_base * b.f_pwm, "1/s^2", "w_base / T_s (rad/s^2 per rad of angle error)"),
+                 q_phys(15, rpm_pu, rpm_base, "rpm", -Q15_MAX / 32768.0 * rpm_pu),
+                 q_phys(15, rpm_pu, rpm_base, "rpm", Q15_MAX / 32768.0 * rpm_pu))
     return [
-        Field("magic", "u32", PARAMS_MAGIC, "QFOC_PARAMS_MAGIC, ASCII \"QFOC\" little-endian"),
-        Field("version", "u16", PARAMS_VERSION, "QFOC_PARAMS_VERSION"),
+        Field("magic", "u32", PARAMS_MAGIC, "QFOC_PARAMS_MAGIC, ASCII \"QFOC\" little-endian",
+              int_phys(PARAMS_MAGIC, rep="QFOC_PARAMS_MAGIC", fixed=True)),
+        Field("version", "u16", PARAMS_VERSION, "QFOC_PARAMS_VERSION",
+              int_phys(PARAMS_VERSION, rep="QFOC_PARAMS_VERSION", fixed=True)),
         Field("f_pwm_hz", "u16", int(b.f_pwm), f"f_pwm = {fmt(b.f_pwm)} Hz, T_s = "
-              f"{fmt(b.t_s * 1e6)} us"),
-        Field("v_base_mv", "u32", int(round(b.v_base * 1000)), f"V_base = {fmt(b.v_base)} V"),
-        Field("i_base_ma", "u32", int(round(b.i_base * 1000)), f"I_base = {fmt(b.i_base)} A"),
+              f"{fmt(b.t_s * 1e6)} us", int_phys(b.f_pwm, "Hz", "inverter.f_pwm_hz", fixed=True)),
+        Field("v_base_mv", "u32", int(round(b.v_base * 1000)), f"V_base = {fmt(b.v_base)} V",
+              int_phys(b.v_base, "V", "sensing.vdc_full_scale_v", "mV", 1e-3, fixed=True)),
+        Field("i_base_ma", "u32", int(round(b.i_base * 1000)), f"I_base = {fmt(b.i_base)} A",
+              int_phys(b.i_base, "A", "sensing.i_full_scale_a", "mA", 1e-3, fixed=True)),
         Field("f_base_mhz", "u32", int(round(b.f_base * 1000)),
-              f"f_base = {fmt(b.f_base)} Hz, w_base = {fmt(b.w_base)} rad/s"),
+              f"f_base = {fmt(b.f_base)} Hz, w_base = {fmt(b.w_base)} rad/s",
+              int_phys(b.f_base, "Hz", "scaling.f_base_hz", "mHz", 1e-3, fixed=True)),
         Group("svpwm", [
             Field("period", "u16", b.period, f"f_timer / (2 f_pwm) = "
-                  f"{fmt(cfg['inverter']['f_timer_hz'])} / (2 x {fmt(b.f_pwm)}) ticks"),
-            Field("dt_comp", "u16", g["svpwm.dt_comp"].raw, qnote(g["svpwm.dt_comp"])),
-            Field("i_deadband", "i16", g["svpwm.i_deadband"].raw, qnote(g["svpwm.i_deadband"])),
-            Field("vdc_min", "i16", g["svpwm.vdc_min"].raw, qnote(g["svpwm.vdc_min"])),
+                  f"{fmt(cfg['inverter']['f_timer_hz'])} / (2 x {fmt(b.f_pwm)}) ticks",
+                  int_phys(f_timer / (2.0 * b.f_pwm), "ticks", rep="timer ticks, f_timer / "
+                           "(2 f_pwm)", fixed=True)),
+            Field("dt_comp", "u16", g["svpwm.dt_comp"].raw, qnote(g["svpwm.dt_comp"]),
+                  Phys(2.0 / f_timer, "s", inv["dead_time_s"], "compare counts of 2 / f_timer",
+                       "inverter.dead_time_s")),
+            Field("i_deadband", "i16", g["svpwm.i_deadband"].raw, qnote(g["svpwm.i_deadband"]),
+                  amps(d["deadband_a"], "design.deadband_a")),
+            Field("vdc_min", "i16", g["svpwm.vdc_min"].raw, qnote(g["svpwm.vdc_min"]),
+                  volts(lim["vdc_svpwm_min_v"], "limits.vdc_svpwm_min_v")),
         ]),
         Group("pi_id", gain_fields("pi_id", g["pi_id.kp"], g["pi_id.ki"], -v_out, v_out,
-                                   g["pi_id.out"].derivation)),
+                                   g["pi_id.out"].derivation, cur_units)),
         Group("pi_iq", gain_fields("pi_iq", g["pi_iq.kp"], g["pi_iq.ki"], -v_out, v_out,
-                                   g["pi_iq.out"].derivation)),
+                                   g["pi_iq.out"].derivation, cur_units)),
         Group("pi_speed", gain_fields("pi_speed", g["pi_speed.kp"], g["pi_speed.ki"], -i_max,
-                                      i_max, "+-i_max (i_q reference)")),
+                                      i_max, "+-i_max (i_q reference)", speed_units)),
         Group("pi_fw", gain_fields("pi_fw", g["pi_fw.kp"], g["pi_fw.ki"], -i_max, 0,
-                                   "i_d reference in [-i_max, 0]")),
+                                   "i_d reference in [-i_max, 0]", fw_units)),
         Group("flux", [
             Field("gain", "i16", g["flux.gain"].raw,
-                  f"g {qnote(g['flux.gain'])} = gain / 2^(15+{g['flux.gain'].shift})"),
-            Field("gain_shift", "u8", g["flux.gain"].shift, "right shift: g = gain / 2^(15+shift)"),
-            Field("r", "i16", g["flux.r"].raw, qnote(g["flux.r"])),
-            Field("l", "i16", g["flux.l"].raw, qnote(g["flux.l"])),
-            Field("kg", "i16", g["flux.kg"].raw, qnote(g["flux.kg"])),
+                  f"g {qnote(g['flux.gain'])} = gain / 2^(15+{g['flux.gain'].shift})",
+                  gain_phys(g["flux.gain"], math.ldexp(1.0 / b.w_base, b.psi_shift), "s",
+                            "2^s / w_base (the sample time T)")),
+            Field("gain_shift", "u8", g["flux.gain"].shift, "right shift: g = gain / 2^(15+shift)",
+                  int_phys(g["flux.gain"].shift, rep="right shift of gain", fixed=True)),
+            Field("r", "i16", g["flux.r"].raw, qnote(g["flux.r"]),
+                  q_phys(15, b.z_base, "Z_base", "ohm", m["rs_ohm"], "motor.rs_ohm")),
+            Field("l", "i16", g["flux.l"].raw, qnote(g["flux.l"]),
+                  q_phys(12, b.l_base, "L_base", "H", m["lq_h"], "motor.lq_h")),
+            Field("kg", "i16", g["flux.kg"].raw, qnote(g["flux.kg"]),
+                  q_phys(15, math.ldexp(b.w_base, -b.psi_shift), "w_base / 2^s", "rad/s",
+                         d["kg_rad_s"], "design.kg_rad_s")),
         ]),
         Group("pll", [
             Group("pi", gain_fields("pll.pi", g["pll.kp"], g["pll.ki"], -Q15_MAX, Q15_MAX,
-                                    "speed range (est_tune)")),
-            Field("err_clamp", "i16", g["pll.err_clamp"].raw, qnote(g["pll.err_clamp"])),
-            Field("mag_min", "i16", g["pll.mag_min"].raw, qnote(g["pll.mag_min"])),
-            Field("k_theta", "u16", g["pll.k_theta"].raw, qnote(g["pll.k_theta"])),
-            Field("speed_alpha", "i16", g["pll.speed_alpha"].raw, qnote(g["pll.speed_alpha"])),
+                                    "speed range (est_tune)", pll_units)),
+            Field("err_clamp", "i16", g["pll.err_clamp"].raw, qnote(g["pll.err_clamp"]),
+                  ratio(d["pll_clamp"], "design.pll_clamp")),
+            Field("mag_min", "i16", g["pll.mag_min"].raw, qnote(g["pll.mag_min"]),
+                  q_phys(15, b.psi_base, "psi_base", "Wb", d["pll_mag_min"] * m["psi_f_wb"])),
+            Field("k_theta", "u16", g["pll.k_theta"].raw, qnote(g["pll.k_theta"]),
+                  int_phys(g["pll.k_theta"].real, rep="f_base / f_pwm x 131072", fixed=True)),
+            Field("speed_alpha", "i16", g["pll.speed_alpha"].raw, qnote(g["pll.speed_alpha"]),
+                  corner("speed_fc_hz")),
         ]),
-        Field("alpha_vdc", "i16", g["alpha_vdc"].raw, qnote(g["alpha_vdc"])),
-        Field("ld", "i16", g["ld"].raw, qnote(g["ld"])),
-        Field("lq", "i16", g["lq"].raw, qnote(g["lq"])),
-        Field("psi_f", "i16", g["psi_f"].raw, qnote(g["psi_f"])),
-        Field("i_max", "i16", g["i_max"].raw, qnote(g["i_max"])),
-        Field("i_trip", "i16", g["i_trip"].raw, qnote(g["i_trip"])),
-        Field("speed_max", "i16", g["speed_max"].raw, qnote(g["speed_max"])),
-        Field("vdc_uv", "i16", g["vdc_uv"].raw, qnote(g["vdc_uv"])),
-        Field("vdc_ov", "i16", g["vdc_ov"].raw, qnote(g["vdc_ov"])),
-        Field("v_max", "i16", g["v_max"].raw, qnote(g["v_max"])),
+        Field("alpha_vdc", "i16", g["alpha_vdc"].raw, qnote(g["alpha_vdc"]), corner("vdc_fc_hz")),
+        Field("ld", "i16", g["ld"].raw, qnote(g["ld"]),
+              q_phys(12, b.l_base, "L_base", "H", m["ld_h"], "motor.ld_h")),
+        Field("lq", "i16", g["lq"].raw, qnote(g["lq"]),
+              q_phys(12, b.l_base, "L_base", "H", m["lq_h"], "motor.lq_h")),
+        Field("psi_f", "i16", g["psi_f"].raw, qnote(g["psi_f"]),
+              q_phys(15, b.psi_base, "psi_base", "Wb", m["psi_f_wb"], "motor.psi_f_wb")),
+        Field("i_max", "i16", g["i_max"].raw, qnote(g["i_max"]),
+              amps(lim["i_max_a"], "limits.i_max_a")),
+        Field("i_trip", "i16", g["i_trip"].raw, qnote(g["i_trip"]),
+              amps(lim["i_trip_a"], "limits.i_trip_a")),
+        Field("speed_max", "i16", g["speed_max"].raw, qnote(g["speed_max"]),
+              q_phys(15, rpm_pu, rpm_base, "rpm", lim["speed_max_rpm"], "limits.speed_max_rpm")),
+        Field("vdc_uv", "i16", g["vdc_uv"].raw, qnote(g["vdc_uv"]),
+              volts(lim["vdc_uv_v"], "limits.vdc_uv_v")),
+        Field("vdc_ov", "i16", g["vdc_ov"].raw, qnote(g["vdc_ov"]),
+              volts(lim["vdc_ov_v"], "limits.vdc_ov_v")),
+        Field("v_max", "i16", g["v_max"].raw, qnote(g["v_max"]),
+              ratio(d["fw_v_max"], "design.fw_v_max")),
         Group("drive", drive_fields(cfg, ds)[0]),
     ]
+
+
+def crc_field(crc: int) -> Field:
+    """The table's last field, the CRC of every field before it."""
+    return Field("crc", "u32", crc, "CRC-32/ISO-HDLC of every field above",
+                 int_phys(crc, rep="CRC-32/ISO-HDLC of every field before it", fixed=True))
 
 
 def flatten(items: list, prefix: str = "") -> list[tuple[str, Field]]:
@@ -2238,7 +2512,7 @@ def c_sources(name: str, toml_rel: str, overrides: list[str], cfg: dict,
     c = [ln.replace("{EXT}", "c") for ln in head] + [
         "#include \"qfoc/params.h\"", f"#include \"{name}_params.h\"", "",
         f"const qfoc_param_table_t qfoc_params_{name} = {{"]
-    body = items + [Field("crc", "u32", crc, "CRC-32/ISO-HDLC of every field above")]
+    body = items + [crc_field(crc)]
     c += emit_items(body, 4)
     c += ["};", ""]
     return "\n".join(c), "\n".join(h)
@@ -2831,6 +3105,21 @@ def main(argv: list[str] | None = None) -> int:
     out_dir = args.out_dir if args.out_dir else Path("build") / "tune" / name
 
     ds = design_loops(cfg, b)
+    # the torque compensation's window: by default up to the speed where the learning law's
+    # phase model holds with margin (tc_speed_limit_rpm); a window with a phase error of 90
+    # degrees or more anywhere (the learning would diverge) is refused
+    dr = cfg["drive"]
+    worst, at_rpm, harm = tc_worst_phase(cfg, ds, dr["tc_speed_min_rpm"], dr["tc_speed_max_rpm"])
+    if worst >= 90.0:
+        top = tc_speed_limit_rpm(cfg, ds, dr["tc_speed_min_rpm"], dr["tc_speed_max_rpm"])
+        print(f"refused: {typed(cfg, 'drive.tc_speed_min_rpm')} .. "
+              f"{typed(cfg, 'drive.tc_speed_max_rpm')}: the torque compensation's "
+              f"{'first' if harm == 1 else 'second'} harmonic at {fmt(at_rpm)} rpm has a phase "
+              f"error of {fmt(worst)} deg (90 deg or more: its learning diverges, "
+              f"include/qfoc/trqcomp.h); with this lower end the window may reach "
+              f"{fmt(top)} rpm", file=sys.stderr)
+        print("qfoc_tune: refused, no table written (docs/motor-file.md)", file=sys.stderr)
+        return 1
     items = build_table(cfg, ds)
     bounds = check_bounds(cfg, ds) + range_checks(items)
     failures = []

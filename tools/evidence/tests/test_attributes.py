@@ -337,6 +337,22 @@ def test_built_figure_checked_only_when_present(tmp_path):
                         "(build/target_test/target.txt): '48 groups, 333890 vectors'"]
 
 
+def test_firmware_figure_from_make_firmware(tmp_path):
+    """REQ-EVD-019: the image's flash and RAM quoted in the port's README come from the
+    record `make firmware` writes (build/s32k144/firmware.json); a seeded wrong one fails."""
+    make_repo(tmp_path)
+    (tmp_path / "port_s32k").mkdir(exist_ok=True)
+    (tmp_path / "port_s32k/README.md").write_text("| 8 kHz | 26899 B of 512 KiB (5.1 %) | 576 B of 32 KiB |\n")
+    reg = [("port_s32k/README.md", "| {fw.flash} B of 512 KiB"), ("port_s32k/README.md", "| {fw.ram} B of 32 KiB |")]
+    failures, notes = figures.check(str(tmp_path), registry=reg)
+    assert failures == [] and any(n.startswith("fw.flash: not checked") for n in notes), (failures, notes)
+    (tmp_path / "build/s32k144").mkdir(parents=True)
+    (tmp_path / "build/s32k144/firmware.json").write_text(json.dumps({"flash_bytes": 26900, "ram_bytes": 576}))
+    failures, _notes = figures.check(str(tmp_path), registry=reg)
+    assert len(failures) == 1 and "port_s32k/README.md:1: figure fw.flash is 26899, the source says 26900" \
+        in failures[0], failures
+
+
 def test_repository_figures_and_table_agree():
     """REQ-EVD-018, REQ-EVD-019: the committed documents pass both checks."""
     failures, _notes = figures.check(str(ROOT))

@@ -4,6 +4,7 @@ documentation docs/motor-file.md (run: python3 -m pytest tools/tune/tests).
 Every refusal test checks the exit code 1, a message naming the key as the motor file
 writes it (section.key) with its value and the rule, and that nothing was written.
 """
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -172,15 +173,66 @@ def test_demo_keys_accepted(tmp_path):
     assert (tmp_path / "tables" / "reference_params.c").exists()
 
 
-# REQ-TUNE-001: the default of drive.tc_speed_max_rpm is the motor's rated speed (not a
-# fixed 6000 rpm); an explicit value above the largest target is refused.
-def test_tc_speed_max_default_rated(tmp_path, capsys):
-    path = with_text(tmp_path, REFERENCE, "rated_speed_rpm = 6000", "rated_speed_rpm = 7000")
+def _tc_delta_ref(cfg, ds, rpm, h):
+    """The torque compensation's phase error from the transfer functions' polynomials
+    (scipy.signal.freqs), independent of the tool's complex arithmetic: current loop
+    1 / (2 T_sigma s + 1), mechanics s / (J s^2 + (B + K_t kp F) s + K_t ki F) with the speed
+    filter F = w_f / (s + w_f) multiplied out, PLL (2 zeta wn s + wn^2) / (s^2 + 2 zeta wn s
+    + wn^2), the half-tick delay; delta = phase + 90 deg, wrapped to +-180."""
+    import numpy as np
+    from scipy import signal
+    m, d, ph = cfg["motor"], cfg["design"], ds.phys
+    w = h * rpm * 2.0 * math.pi / 60.0
+    wf = 2.0 * math.pi * d["speed_fc_hz"]
+    kp, ki, kt = ph["ksp"], ph["ksp"] / ph["tau_s"], ds.k_t
+    # G = s (s + wf) / [(J s^2 + B s)(s + wf) + K_t wf (kp s + ki)]
+    num_g = np.polymul([1.0, 0.0], [1.0, wf])
+    den_g = np.polyadd(np.polymul([m["j_kgm2"], m["b_nms"], 0.0], [1.0, wf]),
+                       [kt * wf * kp, kt * wf * ki])
+    wn, z = 2.0 * math.pi * d["pll_wn_hz"], d["pll_zeta"]
+    parts = [([1.0], [2.0 * ds.t_sigma, 1.0]), (num_g, den_g),
+             ([2.0 * z * wn, wn * wn], [1.0, 2.0 * z * wn, wn * wn])]
+    phase = 0.0
+    for num, den in parts:
+        _, hw = signal.freqs(num, den, worN=[w])
+        phase += math.degrees(float(np.angle(hw[0])))
+    delta = phase - math.degrees(w * 0.5e-3) + 90.0
+    return (delta + 180.0) % 360.0 - 180.0
+
+
+# REQ-TUNE-001: the default of drive.tc_speed_max_rpm is the highest speed up to the rated
+# one where the torque compensation's learning law keeps its phase error within
+# TC_DELTA_MAX_DEG (the first harmonic up to the top, the second up to half of it); a window
+# where it reaches 90 deg (divergence) is refused with the key named; an explicit value above
+# the largest target is refused.
+def test_tc_speed_max_default_derived(tmp_path, capsys):
+    cfg = qt.load_config(REFERENCE, [])
+    ds = qt.design_loops(cfg, qt.make_bases(cfg))
+    for rpm in (600.0, 1500.0, 3000.0, 6000.0):
+        for h in (1, 2):
+            assert abs(qt.tc_phase_error_deg(cfg, ds, rpm, h) -
+                       _tc_delta_ref(cfg, ds, rpm, h)) < 1e-6
+    top = qt.tc_speed_limit_rpm(cfg, ds, 600.0, 6000.0)
+    assert 600.0 < top < 6000.0
+    assert abs(_tc_delta_ref(cfg, ds, top, 1)) <= qt.TC_DELTA_MAX_DEG
+    assert abs(_tc_delta_ref(cfg, ds, top / 2.0, 2)) <= qt.TC_DELTA_MAX_DEG
+    assert abs(_tc_delta_ref(cfg, ds, top + 10.0, 1)) > qt.TC_DELTA_MAX_DEG
+    # the table carries the derived top
+    rc = qt.main([str(REFERENCE), "--out-dir", str(tmp_path / "o"), "--table-dir",
+                  str(tmp_path / "t"), "--no-plots"])
+    assert rc == 0
+    text = (tmp_path / "t" / "reference_params.c").read_text()
+    raw = math.floor(top * 3 / 60 / 500 * 32768 + 0.5)
+    assert f".tc_speed_max = {raw}," in text
+    # a rated speed below the derived top bounds it
+    path = with_text(tmp_path, REFERENCE, "rated_speed_rpm = 6000", "rated_speed_rpm = 4000")
     cfg = qt.load_config(path, [])
-    assert cfg["drive"]["tc_speed_max_rpm"] == 7000.0
-    items = qt.build_table(cfg, qt.design_loops(cfg, qt.make_bases(cfg)))
-    flat = dict((n, f.value) for n, f in qt.flatten(items))
-    assert flat["drive.tc_speed_max"] == 22938          # 7000 x 3 / 60 / 500 x 32768 = 22937.6
+    ds = qt.design_loops(cfg, qt.make_bases(cfg))
+    assert qt.tc_speed_limit_rpm(cfg, ds, 600.0, cfg["drive"]["tc_speed_max_rpm"]) == 4000.0
+    # a slow PLL (5 Hz) puts the phase error beyond 90 deg inside a typed window: refused
+    err = refused(tmp_path, capsys, REFERENCE, "--set", "design.pll_wn_hz=5",
+                  "--set", "drive.tc_speed_max_rpm=6000")
+    assert "drive.tc_speed_max_rpm = 6000 rpm" in err and "learning diverges" in err
     err = refused(tmp_path, capsys, REFERENCE, "--set", "drive.tc_speed_max_rpm=8001")
     assert ("drive.tc_speed_max_rpm = 8001 rpm: outside the motor's speed range 0 .. 8000 rpm "
             "(motor.max_speed_rpm)") in err

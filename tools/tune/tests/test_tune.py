@@ -339,7 +339,9 @@ def test_drive_defaults_by_hand(tmp_path):
     assert d["phase_i_min"] == 1638 and d["phase_ratio"] == 8192
     assert d["fw_level"] == 30147 and d["fw_alpha"] == 10294   # 0.92; 2 pi 50 x 1 ms (tick)
     assert d["tc_gain"] == 492 and d["tc_amp_max"] == 8192
-    assert d["tc_speed_min"] == 1966 and d["tc_speed_max"] == 19661  # 600, 6000 rpm
+    # 600 rpm; the window's top derived from the learning law's phase (5160 rpm x 3.2768,
+    # test_motor_file.py checks the derivation)
+    assert d["tc_speed_min"] == 1966 and d["tc_speed_max"] == 16908
     assert d["para_speed"] == 18350                            # 5600 rpm x 3.2768
     assert (d["t_ipm_max"], d["t_pcb_max"], d["vdc_ms"], d["temp_ms"]) == (1100, 1000, 2, 10)
     assert (d["precharge_ms"], d["offset_shift"], d["offset_window"], d["align_ms"]) == \
