@@ -23,20 +23,23 @@
  *              state and sub-state codes in range and, for the faults that do not corrupt
  *              RAM, qfoc_drive_is_valid() at the end, and no PWM switching commanded outside
  *              RUN (and, for link garbage, the command kept).
- * Verdict: a fault passes when it is detected with its reaction within its FTTI, or is
- * harmless over its window; a disturbance within the specified limits (and a fault-free run)
- * passes only when it raises no fault and is harmless.
+ * Verdict: a fault passes when it is detected with its reaction within the item's FTTI of
+ * its mechanism (specs/item-assumptions.toml) and within the library's own budget (1.5 x the
+ * specified reaction time), or is harmless over its window; a disturbance within the
+ * specified limits (and a fault-free run) passes only when it raises no fault and is
+ * harmless.  A mechanism whose specified reaction exceeds the item's FTTI fails the campaign.
  *
  * usage: qfoc_faults [--mode full|check] [--flips N] [--table-step S] [--seed S] [--jobs J]
- *                    [--out DIR]
+ *                    [--out DIR] [--assumptions TOML]
  *   full: N = 10000 random single-bit flips of the drive object, every bit of the table;
  *   check: N = 400 and one bit of each byte of the table (S = 8), every class still present.
  * Writes DIR/results.json (the FTTIs, the classes with their figures, every injection but
  * the flips, the flips by field and every flip that failed) and DIR/flips.csv (one row per
  * flip); tools/demo/faults_report.py makes results.md, index.html and the JUnit file.
- * Exit: 0 when every injection passes, 1 otherwise, 2 on an error.
+ * Exit: 0 when every injection passes and every mechanism is within its FTTI, 1 otherwise,
+ * 2 on an error (the assumptions file refused among them, the message naming the line).
  *
- * Requirements: REQ-FINJ-001 .. REQ-FINJ-006 (specs/requirements/faults.md).
+ * Requirements: REQ-FINJ-001 .. REQ-FINJ-006, REQ-FINJ-008 (specs/requirements/faults.md).
  */
 #define _POSIX_C_SOURCE 200809L  /* clock_gettime, fork, mkdir */
 
@@ -56,7 +59,7 @@
 
 #define RPM_OP 3000u          /* the operating point of the RUN state */
 #define T_RUN_S 6.0           /* from the run command to the RUN state */
-#define MARGIN 1.5            /* FTTI = MARGIN x the specified reaction time */
+#define MARGIN 1.5            /* the library's budget: MARGIN x the specified reaction time */
 #define FLIP_DELAY_MAX 800    /* a flip lands 0 .. 799 periods (100 ms) after RUN */
 #define FLIP_WINDOW_S 0.3     /* observation after a drive-object flip */
 /* Over-speed: above the motor's maximum speed by more than the overshoot the scenario targets
@@ -68,9 +71,16 @@
 
 /* ------------------------------------------------------------------ classes */
 
-/* The mechanism whose reaction time gives an FTTI (ftti_ms[]). */
+/* The mechanism whose reaction time gives a budget (budget_ms[]) and whose hazard gives the
+   item's FTTI (ftti_ms[]). */
 enum { M_NONE, M_FIRST, M_OC, M_VDC, M_OT, M_STALL, M_STALL_OL, M_PHASE, M_PHASE_START, M_OFFSET,
        M_LINK, M_PARAM_TABLE, M_PARAM_OBJ, M_SENSOR, M_TIMING, M_N };
+
+/* The section of each mechanism in the item's assumptions (specs/item-assumptions.toml). */
+static const char *const mech_key[M_N] = {
+    NULL, NULL, "oc", "vdc", "ot", "stall", "stall_ol", "phase", "phase_start", "offset", "link",
+    "param_table", "param_obj", "sensor", "timing"
+};
 
 static const char *const mech_name[M_N] = {
     "none (within limits)", "that of the first fault raised", "OC", "OV / UV", "OT", "STALL",
@@ -284,7 +294,9 @@ typedef struct {
     bool pwm_off_run;    /* switching commanded outside RUN */
     bool cmd_changed;    /* the link's command changed (link garbage) */
     long rejected;       /* frames the link rejected in the window */
-    double ftti;         /* s, the FTTI the verdict used (NAN: none) */
+    double ftti;         /* s, the item's FTTI the verdict used (NAN: none) */
+    double budget;       /* s, the library's budget the verdict used (NAN: none) */
+    int mech;            /* M_*: the mechanism whose FTTI and budget the verdict used */
     bool harmless;
     bool in_time;
     bool pass;
@@ -295,7 +307,10 @@ static qfoc_param_table_t ram_table;   /* the RAM copy the drive runs on */
 static qfoc_param_table_t ram_intact;
 static sim_motor_t motor;
 static dsim_t snap[S_N];
-static double ftti_ms[M_N];
+static double ftti_ms[M_N];    /* the item's FTTI (specs/item-assumptions.toml) */
+static char ftti_id[M_N][16];   /* its assumption */
+static const char *assumptions_file = "specs/item-assumptions.toml";
+static double budget_ms[M_N];  /* the library's budget: MARGIN x the specified reaction */
 static double spec_ms[M_N];
 static char spec_text[M_N][200];
 static double i_trip_a;
@@ -372,25 +387,142 @@ static void fttis(const qfoc_param_table_t *p)
              "interval short of 3 fast steps, within 1 ms + 3 periods of the first missed one, "
              "+ 1 period for the port's PWM off (REQ-DRV-021)");
     for (k = 0; k < M_N; k++) {
-        ftti_ms[k] = (k == M_NONE || k == M_FIRST) ? NAN : MARGIN * spec_ms[k];
+        budget_ms[k] = (k == M_NONE || k == M_FIRST) ? NAN : MARGIN * spec_ms[k];
     }
     spec_ms[M_NONE] = spec_ms[M_FIRST] = NAN;
 }
 
-/* The FTTI of a fault word (its lowest bit), for a class without a mechanism of its own;
-   OFFSET raised while running is the running sensor monitor's (REQ-DRV-020). */
-static double ftti_of_word(uint16_t w, bool running)
+/* One "key = value" of the assumptions file: a number, or a string on one line. */
+static char *trim(char *s)
+{
+    char *e;
+    while (*s == ' ' || *s == '\t') {
+        s++;
+    }
+    e = s + strlen(s);
+    while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\n' || e[-1] == '\r')) {
+        *--e = '\0';
+    }
+    return s;
+}
+
+/* A table value an assumption's arithmetic uses must be the table's (within 0.5 %). */
+static int table_value_ok(const char *path, int lineno, const char *key, double v, double table)
+{
+    if (fabs(v - table) > 0.005 * fabs(table)) {
+        fprintf(stderr, "%s:%d: %s = %g is not the table's %g: derive the FTTI again\n", path,
+                lineno, key, v, table);
+        return -1;
+    }
+    return 0;
+}
+
+/* The item's FTTIs: each mechanism's section of the assumptions file (its id and ftti_ms;
+   hazard, assumption and derivation are for the report).  Refused (-1, the message names the
+   line): a section that is no mechanism's, a mechanism without an FTTI, a value that is not
+   a positive number, a table value that is not the table's. */
+static int load_fttis(const char *path, const qfoc_param_table_t *p)
+{
+    const double i_trip = (double)p->i_trip / 32768.0 * (double)p->i_base_ma * 1e-3;
+    const double vdc_ov = (double)p->vdc_ov / 32768.0 * (double)p->v_base_mv * 1e-3;
+    FILE *f = fopen(path, "r");
+    char line[1024];
+    int m = -1;
+    int lineno = 0;
+    int k;
+    if (f == NULL) {
+        fprintf(stderr, "%s: cannot open (the item's FTTIs)\n", path);
+        return -1;
+    }
+    for (k = 0; k < M_N; k++) {
+        ftti_ms[k] = NAN;
+        ftti_id[k][0] = '\0';
+    }
+    while (fgets(line, (int)sizeof line, f) != NULL) {
+        char *s = trim(line);
+        char *eq;
+        char *key;
+        char *val;
+        char *end;
+        double v;
+        lineno++;
+        if (*s == '#' || *s == '\0') {
+            continue;
+        }
+        if (*s == '[') {
+            char *close = strchr(s, ']');
+            m = -1;
+            if (close != NULL) {
+                *close = '\0';
+                for (k = 0; k < M_N; k++) {
+                    m = (mech_key[k] != NULL && strcmp(mech_key[k], s + 1) == 0) ? k : m;
+                }
+            }
+            if (m < 0) {
+                fprintf(stderr, "%s:%d: [%s] is no mechanism of the campaign\n", path, lineno, s + 1);
+                fclose(f);
+                return -1;
+            }
+            continue;
+        }
+        eq = strchr(s, '=');
+        if (eq == NULL || m < 0) {
+            fprintf(stderr, "%s:%d: expected key = value in a mechanism's section\n", path, lineno);
+            fclose(f);
+            return -1;
+        }
+        *eq = '\0';
+        key = trim(s);
+        val = trim(eq + 1);
+        if (*val == '"') {
+            if (strcmp(key, "id") == 0) {
+                snprintf(ftti_id[m], sizeof ftti_id[m], "%.*s", (int)strcspn(val + 1, "\""), val + 1);
+            }
+            continue;
+        }
+        v = strtod(val, &end);
+        if (end == val || *trim(end) != '\0' || !(v > 0.0)) {
+            fprintf(stderr, "%s:%d: %s = %s: expected a positive number\n", path, lineno, key, val);
+            fclose(f);
+            return -1;
+        }
+        if (strcmp(key, "ftti_ms") == 0) {
+            ftti_ms[m] = v;
+        } else if ((strcmp(key, "table_i_trip_a") == 0 &&
+                    table_value_ok(path, lineno, key, v, i_trip) != 0) ||
+                   (strcmp(key, "table_vdc_ov_v") == 0 &&
+                    table_value_ok(path, lineno, key, v, vdc_ov) != 0) ||
+                   (strcmp(key, "table_t_ipm_max_degc") == 0 &&
+                    table_value_ok(path, lineno, key, v, (double)p->drive.t_ipm_max / 10.0) != 0)) {
+            fclose(f);
+            return -1;
+        }
+    }
+    fclose(f);
+    for (k = 0; k < M_N; k++) {
+        if (mech_key[k] != NULL && (isnan(ftti_ms[k]) || ftti_id[k][0] == '\0')) {
+            fprintf(stderr, "%s: [%s] (%s) needs an id and an ftti_ms\n", path, mech_key[k],
+                    mech_name[k]);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* The mechanism of a fault word (its lowest bit), for a class without a mechanism of its
+   own; OFFSET raised while running is the running sensor monitor's (REQ-DRV-020); M_NONE for
+   no fault. */
+static int mech_of_word(uint16_t w, bool running)
 {
     static const int mech_of_bit[N_BITS] = { M_OC, M_VDC, M_VDC, M_OT, M_OT, M_STALL, M_PHASE,
                                              M_OFFSET, M_LINK, M_PARAM_OBJ, M_TIMING };
     int b;
     for (b = 0; b < N_BITS; b++) {
         if ((w & (1u << b)) != 0u) {
-            const int m = (running && mech_of_bit[b] == M_OFFSET) ? M_SENSOR : mech_of_bit[b];
-            return ftti_ms[m] * 1e-3;
+            return (running && mech_of_bit[b] == M_OFFSET) ? M_SENSOR : mech_of_bit[b];
         }
     }
-    return NAN;
+    return M_NONE;
 }
 
 /* ------------------------------------------------------------------ states */
@@ -598,11 +730,15 @@ static double phase_peak(const sim_t *p)
 static void verdict(const inj_t *in, res_t *r)
 {
     const cls_t *c = &cls[in->cls];
+    const int m = (c->mech == M_FIRST) ? mech_of_word(r->first, in->start == S_RUN) : c->mech;
     r->harmless = !r->oc_missed && !r->over_fs && r->rpm_peak <= OVERSPEED * motor.max_speed_rpm &&
                   !r->state_bad && !r->pwm_off_run && !r->cmd_changed;
-    r->ftti = (c->mech == M_FIRST) ? ftti_of_word(r->first, in->start == S_RUN) : ftti_ms[c->mech] * 1e-3;
+    r->mech = m;
+    r->ftti = ftti_ms[m] * 1e-3;
+    r->budget = budget_ms[m] * 1e-3;
+    /* in time: within the item's FTTI and within the library's own budget */
     r->in_time = r->faults != 0u && !isnan(r->t_react) && !isnan(r->ftti) &&
-                 r->t_react <= r->ftti + 1e-9;
+                 r->t_react <= r->ftti + 1e-9 && r->t_react <= r->budget + 1e-9;
     r->pass = (c->mech == M_NONE) ? (r->harmless && r->faults == 0u) : (r->in_time || r->harmless);
 }
 
@@ -819,7 +955,7 @@ static int build(list_t *l, long n_flips, int table_step, uint64_t seed)
             break;
         }
         snprintf(w, sizeof w, "table bit %d", bit);
-        in = add(l, C_FLIP_TABLE, S_RUN, K_FLIP_TABLE, bit, 0.0, ftti_ms[M_PARAM_TABLE] * 1e-3 + 0.02, w);
+        in = add(l, C_FLIP_TABLE, S_RUN, K_FLIP_TABLE, bit, 0.0, budget_ms[M_PARAM_TABLE] * 1e-3 + 0.02, w);
         if (in == NULL) {
             return -1;
         }
@@ -955,6 +1091,8 @@ static void jrec(FILE *f, const inj_t *in, const res_t *r)
     jfield(f, "t_det_ms", r->t_det, 1e3);
     jfield(f, "t_react_ms", r->t_react, 1e3);
     jfield(f, "ftti_ms", r->ftti, 1e3);
+    jfield(f, "budget_ms", r->budget, 1e3);
+    fprintf(f, ", \"mechanism\": \"%s\"", mech_name[r->mech]);
     fprintf(f, ", \"i_peak_a\": %.2f, \"rpm_peak\": %.0f, \"oc_missed\": %s, \"over_full_scale\": %s, "
                "\"state_bad\": %s, \"pwm_outside_run\": %s, \"cmd_changed\": %s, "
                "\"frames_rejected\": %ld, \"harmless\": %s, \"in_time\": %s, \"pass\": %s}",
@@ -1062,14 +1200,18 @@ static int write_results(const char *out, const inj_t *v, const res_t *r, int n,
                "  \"wall_s\": %.1f, \"table\": \"%s\", \"motor\": \"%s\", \"f_pwm_hz\": %.0f,\n"
                "  \"operating_point\": {\"rpm\": %u, \"load_nm\": %.3g, \"vdc_v\": %.0f},\n"
                "  \"limits\": {\"i_trip_a\": %.3f, \"i_full_scale_a\": %.1f, \"max_speed_rpm\": %.0f},\n"
-               "  \"margin\": %.2f,\n  \"mechanisms\": [",
+               "  \"margin\": %.2f, \"assumptions\": \"%s\",\n  \"mechanisms\": [",
             mode, seed, n_flips, table_step, wall, tabr->name, motor.name, motor.f_pwm_hz,
             (unsigned)RPM_OP, nominal_nm(), motor.vdc_nominal_v, i_trip_a, motor.i_full_scale_a,
-            motor.max_speed_rpm, MARGIN);
+            motor.max_speed_rpm, MARGIN, assumptions_file);
     for (k = 0; k < M_N; k++) {
         fprintf(f, "%s\n    {\"mechanism\": \"%s\"", k ? "," : "", mech_name[k]);
         jfield(f, "spec_ms", spec_ms[k], 1.0);
+        jfield(f, "budget_ms", budget_ms[k], 1.0);
         jfield(f, "ftti_ms", ftti_ms[k], 1.0);
+        fprintf(f, ", \"key\": \"%s\", \"assumption\": \"%s\", \"adequate\": %s",
+                (mech_key[k] != NULL) ? mech_key[k] : "", ftti_id[k],
+                (mech_key[k] == NULL || spec_ms[k] <= ftti_ms[k]) ? "true" : "false");
         fprintf(f, ", \"source\": \"%s\"}", spec_text[k]);
     }
     fputs("\n  ],\n  \"model_checks\": [", f);
@@ -1084,6 +1226,7 @@ static int write_results(const char *out, const inj_t *v, const res_t *r, int n,
         fprintf(f, "%s\n    {\"class\": \"%s\", \"title\": \"%s\", \"mechanism\": \"%s\"",
                 k ? "," : "", cls[k].id, cls[k].title, mech_name[cls[k].mech]);
         jfield(f, "ftti_ms", ftti_ms[cls[k].mech], 1.0);
+        jfield(f, "budget_ms", budget_ms[cls[k].mech], 1.0);
         fputs(", \"expected_bit\": ", f);
         jbits(f, cls[k].bit);
         fprintf(f, ", \"expected_bit_raised\": %s, \"within_limits\": %s, \"injected\": %ld, "
@@ -1257,9 +1400,11 @@ int main(int argc, char **argv)
             jobs = (int)strtol(argv[++a_i], NULL, 10);
         } else if (strcmp(argv[a_i], "--out") == 0 && a_i + 1 < argc) {
             out = argv[++a_i];
+        } else if (strcmp(argv[a_i], "--assumptions") == 0 && a_i + 1 < argc) {
+            assumptions_file = argv[++a_i];
         } else {
             fprintf(stderr, "usage: qfoc_faults [--mode full|check] [--flips N] [--table-step S] "
-                            "[--seed S] [--jobs J] [--out DIR]\n");
+                            "[--seed S] [--jobs J] [--out DIR] [--assumptions TOML]\n");
             return 2;
         }
     }
@@ -1277,6 +1422,18 @@ int main(int argc, char **argv)
     mkdir(out, 0777);
     t0 = now_s();
     fttis(tabr->table);
+    if (load_fttis(assumptions_file, tabr->table) != 0) {
+        return 2;
+    }
+    for (k = 0; k < M_N; k++) {
+        if (mech_key[k] != NULL && spec_ms[k] > ftti_ms[k]) {
+            printf("faults: %s: the library's specified reaction %.4g ms exceeds the item's FTTI "
+                   "%.4g ms (%s): the hazard needs a mechanism outside the library\n",
+                   mech_name[k], spec_ms[k], ftti_ms[k], ftti_id[k]);
+            fails++;
+        }
+    }
+    fflush(stdout);
     if (make_states() != 0 || check_models() != 0) {
         return 2;
     }
@@ -1295,13 +1452,14 @@ int main(int argc, char **argv)
         return 2;
     }
     aggregate(l.v, r, l.n, a);
-    printf("%-20s %7s %8s %15s %15s %10s %s\n", "class", "injected", "detected", "t_det ms",
-           "t_react ms", "FTTI ms", "verdict");
+    printf("%-20s %7s %8s %15s %15s %10s %10s %s\n", "class", "injected", "detected", "t_det ms",
+           "t_react ms", "budget ms", "FTTI ms", "verdict");
     for (k = 0; k < C_N; k++) {
         const agg_t *g = &a[k];
-        printf("%-20s %7ld %8ld %7.4g..%-7.4g %7.4g..%-7.4g %10.5g %s (%ld failed)\n", cls[k].id, g->n,
-               g->detected, g->det_min * 1e3, g->det_max * 1e3, g->react_min * 1e3,
-               g->react_max * 1e3, ftti_ms[cls[k].mech], (g->n > 0 && g->pass == g->n) ? "PASS" : "FAIL",
+        printf("%-20s %7ld %8ld %7.4g..%-7.4g %7.4g..%-7.4g %10.5g %10.5g %s (%ld failed)\n",
+               cls[k].id, g->n, g->detected, g->det_min * 1e3, g->det_max * 1e3,
+               g->react_min * 1e3, g->react_max * 1e3, budget_ms[cls[k].mech],
+               ftti_ms[cls[k].mech], (g->n > 0 && g->pass == g->n) ? "PASS" : "FAIL",
                g->n - g->pass);
         fails += (g->n > 0 && g->pass == g->n) ? 0 : 1;
     }

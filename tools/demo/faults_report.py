@@ -1,25 +1,30 @@
 #!/usr/bin/env python3
 """Report of the fault-injection campaign (make faults, make faults-check).
 
-usage: faults_report.py FAULTS_DIR [--findings TOML] [--junit FILE]
+usage: faults_report.py FAULTS_DIR [--findings TOML] [--assumptions TOML] [--junit FILE]
 
 TOML: the open findings (specs/fault-findings.toml, REQ-FINJ-007): the failures it names are
 reported as OPEN; any other failure, or a named injection that passes, is a failure.
+--assumptions: the item's FTTIs (specs/item-assumptions.toml; by default the file the campaign
+read): the report gives each assumption with its hazard, its derivation, the mechanisms that
+rest on it and the campaign's verdict against it.
 
 Reads what build/host/qfoc_faults writes (FAULTS_DIR/results.json, flips.csv; the format is
 described in sim/apps/faults.c and specs/fault-campaign.md) and writes
 
-  FAULTS_DIR/results.md    the fault table, the FTTIs and their sources, the findings, the
+  FAULTS_DIR/results.md    the fault table, the item's FTTIs with the verdicts against them,
+                           the library's budgets and their sources, the findings, the
                            bit flips by field and every flip that failed
   FAULTS_DIR/index.html    the same as a static page, with two plots (PNG beside it)
   FILE (--junit)           JUnit XML: one test case per class, one for the model checks and
                            one named faults.c for the whole campaign (the program the
                            requirements name, specs/requirements/faults.md)
 
-It prints the fault table.  Exit status: 0 when every class passes, 1 when one fails (the
-report is still written), 2 on missing or malformed input.
+It prints the fault table and the FTTI table.  Exit status: 0 when every class passes and
+every mechanism's specified reaction is within the item's FTTI, 1 otherwise (the report is
+still written), 2 on missing or malformed input.
 
-Requirements: REQ-FINJ-005.
+Requirements: REQ-FINJ-005, REQ-FINJ-008.
 """
 import argparse
 import json
@@ -110,6 +115,14 @@ def span(v, unit="ms"):
     return f"{a} {unit}" if a == b else f"{a} .. {b} {unit}"
 
 
+def budget_text(c):
+    return f"{fnum(c['budget_ms'])} ms" if c.get("budget_ms") is not None else "-"
+
+
+def campaign_ok(d, rows):
+    return all(verdict_ok(c) for c in d["classes"]) and all(r["adequate"] for r in rows)
+
+
 def ftti_text(c):
     if c["ftti_ms"] is not None:
         return f"{fnum(c['ftti_ms'])} ms"
@@ -137,6 +150,52 @@ def by_region(fl):
         for k, _ in OUTCOMES:
             g[k] += r[k]
     return out
+
+
+def load_assumptions(path):
+    """The item's assumptions by mechanism key (hazard, assumption, derivation, id, ftti_ms)."""
+    import tomllib
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except (OSError, ValueError) as e:
+        print(f"faults_report: {path}: {e}", file=sys.stderr)
+        sys.exit(2)
+
+
+def ftti_rows(d, assumptions):
+    """One row per mechanism with an item FTTI: its assumption, the library's specified
+    reaction and budget, the injections judged against it (the bit-flip classes by their
+    counts), how many were detected and how many of those in time (within the FTTI and the
+    budget), the worst reaction, and the verdict: PASS when the specified reaction is within
+    the FTTI and no injection judged against it failed."""
+    rows = []
+    for m in d["mechanisms"]:
+        if m["ftti_ms"] is None:
+            continue
+        name = m["mechanism"]
+        inj = [r for r in d["injections"] if r.get("mechanism") == name]
+        det = [r for r in inj if r["faults"] and r["t_react_ms"] is not None]
+        flips = [c for c in d["classes"] if c["class"] in d["flips"] and c.get("mechanism") == name]
+        flips_failed = [x["record"] for fl in d["flips"].values() for x in fl["failures"]
+                        if x["record"].get("mechanism") == name]
+        worst = [r["t_react_ms"] for r in det] + [c["t_react_ms"][1] for c in flips
+                                                  if c.get("t_react_ms") and c["t_react_ms"][1] is not None]
+        a = assumptions.get(m["key"], {})
+        row = {
+            "id": m["assumption"], "mechanism": name, "hazard": a.get("hazard", ""),
+            "assumption": a.get("assumption", ""), "derivation": a.get("derivation", ""),
+            "ftti_ms": m["ftti_ms"], "spec_ms": m["spec_ms"], "budget_ms": m["budget_ms"],
+            "adequate": m["adequate"],
+            "judged": len(inj) + sum(c["injected"] for c in flips),
+            "detected": len(det) + sum(c["detected"] for c in flips),
+            "within": sum(1 for r in det if r["in_time"]) + sum(c["in_time"] for c in flips),
+            "worst_ms": max(worst, default=None),
+            "failed": sum(1 for r in inj + flips_failed if not r["pass"]),
+        }
+        row["verdict"] = "PASS" if row["adequate"] and row["failed"] == 0 else "FAIL"
+        rows.append(row)
+    return rows
 
 
 def findings(d):
@@ -171,14 +230,15 @@ def det_text(r):
     if not r["faults"]:
         return "not detected"
     return (f"{'+'.join(r['first'])} after {fnum(r['t_det_ms'])} ms, PWM off after "
-            f"{fnum(r['t_react_ms'])} ms (FTTI {fnum(r['ftti_ms'])} ms)")
+            f"{fnum(r['t_react_ms'])} ms (FTTI {fnum(r['ftti_ms'])} ms, budget "
+            f"{fnum(r.get('budget_ms'))} ms)")
 
 
 # ------------------------------------------------------------------ markdown
 
-def write_md(d, path):
+def write_md(d, path, rows):
     cl = d["classes"]
-    ok = all(verdict_ok(c) for c in cl)
+    ok = campaign_ok(d, rows)
     out = [f"# Fault-injection campaign ({d['mode']})", "",
            f"Table `{d['table']}` ({d['motor']}, {fnum(d['f_pwm_hz'])} Hz PWM); operating point "
            f"{d['operating_point']['rpm']} rpm at {fnum(d['operating_point']['load_nm'])} N m, "
@@ -189,22 +249,36 @@ def write_md(d, path):
            f"{d['table_step']}; {fnum(d['wall_s'])} s.  Verdict: **{'PASS' if ok else 'FAIL'}**.", "",
            "Method, FTTIs and the verdict rule: `specs/fault-campaign.md`.", "",
            "## Fault table", "",
-           "| class | injected | detected | bits raised | detection time | reaction time | FTTI | "
-           "in time | harmless | verdict |",
-           "|---|---:|---:|---|---|---|---|---:|---:|---|"]
+           "| class | injected | detected | bits raised | detection time | reaction time | budget | "
+           "FTTI | in time | harmless | verdict |",
+           "|---|---:|---:|---|---|---|---|---|---:|---:|---|"]
     for c in cl:
         out.append(f"| {c['class']} | {c['injected']} | {c['detected']} | {bits_text(c)} | "
-                   f"{span(c['t_det_ms'])} | {span(c['t_react_ms'])} | {ftti_text(c)} | "
+                   f"{span(c['t_det_ms'])} | {span(c['t_react_ms'])} | {budget_text(c)} | {ftti_text(c)} | "
                    f"{c['in_time']} | {c['harmless']} | {c['verdict']}"
                    f"{'' if c['verdict'] == 'PASS' else ' (' + str(c['failed']) + ' failed)'} |")
     out += ["", "What each class injects:", ""]
     out += [f"- `{c['class']}`: {c['title']}." for c in cl]
-    out += ["", "## FTTIs", "", f"FTTI = {d['margin']} x the specified reaction time "
-            "(`specs/safety-manual.md` section 2.2, from the table's values).", "",
-            "| mechanism | specified reaction | FTTI | from |", "|---|---:|---:|---|"]
+    out += ["", "## The item's FTTIs and the verdicts against them", "",
+            f"From the item's assumptions `{d.get('assumptions', '')}` (AoU-25): each mechanism's "
+            "FTTI, the library's specified reaction and its budget "
+            f"({d['margin']} x the specified reaction), the injections judged against it, how many "
+            "of the detected ones reacted in time (within the FTTI and the budget), the worst "
+            "reaction.  An injection passes when detected in time, or harmless.", "",
+            "| assumption | mechanism | hazard | assumed | FTTI | specified | budget | judged | "
+            "in time / detected | worst reaction | verdict |",
+            "|---|---|---|---|---:|---:|---:|---:|---:|---:|---|"]
+    for r in rows:
+        out.append(f"| {r['id']} | {r['mechanism']} | {r['hazard']} | {r['assumption']}; "
+                   f"{r['derivation']} | {fnum(r['ftti_ms'])} ms | {fnum(r['spec_ms'])} ms | "
+                   f"{fnum(r['budget_ms'])} ms | {r['judged']} | {r['within']} / {r['detected']} | "
+                   f"{'-' if r['worst_ms'] is None else fnum(r['worst_ms']) + ' ms'} | {r['verdict']} |")
+    out += ["", "## The library's budgets", "", f"Budget = {d['margin']} x the specified "
+            "reaction time (`specs/safety-manual.md` section 2.2, from the table's values).", "",
+            "| mechanism | specified reaction | budget | from |", "|---|---:|---:|---|"]
     for m in d["mechanisms"]:
-        if m["ftti_ms"] is not None:
-            out.append(f"| {m['mechanism']} | {fnum(m['spec_ms'])} ms | {fnum(m['ftti_ms'])} ms | "
+        if m["budget_ms"] is not None:
+            out.append(f"| {m['mechanism']} | {fnum(m['spec_ms'])} ms | {fnum(m['budget_ms'])} ms | "
                        f"{m['source']} |")
     fnd = findings(d)
     out += ["", f"## Findings: injections neither detected within their FTTI nor harmless ({len(fnd)})", ""]
@@ -288,13 +362,13 @@ def table_html(headers, rows, num=()):
     return "\n".join(out)
 
 
-def write_html(d, fdir):
+def write_html(d, fdir, rows):
     cl = d["classes"]
-    ok = all(verdict_ok(c) for c in cl)
+    ok = campaign_ok(d, rows)
     plot_times(d, os.path.join(fdir, "times.png"))
     plot_flips(d, os.path.join(fdir, "flips.png"))
-    rows = [[c["class"], c["injected"], c["detected"], bits_text(c), span(c["t_det_ms"]),
-             span(c["t_react_ms"]), ftti_text(c), c["in_time"], c["harmless"],
+    crow = [[c["class"], c["injected"], c["detected"], bits_text(c), span(c["t_det_ms"]),
+             span(c["t_react_ms"]), budget_text(c), ftti_text(c), c["in_time"], c["harmless"],
              (c["verdict"].lower(), c["verdict"] + ("" if c["verdict"] == "PASS" else f" ({c['failed']})"))]
             for c in cl]
     body = [f"<h1>Fault-injection campaign {badge('PASS' if ok else 'FAIL')}</h1>",
@@ -308,16 +382,28 @@ def write_html(d, fdir):
             "</a>, <a href=\"results.json\">results.json</a>, <a href=\"flips.csv\">flips.csv</a>.</p>",
             "<h2>Fault table</h2>",
             table_html(["class", "injected", "detected", "bits raised", "detection time",
-                        "reaction time", "FTTI", "in time", "harmless", "verdict"], rows,
-                       num=(1, 2, 7, 8)),
+                        "reaction time", "budget", "FTTI", "in time", "harmless", "verdict"], crow,
+                       num=(1, 2, 8, 9)),
             "<ul>" + "".join(f"<li><code>{esc(c['class'])}</code>: {esc(c['title'])}.</li>" for c in cl)
             + "</ul>",
             '<figure><img src="times.png" alt="reaction times"><figcaption>Reaction time (injection '
             'to PWM off) of every detected injection, with its FTTI.</figcaption></figure>',
-            "<h2>FTTIs</h2>", f"<p>FTTI = {d['margin']} x the specified reaction time.</p>",
-            table_html(["mechanism", "specified", "FTTI", "from"],
-                       [[m["mechanism"], f"{fnum(m['spec_ms'])} ms", f"{fnum(m['ftti_ms'])} ms",
-                         m["source"]] for m in d["mechanisms"] if m["ftti_ms"] is not None], num=(1, 2))]
+            "<h2>The item's FTTIs and the verdicts against them</h2>",
+            f"<p>From <code>{esc(d.get('assumptions', ''))}</code> (AoU-25, confirmed by the "
+            "integrator); an injection passes when detected within both its FTTI and the library's "
+            "budget, or harmless.</p>",
+            table_html(["assumption", "mechanism", "hazard", "assumed", "FTTI", "specified", "budget",
+                        "judged", "in time / detected", "worst reaction", "verdict"],
+                       [[r["id"], r["mechanism"], r["hazard"], f"{r['assumption']}; {r['derivation']}",
+                         f"{fnum(r['ftti_ms'])} ms", f"{fnum(r['spec_ms'])} ms", f"{fnum(r['budget_ms'])} ms",
+                         r["judged"], f"{r['within']} / {r['detected']}",
+                         "-" if r["worst_ms"] is None else f"{fnum(r['worst_ms'])} ms",
+                         (r["verdict"].lower(), r["verdict"])] for r in rows], num=(4, 5, 6, 7, 8, 9)),
+            "<h2>The library's budgets</h2>",
+            f"<p>Budget = {d['margin']} x the specified reaction time.</p>",
+            table_html(["mechanism", "specified", "budget", "from"],
+                       [[m["mechanism"], f"{fnum(m['spec_ms'])} ms", f"{fnum(m['budget_ms'])} ms",
+                         m["source"]] for m in d["mechanisms"] if m["budget_ms"] is not None], num=(1, 2))]
     for title, lst in (("Findings: neither detected within the FTTI nor harmless", findings(d)),
                        ("Detected within the FTTI, not harmless before the reaction", observations(d))):
         body.append(f"<h2>{esc(title)} ({len(lst)})</h2>")
@@ -355,8 +441,10 @@ def write_html(d, fdir):
 
 # ------------------------------------------------------------------ JUnit
 
-def write_junit(d, path):
-    cases = []
+def write_junit(d, path, rows):
+    cases = [(f"ftti_{r['id']}_{r['mechanism']}", r["verdict"] == "PASS",
+              f"specified {fnum(r['spec_ms'])} ms, worst {fnum(r['worst_ms'])} ms against the "
+              f"item's FTTI {fnum(r['ftti_ms'])} ms; {r['failed']} failed") for r in rows]
     for c in d["classes"]:
         bad = [r for r in d["injections"] if r["class"] == c["class"] and not r["pass"]]
         if c["class"] in d["flips"]:
@@ -388,22 +476,31 @@ def main():
     ap.add_argument("faults_dir")
     ap.add_argument("--junit", metavar="FILE", help="write the JUnit XML there")
     ap.add_argument("--findings", metavar="TOML", help="the open findings (specs/fault-findings.toml)")
+    ap.add_argument("--assumptions", metavar="TOML",
+                    help="the item's FTTIs (default: the file the campaign read)")
     a = ap.parse_args()
     d = load(a.faults_dir)
     apply_findings(d, load_findings(a.findings) if a.findings else [])
-    write_md(d, os.path.join(a.faults_dir, "results.md"))
-    path = write_html(d, a.faults_dir)
+    rows = ftti_rows(d, load_assumptions(a.assumptions or d.get("assumptions")
+                                         or "specs/item-assumptions.toml"))
+    write_md(d, os.path.join(a.faults_dir, "results.md"), rows)
+    path = write_html(d, a.faults_dir, rows)
     if a.junit:
-        write_junit(d, a.junit)
+        write_junit(d, a.junit, rows)
     print(f"{'class':22} {'injected':>8} {'detected':>8} {'detection':>20} {'reaction':>22} "
           f"{'FTTI':>20}  verdict")
     for c in d["classes"]:
         print(f"{c['class']:22} {c['injected']:8} {c['detected']:8} {span(c['t_det_ms']):>20} "
               f"{span(c['t_react_ms']):>22} {ftti_text(c):>20}  {c['verdict']}")
+    print(f"\n{'assumption':10} {'mechanism':31} {'FTTI':>11} {'specified':>11} {'worst':>11}  verdict")
+    for r in rows:
+        worst = "-" if r["worst_ms"] is None else f"{fnum(r['worst_ms'])} ms"
+        print(f"{r['id']:10} {r['mechanism']:31} {fnum(r['ftti_ms']) + ' ms':>11} "
+              f"{fnum(r['spec_ms']) + ' ms':>11} {worst:>11}  {r['verdict']}")
     print(f"report: {os.path.abspath(path)}")
     for msg in d["stale_findings"]:
         print(f"faults: {msg}")
-    return 0 if all(verdict_ok(c) for c in d["classes"]) and not d["stale_findings"] else 1
+    return 0 if campaign_ok(d, rows) and not d["stale_findings"] else 1
 
 
 if __name__ == "__main__":

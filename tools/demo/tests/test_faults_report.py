@@ -81,3 +81,79 @@ def test_repository_findings_load():
     for it in items:
         head = re.search(r"^\*\*" + re.escape(it["id"]) + r" .*$", analysis, re.M)
         assert head is not None and "Closed by" not in head.group(0)
+
+
+def ftti_campaign(spec_oc=0.125):
+    """Two mechanisms with their item FTTIs; OC judged by three injections, LINK by one."""
+    mech = [{"mechanism": "none (within limits)", "key": "", "assumption": "", "spec_ms": None,
+             "budget_ms": None, "ftti_ms": None, "adequate": True},
+            {"mechanism": "OC", "key": "oc", "assumption": "IA-01", "spec_ms": spec_oc,
+             "budget_ms": 1.5 * spec_oc, "ftti_ms": 0.33, "adequate": spec_oc <= 0.33},
+            {"mechanism": "LINK", "key": "link", "assumption": "IA-08", "spec_ms": 2795.0,
+             "budget_ms": 4192.5, "ftti_ms": 5000.0, "adequate": True}]
+    inj = [{"class": "oc_surge", "mechanism": "OC", "faults": ["OC"], "t_react_ms": 0.1,
+            "in_time": True, "pass": True},
+           {"class": "oc_surge", "mechanism": "OC", "faults": ["OC"], "t_react_ms": 0.125,
+            "in_time": True, "pass": True},
+           {"class": "oc_surge", "mechanism": "OC", "faults": [], "t_react_ms": None,
+            "in_time": False, "pass": True},
+           {"class": "link_loss", "mechanism": "LINK", "faults": ["LINK"], "t_react_ms": 5200.0,
+            "in_time": False, "pass": False}]
+    classes = [{"class": "oc_surge", "verdict": "PASS"}, {"class": "link_loss", "verdict": "FAIL"}]
+    # 40 drive-object flips judged against OC's FTTI, 30 detected, 29 in time
+    classes.append({"class": "drive_flip", "verdict": "PASS", "mechanism": "OC", "injected": 40,
+                    "detected": 30, "in_time": 29, "t_react_ms": [0.125, 0.25]})
+    return {"mechanisms": mech, "injections": inj, "classes": classes,
+            "flips": {"drive_flip": {"failures": []}}}
+
+
+ASSUMED = {"oc": {"hazard": "h", "assumption": "a", "derivation": "d"}}
+
+
+# REQ-FINJ-008
+def test_ftti_rows_judge_each_mechanism_against_its_assumption():
+    d = ftti_campaign()
+    rows = fr.ftti_rows(d, ASSUMED)
+    assert [r["id"] for r in rows] == ["IA-01", "IA-08"]
+    oc, link = rows
+    assert (oc["judged"], oc["detected"], oc["within"], oc["worst_ms"]) == (43, 32, 31, 0.25)
+    assert oc["hazard"] == "h" and oc["verdict"] == "PASS"
+    # LINK: detected after its FTTI and failed
+    assert (link["within"], link["failed"], link["verdict"]) == (0, 1, "FAIL")
+
+
+# REQ-FINJ-008
+def test_mechanism_slower_than_its_ftti_fails_the_campaign():
+    d = ftti_campaign(spec_oc=0.5)
+    d["classes"][1]["verdict"] = "PASS"
+    rows = fr.ftti_rows(d, ASSUMED)
+    assert rows[0]["verdict"] == "FAIL" and not fr.campaign_ok(d, rows)
+    d = ftti_campaign()
+    d["classes"][1]["verdict"] = "PASS"
+    assert fr.campaign_ok(d, fr.ftti_rows(d, ASSUMED))
+
+
+def _ms(text):
+    """The last 'number unit' of a derivation, in ms."""
+    m = re.findall(r"([0-9]+(?:\.[0-9]+)?) (ms|s)\b", text)
+    v, unit = m[-1]
+    return float(v) * (1.0 if unit == "ms" else 1000.0)
+
+
+# REQ-FINJ-008
+def test_repository_assumptions_cover_every_mechanism():
+    """specs/item-assumptions.toml has a section for every mechanism of sim/apps/faults.c, each
+    with its id, hazard, assumption, derivation and a positive FTTI equal to the figure its
+    derivation ends with."""
+    import tomllib
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")
+    with open(os.path.join(root, "specs", "item-assumptions.toml"), "rb") as f:
+        items = tomllib.load(f)
+    with open(os.path.join(root, "sim", "apps", "faults.c"), encoding="utf-8") as f:
+        src = f.read()
+    keys = re.findall(r'"([a-z_]+)"', src[src.index("mech_key[M_N] = {"):].split("};")[0])
+    assert len(keys) == 13 and set(items) == set(keys)
+    for k, v in items.items():
+        assert re.fullmatch(r"IA-[0-9]{2}", v["id"]), k
+        assert all(v[f].strip() for f in ("hazard", "assumption", "derivation")), k
+        assert v["ftti_ms"] > 0 and abs(_ms(v["derivation"]) - v["ftti_ms"]) < 1e-6 * v["ftti_ms"] + 1e-3, k
