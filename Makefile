@@ -223,10 +223,15 @@ demo: deps-demo $(BUILD)/host/qfoc_demo
 	@$(BUILD)/host/qfoc_demo --out $(BUILD)/demo
 	@$(PYTHON) tools/demo/demo_report.py $(BUILD)/demo
 
+## quickstart: README's quick start on a fresh clone of HEAD (make demo, lib, tune), light (the demo gate of make check)
+.PHONY: quickstart
+quickstart:
+	@sh tools/gates/quickstart.sh
+
 # The cold-start campaign (sim/apps/robust.c): ROBUST_COUNT starts of its base axis (the
-# ranges of REQ-SCN-011), then ROBUST_AXIS_COUNT starts on each of its 7 further axes (dead
+# ranges of REQ-SCN-011), then ROBUST_AXIS_COUNT starts on each of its 8 further axes (dead
 # time, breakaway torque, psi_f +-15 %, low-flux motor, low-flux motor with dead time, all
-# combined, a flying start on a coasting rotor).  A ROBUST_COUNT given alone on the command line runs the base axis only: the
+# combined, a flying start on a coasting rotor, the 800 V e-compressor with every axis).  A ROBUST_COUNT given alone on the command line runs the base axis only: the
 # short form of make check, `make robustness ROBUST_COUNT=24`.  The report is written even
 # when starts fail; the target then fails.  SEED=<n> replays one run.
 ROBUST_COUNT ?= 200

@@ -61,7 +61,7 @@ gate docs     make --no-print-directory docs
 gate report   make --no-print-directory estimator-report
 gate tune     make --no-print-directory tune-check
 gate a2l      make --no-print-directory a2l-check
-gate demo     make --no-print-directory demo
+gate demo     make --no-print-directory quickstart
 gate robust   make --no-print-directory robustness ROBUST_COUNT=24
 gate repro    make --no-print-directory repro
 gate cmake    make --no-print-directory cmake-check

@@ -353,6 +353,25 @@ def test_firmware_figure_from_make_firmware(tmp_path):
         in failures[0], failures
 
 
+def test_changelog_current_section_checked(tmp_path):
+    """REQ-EVD-019: a figure of the changelog's current section is checked against its source
+    and a seeded wrong one fails; a count no template covers fails there, while the sections
+    of older releases are history and are not scanned."""
+    make_repo(tmp_path)
+    (tmp_path / "CHANGELOG.md").write_text(
+        "# Changelog\n\n## [Unreleased]\n\n- WP: 4 / 5 goals proved.\n- 7 harnesses added.\n\n"
+        "## [0.1.0] - 2026-01-01\n\n- 3 harnesses, 2 of 9 goals.\n")
+    reg = [("CHANGELOG.md", "{wp.proved} / {wp.goals} goals proved")]
+    failures, _notes = figures.check(str(tmp_path), registry=reg)
+    assert any("CHANGELOG.md:5: figure wp.proved is 4, the source says 5" in f for f in failures), failures
+    assert any("CHANGELOG.md:6: hand-typed figure '7 harnesses'" in f for f in failures), failures
+    assert not any("CHANGELOG.md:10" in f for f in failures), failures
+    figures.check(str(tmp_path), write=True, registry=reg)
+    failures, _notes = figures.check(str(tmp_path), registry=[("CHANGELOG.md", "{wp.proved} / {wp.goals} goals proved"),
+                                                              ("CHANGELOG.md", "7 harnesses added")])
+    assert failures == [], failures
+
+
 def test_repository_figures_and_table_agree():
     """REQ-EVD-018, REQ-EVD-019: the committed documents pass both checks."""
     failures, _notes = figures.check(str(ROOT))
