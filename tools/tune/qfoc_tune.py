@@ -780,18 +780,43 @@ def psi_shift_value(path: Path, value: object) -> int:
                   f"{RULE_PSI}); leave the key out to have the tool derive it")
 
 
+# The L_q error the hand-over window should cover: the spread of the robustness campaign
+# (REQ-SCN-011, L_d and L_q +-20 %).
+HO_LQ_TOL = 0.20
+
+
+def handover_lq_cover(cfg: dict) -> tuple[float, float]:
+    """(r, e): r = L_q i_start / psi_f; an L_q error e turns the flux estimate in OPEN_LOOP by
+    about atan(r e) (the voltage model's L_q i_q term against the magnet's flux), so the
+    hand-over window ho_angle covers an L_q error down to -e = -tan(ho_angle) / r."""
+    m, dr = cfg["motor"], cfg["drive"]
+    r = m["lq_h"] * abs(dr["i_start_a"]) / m["psi_f_wb"]
+    return r, math.tan(math.radians(dr["ho_angle_deg"])) / r if r > 0 else math.inf
+
+
 def input_warnings(cfg: dict) -> list[str]:
-    """Values the tool accepts but that look wrong: an interior-magnet motor has L_q > L_d."""
+    """Values the tool accepts but that look wrong: an interior-magnet motor has L_q > L_d;
+    a hand-over window that covers less L_q error than HO_LQ_TOL."""
     m = cfg["motor"]
     pairs = [("lq_h", "ld_h", m["lq_h"], m["ld_h"])]
     if m["lq_hs_h"] is not None or m["ld_hs_h"] is not None:
         pairs.append(("lq_hs_h", "ld_hs_h",
                       m["lq_hs_h"] if m["lq_hs_h"] is not None else m["lq_h"],
                       m["ld_hs_h"] if m["ld_hs_h"] is not None else m["ld_h"]))
-    return [f"motor.{q} = {fmt(lq)} H is below motor.{d} = {fmt(ld)} H: an interior-magnet "
-            "(IPM) motor has L_q > L_d (L_q = L_d for a surface-magnet motor); are the two "
-            "values swapped? The table is made with the values as given"
-            for q, d, lq, ld in pairs if lq < ld]
+    out = [f"motor.{q} = {fmt(lq)} H is below motor.{d} = {fmt(ld)} H: an interior-magnet "
+           "(IPM) motor has L_q > L_d (L_q = L_d for a surface-magnet motor); are the two "
+           "values swapped? The table is made with the values as given"
+           for q, d, lq, ld in pairs if lq < ld]
+    r, e = handover_lq_cover(cfg)
+    if e < HO_LQ_TOL:
+        out.append(f"the hand-over window drive.ho_angle_deg = {fmt(cfg['drive']['ho_angle_deg'])} deg "
+                   f"covers an L_q error down to -{e * 100:.1f} % only: L_q i_start / psi_f = "
+                   f"{r:.2f} (motor.lq_h x drive.i_start_a / motor.psi_f_wb), and an L_q error e "
+                   f"turns the flux estimate by about atan({r:.2f} e); a motor whose L_q is further "
+                   "below the table's does not hand over and stops in STALL after its retries. "
+                   f"Measure L_q at the start current within {e * 100:.0f} %, or lower "
+                   "drive.i_start_a (specs/safety-manual.md section 4.2)")
+    return out
 
 
 def unit_text(k: Key) -> str:
@@ -1144,7 +1169,11 @@ def motor_file_doc() -> str:
         "",
         "It warns (and makes the table) when motor.lq_h < motor.ld_h (or motor.lq_hs_h < "
         "motor.ld_hs_h): an interior-magnet (IPM) motor has L_q > L_d, a surface-magnet "
-        "motor L_q = L_d; the two values may be swapped.",
+        "motor L_q = L_d; the two values may be swapped.  It warns as well when the hand-over "
+        "window drive.ho_angle_deg covers an L_q error of less than "
+        f"{HO_LQ_TOL * 100:.0f} %: an L_q error e turns the open-loop flux estimate by about "
+        "atan(e L_q i_start / psi_f), and a start whose estimate lies beyond the window does "
+        "not hand over.",
         "",
     ]
     prow = []

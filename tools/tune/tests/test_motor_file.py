@@ -333,7 +333,30 @@ def test_plausible_ranges_accept_committed_motors(tmp_path, motor):
         if cfg[section][key] is not None and cfg[section][key] != 0:
             assert lo <= cfg[section][key] <= hi, name
     assert qt.load_config(motor, ["inverter.dead_time_s=0", "design.t_filter_current_s=0"])
-    assert not cfg["warnings"]
+    # the hand-over window of the 800 V motor covers only -10 % of L_q error (L_q i_start /
+    # psi_f = 2.65), that of the traction motor -8 % (3.30): both are warned about; the
+    # reference motor has no warning
+    assert [w[:45] for w in cfg["warnings"]] == (
+        ["the hand-over window drive.ho_angle_deg = 15 "] if motor in (ECOMP, SECOND) else [])
+
+
+# REQ-TUNE-001: the hand-over window's cover of an L_q error, against its formula in double
+# precision: tan(ho_angle) / (L_q i_start / psi_f); warned below 20 %, named with the figures.
+def test_warns_handover_window_narrow_for_lq():
+    import math
+    cfg = qt.load_config(ECOMP, [])
+    r, e = qt.handover_lq_cover(cfg)
+    assert r == pytest.approx(6.5e-3 * 40.0 / 0.098, rel=1e-9)
+    assert e == pytest.approx(math.tan(math.radians(15.0)) / r, rel=1e-9)
+    assert 0.10 < e < 0.102
+    w = cfg["warnings"][-1]
+    assert "covers an L_q error down to -10.1 % only" in w and "= 2.65" in w
+    # a wider window or a lower start current covers 20 %: no warning
+    assert qt.load_config(ECOMP, ["drive.ho_angle_deg=30"])["warnings"] == []
+    assert qt.load_config(ECOMP, ["drive.i_start_a=19"])["warnings"] == []
+    # the reference motor: r = 1.29, the window covers 20.8 %
+    r, e = qt.handover_lq_cover(qt.load_config(REFERENCE, []))
+    assert r == pytest.approx(4.2e-3 * 20.0 / 0.065) and e > 0.20
 
 
 # REQ-TUNE-001: L_q < L_d is warned about (an IPM motor has L_q > L_d), naming both keys and
