@@ -136,7 +136,7 @@ typedef struct {
 
 /**
  * Faults of the sensing chain and of the windings, for the fault-injection campaign
- * (sim/apps/faults.c, specs/fault-campaign.md; REQ-FINJ-001 .. REQ-FINJ-007).  sim_init()
+ * (sim/apps/faults.c, specs/fault-campaign.md; REQ-FINJ-001 .. REQ-FINJ-008).  sim_init()
  * makes every one inactive, and the plant is then exactly the model above.
  *  - sensing: each current channel's sample is gain x the true current plus an offset in
  *    counts before the 12-bit conversion, the DC-bus sample vdc_gain x the true bus; any
