@@ -13,8 +13,8 @@
 #                               byte (the clone stays clean: git status lists nothing);
 # and that these light targets stay light: none of them made the verification chain's
 # targets (deps, deps-trixie: Frama-C, CBMC, cppcheck, the trixie chroot), as `make --trace`
-# shows the targets make updated.  The demo's pages are copied to build/quickstart/ for a
-# look.
+# shows the targets make updated.  The demo's pages and results are copied to build/demo/,
+# where make demo writes them (the evidence bundle reads the scenarios' results there).
 #
 # Exit status 0 when every check passed; 1 otherwise, each failure named.
 set -u
@@ -53,7 +53,12 @@ step demo make --no-print-directory --trace demo
 for f in index.html cold_start/index.html; do
     [ -s "$tmp/qfoc/build/demo/$f" ] || bad "make demo wrote no build/demo/$f"
 done
-[ -d "$tmp/qfoc/build/demo" ] && cp -r "$tmp/qfoc/build/demo" "$OUT/demo"
+# the demo's results are the demo gate's, where make demo writes them (the evidence reads
+# build/demo/<scenario>/metrics.json): the clone is HEAD, the tree make check verifies
+if [ -d "$tmp/qfoc/build/demo" ]; then
+    rm -rf build/demo
+    cp -r "$tmp/qfoc/build/demo" build/demo
+fi
 
 step lib make --no-print-directory --trace lib
 [ -s "$tmp/qfoc/build/host/libqfoc.a" ] || bad "make lib wrote no build/host/libqfoc.a"
