@@ -34,17 +34,28 @@ python3 python3-matplotlib python3-numpy python3-scipy python3-pytest \
 qemu-system-arm python3-unicorn python3-pyelftools clang-tidy debootstrap \
 debian-archive-keyring dpkg-dev cmake cadical clang g++ doxygen"
 
-# command that must exist for each tool (same order is not required)
-need_cmds() {
-    for c in gcc make frama-c why3 z3 cvc4 cppcheck lcov gcovr arm-none-eabi-gcc python3 dpkg-deb \
-             qemu-system-arm clang-tidy debootstrap cmake cadical clang g++ doxygen; do
+# have_cmds CMD...: every command is on the PATH (else "missing: CMD", status 1)
+have_cmds() {
+    for c in "$@"; do
         command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
     done
+    return 0
+}
+
+# have_py "MODULES" "PACKAGES": $PY imports the modules (else "missing: PACKAGES", status 1)
+have_py() {
+    "$PY" -c "import $1" >/dev/null 2>&1 || { echo "missing: $2"; return 1; }
+}
+
+# command that must exist for each tool (same order is not required)
+need_cmds() {
+    have_cmds gcc make frama-c why3 z3 cvc4 cppcheck lcov gcovr arm-none-eabi-gcc python3 dpkg-deb \
+              qemu-system-arm clang-tidy debootstrap cmake cadical clang g++ doxygen || return 1
     [ -f /usr/include/cmocka.h ] || { echo "missing: libcmocka-dev"; return 1; }
     need_a2l >/dev/null || { need_a2l; return 1; }
-    "$PY" -c "import matplotlib, numpy" >/dev/null 2>&1 || { echo "missing: python3-matplotlib"; return 1; }
-    "$PY" -c "import scipy.signal, pytest" >/dev/null 2>&1 || { echo "missing: python3-scipy or python3-pytest"; return 1; }
-    "$PY" -c "import unicorn, elftools" >/dev/null 2>&1 || { echo "missing: python3-unicorn or python3-pyelftools"; return 1; }
+    have_py "matplotlib, numpy" "python3-matplotlib" || return 1
+    have_py "scipy.signal, pytest" "python3-scipy or python3-pytest" || return 1
+    have_py "unicorn, elftools" "python3-unicorn or python3-pyelftools" || return 1
     [ -f /usr/share/keyrings/debian-archive-keyring.gpg ] || { echo "missing: debian-archive-keyring"; return 1; }
     [ -x "$CBMC_PREFIX/bin/cbmc" ] || { echo "missing: cbmc ($CBMC_PREFIX)"; return 1; }
     [ -f "$HOME/.why3.conf" ] || { echo "missing: why3 prover configuration"; return 1; }
@@ -55,10 +66,9 @@ need_cmds() {
 TUNE_PKGS="make python3 python3-numpy python3-scipy python3-matplotlib python3-pytest"
 
 need_tune() {
-    command -v make >/dev/null 2>&1 || { echo "missing: make"; return 1; }
-    "$PY" -c "import numpy, scipy.signal, matplotlib, pytest" >/dev/null 2>&1 ||
-        { echo "missing: python3-numpy, python3-scipy, python3-matplotlib or python3-pytest"; return 1; }
-    return 0
+    have_cmds make &&
+        have_py "numpy, scipy.signal, matplotlib, pytest" \
+            "python3-numpy, python3-scipy, python3-matplotlib or python3-pytest"
 }
 
 # One light target (--tune, --a2l, --docs): its packages only.
@@ -95,13 +105,9 @@ A2L_PKGS="make gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi 
 python3 python3-numpy python3-pyelftools python3-pytest"
 
 need_a2l() {
-    for c in make arm-none-eabi-gcc arm-none-eabi-objcopy; do
-        command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
-    done
+    have_cmds make arm-none-eabi-gcc arm-none-eabi-objcopy || return 1
     [ -f /usr/lib/arm-none-eabi/newlib/nano.specs ] || { echo "missing: libnewlib-arm-none-eabi"; return 1; }
-    "$PY" -c "import numpy, elftools, pytest" >/dev/null 2>&1 ||
-        { echo "missing: python3-numpy, python3-pyelftools or python3-pytest"; return 1; }
-    return 0
+    have_py "numpy, elftools, pytest" "python3-numpy, python3-pyelftools or python3-pytest"
 }
 
 light_target "${1:-}" "${2:-}" --a2l need_a2l "$A2L_PKGS" "calibration description's"
@@ -110,10 +116,7 @@ light_target "${1:-}" "${2:-}" --a2l need_a2l "$A2L_PKGS" "calibration descripti
 DOCS_PKGS="make doxygen"
 
 need_docs() {
-    for c in make doxygen; do
-        command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
-    done
-    return 0
+    have_cmds make doxygen
 }
 
 light_target "${1:-}" "${2:-}" --docs need_docs "$DOCS_PKGS" "API reference's"
@@ -122,12 +125,7 @@ light_target "${1:-}" "${2:-}" --docs need_docs "$DOCS_PKGS" "API reference's"
 DEMO_PKGS="make gcc libc6-dev python3 python3-numpy python3-matplotlib"
 
 need_demo() {
-    for c in make gcc; do
-        command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
-    done
-    "$PY" -c "import numpy, matplotlib" >/dev/null 2>&1 ||
-        { echo "missing: python3-numpy or python3-matplotlib"; return 1; }
-    return 0
+    have_cmds make gcc && have_py "numpy, matplotlib" "python3-numpy or python3-matplotlib"
 }
 
 light_target "${1:-}" "${2:-}" --demo need_demo "$DEMO_PKGS" "demo's"
@@ -138,10 +136,7 @@ RELEASE_PKGS="make git gcc libc6-dev gcc-arm-none-eabi libnewlib-arm-none-eabi \
 binutils-arm-none-eabi doxygen python3"
 
 need_release() {
-    for c in make git gcc arm-none-eabi-gcc doxygen; do
-        command -v "$c" >/dev/null 2>&1 || { echo "missing: $c"; return 1; }
-    done
-    return 0
+    have_cmds make git gcc arm-none-eabi-gcc doxygen
 }
 
 light_target "${1:-}" "${2:-}" --release need_release "$RELEASE_PKGS" "release's"
