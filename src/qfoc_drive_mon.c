@@ -147,9 +147,106 @@ static bool drv_align_open(const qfoc_param_table_t *p, const qfoc_drive_fast_t 
     return (u > need) && ((i * 4u) < ir);
 }
 
+/* The flux magnitude the observer should estimate: the active flux psi_f + (L_d - L_q) i_d. */
+/*@
+  requires valid: \valid_read(p) && \valid_read(f);
+  assigns \nothing;
+*/
+static qfoc_q15_t drv_psi_exp(const qfoc_param_table_t *p, const qfoc_drive_fast_t *f)
+{
+    const qfoc_q15_t dl = qfoc_q15_sat((int32_t)p->ld - (int32_t)p->lq);
+    return qfoc_q15_add(p->psi_f, qfoc_drive_li((int16_t)dl, f->i_dq.d));
+}
+
+/* The stall condition (REQ-DRV-008): in CLOSED_LOOP or STOPPING, the speed error or the
+   flux magnitude off its expectation psi_f + (L_d - L_q) i_d (the active flux the observer
+   estimates) beyond their tolerances; debounced over stall_ms by the caller. */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p);
+  assigns \nothing;
+*/
+static bool drv_stall_cond(const qfoc_drive_t *d)
+{
+    const qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const uint8_t sub = s->sm.sub;
+    const bool closed = (s->sm.state == QFOC_STATE_RUN) &&
+                        ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
+    const qfoc_q15_t e_speed = qfoc_q15_sub(s->speed_ref, f->speed_f);
+    const qfoc_q15_t e_psi = qfoc_q15_sub(f->psi_mag, drv_psi_exp(p, f));
+    const bool bad_speed = qfoc_fault_abs_over(e_speed, c->stall_err);
+    const bool bad_flux = qfoc_fault_abs_over(e_psi, c->flux_tol);
+    return closed && (bad_speed || bad_flux);
+}
+
+/* The fast flux plausibility check (REQ-DRV-023), in steady CLOSED_LOOP (after the blank,
+   above 1.5 times the handover speed): the flux magnitude off its expectation by more than
+   the band of drv_flux_out; and the rotor lost: in CLOSED_LOOP after the blank, the
+   estimate below a quarter of the handover speed and of the reference (far below where the
+   observer's angle is used at start-up); a seized compressor's estimate falls there within
+   milliseconds, before the lost angle unsettles the current loops. */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p);
+  assigns \nothing;
+*/
+static bool drv_flux_implausible(const qfoc_drive_t *d)
+{
+    const qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    const qfoc_drive_cfg_t *const c = &p->drive;
+    const bool settled = (s->sm.state == QFOC_STATE_RUN) &&
+                         (s->sm.sub == QFOC_SUB_CLOSED_LOOP) &&
+                         ((uint32_t)s->sm.t_sub >= DRV_FLUX_BLANK_MS);
+    const int32_t w = (int32_t)qfoc_q15_abs(f->speed_f);
+    const int32_t ws = (int32_t)qfoc_q15_abs(c->of_speed);
+    const bool lost = settled && ((w * 4) < ws) &&
+                      ((w * 4) < (int32_t)qfoc_q15_abs(s->speed_ref));
+    const bool steady = settled && ((w * 2) > (ws * 3));
+    const qfoc_q15_t psi_exp = drv_psi_exp(p, f);
+    const qfoc_q15_t dev = qfoc_q15_abs(qfoc_q15_sub(f->psi_mag, psi_exp));
+    return lost || (steady && (psi_exp > 0) && drv_flux_out(p, f, psi_exp, dev));
+}
+
+/* The slow phase-loss condition (REQ-DRV-008, REQ-DRV-018): the filtered phase currents
+   imbalanced while the rotor turns (RUN outside ALIGN); in ALIGN after its current ramp
+   (the first half of align_ms) imbalanced beyond half the ratio (at the alignment angle a
+   healthy machine gives min / max = 1/2 >= ratio / 2); or, there and in OPEN_LOOP, where
+   the drive imposes |i_align| or |i_start|, the largest filtered phase current below a
+   quarter of it (the current must reach the sensors). */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p);
+  requires inv: DRV_PHASE(&d->f.phase);
+  assigns \nothing;
+*/
+static bool drv_phase_cond(const qfoc_drive_t *d)
+{
+    const qfoc_drive_slow_t *const s = &d->s;
+    const qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_drive_cfg_t *const c = &d->p->drive;
+    const uint8_t sub = s->sm.sub;
+    const bool run = (s->sm.state == QFOC_STATE_RUN);
+    const bool rotating = run && (sub != QFOC_SUB_ALIGN);
+    const bool aligned = run && (sub == QFOC_SUB_ALIGN) &&
+                         ((uint32_t)s->sm.t_sub >= ((uint32_t)c->align_ms / 2u));
+    const bool open_loop = run && (sub == QFOC_SUB_OPEN_LOOP);
+    const int32_t i_imposed = aligned ? (int32_t)qfoc_q15_abs(c->i_align)
+                                      : (int32_t)qfoc_q15_abs(c->i_start);
+    const qfoc_q15_t half_ratio = (qfoc_q15_t)(c->phase_ratio / 2);
+    const bool imbalanced = rotating &&
+                            qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, c->phase_ratio);
+    const bool align_imbalanced = aligned &&
+                                  qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, half_ratio);
+    const bool no_current = (aligned || open_loop) &&
+                            (((int32_t)qfoc_phase_mon_peak(&f->phase) * 4) < i_imposed);
+    return imbalanced || align_imbalanced || no_current;
+}
+
 /* Tick-evaluated faults of the motor and the table: stall and flux plausibility, phase
-   loss, table re-check (fault.h; reaction times in drive.h, REQ-DRV-008, REQ-DRV-010,
-   REQ-DRV-023). */
+   loss and ALIGN without current, table re-check (fault.h; reaction times in drive.h,
+   REQ-DRV-008, REQ-DRV-010, REQ-DRV-023, REQ-DRV-025). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
   requires sep: \separated(&d->s, d->p);
@@ -160,82 +257,27 @@ static bool drv_align_open(const qfoc_param_table_t *p, const qfoc_drive_fast_t 
 static uint16_t drv_faults_motor(qfoc_drive_t *d)
 {
     qfoc_drive_slow_t *const s = &d->s;
-    const qfoc_drive_fast_t *const f = &d->f;
-    const qfoc_param_table_t *const p = d->p;
-    const qfoc_drive_cfg_t *const c = &p->drive;
-    const uint8_t st = s->sm.state;
-    const uint8_t sub = s->sm.sub;
-    const bool run = (st == QFOC_STATE_RUN);
-    const bool rotating = run && (sub != QFOC_SUB_ALIGN);
-    const bool closed = run && ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
-    const bool imbalanced = qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, c->phase_ratio);
-    /* ALIGN after its current ramp (the first half of align_ms), and OPEN_LOOP: the drive
-       imposes |i_align| or |i_start|, so the current must reach the sensors (REQ-DRV-018) */
-    const bool aligned = run && (sub == QFOC_SUB_ALIGN) &&
-                         ((uint32_t)s->sm.t_sub >= ((uint32_t)c->align_ms / 2u));
-    const bool open_loop = run && (sub == QFOC_SUB_OPEN_LOOP);
-    const int32_t i_imposed = aligned ? (int32_t)qfoc_q15_abs(c->i_align)
-                                      : (int32_t)qfoc_q15_abs(c->i_start);
-    /* at the alignment angle a healthy machine gives min / max = 1/2 >= ratio / 2 */
-    const qfoc_q15_t half_ratio = (qfoc_q15_t)(c->phase_ratio / 2);
-    const bool align_imbalanced = aligned &&
-                                  qfoc_phase_mon_imbalanced(&f->phase, c->phase_i_min, half_ratio);
-    const bool no_current = (aligned || open_loop) &&
-                            (((int32_t)qfoc_phase_mon_peak(&f->phase) * 4) < i_imposed);
+    const qfoc_drive_cfg_t *const c = &d->p->drive;
+    const bool stall = drv_stall_cond(d);
+    const bool implausible = drv_flux_implausible(d);
+    const bool phase = drv_phase_cond(d);
+    const bool open_align = (s->sm.state == QFOC_STATE_RUN) && (s->sm.sub == QFOC_SUB_ALIGN) &&
+                            drv_align_open(d->p, &d->f, s->id_ref);
+    const bool stall_slow = qfoc_debounce_step(&s->db_stall, stall, c->stall_ms);
+    const bool stall_fast = qfoc_debounce_step(&s->db_flux, implausible, DRV_FLUX_TICKS);
+    const bool phase_slow = qfoc_debounce_step(&s->db_phase, phase, c->phase_ms);
+    const bool phase_fast = qfoc_debounce_step(&s->db_align, open_align, DRV_FLUX_TICKS);
     uint16_t w = 0u;
-    bool stall;
-    bool implausible;
 
-    /* stall / loss of synchronisation: speed error or flux magnitude off its expectation
-       psi_f + (L_d - L_q) i_d (the active flux the observer estimates); and the fast flux
-       plausibility check (REQ-DRV-023): in steady CLOSED_LOOP, the flux magnitude off its
-       expectation by more than DRV_FLUX_BAND_NUM / DRV_FLUX_BAND_DEN of it */
-    {
-        const qfoc_q15_t e_speed = qfoc_q15_sub(s->speed_ref, f->speed_f);
-        const qfoc_q15_t psi_exp = qfoc_q15_add(p->psi_f,
-                                                qfoc_drive_li((int16_t)qfoc_q15_sat((int32_t)p->ld - (int32_t)p->lq),
-                                                       f->i_dq.d));
-        const qfoc_q15_t e_psi = qfoc_q15_sub(f->psi_mag, psi_exp);
-        const bool bad_speed = qfoc_fault_abs_over(e_speed, c->stall_err);
-        const bool bad_flux = qfoc_fault_abs_over(e_psi, c->flux_tol);
-        const int32_t dev = (int32_t)qfoc_q15_abs(e_psi);
-        const bool steady = run && (sub == QFOC_SUB_CLOSED_LOOP) &&
-                            ((uint32_t)s->sm.t_sub >= DRV_FLUX_BLANK_MS) &&
-                            (((int32_t)qfoc_q15_abs(f->speed_f) * 2) >
-                             ((int32_t)qfoc_q15_abs(c->of_speed) * 3));
-        /* the rotor lost: in CLOSED_LOOP after the blank, the estimate below a quarter of
-           the handover speed and of the reference (far below where the observer's angle is
-           used at start-up); a seized compressor's estimate falls there within
-           milliseconds, before the lost angle unsettles the current loops */
-        const int32_t w2 = (int32_t)qfoc_q15_abs(f->speed_f) * 4;
-        const bool lost = run && (sub == QFOC_SUB_CLOSED_LOOP) &&
-                          ((uint32_t)s->sm.t_sub >= DRV_FLUX_BLANK_MS) &&
-                          (w2 < (int32_t)qfoc_q15_abs(c->of_speed)) &&
-                          (w2 < (int32_t)qfoc_q15_abs(s->speed_ref));
-        stall = closed && (bad_speed || bad_flux);
-        implausible = lost || (steady && (psi_exp > 0) &&
-                               drv_flux_out(p, f, psi_exp, (qfoc_q15_t)dev));
+    if (stall_slow || stall_fast) {
+        w = (uint16_t)(w + QFOC_FAULT_STALL);
+    } else {
+        /* synchronised, the flux plausible */
     }
-    {
-        const bool slow = qfoc_debounce_step(&s->db_stall, stall, c->stall_ms);
-        const bool fast = qfoc_debounce_step(&s->db_flux, implausible, DRV_FLUX_TICKS);
-        if (slow || fast) {
-            w = (uint16_t)(w + QFOC_FAULT_STALL);
-        } else {
-            /* synchronised, the flux plausible */
-        }
-    }
-    {
-        const bool open_align = run && (sub == QFOC_SUB_ALIGN) && drv_align_open(p, f, s->id_ref);
-        const bool slow = qfoc_debounce_step(&s->db_phase,
-                                             (rotating && imbalanced) || align_imbalanced ||
-                                             no_current, c->phase_ms);
-        const bool fast = qfoc_debounce_step(&s->db_align, open_align, DRV_FLUX_TICKS);
-        if (slow || fast) {
-            w = (uint16_t)(w + QFOC_FAULT_PHASE);
-        } else {
-            /* balanced, the current where the voltage drives it */
-        }
+    if (phase_slow || phase_fast) {
+        w = (uint16_t)(w + QFOC_FAULT_PHASE);
+    } else {
+        /* balanced, the current where the voltage drives it */
     }
     if (!s->table_ok) {
         w = (uint16_t)(w + QFOC_FAULT_PARAM);
@@ -244,7 +286,6 @@ static uint16_t drv_faults_motor(qfoc_drive_t *d)
     }
     return w;
 }
-
 
 /* public interface of the unit (qfoc_drive_mon.h) */
 uint16_t qfoc_drive_mon_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
