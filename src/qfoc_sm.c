@@ -213,6 +213,72 @@ static void sm_stop_rule(qfoc_sm_t *sm, const qfoc_sm_in_t *in)
     }
 }
 
+/* RUN / CATCH (REQ-DRV-027): stop without a run request; closed loop at the caught speed;
+   the normal start (ALIGN, timed as from a RUN entry) for a standing rotor; else wait. */
+/*@
+  requires valid: \valid(sm) && \valid_read(in);
+  requires sep: \separated(sm, in);
+  requires inv: SmValid(sm) && sm->state == QFOC_STATE_RUN && sm->sub == QFOC_SUB_CATCH;
+  assigns sm->state, sm->sub, sm->t_state, sm->t_sub;
+  ensures inv: SmValid(sm);
+  ensures to_stop: sm->state == QFOC_STATE_STOP ==> sm->t_state == 0 && !in->run_request;
+  ensures in_run: sm->state == QFOC_STATE_RUN ==>
+      (sm->sub == QFOC_SUB_CATCH && sm->t_state == \old(sm->t_state)) ||
+      (sm->sub == QFOC_SUB_CLOSED_LOOP && in->catch_lock) ||
+      (sm->sub == QFOC_SUB_ALIGN && in->catch_still && !in->catch_lock && sm->t_state == 0);
+  ensures where: sm->state == QFOC_STATE_RUN || sm->state == QFOC_STATE_STOP;
+*/
+static void sm_catch_rule(qfoc_sm_t *sm, const qfoc_sm_in_t *in)
+{
+    if (!in->run_request) {
+        sm_enter(sm, QFOC_STATE_STOP, QFOC_SUB_NONE);
+    } else if (in->catch_lock) {
+        sm_enter_sub(sm, QFOC_SUB_CLOSED_LOOP);   /* caught at its speed */
+    } else if (in->catch_still) {
+        /* standing: the normal start, timed from here as from a RUN entry */
+        sm_enter(sm, QFOC_STATE_RUN, QFOC_SUB_ALIGN);
+    } else {
+        /* looking, or waiting for a rotor that cannot be caught to coast down */
+    }
+}
+
+/* RUN / OPEN_LOOP (REQ-SM-011): stop without a run request; the handover once converged
+   after cl_hold_ms; after ol_timeout_ms without it, with a retry left (sm_faults raises
+   STALL on the last), CATCH again (coasting down, or standing for a new ALIGN) and the
+   next I/f start. */
+/*@
+  requires valid: \valid(sm) && \valid_read(cfg) && \valid_read(in);
+  requires sep: \separated(sm, cfg, in);
+  requires inv: SmValid(sm) && sm->state == QFOC_STATE_RUN && sm->sub == QFOC_SUB_OPEN_LOOP;
+  requires no_stall: sm->t_sub >= cfg->ol_timeout_ms ==> sm->retry < cfg->retries;
+  assigns sm->state, sm->sub, sm->t_state, sm->t_sub, sm->retry;
+  ensures inv: SmValid(sm);
+  ensures where: sm->state == QFOC_STATE_RUN || sm->state == QFOC_STATE_STOP;
+  ensures to_stop: sm->state == QFOC_STATE_STOP ==> sm->t_state == 0 && !in->run_request;
+  ensures in_run: sm->state == QFOC_STATE_RUN ==> sm->t_state == \old(sm->t_state) &&
+      (sm->sub == QFOC_SUB_OPEN_LOOP || sm->sub == QFOC_SUB_CLOSED_LOOP ||
+       sm->sub == QFOC_SUB_CATCH);
+  ensures to_closed_loop: sm->sub == QFOC_SUB_CLOSED_LOOP ==>
+      in->converged && \old(sm->t_state) >= cfg->cl_hold_ms;
+  ensures retry: sm->sub == QFOC_SUB_CATCH ==>
+      \old(sm->t_sub) >= cfg->ol_timeout_ms && \old(sm->retry) < cfg->retries &&
+      sm->retry == \old(sm->retry) + 1 && sm->t_sub == 0;
+  ensures retry_kept: sm->sub != QFOC_SUB_CATCH ==> sm->retry == \old(sm->retry);
+*/
+static void sm_open_loop_rule(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_in_t *in)
+{
+    if (!in->run_request) {
+        sm_enter(sm, QFOC_STATE_STOP, QFOC_SUB_NONE);
+    } else if (in->converged && (sm->t_state >= cfg->cl_hold_ms)) {
+        sm_enter_sub(sm, QFOC_SUB_CLOSED_LOOP);
+    } else if (sm->t_sub >= cfg->ol_timeout_ms) {
+        sm_enter_sub(sm, QFOC_SUB_CATCH);
+        sm->retry = (uint8_t)(sm->retry + 1u);
+    } else {
+        /* accelerating, waiting for the observer */
+    }
+}
+
 /*@
   requires valid: \valid(sm) && \valid_read(cfg) && \valid_read(in);
   requires sep: \separated(sm, cfg, in);
@@ -255,50 +321,32 @@ static void sm_stop_rule(qfoc_sm_t *sm, const qfoc_sm_in_t *in)
 static void sm_run_rule(qfoc_sm_t *sm, const qfoc_sm_cfg_t *cfg, const qfoc_sm_in_t *in)
 {
     const uint8_t sub = sm->sub;
+    const bool run = in->run_request;
+    const bool stop_reached = in->stop_reached;
+    const bool aligned = (sm->t_sub >= cfg->align_ms);
     if (sub == QFOC_SUB_CATCH) {
-        if (!in->run_request) {
-            sm_enter(sm, QFOC_STATE_STOP, QFOC_SUB_NONE);
-        } else if (in->catch_lock) {
-            sm_enter_sub(sm, QFOC_SUB_CLOSED_LOOP);   /* caught at its speed */
-        } else if (in->catch_still) {
-            /* standing: the normal start, timed from here as from a RUN entry */
-            sm_enter(sm, QFOC_STATE_RUN, QFOC_SUB_ALIGN);
-        } else {
-            /* looking, or waiting for a rotor that cannot be caught to coast down */
-        }
+        sm_catch_rule(sm, in);
+    } else if (sub == QFOC_SUB_OPEN_LOOP) {
+        sm_open_loop_rule(sm, cfg, in);
     } else if (sub == QFOC_SUB_ALIGN) {
-        if (!in->run_request) {
+        if (!run) {
             sm_enter(sm, QFOC_STATE_STOP, QFOC_SUB_NONE);
-        } else if (sm->t_sub >= cfg->align_ms) {
+        } else if (aligned) {
             sm_enter_sub(sm, QFOC_SUB_OPEN_LOOP);
         } else {
             /* aligning */
         }
-    } else if (sub == QFOC_SUB_OPEN_LOOP) {
-        if (!in->run_request) {
-            sm_enter(sm, QFOC_STATE_STOP, QFOC_SUB_NONE);
-        } else if (in->converged && (sm->t_state >= cfg->cl_hold_ms)) {
-            sm_enter_sub(sm, QFOC_SUB_CLOSED_LOOP);
-        } else if (sm->t_sub >= cfg->ol_timeout_ms) {
-            /* no handover in ol_timeout_ms with a retry left (sm_faults raises STALL on
-               the last): the rotor goes through CATCH again (coasting down, or standing
-               for a new ALIGN) and the next I/f start (REQ-SM-011) */
-            sm_enter_sub(sm, QFOC_SUB_CATCH);
-            sm->retry = (uint8_t)(sm->retry + 1u);
-        } else {
-            /* accelerating, waiting for the observer */
-        }
     } else if (sub == QFOC_SUB_CLOSED_LOOP) {
-        if (!in->run_request) {
+        if (!run) {
             sm_enter_sub(sm, QFOC_SUB_STOPPING);
         } else {
             /* speed control */
         }
     } else {
         /* STOPPING */
-        if (in->stop_reached) {
+        if (stop_reached) {
             sm_enter(sm, QFOC_STATE_STOP, QFOC_SUB_NONE);
-        } else if (in->run_request) {
+        } else if (run) {
             sm_enter_sub(sm, QFOC_SUB_CLOSED_LOOP);
         } else {
             /* ramping down */
