@@ -15,7 +15,7 @@ Two documents hold records of a manual review:
           column (src/*.c, src/*.h, include/qfoc/*.h, tables/*.c, tables/*.h; a backticked
           expression such as `d->p` names nothing), and the requirement files
           (specs/requirements/*.md) that define the REQ IDs of its evidence column (a range
-          'REQ-X-001 .. REQ-X-004' names every ID in it).
+          'REQ-<MOD>-001 .. REQ-<MOD>-004' names every ID in it).
 
 Each record carries the SHA-256 of its files as they were when it was reviewed, computed as
 tools/evidence/inputs.py computes a gate's digest (`digest_of`: the SHA-256 of every file,
@@ -271,12 +271,13 @@ def requirement_files(root):
 
 
 def md_cells(line):
+    """The cells of a markdown table row ('\\|' is a literal bar)."""
     s = line.strip()
     if s.startswith("|"):
         s = s[1:]
-    if s.endswith("|"):
+    if s.endswith("|") and not s.endswith("\\|"):
         s = s[:-1]
-    return [c.strip() for c in s.split("|")]
+    return [c.strip().replace("\\|", "|") for c in re.split(r"(?<!\\)\|", s)]
 
 
 def fmea_section(text):
@@ -295,7 +296,7 @@ def parse_fmea(text):
     lines = text.splitlines()
     sec = fmea_section(text)
     out = {"rows": [], "reviewed": None, "reviewed_line": None, "stamps": {}, "stamps_span": None,
-           "section": sec}
+           "section": sec, "malformed": []}
     if sec is None:
         return out
     head = None
@@ -319,7 +320,8 @@ def parse_fmea(text):
         if m and out["reviewed_line"] is None:
             out["reviewed_line"] = i
             r = REVIEWED_RE.match(m.group(1).strip())
-            out["reviewed"] = (r.group(1), r.group(2).strip()) if r else (None, m.group(1).strip())
+            out["reviewed"] = ((r.group(1), r.group(2).strip().rstrip(".;,")) if r
+                               else (None, m.group(1).strip()))
             continue
         if not ln.strip().startswith("|"):
             head = None
@@ -328,7 +330,10 @@ def parse_fmea(text):
         if cells and cells[0] == "ID":
             head = [c.lower() for c in cells]
             continue
-        if head and cells and ROW_ID.match(cells[0]) and len(cells) == len(head):
+        if head and cells and ROW_ID.match(cells[0]) and len(cells) != len(head):
+            out["malformed"].append(f"row {cells[0]} (line {i + 1}) has {len(cells)} cells, its table "
+                                    f"{len(head)} (a '|' inside a cell must be written '\\|')")
+        elif head and cells and ROW_ID.match(cells[0]):
             row = dict(zip(head, cells))
             out["rows"].append({"id": cells[0], "block": row.get("block", ""),
                                 "evidence": row.get("evidence", ""), "line": i + 1,
@@ -429,6 +434,7 @@ def check(doc, root=ROOT):
             out["errors"].append(f"{spec['path']}: no section '## 2. ...' (the software FMEA)")
             return out
         out["reviewed"] = fm["reviewed"]
+        out["errors"] += [f"{spec['path']}: {m}" for m in fm["malformed"]]
         if fm["stamps_span"] is None:
             out["errors"].append(f"{spec['path']}: no generated table of the rows' stamps")
         index, reqs = CodeIndex(root), requirement_files(root)

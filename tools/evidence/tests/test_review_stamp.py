@@ -276,3 +276,18 @@ def test_repository_records_are_current_after_stamping(tmp_path):
                if not ln.startswith(("- Reviewed:", "- Files:", "Reviewed:", "| ")) and "GENERATED: fmea" not in ln]
         assert orig == new, doc
     assert os.path.exists(tmp_path / "misra/reviews.sha256")
+
+
+def test_fmea_row_with_a_bar_in_a_cell_is_refused(tmp_path):
+    """REQ-EVD-031: a row whose cells do not match its table (a '|' written inside a cell) is
+    named as an error, never silently left out; a bar written '\\|' is part of its cell."""
+    root = tree(tmp_path)
+    bad = ANALYSIS.replace("| value wrong | saturated |", "| value wrong | |x| saturated |")
+    (root / "specs/safety-analysis.md").write_text(bad, encoding="utf-8")
+    res, rows = records("fmea", root)
+    assert "F-01" not in rows and not rs.ok(res)
+    assert any("row F-01" in e and "'\\|'" in e for e in res["errors"]), res["errors"]
+    good = ANALYSIS.replace("| value wrong | saturated |", "| value wrong | \\|x\\| saturated |")
+    (root / "specs/safety-analysis.md").write_text(good, encoding="utf-8")
+    res, rows = records("fmea", root)
+    assert "F-01" in rows and not [e for e in res["errors"] if "row F-01" in e]
