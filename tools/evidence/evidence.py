@@ -27,8 +27,13 @@ it names is proved in results tied to the current sources and every test it name
 in this run's results (tools/evidence/verdict.py); a test that did not run is "not run".
 Prints the summary as plain text, one line per row, and
 'evidence: OUT/index.html (N green, M red)'.  Exit status 0 when the page was written; with
---strict, 1 when a summary row is red.  The requirements are specs/requirements/evidence.md
-(REQ-EVD-001 .. REQ-EVD-030; REQ-EVD-030 the tool validation of section 13).
+--strict, 1 when a summary row is red.  The review records (the MISRA review records of
+misra/reviews.md, in section 3, and the rows of the software FMEA of specs/safety-analysis.md,
+section 14) are current or stale against the files they reviewed
+(tools/evidence/review_stamp.py): a stale or unstamped record makes its summary row red, and
+an FMEA row is green only when every requirement it names is verified.  The requirements are
+specs/requirements/evidence.md (REQ-EVD-001 .. REQ-EVD-031; REQ-EVD-030 the tool validation of
+section 13, REQ-EVD-031 the review records).
 """
 import argparse
 import datetime
@@ -46,6 +51,7 @@ import xml.etree.ElementTree as ET
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import inputs as inp  # noqa: E402  (tools/evidence/inputs.py: the gates' inputs and stamps)
 import verdict as vd  # noqa: E402  (tools/evidence/verdict.py: the requirement verdicts)
+import review_stamp as rs  # noqa: E402  (tools/evidence/review_stamp.py: review records and their files)
 
 # --------------------------------------------------------------------------- helpers
 
@@ -1342,6 +1348,112 @@ def git_info(root):
             "branch": git("rev-parse", "--abbrev-ref", "HEAD") if head else None}
 
 
+# --------------------------------------------------------------------------- review records
+
+
+def review_figure(res, noun):
+    """'41 records, every one current' or '41 records: 3 stale (Dir 4.1: ...), ...'."""
+    n = len(res["records"])
+    noun = noun if n != 1 else noun[:-1]
+    bad = [r for r in res["records"] if r["state"] != rs.CURRENT]
+    if not bad and not res["errors"]:
+        return f"{n} {noun}, every one tied to the files it reviewed"
+    by = {}
+    for r in bad:
+        by.setdefault(r["state"], []).append(r)
+    parts = []
+    for st in (rs.STALE, rs.UNSTAMPED, rs.INVALID):
+        if st in by:
+            ids = ", ".join(r["id"] for r in by[st][:6]) + (", ..." if len(by[st]) > 6 else "")
+            parts.append(f"{len(by[st])} {st} ({ids})")
+    fig = f"{n} {noun}: {n - len(bad)} current, " + ", ".join(parts) if parts else f"{n} {noun}"
+    if res["errors"]:
+        fig += "; " + "; ".join(res["errors"])
+    return fig
+
+
+def review_check(res):
+    """The check of a document without the per-file digests (they are in its manifest)."""
+    for r in res["records"]:
+        r.pop("hashes", None)
+    return res
+
+
+def collect_reviews(bundle):
+    """The MISRA review records of misra/reviews.md, each current or stale against the files
+    it reviewed (tools/evidence/review_stamp.py, REQ-EVD-031)."""
+    sec = {"title": "MISRA review records"}
+    res = rs.check("misra", bundle.root)
+    sec["inputs"] = bundle.inputs(*[p for p in (res["path"], res["manifest"]) if bundle.exists(p)]
+                                  or [res["path"]])
+    if not res["present"]:
+        sec["present"] = False
+        sec["summary"] = [missing_row("reviews", "MISRA review records", "sec3", res["path"])]
+        return sec
+    sec.update({"present": True, "check": review_check(res)})
+    fig = review_figure(res, "records")
+    first = next((r for r in res["records"] if r["state"] != rs.CURRENT), None)
+    if first is not None:
+        why = f"{first['id']}: " + "; ".join(first["reasons"])
+        fig += "; STALE: " + (why if len(why) <= 160 else why[:157] + "...")
+    sec["summary"] = [row("reviews", "MISRA review records", rs.ok(res), fig, "sec3")]
+    return sec
+
+
+def collect_fmea(bundle):
+    """The rows of the software FMEA (specs/safety-analysis.md, section 2), each current or
+    stale against its code and requirement files (tools/evidence/review_stamp.py); the
+    verdicts of the requirements each row names are added by apply_fmea_verdicts."""
+    sec = {"title": "Software FMEA"}
+    res = rs.check("fmea", bundle.root)
+    sec["inputs"] = bundle.inputs(*[p for p in (res["path"], res["manifest"]) if bundle.exists(p)]
+                                  or [res["path"]])
+    if not res["present"]:
+        sec["present"] = False
+        sec["summary"] = [missing_row("fmea", "software FMEA rows", "sec14", res["path"])]
+        return sec
+    sec.update({"present": True, "check": review_check(res)})
+    return sec
+
+
+def apply_fmea_verdicts(bundle, secs):
+    """Each FMEA row with the verdicts of the requirements it names (those of the matrix,
+    tools/evidence/verdict.py; 'not run' without a matrix) and the row's own verdict: green
+    only when the row is current and every one of its requirements verified."""
+    sec = secs.get("fmea") or {}
+    if not sec.get("present"):
+        return
+    tr = secs.get("trace") or {}
+    by_id = {r["id"]: r.get("verdict") or (vd.VERIFIED if r.get("verified") else vd.NOT_RUN)
+             for r in tr.get("requirements") or []} if tr.get("present") else None
+    links = {r["id"]: r.get("req_link") for r in tr.get("requirements") or []} if tr.get("present") else {}
+    rows = []
+    for r in sec["check"]["records"]:
+        reqs = []
+        for rid in r["reqs"]:
+            if by_id is None:
+                v = vd.NOT_RUN
+            else:
+                v = by_id.get(rid, vd.NO_EVIDENCE)
+            reqs.append({"id": rid, "verdict": v, "link": links.get(rid)})
+        verdict = vd.combine([x["verdict"] for x in reqs])
+        rows.append(dict(r, req_verdicts=reqs, verdict=verdict,
+                         ok=r["state"] == rs.CURRENT and verdict == vd.VERIFIED))
+    sec["rows"] = rows
+    res = sec["check"]
+    fig = review_figure(res, "rows")
+    unverified = [r for r in rows if r["verdict"] != vd.VERIFIED]
+    if unverified:
+        ids = ", ".join(f"{r['id']} {r['verdict']}" for r in unverified[:6]) + (", ..." if len(unverified) > 6 else "")
+        fig += f"; {len(unverified)} with a requirement not verified ({ids})"
+    else:
+        fig += "; every requirement they name verified"
+    if by_id is None:
+        fig += " (no traceability matrix: build/trace/trace.json)"
+    sec["verified_rows"] = len(rows) - len(unverified)
+    sec["summary"] = [row("fmea", "software FMEA rows", rs.ok(res) and not unverified, fig, "sec14")]
+
+
 # --------------------------------------------------------------------------- results tied to sources
 
 
@@ -1551,7 +1663,7 @@ ARCHIVE = (
     ("library sources", ("src/*.c",)),
     ("ACSL specifications", ("specs/*.acsl",)),
     ("work products: specifications, safety manual, tool confidence, architecture",
-     ("specs/*.md", "specs/*.json", "specs/*.toml", "specs/motors/*.toml")),
+     ("specs/*.md", "specs/*.json", "specs/*.toml", "specs/*.sha256", "specs/motors/*.toml")),
     ("unit tests (CMocka)", ("tests/*.c", "tests/*.h")),
     ("pytest tests", ("tools/*/tests/*.py",)),
     ("proofs: WP units, CBMC harnesses and configurations, EVA driver, committed results",
@@ -2094,6 +2206,75 @@ def html_sec11(sec):
     return "\n".join(out)
 
 
+def review_state_html(r):
+    """A record's state: current (green) or stale, unstamped, invalid (red) with the reasons."""
+    if r["state"] == rs.CURRENT:
+        return (f"<span class=st-ok>current</span> <span class=meta>({len(r['files'])} files, sha256 "
+                f"<code>{esc(r['now'][:16])}</code>...)</span>")
+    return (f"<span class=st-bad>{esc(r['state'].upper())}</span>: "
+            + esc("; ".join(r["reasons"])))
+
+
+def review_rule_html(res):
+    return ("<p class=small>Each record carries the SHA-256 of the files it reviewed "
+            f"(<code>tools/evidence/review_stamp.py</code>, manifest <code>{esc(res['manifest'])}</code>): "
+            "<b>current</b> when the files are unchanged since the review; <b>stale</b> (red) when one of "
+            "them changed, appeared or disappeared, named; <b>unstamped</b> (red) without a digest or "
+            "without the date and reviewer of its review. <code>python3 tools/evidence/review_stamp.py "
+            "--check</code> gives the same.</p>")
+
+
+def html_reviews(sec):
+    out = ["<h3>Review records (misra/reviews.md)</h3>", inputs_html(sec)]
+    if not sec.get("present"):
+        out.append('<p class=missing>Not found: misra/reviews.md.</p>')
+        return "\n".join(out)
+    res = sec["check"]
+    out.append(review_rule_html(res))
+    for e in res["errors"]:
+        out.append(f"<p class=missing>{esc(e)}</p>")
+    out.append("<table>" + th("guideline", "result", "reviewed", "files reviewed", "state"))
+    for r in res["records"]:
+        rv = r.get("reviewed") or (None, None)
+        files = details_list(r["files"], f"{len(r['files'])} files")
+        out.append(f"<tr class={cls(r['state'] == rs.CURRENT)}>" + td(f"{r['id']} {r['title']}")
+                   + td(r.get("result")) + td(" ".join(x for x in rv if x) or "-")
+                   + f"<td>{files}</td><td class=small>{review_state_html(r)}</td></tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
+def html_fmea(sec, trace_sec):
+    out = [inputs_html(sec)]
+    if not sec.get("present"):
+        return out[0] + '<p class=missing>Not found: specs/safety-analysis.md.</p>'
+    res = sec["check"]
+    strict = bool((trace_sec or {}).get("strict"))
+    rv = res.get("reviewed") or (None, None)
+    out.append(f"<p>The rows of the software FMEA (<code>specs/safety-analysis.md</code>, section 2): "
+               f"{len(sec.get('rows') or [])} rows, {sec.get('verified_rows', 0)} with every requirement they "
+               f"name verified. Reviewed: {esc(' '.join(x for x in rv if x) or 'no Reviewed: line')}.</p>")
+    out.append(review_rule_html(res))
+    out.append("<p class=small>A row is green only when it is current and every requirement its evidence "
+               "names is verified (section 1; <code>tools/evidence/verdict.py</code>): the row follows the "
+               "mechanisms it relies on.</p>")
+    for e in res["errors"]:
+        out.append(f"<p class=missing>{esc(e)}</p>")
+    out.append("<table>" + th("ID", "block", "failure mode", "requirements (verdict)", "files reviewed", "state",
+                              "row"))
+    for r in sec.get("rows") or []:
+        c = "pass" if r["ok"] else ("notrun" if r["verdict"] == vd.NOT_RUN and r["state"] == rs.CURRENT
+                                    and not strict else "fail")
+        reqs = "<br>".join(f"<span class={status_class(x['verdict'], strict)}>{esc(x['verdict'])}</span> "
+                           + link(x.get("link"), x["id"]) for x in r["req_verdicts"]) or "-"
+        files = details_list(r["files"], f"{len(r['files'])} files")
+        out.append(f"<tr class={c}>" + td(r["id"]) + f"<td>{md_inline(r['title'])}</td>" + td(r.get("failure"))
+                   + f"<td class=small>{reqs}</td><td>{files}</td><td class=small>{review_state_html(r)}</td>"
+                   + f"<td class='s {c}'>{esc(r['verdict'] if r['state'] == rs.CURRENT else r['state'])}</td></tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
 # --------------------------------------------------------------------------- 12 tool validation
 
 
@@ -2174,7 +2355,7 @@ SECTIONS = [("sec1", "1 Requirements and traceability"), ("sec2", "2 Formal veri
             ("sec3", "3 MISRA Compliance:2020"), ("sec4", "4 Structural coverage"), ("sec5", "5 Tests"),
             ("sec6", "6 Resource usage"), ("sec7", "7 Static analysis"), ("sec8", "8 Tool confidence"),
             ("sec9", "9 Safety manual"), ("sec10", "10 Reproducibility"), ("sec11", "11 Gate log"),
-            ("sec12", "12 Archive"), ("sec13", "13 Tool validation")]
+            ("sec12", "12 Archive"), ("sec13", "13 Tool validation"), ("sec14", "14 Software FMEA")]
 
 
 def write_html(path, model, secs):
@@ -2201,12 +2382,12 @@ def write_html(path, model, secs):
                "result files' stamps.</p>")
     out.append(f'<p><a href="#attrs">{esc(attrs_counts_text(secs["attrs"]))}</a></p>')
     bodies = {"sec1": html_sec1(secs["trace"]) + "\n" + html_attrs(secs["attrs"]), "sec2": html_sec2(secs["wp"], secs["cbmc"], secs["eva"]),
-              "sec3": html_sec3(secs["misra"]), "sec4": html_sec4(secs["coverage"], secs["mcdc"]),
+              "sec3": html_sec3(secs["misra"]) + "\n" + html_reviews(secs["reviews"]), "sec4": html_sec4(secs["coverage"], secs["mcdc"]),
               "sec5": html_sec5(secs["tests"], secs["target_test"]), "sec6": html_sec6(secs["bench"]),
               "sec7": html_sec7(secs["static"]), "sec8": html_sec8(secs["tools"]),
               "sec9": html_sec9(secs["manual"]), "sec10": html_sec10(secs["repro"]),
               "sec11": html_sec11(secs["gates"]), "sec12": html_sec12(secs.get("archive") or {}),
-              "sec13": html_tool_validation(secs["toolval"])}
+              "sec13": html_tool_validation(secs["toolval"]), "sec14": html_fmea(secs["fmea"], secs["trace"])}
     for key, title in SECTIONS:
         out.append(f"<h2 id={key}>{esc(title)}</h2>")
         out.append(bodies[key])
@@ -2227,12 +2408,14 @@ def build_model(bundle):
         "tools": collect_tools(bundle), "manual": collect_manual(bundle), "gates": collect_gates(bundle),
         "attrs": collect_attrs(bundle),
         "toolval": collect_tool_validation(bundle),
+        "reviews": collect_reviews(bundle), "fmea": collect_fmea(bundle),
     }
     apply_staleness(bundle, secs)
     apply_verdicts(bundle, secs)
+    apply_fmea_verdicts(bundle, secs)
     secs["archive"] = archive_sources(bundle)
-    order = ["trace", "wp", "eva", "cbmc", "misra", "coverage", "mcdc", "tests", "target_test", "static",
-             "bench", "repro", "toolval"]
+    order = ["trace", "wp", "eva", "cbmc", "misra", "reviews", "coverage", "mcdc", "tests", "target_test",
+             "static", "bench", "repro", "fmea", "toolval"]
     summary = [r for k in order for r in secs[k].get("summary", [])]
     model = {"generated_by": "tools/evidence/evidence.py (make evidence)",
              "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC"),

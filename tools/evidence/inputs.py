@@ -184,7 +184,7 @@ GATES = {
         "files": HEADERS + SOURCES + TABLES + [
             "port_s32k/*.c", "port_s32k/*.h", "misra/*", "tools/gates/misra.sh",
             "tools/gates/misra_report.py", "tools/gates/misra_rule_texts.py",
-            "tools/gates/misra_summary.py", "mk/misra_summary.mk"],
+            "tools/gates/misra_summary.py", "tools/evidence/review_stamp.py", "mk/misra_summary.mk"],
         "flags": _misra_flags,
         "tools": [("cppcheck", lambda env, root: ["cppcheck", "--version"])],
     },
@@ -219,14 +219,26 @@ def sha256_file(path):
     return h.hexdigest()
 
 
-def files(gate, root=ROOT):
-    """The sorted repository-relative paths of GATE's input files that exist."""
-    spec = GATES[gate]
+def glob_files(patterns, root=ROOT):
+    """The set of repository-relative paths of the files the glob patterns (relative to the
+    root) match."""
     found = set()
-    for pat in spec["files"]:
+    for pat in patterns:
         for p in glob.glob(os.path.join(root, pat)):
             if os.path.isfile(p) and "__pycache__" not in p:
                 found.add(os.path.relpath(p, root).replace(os.sep, "/"))
+    return found
+
+
+def hashes_of(paths, root=ROOT):
+    """{path: sha256 of its content} of repository-relative paths."""
+    return {p: sha256_file(os.path.join(root, p)) for p in paths}
+
+
+def files(gate, root=ROOT):
+    """The sorted repository-relative paths of GATE's input files that exist."""
+    spec = GATES[gate]
+    found = glob_files(spec["files"], root)
     if spec.get("extra"):
         found.update(p for p in spec["extra"](root) if os.path.isfile(os.path.join(root, p)))
     return sorted(found)
@@ -270,7 +282,7 @@ def flags(gate, env=None):
 def inputs(gate, root=ROOT, env=None):
     """(files, flags, tool lines, {path: sha256}) of GATE."""
     fl = files(gate, root)
-    return fl, flags(gate, env), tools(gate, root, env), {p: sha256_file(os.path.join(root, p)) for p in fl}
+    return fl, flags(gate, env), tools(gate, root, env), hashes_of(fl, root)
 
 
 def digest_of(gate, flag_text, tool_lines, hashes):

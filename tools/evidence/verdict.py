@@ -24,7 +24,8 @@ verified is decided here, from the results (specs/requirements/evidence.md, REQ-
 A requirement is verified only when it names at least one proof or test and every proof it
 names is proved and every test it names passed.  Otherwise its verdict is, in this order:
 failed (something failed), stale, not run (something has no result), no evidence (it
-names nothing).
+names nothing).  Several requirements together (the requirements a row of the software FMEA
+names, REQ-EVD-031) are verified only when each one is (`combine`).
 """
 import os
 import re
@@ -237,6 +238,18 @@ def verdict_of(statuses):
     if any(s not in OK_STATUSES for s in statuses):
         return NOT_RUN
     return VERIFIED
+
+
+def combine(req_verdicts):
+    """One verdict of several requirements (the requirements an FMEA row names: REQ-EVD-031):
+    verified only when every one is verified and there is at least one; otherwise failed,
+    stale, not run, no evidence, in this order."""
+    if not req_verdicts:
+        return NO_EVIDENCE
+    for v in (FAILED, STALE, NOT_RUN, NO_EVIDENCE):
+        if any(x == v for x in req_verdicts):
+            return v
+    return VERIFIED if all(x == VERIFIED for x in req_verdicts) else NOT_RUN
 
 
 def requirement_verdict(rid, rec, results, wp_index=None, cbmc_index=None):

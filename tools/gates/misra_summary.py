@@ -13,7 +13,11 @@ Reads, relative to the repository root:
   build/misra/cppcheck.xml     the findings of `make misra` (cppcheck MISRA addon and the
                                core checks of error severity); every finding is unrecorded
   misra/deviations.md          the deviation records (DEV-nnn, each naming its rules)
-  misra/reviews.md             the manual review records (one per guideline reviewed)
+  misra/reviews.md             the manual review records (one per guideline reviewed), each
+                               tied to the files it reviewed (tools/evidence/review_stamp.py,
+                               REQ-EVD-031): a record whose files changed since its review
+                               is noted "review record stale" with the files (not a
+                               violation: the evidence page shows it red)
   src/ include/ tables/ port_s32k/  the inline suppressions (`cppcheck-suppress
                                misra-c2012-R.N ; DEV-nnn`), counted per record
 
@@ -44,6 +48,9 @@ import sys
 import xml.etree.ElementTree as ET
 
 from misra_rule_texts import read_guidelines
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "evidence"))
+import review_stamp  # noqa: E402  (tools/evidence/review_stamp.py: review records and their files)
 
 BASELINE = "MISRA C:2012 (third edition) with Amendment 1 (2016) and Amendment 2 (2020)"
 FRAMEWORK = "MISRA Compliance:2020"
@@ -339,6 +346,12 @@ def main() -> int:
         else:
             per[g]["violations"].append(
                 f"review (misra/reviews.md:{r['line']}): no recognised result '{r['result']}'")
+    stamps = review_stamp.check("misra", root)
+    review_states = {}
+    for r in stamps["records"]:
+        review_states[r["state"]] = review_states.get(r["state"], 0) + 1
+        if r["id"] in per and r["state"] != review_stamp.CURRENT:
+            per[r["id"]]["notes"].append(f"review record {r['state']} ({'; '.join(r['reasons'])})")
     for d, rec in devs.items():
         for g in rec["guidelines"]:
             if g in per and d not in per[g]["deviations"]:
@@ -420,6 +433,7 @@ def main() -> int:
         "per_category": by_cat,
         "per_method": dict(sorted(by_method.items())),
         "unattributed_findings": unattributed,
+        "review_records": review_states,
         "plan_errors": errors,
         "compliant": viol_total == 0 and not errors,
         "guideline_status": guidelines,
@@ -437,6 +451,8 @@ def main() -> int:
             print(f"misra-summary: {it['id']}: {v}")
     for u in unattributed:
         print(f"misra-summary: unattributed finding: {u}")
+    print("misra-summary: review records (misra/reviews.md): "
+          + (", ".join(f"{v} {k}" for k, v in sorted(review_states.items())) or "none"))
     print(f"misra-summary: {total} guidelines: {counts['compliant']} compliant, "
           f"{counts['deviations']} with deviations, {counts['disapplied']} disapplied, "
           f"{viol_total} violations")

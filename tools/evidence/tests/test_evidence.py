@@ -18,6 +18,7 @@ sys.path.insert(0, str(HERE))
 
 import evidence as ev  # noqa: E402
 import inputs  # noqa: E402
+import review_stamp  # noqa: E402
 
 
 @pytest.fixture(autouse=True)
@@ -114,6 +115,23 @@ TOOLVAL = {"date": "2025-01-01 00:00:00 UTC", "commit": "abc",
                        {"scope": "x", "gate": "misra", "outcome": "pass", "ok": True, "detail": "0"}]}
 
 
+# The review records of the made-up tree: one MISRA review record over src/*.c, and an FMEA
+# row naming the function of src/qfoc_x.c and the requirement X1 (tools/evidence/review_stamp.py)
+REVIEWS = ("# MISRA C:2012 manual review records\n\n## Rule 17.2 No recursion\n"
+           "- Guideline: Rule 17.2 (required)\n- Scope: `src/*.c`\n- Method: the call graph.\n"
+           "- Checked: no cycle.\n- Result: compliant\n- Reviewed: 2025-01-01, by the maintainers\n")
+ANALYSIS = ("# Safety analysis\n\n## 2. Software FMEA\n\nReviewed: 2025-01-01, by the maintainers\n\n"
+            "| ID | block | failure mode | evidence |\n|---|---|---|---|\n"
+            f"| F-01 | `qfoc_x_step` | value wrong | {X1}; test `test_one` |\n"
+            f"| F-02 | `qfoc_x_step` | omitted | {X1}, {Y1} |\n\n## 3. Dependent failures\n")
+
+
+def review(root):
+    """Stamp the review records as a review does (before the gates: misra/ is an input of MISRA)."""
+    review_stamp.stamp("misra", str(root), date="2025-01-02")
+    review_stamp.stamp("fmea", str(root), date="2025-01-02")
+
+
 def write(root, rel, text):
     p = root / rel
     p.parent.mkdir(parents=True, exist_ok=True)
@@ -182,6 +200,12 @@ def full_inputs(root):
     write(root, "build/check-summary.txt", "test      PASS     3s  2 passed, 0 failed\n"
                                            "prove     FAIL    40s  proved 12 / 13 goals\n")
     write(root, "build/check-test.log", "2 passed, 0 failed\n")
+    write(root, "src/qfoc_x.c", "#include \"qfoc/x.h\"\nint qfoc_x_step(int a)\n{\n    return a;\n}\n")
+    write(root, "include/qfoc/x.h", "int qfoc_x_step(int a);\n")
+    write(root, "specs/requirements/x.md", f"# X\n\n### {X1} Step\n\n### {Y1} Init\n")
+    write(root, "misra/reviews.md", REVIEWS)
+    write(root, "specs/safety-analysis.md", ANALYSIS)
+    review(root)
     stamp(root)
     write(root, "build/validation/results.json", TOOLVAL)
 
@@ -201,7 +225,7 @@ def test_all_inputs_green_and_bundle_written(tmp_path, capsys):
     assert rc == 0
     assert all(r["status"] == "PASS" for r in data["summary"]), [r for r in data["summary"]
                                                                    if r["status"] != "PASS"]
-    assert data["red"] == 0 and data["green"] == len(data["summary"]) == 14
+    assert data["red"] == 0 and data["green"] == len(data["summary"]) == 16
     out = tmp_path / "build" / "evidence"
     page = (out / "index.html").read_text(encoding="utf-8")
     assert "<script" not in page and "http://" not in page.replace("http://cobertura", "")
@@ -210,7 +234,7 @@ def test_all_inputs_green_and_bundle_written(tmp_path, capsys):
     for href in __import__("re").findall(r'href="([^"#][^"]*)"', page):
         assert (out / href).exists(), href
     text = capsys.readouterr().out
-    assert text.strip().splitlines()[-1].endswith("(14 green, 0 red)")
+    assert text.strip().splitlines()[-1].endswith("(16 green, 0 red)")
     assert "tests passed" in text and "PASS" in text
 
 
@@ -236,11 +260,11 @@ def test_missing_inputs_are_red_not_run(tmp_path, capsys):
     still written and the exit status is 0 (1 with --strict)."""
     rc, data, rows = run(tmp_path)
     assert rc == 0
-    assert data["green"] == 0 and data["red"] == len(data["summary"]) == 13
+    assert data["green"] == 0 and data["red"] == len(data["summary"]) == 15
     for r in data["summary"]:
         assert r["status"] == "FAIL" and r["figure"] == "not run" and r["missing"], r
     assert (tmp_path / "build" / "evidence" / "index.html").exists()
-    assert "(0 green, 13 red)" in capsys.readouterr().out
+    assert "(0 green, 15 red)" in capsys.readouterr().out
     assert run(tmp_path, "--strict")[0] == 1
 
 
@@ -481,7 +505,9 @@ def test_stale_results_are_red_and_their_proofs_stale(tmp_path):
     assert rows["requirements"]["figure"] == "1/2 verified; 1 stale"
     page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
     assert "STALE: <code>proofs/wp/results.md</code>" in page
-    # the gates run again: current again
+    assert rows["reviews"]["status"] == "FAIL" and "src/qfoc_x.c" in rows["reviews"]["figure"]
+    # the code reviewed and the gates run again: current again
+    review(tmp_path)
     stamp(tmp_path)
     _rc, data, rows = run(tmp_path)
     assert data["red"] == 0
@@ -568,3 +594,61 @@ def test_dates_are_those_of_the_runs(tmp_path):
     assert "proofs/wp/results.md</a> <span class=meta>(run 2001-09-09 01:46:40 UTC)</span>" in page
     assert "(run 2002-02-02 02:02:02 UTC)" in page
     assert data["sections"]["wp"]["stamp"]["run"] == "2001-09-09 01:46:40 UTC"
+
+
+def test_fmea_row_follows_the_verdicts_of_its_requirements(tmp_path):
+    """REQ-EVD-031, REQ-EVD-027: an FMEA row is green only when it is current and every
+    requirement it names is verified: a failed test of one of them makes the row (and the
+    FMEA summary row) red 'failed', a test that did not run 'not run'; the page shows each
+    requirement's verdict beside the row."""
+    full_inputs(tmp_path)
+    _rc, data, rows = run(tmp_path, "--strict")
+    assert rows["fmea"]["status"] == "PASS"
+    assert rows["fmea"]["figure"] == ("2 rows, every one tied to the files it reviewed; every requirement "
+                                      "they name verified")
+    fm = {r["id"]: r for r in data["sections"]["fmea"]["rows"]}
+    assert fm["F-02"]["req_verdicts"] == [{"id": X1, "verdict": "verified", "link": fm["F-02"]["req_verdicts"][0]["link"]},
+                                         {"id": Y1, "verdict": "verified", "link": None}]
+    write(tmp_path, "build/junit/test_a.xml", JUNIT_OK.replace(
+        '<testcase classname="test_a" name="test_two"/>',
+        '<testcase classname="test_a" name="test_two"><failure message="f">x</failure></testcase>'))
+    rc, data, rows = run(tmp_path, "--strict")
+    assert rc == 1 and rows["fmea"]["status"] == "FAIL"
+    assert rows["fmea"]["figure"].endswith("; 1 with a requirement not verified (F-02 failed)")
+    fm = {r["id"]: r for r in data["sections"]["fmea"]["rows"]}
+    assert fm["F-01"]["ok"] and not fm["F-02"]["ok"] and fm["F-02"]["verdict"] == "failed"
+    os.remove(tmp_path / "build/junit/test_a.xml")
+    _rc, data, rows = run(tmp_path)
+    assert rows["fmea"]["status"] == "FAIL"
+    assert "2 with a requirement not verified (F-01 not run, F-02 not run)" in rows["fmea"]["figure"]
+    page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
+    assert "14 Software FMEA" in page and "<span class=st-nr>not run</span>" in page
+    os.remove(tmp_path / "build/trace/trace.json")
+    _rc, data, rows = run(tmp_path)
+    assert rows["fmea"]["status"] == "FAIL" and rows["fmea"]["figure"].endswith(
+        "(no traceability matrix: build/trace/trace.json)")
+
+
+def test_review_records_stale_or_unstamped_are_red(tmp_path):
+    """REQ-EVD-031: a MISRA review record whose files changed since its review is stale: the
+    review records row is red with STALE and the changed file named, and the section shows the
+    record red; a record without its digest is red 'unstamped'."""
+    full_inputs(tmp_path)
+    _rc, data, rows = run(tmp_path)
+    assert rows["reviews"]["status"] == "PASS"
+    assert rows["reviews"]["figure"] == "1 record, every one tied to the files it reviewed"
+    write(tmp_path, "src/qfoc_y.c", "int qfoc_y;\n")
+    rc, data, rows = run(tmp_path, "--strict")
+    assert rc == 1 and rows["reviews"]["status"] == "FAIL"
+    assert rows["reviews"]["figure"].startswith("1 record: 0 current, 1 stale (Rule 17.2); STALE: Rule 17.2: ")
+    assert "1 file new since the review: src/qfoc_y.c" in rows["reviews"]["figure"]
+    page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
+    assert "Review records (misra/reviews.md)" in page and "<span class=st-bad>STALE</span>" in page
+    os.remove(tmp_path / "src/qfoc_y.c")
+    text = (tmp_path / "misra/reviews.md").read_text(encoding="utf-8")
+    write(tmp_path, "misra/reviews.md", "\n".join(ln for ln in text.splitlines() if not ln.startswith("- Files:")))
+    _rc, data, rows = run(tmp_path)
+    assert rows["reviews"]["status"] == "FAIL" and "1 unstamped (Rule 17.2)" in rows["reviews"]["figure"]
+    os.remove(tmp_path / "misra/reviews.md")
+    _rc, data, rows = run(tmp_path)
+    assert rows["reviews"]["figure"] == "not run"
