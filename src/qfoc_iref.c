@@ -52,13 +52,13 @@ qfoc_q15_t qfoc_iref_q_limit(qfoc_q15_t i_max, qfoc_q15_t i_d)
 qfoc_q15_t qfoc_iref_mtpa(qfoc_q15_t i_q, qfoc_q15_t psi_f, int16_t ld, int16_t lq)
 {
     const int32_t dl = (int32_t)lq - (int32_t)ld;
-    const uint32_t iq = (i_q == (qfoc_q15_t)-32768) ? 32767u
+    const uint32_t iq_abs = (i_q == (qfoc_q15_t)-32768) ? 32767u
                         : ((i_q < 0) ? (uint32_t)(-(int32_t)i_q) : (uint32_t)i_q);
     qfoc_q15_t id = 0;
-    if ((dl > 0) && (iq > 0u)) {
+    if ((dl > 0) && (iq_abs > 0u)) {
         /* x = dL |i_q|: Q12 x Q15 = Q27 (x_hi), Q15 of psi_base after / 4096; limited to
            1 psi_base */
-        const uint32_t x_raw = (uint32_t)dl * iq;
+        const uint32_t x_raw = (uint32_t)dl * iq_abs;
         const uint32_t x_hi = (x_raw < IREF_XHI_MAX) ? x_raw : IREF_XHI_MAX;
         /* 2 x, Q15 of psi_base, rounded ((x_hi + 1024) / 2048 <= 65534) */
         const uint32_t x2 = (x_hi + 1024u) / 2048u;
@@ -82,10 +82,10 @@ qfoc_q15_t qfoc_iref_mtpa(qfoc_q15_t i_q, qfoc_q15_t psi_f, int16_t ld, int16_t 
         if (den > 0u) {
             /* g = 2 x / den in Q15, from the unrounded x: 2 (x_hi / 4096) 32768 = 16 x_hi */
             const uint32_t g = (16u * x_hi) / den;
-            const uint64_t p = ((uint64_t)g * (uint64_t)iq) + 16384u;
+            const uint64_t p = ((uint64_t)g * (uint64_t)iq_abs) + 16384u;
             const uint64_t q64 = p / 32768u;
             /* |i_d| <= |i_q| (the formula's bound; the truncated root may pass it) */
-            q = (q64 < (uint64_t)iq) ? (uint32_t)q64 : iq;
+            q = (q64 < (uint64_t)iq_abs) ? (uint32_t)q64 : iq_abs;
         } else {
             /* psi_f = 0 and x < 1: no MTPA current at this resolution */
         }
