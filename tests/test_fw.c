@@ -273,10 +273,10 @@ static void test_fw_release(void **state)
 }
 
 /* REQ-FW-001, REQ-FW-002: invalid parameters give the safe state (always 0)
- * Methods: 1b eight invalid parameter sets, each rule broken alone, and the valid extremes;
- * 1c out_max 1, level 0 and -32768, alpha 0 and -32768, shift 16, out_min -32768 refused,
- * out_min -32767 and 0, level and alpha 1 and 32767 accepted; 1d invalid parameters (the
- * safe state: always 0 for random utilisations) */
+   Methods: 1b eight invalid parameter sets, each rule broken alone, and the valid extremes;
+   1c out_max 1, level 0 and -32768, alpha 0 and -32768, shift 16, out_min -32768 refused,
+   out_min -32767 and 0, level and alpha 1 and 32767 accepted; 1d invalid parameters (the
+   safe state: always 0 for random utilisations) */
 static void test_fw_invalid_params(void **state)
 {
     qfoc_fw_params_t bad[8];
@@ -317,9 +317,9 @@ static void test_fw_invalid_params(void **state)
 }
 
 /* REQ-FW-002: the validity check rejects each broken part
- * Methods: 1b each part of the instance broken in turn; 1c the filter state 2147418112 and
- * 2147418113, -1, the reference at out_min and one below, 1 above 0; 1l the instance's
- * fields overwritten, refused by the validity check */
+   Methods: 1b each part of the instance broken in turn; 1c the filter state 2147418112 and
+   2147418113, -1, the reference at out_min and one below, 1 above 0; 1l the instance's
+   fields overwritten, refused by the validity check */
 static void test_fw_is_valid(void **state)
 {
     const qfoc_fw_params_t p = make_params(1000, 0u, 100, 0u, -1000, 1000, 1000);

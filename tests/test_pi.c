@@ -126,8 +126,8 @@ static void test_pi_random_vs_reference(void **state)
 }
 
 /* REQ-PI-004: step response of a constant error: u(k) = kp e + k ki e.
- * Methods: 1a the step response u(k) = kp e + k ki T e of REQ-PI-004 computed by hand for a
- * PI and for a proportional-only controller */
+   Methods: 1a the step response u(k) = kp e + k ki T e of REQ-PI-004 computed by hand for a
+   PI and for a proportional-only controller */
 static void test_pi_step_response(void **state)
 {
     qfoc_pi_t pi;
@@ -151,8 +151,8 @@ static void test_pi_step_response(void **state)
 }
 
 /* REQ-PI-001, REQ-PI-004: gains above 1 through the shift.
- * Methods: 1c the largest gain 32767 x 2^15 (one LSB of error reaches 32767, two are
- * limited); 1a gains of 2.5 and 3.0 through the shifts, results computed by hand */
+   Methods: 1c the largest gain 32767 x 2^15 (one LSB of error reaches 32767, two are
+   limited); 1a gains of 2.5 and 3.0 through the shifts, results computed by hand */
 static void test_pi_gain_above_one(void **state)
 {
     qfoc_pi_t pi;
@@ -282,10 +282,10 @@ static void test_pi_windup_recovery(void **state)
 }
 
 /* REQ-PI-001, REQ-PI-003: invalid parameters rejected, safe zero-gain state.
- * Methods: 1b valid and invalid parameter sets, one rule broken each; 1c shifts 16 and 255,
- * gains -1 and -32768, out_min -32768, min > max by one, and the valid extremes (shift 15,
- * gain 32767, a single-point range); 1d invalid parameters (the safe zero-gain state with
- * stale fields) */
+   Methods: 1b valid and invalid parameter sets, one rule broken each; 1c shifts 16 and 255,
+   gains -1 and -32768, out_min -32768, min > max by one, and the valid extremes (shift 15,
+   gain 32767, a single-point range); 1d invalid parameters (the safe zero-gain state with
+   stale fields) */
 static void test_pi_invalid_params(void **state)
 {
     const qfoc_pi_params_t bad[8] = {
@@ -330,8 +330,8 @@ static void test_pi_invalid_params(void **state)
 }
 
 /* REQ-PI-002: instance validity checks the integrator against the limits.
- * Methods: 1c the integrator at each limit and one Q31 LSB beyond, the shift 16; 1l
- * integrator and shift overwritten by hand, refused by the validity check */
+   Methods: 1c the integrator at each limit and one Q31 LSB beyond, the shift 16; 1l
+   integrator and shift overwritten by hand, refused by the validity check */
 static void test_pi_is_valid(void **state)
 {
     qfoc_pi_t pi;
@@ -353,8 +353,8 @@ static void test_pi_is_valid(void **state)
 }
 
 /* REQ-PI-006, REQ-PI-003: bumpless preset, clamped; init with limits excluding 0.
- * Methods: 1c presets beyond the upper limit and at -32768, limits that exclude 0 on either
- * side; 1a the bumpless preset of REQ-PI-006 */
+   Methods: 1c presets beyond the upper limit and at -32768, limits that exclude 0 on either
+   side; 1a the bumpless preset of REQ-PI-006 */
 static void test_pi_reset(void **state)
 {
     qfoc_pi_t pi;
@@ -380,8 +380,8 @@ static void test_pi_reset(void **state)
 }
 
 /* REQ-PI-004, REQ-PI-007: corner errors and rounding (ties away from zero).
- * Methods: 1c the errors -32768, -32767, -1, 0, 1, 32766, 32767, the rounding ties +-0.5,
- * the largest gains with -32768, a single-point range; 1n the double-precision product */
+   Methods: 1c the errors -32768, -32767, -1, 0, 1, 32766, 32767, the rounding ties +-0.5,
+   the largest gains with -32768, a single-point range; 1n the double-precision product */
 static void test_pi_corners(void **state)
 {
     static const int16_t errs[7] = { (int16_t)-32768, -32767, -1, 0, 1, 32766, 32767 };

@@ -78,9 +78,9 @@ static void test_ramp_random_vs_reference(void **state)
 }
 
 /* REQ-RAMP-001, REQ-RAMP-002, REQ-RAMP-004: every combination of the corner values
- * Methods: 1c every combination of twelve corner values (-32768, -32767, -32766, -1, 0, 1,
- * 2, 32766, 32767, ...) for value, target and step, a step of exactly the distance and one
- * less; 1n the double-precision model of the ramp */
+   Methods: 1c every combination of twelve corner values (-32768, -32767, -32766, -1, 0, 1,
+   2, 32766, 32767, ...) for value, target and step, a step of exactly the distance and one
+   less; 1n the double-precision model of the ramp */
 static void test_ramp_corners(void **state)
 {
     static const int16_t c[] = { -32768, -32767, -32766, -1000, -1, 0, 1, 2, 1000,
