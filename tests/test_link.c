@@ -291,8 +291,9 @@ static void test_link_003_single_byte_corruption(void **state)
 
 /* REQ-LINK-003: every length 0 .. QFOC_LIN_FRAME_MAX + 1 (and up to 255) of a
    buffer of exactly that size holding a valid frame prefix or padding.
-   Methods: 1c every length 0 .. QFOC_LIN_FRAME_MAX + 1 and up to 255, in a buffer of exactly
-   that size; 1d truncated and padded frames (an overread seen by memory checkers) */
+   Methods: 1b every length 0 .. 255 of the length argument, in a buffer of exactly that
+   size; 1c the command frame's length 7 and one either side, QFOC_LIN_FRAME_MAX and one
+   above; 1d truncated and padded frames (an overread seen by memory checkers) */
 static void test_link_003_lengths(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();

@@ -152,7 +152,9 @@ static void test_pi_step_response(void **state)
 
 /* REQ-PI-001, REQ-PI-004: gains above 1 through the shift.
    Methods: 1c the largest gain 32767 x 2^15 (one LSB of error reaches 32767, two are
-   limited); 1a gains of 2.5 and 3.0 through the shifts, results computed by hand */
+   limited); 1d gains of 1 and above, which a Q15 mantissa alone cannot hold (a shift
+   mishandled would wrap them); 1a gains of 2.5 and 3.0 through the shifts, results
+   computed by hand */
 static void test_pi_gain_above_one(void **state)
 {
     qfoc_pi_t pi;
