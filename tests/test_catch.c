@@ -161,7 +161,12 @@ static tcase_t base(void)
 /* REQ-CATCH-001: each boundary of each rule at -1, 0, +1 (the STILL threshold's two
    terms, 2 |v_err| and e_min / 4, each where it decides), the magnitudes of negative
    table values and voltages, the truncations of e, e / 4 and e_min, and the extremes
-   -32768 and 32767 in every field, each against the value worked out by hand. */
+   -32768 and 32767 in every field, each against the value worked out by hand.
+   Methods: 1c each boundary of each rule at -1, 0 and +1 (the back-EMF band, the flux band,
+   the speed range's ends, the STILL threshold's two terms 2 |v_err| and e_min / 4 where each
+   decides), the truncations of e, e / 4 and e_min, and -32768 and 32767 in every field; 1b
+   negative table values and voltages read as magnitudes, backward rotation; 1n every verdict
+   worked out by hand and against the reference verdict written in the test */
 static void test_req_catch_001_verdict_corners(void **state)
 {
     tcase_t t;
@@ -333,7 +338,10 @@ static void test_req_catch_001_verdict_corners(void **state)
 }
 
 /* REQ-CATCH-001: every combination of -32768, -1, 0, 1 and 32767 in the eight fields
-   (390625 cases) against the reference. */
+   (390625 cases) against the reference.
+   Methods: 1c every combination of -32768, -1, 0, 1 and 32767 in the eight fields (390625
+   cases), each verdict reached more than 1000 times; 1n the reference verdict written in the
+   test */
 static void test_req_catch_001_verdict_extremes(void **state)
 {
     static const int v[5] = { -32768, -1, 0, 1, 32767 };
@@ -364,7 +372,10 @@ static void test_req_catch_001_verdict_extremes(void **state)
 /* REQ-CATCH-001: 200000 random cases against the reference: a quarter over the whole
    range of every field, the rest drawn around the LOCK bands (the flux, the speed range's
    ends, the back-EMF band) and the STILL threshold (where 2 |v_err| decides and where the
-   floor e_min / 4 does) so that every edge is met exactly, many times. */
+   floor e_min / 4 does) so that every edge is met exactly, many times.
+   Methods: 1b 200000 random cases, a quarter over the whole range of every field; 1c the
+   rest drawn around the flux band, the speed range's ends, the back-EMF band and the STILL
+   threshold, each edge met exactly more than 1000 times; 1n the reference verdict */
 static void test_req_catch_001_verdict_random(void **state)
 {
     long n[3] = { 0, 0, 0 };
@@ -473,7 +484,10 @@ static void test_req_catch_001_verdict_random(void **state)
    worked case by hand: psi_f 8192 in the base s = 2 (one pu of V_base / w_base) at the
    speed 8192 (0.25 pu) has the back-EMF 8192 x 8192 x 4 / 32768 = 8192 (0.25 pu of V_base):
    |u| = 8192 is LOCK, and it is WAIT in the base s = 0, where the same numbers are a
-   quarter of that flux (e = 2048, band 300 + 512). */
+   quarter of that flux (e = 2048, band 300 + 512).
+   Methods: 1b 50000 random machines written in each flux base s = 0 .. 4 (the same verdict
+   in every base); 1c the shift above 4 (5, 255) read as 4; 1a the worked case of catch.h by
+   hand (psi_f 8192 at s = 2, speed 8192: e = 8192); 1n the reference verdict */
 static void test_req_catch_001_flux_base(void **state)
 {
     long same = 0;
@@ -560,7 +574,11 @@ static void test_req_catch_001_flux_base(void **state)
    |w psi_f| < (max(3 |v_err|, |v_err| + e_min / 4) + 1) 32768: it turns slower than
    max(3 v_err / psi_f, w_min / 4 + v_err / psi_f) up to one LSB of e.  Every |u| up to
    v_still and one above for a few tables (v_still by hand), the bound's edge by hand on
-   both sides, and 200000 random cases of each. */
+   both sides, and 200000 random cases of each.
+   Methods: 1b 200000 random standing rotors and 200000 random rotors classed STILL; 1c every
+   |u| up to v_still and one above for ten v_err (0, 1, 7, 62, 63, ..., 32767, -32768), the
+   bound's edge by hand on both sides; 1n the bound max(2 |v_err|, e_min / 4) worked out by
+   hand */
 static void test_req_catch_002_still_bound(void **state)
 {
     /* the worked case's table (w_min 1000, psi_f 16384: the floor 125) with these v_err;
@@ -692,7 +710,9 @@ static void test_req_catch_002_still_bound(void **state)
 
 /* ---- the step: filter and debounce ------------------------------------------ */
 
-/* REQ-CATCH-003: the state at CATCH entry, from any previous contents. */
+/* REQ-CATCH-003: the state at CATCH entry, from any previous contents.
+   Methods: 1a the state at CATCH entry from stale contents (u_f -123, counts 65535 and 7):
+   u_f 32767, counts 0 */
 static void test_req_catch_003_reset(void **state)
 {
     qfoc_catch_t k;
@@ -709,7 +729,10 @@ static void test_req_catch_003_reset(void **state)
 /* REQ-CATCH-003: the filter u_f + CatchStep(|u| - u_f), an eighth of the difference
    rounded away from zero, from any state and any input (200000 random pairs and the
    extremes, but u_f = 32767 with u = -32768: test_req_catch_003_filter_full_scale); the
-   result lies between u_f and |u|, and moves whenever they differ. */
+   result lies between u_f and |u|, and moves whenever they differ.
+   Methods: 1b 200000 random (u_f, u) pairs; 1c eleven extremes (-32768, -32767, -8, -7, -1,
+   0, 1, 7, 8, 32766, 32767) crossed; 1n the reference filter, an eighth of the difference
+   rounded away from zero */
 static void test_req_catch_003_filter(void **state)
 {
     static const int ex[] = { -32768, -32767, -8, -7, -1, 0, 1, 7, 8, 32766, 32767 };
@@ -783,7 +806,10 @@ static void test_req_catch_003_filter(void **state)
    (D -> floor(7 D / 8), never past |u|), so the ticks depend on D only and grow with it;
    the largest distance, 65535 (u_f = -32768, |u| = 32767), takes 72 ticks, within 80.
    Every start with |u| = 0, 32767 (u = 32767 and -32767) and 3 other inputs, each tick
-   against the reference, and 200000 random pairs. */
+   against the reference, and 200000 random pairs.
+   Methods: 1b every start for six inputs (0, 32767, -32767, 1, -7, 12345) and 200000 random
+   pairs; 1c the largest distance 65535 (72 ticks, within 80); 1n the reference filter tick
+   by tick */
 static void test_req_catch_003_filter_reaches(void **state)
 {
     static const int targets[] = { 0, 32767, -32767, 1, -7, 12345 };
@@ -830,7 +856,9 @@ static void test_req_catch_003_filter_reaches(void **state)
 /* REQ-CATCH-003: full scale, u = -32768 (|u| = 32768) with u_f = 32767: the header's rule
    u_f + CatchStep(1) = 32768 does not fit qfoc_q15_t; the filter must stay within
    [u_f, |u|], at 32767, and not wrap.  (The drive's |u| is qfoc_vec_mag's, <= 32767;
-   catch.h calls both functions total on every value of their argument types.) */
+   catch.h calls both functions total on every value of their argument types.)
+   Methods: 1c u = -32768 (|u| = 32768) with u_f = 32767: the filter stays at 32767 without
+   wrapping */
 static void test_req_catch_003_filter_full_scale(void **state)
 {
     qfoc_catch_cfg_t c;
@@ -902,7 +930,12 @@ static int ref_step(ref_step_t *r, int u, int w, int psi, const tcase_t *table, 
    - 2000 random episodes of 300 ticks (a standing, a catchable and an uncatchable rotor in
      spells, with noise that makes the verdict flicker, any dwell 0..20) against the
      reference; the counts are the run lengths capped at max(dwell, 1); many runs are
-     broken before the dwell. */
+     broken before the dwell.
+   Methods: 1b 20000 random tables with any inputs and 2000 random episodes of standing,
+   catchable and uncatchable rotors with any dwell 0 .. 20; 1c dwell 0 acting as 1, the
+   dwell-th tick and one before, the tick of the first STILL from reset (31, 11, 2, 1) at the
+   floor's largest value and at |v_err| 14335 / 14336; 1d noise that makes the verdict
+   flicker, runs broken before the dwell; 1n the reference verdict and filter */
 static void test_req_catch_003_step(void **state)
 {
     tcase_t tb = base();
@@ -1146,7 +1179,10 @@ static void test_req_catch_003_step(void **state)
    floor 0: v_still = 2 |v_err| alone) and the reference table's 3277 (the floor 334).
    The tick of STILL, N(v_still) + max(dwell, 1) - 1, by hand from the fall 32767 ->
    floor(7 u_f / 8): 7 on tick 60, 6 on 61, 4 on 63, 2 on 65, 1 on 66, 0 on 67, 303 on 35
-   (and 347 on 34); also against the reference. */
+   (and 347 on 34); also against the reference.
+   Methods: 1c v_err 0 .. 3 of either sign and a handover speed whose floor is 0; 1d the
+   filter's truncation that kept u_f at 7 > 2 |v_err| (CATCH never ended in STILL); 1n the
+   tick of STILL worked out by hand and against the reference */
 static void test_req_catch_003_standing_small_v_err(void **state)
 {
     static const struct {

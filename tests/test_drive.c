@@ -40,7 +40,10 @@ static void rig_to_stop(rig_t *r)
 }
 
 /* REQ-DRV-001: initialisation from the generated table; a refused table is ERROR/PARAM
-   for good, PWM never enabled. */
+   for good, PWM never enabled.
+   Methods: 1b a byte corruption at every seventh byte of the table; 1d a corrupted or
+   refused table: ERROR / PARAM for good, never cleared, PWM never enabled; 1l 0x5A XORed
+   into each byte of the table and the CRC flipped before init */
 static void test_drv_001_init(void **state)
 {
     rig_t r;
@@ -75,7 +78,11 @@ static void test_drv_001_init(void **state)
 }
 
 /* REQ-DRV-007: PRECHARGE waits for the bus, then averages 2^offset_shift samples;
-   offsets outside the window are a fault. */
+   offsets outside the window are a fault.
+   Methods: 1c the offset at the window's edge (accepted) and one code outside (OFFSET
+   fault); 1d a bus below vdc_uv at power-on, an offset out of range, a recalibration after
+   an OFFSET fault is cleared; 1l current-sensor offsets out of the window injected at the
+   ADC */
 static void test_drv_007_precharge_and_offsets(void **state)
 {
     rig_t r;
@@ -119,7 +126,10 @@ static void test_drv_007_precharge_and_offsets(void **state)
     assert_int_equal(r.d.s.offset_u, QFOC_ADC_MID);
 }
 
-/* REQ-DRV-009: run request = power-on, target >= rpm_min, link alive; rpm conversion. */
+/* REQ-DRV-009: run request = power-on, target >= rpm_min, link alive; rpm conversion.
+   Methods: 1c the target at rpm_min - 1 and rpm_min, rpm_max + 1 (refused by the link) and
+   rpm_max (within speed_max); 1a the rpm conversion floor(rpm k_rpm / 4096 + 0.5) and k_rpm
+   = n_p 32768 / (60 f_base) computed in the test */
 static void test_drv_009_command(void **state)
 {
     rig_t r;
@@ -161,7 +171,11 @@ static void test_drv_009_command(void **state)
 }
 
 /* REQ-DRV-002, REQ-DRV-003, REQ-DRV-004 (current scaling): over-current: PWM off in the same call, ERROR at the next
-   tick, latched until a fault clear after clear_ms. */
+   tick, latched until a fault clear after clear_ms.
+   Methods: 1b each direction and each phase (u, and w derived from u and v); 1c the trip
+   exactly one code above i_trip / 16, at i_trip not, the clear at clear_ms - 20 and after;
+   1d an over-current sample; 1l the over-current injected at the ADC, the PWM off in the
+   same call */
 static void test_drv_003_overcurrent(void **state)
 {
     rig_t r;
@@ -231,7 +245,11 @@ static void test_drv_003_overcurrent(void **state)
     assert_int_equal(r.enabled_outside_run, 0);
 }
 
-/* REQ-DRV-008: DC-bus and temperature faults within their reaction times. */
+/* REQ-DRV-008: DC-bus and temperature faults within their reaction times.
+   Methods: 1c the temperature at its limit (no fault) and one above for temp_ms - 1 and
+   temp_ms ticks, the debounce of vdc_ms; 1d over-voltage from STOP, under-voltage while
+   running, a bus drop in STOP (no fault), a clear refused while still hot; 1l bus steps to
+   480 V and 150 V and temperatures above the limits injected at the inputs */
 static void test_drv_008_fault_reaction_times(void **state)
 {
     rig_t r;
@@ -312,7 +330,11 @@ static void drv_010_flip(qfoc_param_table_t *t, int part)
 
 /* REQ-DRV-010: the table is re-checked in every 100 ms period; a flipped bit anywhere in
    it, flipped at any tick of the period, is PARAM (ERROR) within 105 ms, and is not
-   cleared. */
+   cleared.
+   Methods: 1b a bit flipped in each quarter of the table at each of the 100 ticks of the
+   re-check period; 1c the detection bound 105 ms reached (at least 101); 1d a table
+   corrupted while running, and repaired afterwards (still latched); 1l the bit flips
+   injected into the table in "flash" */
 static void test_drv_010_table_recheck(void **state)
 {
     rig_t r0;
@@ -353,7 +375,10 @@ static void test_drv_010_table_recheck(void **state)
 
 /* REQ-DRV-011, REQ-DRV-015: a status frame answers every valid command frame; CAN every
    100 ms with alternating identifiers; a malformed frame changes nothing but its
-   counter. */
+   counter.
+   Methods: 1d malformed frames, and 2000 ms of silence (the link lost in STOP, no fault); 1l
+   a random bit flipped in each of 2000 valid frames; 1n a twin drive that receives nothing,
+   the status frame's checksum and identifier by the simulator's own LIN functions */
 static void test_drv_011_status_and_can(void **state)
 {
     rig_t r;
@@ -418,7 +443,9 @@ static void test_drv_011_status_and_can(void **state)
 }
 
 /* REQ-DRV-012: motorParaChange: high-speed inductances above para_speed, back below
-   15/16 of it; the observer's inductance follows. */
+   15/16 of it; the observer's inductance follows.
+   Methods: 1c the speed one above para_speed, inside the hysteresis band (1/32 below) and
+   below it (1/8 below, past 15/16) */
 static void test_drv_012_para_change(void **state)
 {
     rig_t r;
@@ -459,7 +486,11 @@ static void test_drv_012_para_change(void **state)
 
 /* REQ-DRV-006: the tick's voltage utilisation of the last command, |v| sqrt 3 / V_dc
    (V_dc at least vdc_min), against the double formula, for random commands and buses
-   (the fast step's field weakening reads it). */
+   (the fast step's field weakening reads it).
+   Methods: 1b 20000 random commands and buses, every 50th command and every 40th bus any
+   int16; 1c the magnitude saturated at 32767, a bus of 0 and -7 with vdc_min 0 (the bus
+   taken as 1); 1d a refused table whose bus minimum is 0; 1n |v| sqrt(3) / V_dc in double
+   precision */
 static void test_req_drv_006_utilisation_tick(void **state)
 {
     rig_t r;
@@ -517,7 +548,10 @@ static void test_req_drv_006_utilisation_tick(void **state)
 }
 
 /* REQ-DRV-001, REQ-DRV-002, REQ-DRV-005: random ADC samples, temperatures and frames: the PWM is
-   enabled only in RUN, the compare values never exceed the period, the invariant holds. */
+   enabled only in RUN, the compare values never exceed the period, the invariant holds.
+   Methods: 1b 60000 ticks of random ADC samples, temperatures, commands and frames, power on
+   and off; 1d rare out-of-range current and bus samples, over-temperatures, corrupted
+   frames; 1l random current and bus spikes and a bit flipped in every fourth frame */
 static void test_drv_002_random_inputs(void **state)
 {
     rig_t r;

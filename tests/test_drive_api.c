@@ -72,7 +72,10 @@ static void twin_same(const rig_t *fr, const rig_t *api)
    second start, stop, and a link loss, the drive
    commanded by the function gives the PWM output and the state of the drive commanded
    by frames, period by period; the loss comes one tick earlier, because the function's
-   command is given before the tick in which the twin receives its frame. */
+   command is given before the tick in which the twin receives its frame.
+   Methods: 1b a master's script through start, STALL without a rotor, ERROR, fault clear, a
+   second start, stop and silence; 1d a start that stalls, a link lost; 1n a twin drive
+   commanded by frames, the same PWM output and state period by period */
 static void test_drv_016_command_like_frame(void **state)
 {
     rig_t fr;
@@ -139,7 +142,10 @@ static void test_drv_016_command_like_frame(void **state)
 }
 
 /* REQ-DRV-016: a target above rpm_max is refused and counted; the drive goes on exactly
-   as a twin that was never given it. */
+   as a twin that was never given it.
+   Methods: 1b 3000 random targets above rpm_max with random clear flags, a valid command
+   every tenth; 1c rpm_max (accepted) and rpm_max + 1 (refused); 1d commands out of range; 1n
+   a twin drive that is never given them, the same PWM output, state and target in every tick */
 static void test_drv_016_refused_command(void **state)
 {
     rig_t r;
@@ -195,7 +201,10 @@ static void test_drv_016_refused_command(void **state)
 
 /* REQ-DRV-017: the readers against what was applied: bus voltage from its ADC code,
    temperatures, phase currents from their codes (d and q in the ALIGN frame, angle 0),
-   commands. */
+   commands.
+   Methods: 1a each reader against what was applied: the bus from its ADC code (300 V, 280
+   V), the temperature, d and q currents in the ALIGN frame (i_d = i_u, i_q = (i_u + 2 i_v) /
+   sqrt(3)) and their amplitude, the command, computed in the test */
 static void test_drv_017_status_readers(void **state)
 {
     rig_t r;
@@ -268,7 +277,10 @@ static void test_drv_017_status_readers(void **state)
 }
 
 /* REQ-DRV-017: the fault word and the first fault hold the faults of the tick that
-   entered ERROR; a later fault changes neither; both read 0 outside ERROR. */
+   entered ERROR; a later fault changes neither; both read 0 outside ERROR.
+   Methods: 1b one fault, a later second fault, two faults in the same tick, the words after
+   a clear; 1d a later fault that must not change the first fault; 1l over-temperatures of
+   the IPM and the PCB injected at the inputs */
 static void test_drv_017_first_fault(void **state)
 {
     rig_t r;

@@ -167,7 +167,10 @@ static int32_t target_q15(uint16_t rpm, uint16_t k_rpm)
 
 /* REQ-DRV-001: the drive invariant is the conjunction of every part's own invariant
    and of the offsets being ADC codes: breaking any single part makes the drive
-   invalid, and the intact drive is valid. */
+   invalid, and the intact drive is valid.
+   Methods: 1b each of 17 parts of the drive invariant broken alone; 1c the offsets 4096
+   (refused) and QFOC_ADC_MAX (accepted), the calibration count 1025 and 1024, the sums one
+   above and at 1024 x 4095; 1l the drive's fields overwritten, refused by the validity check */
 static void test_req_drv_001_is_valid_rejects_each_part(void **state)
 {
     rig_t r;
@@ -213,7 +216,10 @@ static void test_req_drv_001_is_valid_rejects_each_part(void **state)
 }
 
 /* REQ-DRV-003, REQ-DRV-004: an over-current on phase v alone (u at zero current)
-   switches the PWM off in the same fast step; |i_v| = i_trip exactly does not. */
+   switches the PWM off in the same fast step; |i_v| = i_trip exactly does not.
+   Methods: 1b each direction of phase v with u at zero current; 1c |i_v| = i_trip exactly
+   (no trip) and one code above (trip in the same fast step); 1d an over-current on one phase
+   alone; 1l the over-current injected at the ADC */
 static void test_req_drv_003_overcurrent_phase_v_alone(void **state)
 {
     rig_t r;
@@ -258,7 +264,10 @@ static void test_req_drv_003_overcurrent_phase_v_alone(void **state)
    zero and no current measured, the voltage command is the feed-forward alone,
    u_q = w psi_f 2^s (u_d = w L_q i_q = 0): its magnitude after the inverse Park step is
    round(w psi_f / 32768) 2^min(s, 4), saturated at full scale and limited to V_dc / sqrt 3,
-   within the inverse Park step's rounding (2 counts). */
+   within the inverse Park step's rounding (2 counts).
+   Methods: 1b every flux base s = 0 .. 7 (5 .. 7 read as 4); 1c the feed-forward saturated
+   at full scale and limited to V_dc / sqrt(3); 1n round(w psi_f / 32768) 2^min(s, 4) in
+   double precision */
 static void test_req_drv_006_decoupling_flux_base(void **state)
 {
     rig_t r;
@@ -311,7 +320,9 @@ static void test_req_drv_006_decoupling_flux_base(void **state)
    observer of a table in the base s carries kg 2^s (its recursion's decay g kg per sample
    is that of the base 0), so its high-pass corner in per unit of w_base is kg 2^s / 2^s:
    the tick's lead is atan2(kg, |w|) (flux.h) whatever s, within the lead's one count and
-   the corner's rounding; at s = 0 it is the lead of the table's kg exactly. */
+   the corner's rounding; at s = 0 it is the lead of the table's kg exactly.
+   Methods: 1b the flux bases s = 0 .. 4 at three speeds of both signs (1500, 6000, -20000);
+   1n atan2(kg, |w|) in double precision */
 static void test_req_drv_006_lead_flux_base(void **state)
 {
     rig_t r;
@@ -352,7 +363,11 @@ static void test_req_drv_006_lead_flux_base(void **state)
    from zero, as at a RUN entry), ALIGN and a new open loop whose start current is |i_start|
    raised by a quarter per retry, at most i_max; after 1 + ho_retries open loops, STALL.
    In every open loop the q reference ramps from 0 to that current and the d reference
-   from ALIGN's half current to 0, each by ceil(i_max / 16) per tick. */
+   from ALIGN's half current to 0, each by ceil(i_max / 16) per tick.
+   Methods: 1c each OPEN_LOOP exactly ol_timeout_ms long, the start current raised by a
+   quarter per retry up to i_max, STALL after 1 + ho_retries open loops; 1d an observer that
+   never agrees with the open-loop frame (120 degrees off); 1l the estimate injected 120
+   degrees off the frame */
 static void test_req_sm_011_drive_start_retries(void **state)
 {
     rig_t r;
@@ -418,7 +433,11 @@ static void test_req_sm_011_drive_start_retries(void **state)
    period (2^32 per turn) and the output angle leads by 1.5 periods at that rate; the
    drive bounds k_theta to the PLL's range 1 .. 32767 itself, so a table whose k_theta
    went above it (after the start-up check) runs exactly as with 32767, and the 100 ms
-   re-check then stops the drive with PARAM. */
+   re-check then stops the drive with PARAM.
+   Methods: 1c k_theta 65535 (bounded to 32767) against 32767 and the table's; 1d a table
+   whose k_theta went out of range after the start-up check (PARAM at the re-check); 1l the
+   k_theta of the RAM table overwritten while running; 1n the open-loop angle advance
+   ol_speed x k_theta modulo 2^32 computed in the test */
 static void test_req_drv_006_k_theta_above_q15_bounded(void **state)
 {
     rig_t r;
@@ -477,7 +496,10 @@ static void test_req_drv_006_k_theta_above_q15_bounded(void **state)
    (align_ms / 2)) per tick to i_align, reached within align_ms / 2, then holds it to three
    quarters of align_ms and half of it after (REQ-DRV-026); an
    ALIGN time below 2 ms (refused by the table check, here changed after the start) has
-   no ramp: the reference steps to i_align at once, and the re-check reports PARAM. */
+   no ramp: the reference steps to i_align at once, and the re-check reports PARAM.
+   Methods: 1c the ramp reaching i_align at align_ms / 2, the steps at three quarters of
+   align_ms, an ALIGN time of 1 ms (below 2: no ramp); 1d a table whose align_ms was changed
+   after the start (PARAM at the re-check) */
 static void test_req_drv_006_align_ramp(void **state)
 {
     rig_t r;
@@ -532,7 +554,10 @@ static void test_req_drv_006_align_ramp(void **state)
    < ho_angle, and not before cl_hold_ms after the ALIGN entry (the RUN entry before
    CATCH, REQ-DRV-027).  Each condition one
    count outside its bound holds the drive in OPEN_LOOP; all of them at their bound
-   hand over after exactly ho_dwell_ms ticks. */
+   hand over after exactly ho_dwell_ms ticks.
+   Methods: 1b each handover condition broken alone (flux magnitude, angle on either side,
+   speed above and below); 1c each condition one count outside its bound (no handover) and
+   all at their bound (CLOSED_LOOP on the ho_dwell_ms-th tick) */
 static void test_req_drv_006_handover_conditions(void **state)
 {
     rig_t r;
@@ -605,7 +630,9 @@ static void test_req_drv_006_handover_conditions(void **state)
    tick at which the observer has followed the frame for ho_dwell_ms with the I/f ramp at
    of_speed (the minimum speed), unless cl_hold_ms after the ALIGN entry is later: no hold
    (cl_hold_ms 0), the reference table's 2 s, a hold one tick after convergence, and no hold
-   with a ramp four times as steep (earlier convergence). */
+   with a ramp four times as steep (earlier convergence).
+   Methods: 1b four cases: no hold, the reference table's 2 s, a hold one tick after
+   convergence, a ramp four times as steep; 1c cl_hold_ms one tick after the convergence tick */
 static void test_req_drv_006_handover_at_convergence(void **state)
 {
     int cas;
@@ -660,7 +687,10 @@ static double bumpless_ref(const qfoc_param_table_t *t, double i, int32_t dth)
 
 /* REQ-DRV-006: at the handover the speed PI is preset to the bumpless q current,
    limited to +-i_max; with a zero speed error in that tick the q reference is that
-   preset.  Four cases: nominal (-30 deg), psi_f = 0, above +i_max, below -i_max. */
+   preset.  Four cases: nominal (-30 deg), psi_f = 0, above +i_max, below -i_max.
+   Methods: 1b nominal, no magnet flux, a preset above +i_max and below -i_max, and eight
+   random angles inside the handover window; 1c the preset limited to +-i_max; 1n the
+   bumpless q current computed in double precision in the test */
 static void test_req_drv_006_bumpless_transfer(void **state)
 {
     int cas;
@@ -734,7 +764,10 @@ static void test_req_drv_006_bumpless_transfer(void **state)
    limited to +-iq_lim, the q limit the tick left with its d reference: sqrt(i_max^2 - i_d^2)
    (double precision here); a reference above it runs exactly as one at it, and the period is
    counted as clamped; at the limit it is not.  With i_d = 0 the limit is i_max; with
-   i_d = -0.6 i_max it is 0.8 i_max, and the current vector stays on the circle. */
+   i_d = -0.6 i_max it is 0.8 i_max, and the current vector stays on the circle.
+   Methods: 1b i_d = 0 and i_d = -0.6 i_max, both signs of the q reference; 1c the reference
+   at the limit (not clamped), one count over and at +-32767 (clamped, run exactly as at the
+   limit); 1n sqrt(i_max^2 - i_d^2) in double precision */
 static void test_req_drv_013_iq_reference_clamp(void **state)
 {
     rig_t r0;
@@ -789,7 +822,10 @@ static void test_req_drv_013_iq_reference_clamp(void **state)
 /* REQ-DRV-013 (trqcomp.h integration rule): a tick after a fast step that clamped the
    q reference holds the torque-compensation coefficients; the next tick, without a
    clamp, learns a_h += 2 gain e sin(h theta_m), b_h -= 2 gain e cos(h theta_m)
-   (Q31 of I_base, speed >= 0). */
+   (Q31 of I_base, speed >= 0).
+   Methods: 1c a tick after a clamped fast step (i_q reference i_max + 1: held) and the next
+   one without; 1n the learning law a_h += 2 gain e sin(h theta_m), b_h -= 2 gain e cos(h
+   theta_m) in double precision */
 static void test_req_drv_013_tc_learning_held_when_clamped(void **state)
 {
     rig_t r;
@@ -844,7 +880,10 @@ static void test_req_drv_013_tc_learning_held_when_clamped(void **state)
    it down to of_speed and enters STOP on the tick the reference is there (PWM off
    then); a new run request in STOPPING returns to CLOSED_LOOP and the ramp goes on
    from where it was; a lost link in closed loop stops the same way and ends in ERROR
-   with LINK. */
+   with LINK.
+   Methods: 1b power-off, a new run request while ramping down, a lost link in closed loop;
+   1c STOP on the tick the reference reaches of_speed, the loss after link_timeout_ms + 1
+   ticks; 1d the link lost in closed loop (LINK after the ramp-down) */
 static void test_req_drv_006_stopping_ramp_down(void **state)
 {
     rig_t r;
@@ -928,7 +967,10 @@ static void test_req_drv_006_stopping_ramp_down(void **state)
 /* REQ-DRV-013, REQ-DRV-006: the field-weakening loop runs in the tick, in STOPPING as in
    CLOSED_LOOP: each tick steps it once on the utilisation the last tick left (the same
    result as the module stepped alone on the same inputs), and the d reference is the
-   MTPA current plus its output; it is released when the drive leaves RUN. */
+   MTPA current plus its output; it is released when the drive leaves RUN.
+   Methods: 1b STOPPING at a utilisation above the level, and the end of STOPPING; 1n the
+   field-weakening module stepped alone on the same inputs, and MTPA + its output clamped to
+   [-i_max, 0] */
 static void test_req_drv_013_field_weakening_in_stopping(void **state)
 {
     rig_t r;
@@ -982,7 +1024,9 @@ static void test_req_drv_013_field_weakening_in_stopping(void **state)
    target before cl_hold_ms after the ALIGN entry (the state time restarts there when
    CATCH finds the rotor standing, REQ-DRV-027); the drive reads the time from the
    table, so a valid table whose cl_hold_ms grew after the handover holds the
-   reference, and the ramp resumes once the time has passed again. */
+   reference, and the ramp resumes once the time has passed again.
+   Methods: 1c cl_hold_ms raised to 60000 after the handover and restored (the ramp resumes
+   on the next tick); 1d a valid table whose cl_hold_ms changed while running */
 static void test_req_drv_006_speed_hold_before_cl_hold(void **state)
 {
     rig_t r;
@@ -1014,7 +1058,11 @@ static void test_req_drv_006_speed_hold_before_cl_hold(void **state)
    flux magnitude differs from psi_f + (L_d - L_q) i_d by more than flux_tol, for
    stall_ms ticks; at the tolerance itself no fault.  A flux error beyond flux_tol is also
    beyond the fast check's band (REQ-DRV-023): those cases run with the speed estimate
-   below its gate (1.5 of_speed), where only this slow criterion applies. */
+   below its gate (1.5 of_speed), where only this slow criterion applies.
+   Methods: 1b the speed error and the flux error, each alone and together; 1c each at its
+   tolerance (no fault) and one count beyond (STALL after stall_ms); 1d a stalled rotor: the
+   estimate off the reference, the flux too small; 1l the estimator's speed and flux injected
+   off their expected values */
 static void test_req_drv_008_stall_speed_and_flux(void **state)
 {
     rig_t r;
@@ -1090,7 +1138,11 @@ static int ms_to_error(rig_t *r, int limit)
    ratio; turning, with the ratio.  Lost phase w from the start: ERROR in ALIGN after
    align_ms / 2 + phase_ms ticks.  ALIGN shorter than that: the debounce count goes on
    in OPEN_LOOP and the fault comes at the same time.  Three carrying phases: no fault in
-   ALIGN or in OPEN_LOOP. */
+   ALIGN or in OPEN_LOOP.
+   Methods: 1b a lost phase and three carrying phases, in ALIGN and turning; 1c the fault at
+   align_ms / 2 + phase_ms, an ALIGN of 150 ms shorter than that (the debounce goes on in
+   OPEN_LOOP); 1d a phase that carries no current; 1l the lost phase w injected in the
+   sampled currents */
 static void test_req_drv_008_phase_loss(void **state)
 {
     rig_t r;
@@ -1142,7 +1194,10 @@ static void test_req_drv_008_phase_loss(void **state)
    rotor (REQ-DRV-027), long before the slow check's
    align_ms / 2 + phase_ms), never OPEN_LOOP.  A current in ALIGN that vanishes in
    OPEN_LOOP: PHASE once the largest filtered magnitude falls below |i_start| / 4 and
-   phase_ms more ticks have passed. */
+   phase_ms more ticks have passed.
+   Methods: 1d no motor or both sensors stuck at mid-scale, and a current that vanishes in
+   OPEN_LOOP; 1l the currents held at the offset in the samples; 1c PHASE within 20 ms of the
+   ALIGN entry, and after phase_ms once the filtered magnitude falls below |i_start| / 4 */
 static void test_req_drv_018_no_current(void **state)
 {
     rig_t r;
@@ -1251,7 +1306,10 @@ static void corrupt(qfoc_drive_t *d, corrupt_t k)
     }
 }
 
-/* REQ-DRV-019: each corruption above, detected by the tick that checks its quarter. */
+/* REQ-DRV-019: each corruption above, detected by the tick that checks its quarter.
+   Methods: 1b each corruption of the list (29 fields), in the quarter of the check that
+   holds it; 1d a drive object overwritten while running, latched against a second of clear
+   requests; 1l each field corrupted between two ticks */
 static void test_req_drv_019_object_check(void **state)
 {
     /* the quarter of the check (drv_object_slice) that holds each corrupted field */
@@ -1318,7 +1376,10 @@ static void test_req_drv_019_object_check(void **state)
 
 /* REQ-DRV-007: an offset more than offset_window codes from 2048 on either side of
    either channel is an OFFSET fault; offsets at the window's edges are taken as
-   calibrated, exactly. */
+   calibrated, exactly.
+   Methods: 1b each side of each channel; 1c offsets one code outside the window (OFFSET
+   fault) and exactly at its edges (calibrated); 1l current-sensor offsets injected at the
+   ADC */
 static void test_req_drv_007_offset_window_each_side(void **state)
 {
     const int32_t win = qfoc_params_reference.drive.offset_window;
@@ -1350,7 +1411,10 @@ static void test_req_drv_007_offset_window_each_side(void **state)
 /* REQ-DRV-007, REQ-DRV-010: when a (valid) table's offset_shift drops during the
    calibration below the samples already summed, no offset is ever derived from a sum
    of more samples than 2^offset_shift (here 20 samples of 2048 read as 16 would give
-   2560, out of the window): no OFFSET fault, the offsets stay those of the samples. */
+   2560, out of the window): no OFFSET fault, the offsets stay those of the samples.
+   Methods: 1c offset_shift dropped to 16 samples after 20 were summed; 1d a table changed
+   during the calibration (a sum of more samples than 2^offset_shift would fall out of the
+   window) */
 static void test_req_drv_007_offset_shift_changed_during_calibration(void **state)
 {
     rig_t r;
@@ -1389,7 +1453,11 @@ static void test_req_drv_007_offset_shift_changed_during_calibration(void **stat
 /* REQ-DRV-009, REQ-DRV-010: the target speed is (rpm k_rpm) / 4096 rounded, at most
    32767 and at most speed_max (0 for speed_max <= 0); with the table's values the
    limit is never reached (params.h), so the cases change the table after the start,
-   which the re-check then refuses. */
+   which the re-check then refuses.
+   Methods: 1b 300 random tables and targets; 1c speed_max 0 and -32768, k_rpm 65535 with
+   8000 and 2048 rpm, rpm 0, the target at speed_max and one rpm below; 1d a table changed
+   after the start (refused by the re-check); 1n (rpm k_rpm) / 4096 rounded and limited, in
+   double precision */
 static void test_req_drv_009_rpm_to_speed_limit(void **state)
 {
     rig_t r;
@@ -1444,7 +1512,9 @@ static void test_req_drv_009_rpm_to_speed_limit(void **state)
 
 /* REQ-DRV-005 (tick data, drive.h run_ms: Motor_Run_Time): the time in RUN counts one
    per tick from the RUN entry and saturates at 2^32 - 1 ms; outside RUN it does not
-   count. */
+   count.
+   Methods: 1c the run time at 2^32 - 2 and 2^32 - 1 ms (saturated, 49.7 days); 1a one count
+   per tick in RUN from the RUN entry, none outside */
 static void test_req_drv_005_run_time_saturates(void **state)
 {
     rig_t r;
@@ -1552,7 +1622,11 @@ static uint16_t code_sine(long k, int ch)
    5 % of the bound skipped: the drive rounds the product to a Q15 count of 12, the angle
    to 2^-16 turn and the cosine to Q15).  Every judged case is one where a noise-free sinusoid of that amplitude holds a
    code for less than the window, 2 acos(1 - 1/A) / w < T: the gate never judges a current
-   a healthy motor could hold. */
+   a healthy motor could hold.
+   Methods: 1b a grid of eleven speeds of either sign and eleven currents split three ways
+   over d and q, on three tables; 1c amplitudes around the dead band (409, 410), speeds
+   beyond half a turn per millisecond; 1n the criterion 2 A (1 - cos(w T / 2)) >= 3 and the
+   dwell of a noise-free sinusoid in double precision */
 static void test_req_drv_020_stuck_judged(void **state)
 {
     /* the traction table's f_base of 1000 Hz turns more than half a turn in 1 ms at speed */
@@ -1626,7 +1700,11 @@ static void test_req_drv_020_stuck_judged(void **state)
 /* REQ-DRV-020: one current code unchanged for 2 ms of fast steps (16 at 8 kHz, 32 at
    16 kHz) while the other moves: OFFSET and ERROR at the first tick that sees it, the PWM
    off in the next period; one run shorter, both held, the stall condition or a healthy
-   sampled sinusoid: no fault. */
+   sampled sinusoid: no fault.
+   Methods: 1b each channel stuck, both held, the stall condition, a healthy sinusoid, at 8
+   kHz and 16 kHz; 1c runs of 2 per_ms equal codes (no fault) and one period longer (OFFSET),
+   the counts stopping at 65535; 1d a current sensor stuck at one code; 1l the stuck codes
+   injected at the ADC */
 static void test_req_drv_020_stuck_sample(void **state)
 {
     const qfoc_param_table_t *const tabs[2] = { &qfoc_params_reference, &qfoc_params_reference16k };
@@ -1701,7 +1779,10 @@ static void test_req_drv_020_stuck_sample(void **state)
 /* REQ-DRV-021: in RUN, a tick that counts fewer than f_pwm / 1000 - 2 or more than
    f_pwm / 1000 + 2 fast steps since the previous tick raises TIMING and sets pwm_off;
    counts within 2 of it, the count's wrap at 2^16 and any count outside RUN do not; the
-   tick's pwm_off is true exactly outside RUN. */
+   tick's pwm_off is true exactly outside RUN.
+   Methods: 1c every count of fast steps from 0 to f_pwm / 1000 + 4 (within 2: no fault,
+   beyond: TIMING), at 8 kHz and 16 kHz, the count's wrap at 2^16; 1d missed or extra fast
+   steps, no fast step at all outside RUN */
 static void test_req_drv_021_fast_steps_per_tick(void **state)
 {
     const qfoc_param_table_t *const tabs[2] = { &qfoc_params_reference, &qfoc_params_reference16k };
@@ -1759,7 +1840,10 @@ static void test_req_drv_021_fast_steps_per_tick(void **state)
    value the drive invariant accepts, gives ERROR with PARAM in the next tick (in RUN,
    OPEN_LOOP and CLOSED_LOOP, and in STOP), pwm_off at once and the PWM off in the next
    period, and the references back at 0; the same ticks without a flip raise nothing.
-   The guard after init and after every tick of the rig is the equation's (rig_guard). */
+   The guard after init and after every tick of the rig is the equation's (rig_guard).
+   Methods: 1b every single-bit flip of each of the five references and the guard word, in
+   STOP, OPEN_LOOP and CLOSED_LOOP; 1d references corrupted to admissible values the
+   invariant cannot see; 1l each bit flip injected between two ticks */
 static void test_req_drv_022_reference_guard(void **state)
 {
     int phase;
@@ -1832,7 +1916,10 @@ static void test_req_drv_022_reference_guard(void **state)
 /* REQ-DRV-006, REQ-IREF-001, REQ-IREF-002: in CLOSED_LOOP the tick's d reference is the
    MTPA current of its q reference (field weakening idle at a low utilisation) while the
    estimate is above the handover speed, 0 at it; the speed PI's limits and the fast step's
-   q limit are sqrt(i_max^2 - i_d^2), and |(i_d, i_q)| <= i_max. */
+   q limit are sqrt(i_max^2 - i_d^2), and |(i_d, i_q)| <= i_max.
+   Methods: 1b four speed errors from 300 to 20000 (up to the PI's limit); 1c the estimate at
+   the handover speed (no MTPA current) and one count above; 1n qfoc_iref_mtpa() and
+   sqrt(i_max^2 - i_d^2) in double precision, |(i_d, i_q)| <= i_max */
 static void test_req_drv_006_mtpa_and_vector_limit(void **state)
 {
     const qfoc_param_table_t *const t = &qfoc_params_reference;
@@ -1900,7 +1987,10 @@ static void test_req_drv_006_mtpa_and_vector_limit(void **state)
    start, linear to rpm_derate at the trip (the floor of the interpolation, double
    precision here), rpm_derate above; qfoc_drive_derated() says a limit is below rpm_max;
    a target of 0 stays 0.  The ticks here are taken in STOP (no fault from the
-   temperatures: the trip itself is REQ-DRV-008's). */
+   temperatures: the trip itself is REQ-DRV-008's).
+   Methods: 1b each temperature (IPM, PCB) deciding the limit; 1c every temperature from 20
+   below the derating start to 20 above the trip, a target of 0, a target below the limit; 1n
+   the floor of the linear interpolation in double precision */
 static void test_req_drv_024_derating(void **state)
 {
     rig_t r;
@@ -1960,7 +2050,11 @@ static void test_req_drv_024_derating(void **state)
    i_align), the tick reads the last voltage command and the phase monitor: |u| above
    2 (R |id_ref| + flux_v_err) with the largest filtered current below |id_ref| / 4 in 2
    ticks in a row raises PHASE in the second; at either bound never; every other tick
-   never; in OPEN_LOOP never. */
+   never; in OPEN_LOOP never.
+   Methods: 1b the voltage at its bound, the current at its bound, both beyond, beyond every
+   other tick, OPEN_LOOP; 1c |u| = 2 (R |id_ref| + flux_v_err) and one above, the filtered
+   current at |id_ref| / 4 and one below; 1d a voltage in ALIGN with no current (an open
+   phase); 1l the filtered currents and the voltage command injected into the drive object */
 static void test_req_drv_025_align_open(void **state)
 {
     const qfoc_param_table_t *const t = &qfoc_params_reference;
@@ -2037,7 +2131,11 @@ static void test_req_drv_025_align_open(void **state)
 /* REQ-DRV-023: the lost rotor.  In CLOSED_LOOP after the 100 ms blank, an estimate with
    4 |speed| below both of_speed and |speed_ref| in 2 ticks in a row raises STALL in the
    second; at the bound, every other tick, in STOPPING, in the blank and below a reference
-   under of_speed that the estimate follows: never. */
+   under of_speed that the estimate follows: never.
+   Methods: 1b both signs of the estimate, every other tick, STOPPING, the blank, a low
+   reference the estimate follows; 1c the estimate at the bound 4 |speed| = of_speed (never)
+   and one count below (STALL in the second tick), the blank's 100th and 101st ms; 1d a lost
+   rotor; 1l the estimate injected near zero */
 static void test_req_drv_023_rotor_lost(void **state)
 {
     const qfoc_drive_cfg_t *const c = &qfoc_params_reference.drive;
@@ -2264,7 +2362,11 @@ static void flux_plausibility_on(const qfoc_param_table_t *tab)
 }
 
 /* REQ-DRV-023: the fast flux plausibility check on the reference table (the cases of
-   flux_plausibility_on above). */
+   flux_plausibility_on above).
+   Methods: 1c the flux band and one count beyond it, the speed gate 1.5 of_speed, the
+   100-tick blank after the handover, psi_exp = 0; 1b in and out of the band alternately,
+   STOPPING; 1d a flux estimate off its expected value (a lost rotor); 1l the estimator's
+   flux injected off its expected value */
 static void test_req_drv_023_flux_plausibility(void **state)
 {
     (void)state;
@@ -2274,7 +2376,10 @@ static void test_req_drv_023_flux_plausibility(void **state)
 /* REQ-DRV-023 in a flux base of its own (drive_cfg.h psi_shift): the band's voltage part
    is (flux_v_err + flux_r_err R |i|) / 2^s rounded up, over the speed; the same table in
    the base s = 2 has that part a quarter as wide (the flux values read 4 times larger
-   flux units), and the check trips one count beyond it and not at it. */
+   flux units), and the check trips one count beyond it and not at it.
+   Methods: 1b the flux bases s = 0 .. 4 and the shifts 5 and 255 (read as 4); 1c at the band
+   (no STALL) and one count beyond it (STALL in the second tick); 1l the estimator's flux
+   injected off its expected value */
 static void test_req_drv_023_flux_plausibility_flux_base(void **state)
 {
     qfoc_param_table_t t = qfoc_params_reference;

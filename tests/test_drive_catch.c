@@ -191,7 +191,11 @@ static void plant_catch_run(dsim_t *ds, double rpm_start, long ms_max, catch_run
    exactly on tick n + ho_dwell_ms - 1 (80), with the state time restarted, never
    CLOSED_LOOP.  The same with the fast step played by the test (ticks only).  The count
    here is formed in 32-bit integers as catch.h writes it, the rig's
-   (rig_catch_still_ticks) in double precision: both independent of the library. */
+   (rig_catch_still_ticks) in double precision: both independent of the library.
+   Methods: 1c the tick n of the first STILL (30.4 < n <= 31 on the reference table) and
+   ALIGN exactly on tick n + ho_dwell_ms - 1; 1n the count formed in 32-bit integers as
+   catch.h writes it and the rig's in double precision, both independent of the library, with
+   the fast step run and played by the test */
 static void test_req_drv_027_standing_rotor(void **state)
 {
     const qfoc_param_table_t *const t = &qfoc_params_reference;
@@ -282,7 +286,11 @@ static void test_req_drv_027_standing_rotor(void **state)
    N = 35, 35, 35, 34, 31.  With flux_v_err 0 the old filter (truncated eighths) stuck at
    7 and CATCH never ended in STILL.  The rig's count (rig_catch_still_ticks, double
    precision) against the hand value, the drive against both (rig_catch_ticks), and the
-   filter's value at the exit. */
+   filter's value at the exit.
+   Methods: 1b flux_v_err 0, 3, 173, 174 and 280 (the floor deciding, and 2 |flux_v_err|),
+   ho_dwell_ms 50 and 1; 1c flux_v_err 173 / 174 either side of the floor 334, dwell 1; 1d
+   flux_v_err 0, where the truncated filter stuck at 7 and CATCH never ended; 1n the ticks by
+   hand against the rig's double-precision count and the drive */
 static void test_req_drv_027_standing_rotor_floor(void **state)
 {
     static const struct {
@@ -328,7 +336,9 @@ static void test_req_drv_027_standing_rotor_floor(void **state)
 /* REQ-DRV-027: a standing rotor on the plant (held by the nominal compressor load): the
    current stays at the noise in CATCH, CATCH goes to ALIGN after about the rig's count
    (the loops' voltage is the noise's, not 0) and never to CLOSED_LOOP, and the start
-   reaches CLOSED_LOOP at the convergence tick after the ALIGN entry (rig_ho_tick). */
+   reaches CLOSED_LOOP at the convergence tick after the ALIGN entry (rig_ho_tick).
+   Methods: 1d a rotor held by the compressor load, the loops' voltage at the noise (not 0);
+   1n the plant's true current and the rig's count (rig_catch_still_ticks, rig_ho_tick) */
 static void test_req_drv_027_standing_rotor_plant(void **state)
 {
     dsim_t *ds = malloc(sizeof *ds);
@@ -358,7 +368,9 @@ static void test_req_drv_027_standing_rotor_plant(void **state)
    reference in that tick from the measured speed, within 10 % of the true speed; the
    true current in CATCH stays below half of i_max (no torque while the drive measures);
    no fault; the closed loop then takes the rotor to the master's 3000 rpm without the
-   cl_hold_ms hold. */
+   cl_hold_ms hold.
+   Methods: 1b a rotor coasting at 3000 rpm under a light passive load (caught without
+   ALIGN); 1n the plant's true speed (within 10 %) and current (below half of i_max) */
 static void test_req_drv_027_coasting_rotor_caught(void **state)
 {
     dsim_t *ds = malloc(sizeof *ds);
@@ -404,7 +416,11 @@ static void test_req_drv_027_coasting_rotor_caught(void **state)
    never counts a LOCK verdict nor enters CLOSED_LOOP while the rotor turns backwards; once
    the back-EMF is below the STILL bound it goes to ALIGN with the rotor slowed below
    max(3 flux_v_err / psi_f, of_speed / 4 + flux_v_err / psi_f) (catch.h), and the start
-   reaches CLOSED_LOOP, forwards, without fault. */
+   reaches CLOSED_LOOP, forwards, without fault.
+   Methods: 1b backward rotation at 1200 rpm under a light (still turning at the end of
+   CATCH) and a heavier load (stopped); 1d a rotor turning backwards when the start is
+   requested (pressure equalising); 1n the plant's true speed against the STILL bound of
+   catch.h */
 static void test_req_drv_027_reverse_rotation(void **state)
 {
     static const double loads[2] = { 0.1, 0.5 };

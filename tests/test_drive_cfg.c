@@ -257,7 +257,9 @@ static void check_value(const fdesc_t *f, int32_t v, bool expect)
 }
 
 /* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005: the base configuration is
-   valid. */
+   valid.
+   Methods: 1a the base configuration valid by the rules of REQ-DCFG-001 .. REQ-DCFG-005; 1n
+   the reference check written in the test */
 static void test_dcfg_base_valid(void **state)
 {
     qfoc_drive_cfg_t c;
@@ -269,7 +271,9 @@ static void test_dcfg_base_valid(void **state)
 
 /* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005: every field: its lowest and
    highest value accepted, one below the lowest and one above the highest refused (where
-   the type holds them), and the type's extremes refused when outside the range. */
+   the type holds them), and the type's extremes refused when outside the range.
+   Methods: 1c every field at its lowest and highest value, one below and one above, and the
+   extremes of its C type where they lie outside the range */
 static void test_dcfg_field_boundaries(void **state)
 {
     size_t k;
@@ -297,7 +301,11 @@ static void test_dcfg_field_boundaries(void **state)
 
 /* REQ-DCFG-001, REQ-DCFG-004, REQ-DCFG-005: the relations between fields: rpm_min <= rpm_max,
    tc_speed_min <= tc_speed_max, lin_id_status != lin_id_cmd; equality accepted where
-   allowed, one past refused. */
+   allowed, one past refused.
+   Methods: 1c each relation at equality and one past it: rpm_min = rpm_max, tc_speed_min =
+   tc_speed_max, the derating start one below and at its trip, rpm_derate at rpm_min and
+   rpm_max and one outside, the LIN identifiers 0 and 0x3B; 1d equal command and status
+   identifiers */
 static void test_dcfg_relations(void **state)
 {
     qfoc_drive_cfg_t c;
@@ -358,7 +366,11 @@ static void test_dcfg_relations(void **state)
 
 /* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005: random configurations against
    the reference check: each field inside its range with probability 0.98, else any bit
-   pattern (about half of the configurations are valid), and wholly random bit patterns. */
+   pattern (about half of the configurations are valid), and wholly random bit patterns.
+   Methods: 1b 200000 random configurations, each field inside its range with probability
+   0.98 (about half of them valid), every tenth a random bit pattern; 1d configurations with
+   fields out of range and garbage bit patterns; 1n the reference check written in the test
+   from the requirements */
 static void test_dcfg_random_vs_reference(void **state)
 {
     uint32_t k;

@@ -115,7 +115,11 @@ static int32_t learn_with(rig_t *r, int32_t u_hi, int32_t u_lo)
    motor whose resistance is the table's or 25 % above or below it, and an inverter error
    of 0, +-100 counts and beyond the bound on either side; nothing learnt for a resistance
    60 % above the table's (beyond the table's allowance); 0 in ALIGN; kept through the
-   run; 0 again once the drive leaves RUN. */
+   run; 0 again once the drive leaves RUN.
+   Methods: 1b the motor's resistance the table's, 25 % above and below, inverter errors 0
+   and +-100 counts; 1c inverter errors beyond the bound on either side (+-5000: clamped); 1d
+   a resistance 60 % above the table's, beyond its allowance (nothing learnt); 1n the learnt
+   error against the model in double precision */
 static void test_req_drv_026_learn(void **state)
 {
     const qfoc_param_table_t *const t = &qfoc_params_reference;
@@ -165,7 +169,11 @@ static void test_req_drv_026_learn(void **state)
 /* REQ-DRV-026: nothing learnt when the alignment current has no half (i_align = 1), when
    ALIGN ends at another d reference than its half-current hold (written here, as a fault
    would), or when a hold's voltage has not settled: the error stays 0 however far the d
-   voltage is from the resistance drop. */
+   voltage is from the resistance drop.
+   Methods: 1c i_align = 1 (no half current), a hold voltage drifting by flux_v_err / 4 + 4
+   counts (learnt) and one more (not); 1d ALIGN ending at another d reference than its hold
+   (written as a fault would), a hold whose voltage has not settled; 1l the d reference
+   overwritten at the end of ALIGN */
 static void test_req_drv_026_no_learning(void **state)
 {
     qfoc_param_table_t t1 = qfoc_params_reference;
@@ -227,7 +235,10 @@ static void test_req_drv_026_no_learning(void **state)
 /* REQ-DRV-026: the observer uses the learnt error whole up to twice the handover speed
    and none from four times, linearly between (E10-5): in OPEN_LOOP at the frame's speed,
    in CLOSED_LOOP at the speed reference, checked every tick of a start to 6000 rpm played
-   in ticks (the test sets the estimator's outputs on the reference). */
+   in ticks (the test sets the estimator's outputs on the reference).
+   Methods: 1b every tick of a start to 6000 rpm, in OPEN_LOOP and CLOSED_LOOP; 1c twice and
+   four times the handover speed (whole, none) and between; 1n the fade (E10-5) in double
+   precision */
 static void test_req_drv_026_speed_fade(void **state)
 {
     const qfoc_param_table_t *const t = &qfoc_params_reference;
@@ -288,7 +299,9 @@ static void test_req_drv_026_speed_fade(void **state)
 /* REQ-DRV-026: the observer integrates the applied voltage less dV Clarke(f(i)): one
    fast step with the error learnt moves the flux estimate as one without it whose
    applied voltage is lowered by the error vector (computed here in double precision),
-   and unlike one without either. */
+   and unlike one without either.
+   Methods: 1n one fast step with the learnt error against twins without it whose applied
+   voltage is lowered by the error vector computed in double precision, and without either */
 static void test_req_drv_026_observer(void **state)
 {
     const qfoc_param_table_t *const t = &qfoc_params_reference;

@@ -54,7 +54,10 @@ static double clampd(double x, double lo, double hi)
 /* ---- the fade --------------------------------------------------------------- */
 
 /* REQ-DTC-001: every corner: no band, the band's edges, zero, the extremes; the band's
-   inside exact against i x 32767 / i_db truncated towards zero. */
+   inside exact against i x 32767 / i_db truncated towards zero.
+   Methods: 1c no band (i_db 0 and negative), the band's edges +-1000 and one inside, zero,
+   -32768 and 32767 with the largest band; 1a the inside of the band exact against i x 32767
+   / i_db truncated, computed in the test */
 static void test_dtc_fade_corners(void **state)
 {
     (void)state;
@@ -74,7 +77,9 @@ static void test_dtc_fade_corners(void **state)
     assert_int_equal(qfoc_dtc_fade(1, 32767), 1);
 }
 
-/* REQ-DTC-001: 200000 random pairs against the double fade (exact to the truncation). */
+/* REQ-DTC-001: 200000 random pairs against the double fade (exact to the truncation).
+   Methods: 1b 200000 random currents and dead bands, every fourth band any int16 (negative
+   included); 1n the double-precision fade, exact to the truncation */
 static void test_dtc_fade_random(void **state)
 {
     (void)state;
@@ -117,7 +122,11 @@ static int learn(int u_hi, int u_lo, int i_hi, int i_db, int v_max, int r, int r
    error within 3 + 2 / |den| LSB (the rounded voltages and the quotient's truncation),
    clamped to the accepted bound; 0 where the dead band hides the error's shape; 0 when R'
    is off R by more than the allowance (by 40 % to 100 %, where the allowance and the
-   quantisation are clearly exceeded).  200000 random alignments. */
+   quantisation are clearly exceeded).  200000 random alignments.
+   Methods: 1b 200000 random alignments: currents of both signs, dead bands, resistances,
+   inverter errors, two thirds with R' within the allowance and a third off by 40 .. 100 %;
+   1d a motor resistance off the table's by more than the allowance (nothing learnt); 1n the
+   inverter error of the model the alignments were computed from */
 static void test_dtc_learn_model(void **state)
 {
     (void)state;
@@ -170,7 +179,11 @@ static void test_dtc_learn_model(void **state)
 
 /* REQ-DTC-002: the corners: no bound accepted, alignments inside the dead band, either
    clamp of the difference and of the result, the resistance check and the settling check
-   at their edges, the extremes of every argument. */
+   at their edges, the extremes of every argument.
+   Methods: 1c v_max 0 and -32768, alignments inside the dead band, the clamps of the
+   difference and of the result, the resistance allowance and the settling check one count
+   inside and outside, the extremes of every argument crossed (7^5 combinations); 1d a drop
+   far from R i_lo, unsettled alignments */
 static void test_dtc_learn_corners(void **state)
 {
     (void)state;
@@ -238,7 +251,10 @@ static void test_dtc_learn_corners(void **state)
 
 /* REQ-DTC-004: whole up to w_full, none from 2 w_full, linear between (truncated towards
    zero), for either sign of the speed and of the error; the corners of every argument;
-   200000 random triples against the formula in double precision. */
+   200000 random triples against the formula in double precision.
+   Methods: 1b 200000 random triples, every fourth w_full any int16; 1c w = w_full, 2 w_full
+   and one below, w_full 0 and negative, w = -32768, -32768 and 32767 for every argument; 1n
+   the formula in double precision */
 static void test_dtc_speed_fade(void **state)
 {
     (void)state;
@@ -278,7 +294,9 @@ static void test_dtc_speed_fade(void **state)
 /* ---- the error vector ------------------------------------------------------- */
 
 /* REQ-DTC-003: 200000 random currents, dead bands and errors against dV Clarke(f) in
-   double precision (saturated to +-32767 as the header states). */
+   double precision (saturated to +-32767 as the header states).
+   Methods: 1b 200000 random currents, dead bands (every eighth any int16) and errors (every
+   16th any int16); 1n dV Clarke(f) in double precision, saturated to +-32767 */
 static void test_dtc_error_random(void **state)
 {
     (void)state;
@@ -311,7 +329,10 @@ static void test_dtc_error_random(void **state)
 /* REQ-DTC-003: the shape of a balanced current: for dV > 0 the error points along the
    current (its projection on the current vector is positive, its magnitude between
    2 / sqrt 3 dV and 4/3 dV, the hexagon of the six active vectors); dV = 0 gives 0;
-   saturation. */
+   saturation.
+   Methods: 1b 3600 angles of a balanced current; 1c dV = 0, dV and currents at -32768 and
+   32767 (saturated); 1a the error along the current, its magnitude within the hexagon of the
+   six active vectors */
 static void test_dtc_error_shape(void **state)
 {
     (void)state;

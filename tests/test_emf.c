@@ -155,7 +155,9 @@ static qfoc_dob_params_t ref_dob_params(void)
     return p;
 }
 
-/* REQ-EMF-001, REQ-EMF-008: the scalings of emf.h from the reference motor. */
+/* REQ-EMF-001, REQ-EMF-008: the scalings of emf.h from the reference motor.
+   Methods: 1a the scalings of emf.h computed by hand from the reference motor (r 918, l
+   2753, k_theta 8192, ki 24381, g 2753) */
 static void test_emf_reference_scaling(void **state)
 {
     qfoc_emf_params_t pe = ref_emf_params();
@@ -195,7 +197,11 @@ static double lpf_ref(double y, double x, int16_t alpha)
 }
 
 /* REQ-EMF-003, REQ-EMF-004, REQ-EMF-005, REQ-EMF-006: random parameters, states and
-   inputs (corners included): state and output bit-exact, angle within 1 count. */
+   inputs (corners included): state and output bit-exact, angle within 1 count.
+   Methods: 1b 200000 random parameter sets, states and inputs, a quarter with the reference
+   motor's magnitudes, saturated raw EMF reached more than 1000 times; 1c corner inputs among
+   the draws (-32768 included); 1n the recursion recomputed in double precision, bit-exact,
+   the angle against atan2() within 1 count */
 static void test_emf_step_random_vs_reference(void **state)
 {
     uint32_t n;
@@ -262,7 +268,10 @@ static void test_emf_step_random_vs_reference(void **state)
 }
 
 /* REQ-EMF-010, REQ-EMF-014, REQ-EMF-005: random parameters, states and inputs:
-   predicted current and EMF bit-exact against the double recomputation. */
+   predicted current and EMF bit-exact against the double recomputation.
+   Methods: 1b 200000 random parameter sets, states and inputs, a third with the largest ki;
+   1c states at +-2147483647 (every fifth), saturated predicted currents and EMF reached; 1n
+   the predicted current and EMF recomputed in double precision, bit-exact */
 static void test_dob_step_random_vs_reference(void **state)
 {
     uint32_t n;
@@ -393,7 +402,10 @@ static double real_lowpass(double y, double c, qfoc_q15_t u, qfoc_q15_t i, qfoc_
 
 /* REQ-EMF-003, REQ-EMF-004: random voltage and current sequences (no saturation):
    the filtered EMF within 1.25 LSB of the real recursion e(k) = e(k-1) +
-   a (u - R (i + i_prev)/2 - l (i - i_prev) - e(k-1)). */
+   a (u - R (i + i_prev)/2 - l (i - i_prev) - e(k-1)).
+   Methods: 1b 200 random parameter sets with 500 random unsaturated voltage and current
+   samples each; 1n the real-valued recursion e(k) = e(k-1) + a (u - R (i + i_prev) / 2 - l
+   (i - i_prev) - e(k-1)), within 1.25 LSB */
 static void test_emf_recursion_vs_real(void **state)
 {
     uint32_t set;
@@ -442,7 +454,9 @@ static void test_emf_recursion_vs_real(void **state)
    lambda (e_raw(k) - e_hat(k-1)) of e_raw = u - R (i + i_prev)/2 - (i - i_prev)/k_i,
    lambda = k_i G: within 1.01 LSB of that real recursion for random signals with
    lambda >= 0.1 (0.5 LSB output rounding, 0.5 LSB of the rounded e_hat fed back,
-   <= 0.001 LSB / lambda from the Q27 rounding of the model). */
+   <= 0.001 LSB / lambda from the Q27 rounding of the model).
+   Methods: 1b 200 random observers with lambda in [0.1, 1] and 500 random samples each; 1n
+   the equivalent real-valued low-pass with lambda = k_i G, within 1.01 LSB */
 static void test_dob_equivalent_lowpass(void **state)
 {
     uint32_t set;
@@ -499,7 +513,10 @@ static void test_dob_equivalent_lowpass(void **state)
 
 /* REQ-EMF-007, REQ-EMF-012: every speed, several alphas and k_theta: the lag within
    1.5 + 0.65 (1 - a)/a counts of the double formula with the same rounded W (emf.h),
-   the exact negation for w < 0, 0 at w = 0. */
+   the exact negation for w < 0, 0 at w = 0.
+   Methods: 1b every int16 speed for seven alphas and three k_theta; 1c w = 0, w = -32768
+   read as -32767, the lag of a positive speed within [0, 135 degrees]; 1n the
+   double-precision lag formula of emf.h, with the rounded and with the unrounded W */
 static void test_lag_all_speeds(void **state)
 {
     static const int16_t alphas[7] = { 328, 1029, 3277, 8192, 16384, 30000, 32767 };
@@ -556,7 +573,10 @@ static void test_lag_all_speeds(void **state)
                   "unrounded W max |err| / bound = %.3f\n", max_err, max_err_unrounded);
 }
 
-/* REQ-EMF-012: observer lag = emf lag with alpha = lambda (rounded, clamped). */
+/* REQ-EMF-012: observer lag = emf lag with alpha = lambda (rounded, clamped).
+   Methods: 1b speeds every 7th and 13th value over the whole range; 1c lambda exactly 1
+   (clamped to 32767) and the smallest lambda 2^-42 (clamped to 1); 1n the EMF lag with alpha
+   = lambda */
 static void test_dob_lag(void **state)
 {
     qfoc_dob_params_t p = ref_dob_params();
@@ -703,7 +723,10 @@ static void run_physics(double w_pu, bool use_dob, phys_result_t *res)
 /* REQ-EMF-005, REQ-EMF-007, REQ-EMF-011, REQ-EMF-012, REQ-EMF-013: reference motor at
    0.1, 0.3, 0.6, 0.8 pu (and negative speeds): compensated angle within 0.5 degree of the
    rotor angle at the sample instant (asserted at 0.1 degree), |EMF| within 1 % of w psi
-   sinc(W/2) |H(W)|; 0.03 pu for information (bound 0.5 degree). */
+   sinc(W/2) |H(W)|; 0.03 pu for information (bound 0.5 degree).
+   Methods: 1b eight speeds of both signs (0.03 .. 0.8 pu) for the EMF and for the
+   disturbance observer; 1n the rotor angle of an ideal motor computed in the test and the
+   analytic |EMF| = w psi sinc(W / 2) |H(W)| */
 static void test_physics_reference_motor(void **state)
 {
     static const double speeds[8] = { 0.1, 0.3, 0.6, 0.8, -0.1, -0.3, -0.8, 0.03 };
@@ -737,7 +760,10 @@ static void test_physics_reference_motor(void **state)
 /* ------------------------------------------------------------------------ */
 
 /* REQ-EMF-001: each invalid parameter is rejected; safe state: valid, output 0,
-   angle 0, lag 0 for any input. */
+   angle 0, lag 0 for any input.
+   Methods: 1b seven invalid parameter sets, each rule broken alone; 1c r -1, l -32768, alpha
+   0, k_theta 0, 32768 and 65535; 1d invalid parameters (the safe state: output 0, angle 0,
+   lag 0 for 1000 random inputs) */
 static void test_emf_init_rejects(void **state)
 {
     qfoc_emf_params_t bad[7];
@@ -782,7 +808,10 @@ static void test_emf_init_rejects(void **state)
 }
 
 /* REQ-EMF-008: each invalid observer parameter is rejected, lambda <= 1 is the
-   limit; safe state: valid, output 0, lag 0. */
+   limit; safe state: valid, output 0, lag 0.
+   Methods: 1b nine invalid parameter sets and the accepted limits; 1c lambda just above 1
+   (1.0002) and exactly 1, ki_shift 15 and 16, k_theta 0, 1, 32767 and 40000, r -32768 and 0;
+   1d invalid parameters (the safe state: output 0, lag 0 for 1000 random inputs) */
 static void test_dob_init_rejects(void **state)
 {
     qfoc_dob_params_t bad[9];
@@ -846,7 +875,10 @@ static void test_dob_init_rejects(void **state)
     assert_int_equal(qfoc_dob_init(&d, &ok), QFOC_EMF_OK);
 }
 
-/* REQ-EMF-001, REQ-EMF-008: validity checks reject every broken field. */
+/* REQ-EMF-001, REQ-EMF-008: validity checks reject every broken field.
+   Methods: 1b each field of both instances broken in turn; 1c the states INT32_MIN (refused)
+   and +-INT32_MAX (accepted), currents -32768, k_theta 32768, ki_shift 16; 1l the instances'
+   fields overwritten, refused by the validity checks */
 static void test_is_valid_fields(void **state)
 {
     qfoc_emf_params_t pe = ref_emf_params();
@@ -907,7 +939,9 @@ static void test_is_valid_fields(void **state)
     assert_true(qfoc_dob_is_valid(&d0));
 }
 
-/* REQ-EMF-002, REQ-EMF-009: reset restarts from the present current, EMF 0. */
+/* REQ-EMF-002, REQ-EMF-009: reset restarts from the present current, EMF 0.
+   Methods: 1c the reset to (-32768, 32767), -32768 saturated; 1a the estimates 0 after a
+   reset with the present current and no voltage */
 static void test_reset(void **state)
 {
     qfoc_emf_params_t pe = ref_emf_params();
@@ -965,7 +999,11 @@ static void test_reset(void **state)
 }
 
 /* REQ-EMF-006, REQ-EMF-014: saturation: extreme inputs drive e_raw, e_hat and i_hat
-   into their limits and back, always valid, outputs in the symmetric range. */
+   into their limits and back, always valid, outputs in the symmetric range.
+   Methods: 1c extreme inputs (-32768, 32767) with the largest parameters: the low-pass
+   state, the predicted current and the EMF driven into their limits, the predicted current
+   at +-2147483647; 1d wind-up at the limits: both observers recover at once with the
+   reversed drive */
 static void test_saturation(void **state)
 {
     qfoc_emf_params_t pe;
@@ -1038,7 +1076,9 @@ static void test_saturation(void **state)
 
 /* REQ-EMF-005, REQ-EMF-007: angle of the axes, zero EMF gives angle 0, negative
    speed: theta + lag + 180 deg is the rotor angle (physics test), lag(-w) = -lag(w),
-   lag(0) = 0 (test_lag_all_speeds). */
+   lag(0) = 0 (test_lag_all_speeds).
+   Methods: 1c the EMF along the axes (+beta, -alpha, +alpha) and the zero EMF, angles 0,
+   0x4000, 0xC000 and 0 */
 static void test_angle_axes(void **state)
 {
     qfoc_emf_params_t pe = ref_emf_params();

@@ -60,7 +60,11 @@ static void run(const est_scenario_t *sc, est_result_t *r)
 
 /* REQ-EST-001: |mean| <= 2 deg and max <= 5 deg at >= 10 % of rated speed.
    REQ-EST-002: speed error <= 0.5 % at >= 25 %.
-   REQ-EST-003: converged (|error| < 5 deg for good) within 50 ms at >= 25 %. */
+   REQ-EST-003: converged (|error| < 5 deg for good) within 50 ms at >= 25 %.
+   Methods: 1b five speeds from 10 % to 125 % of rated, and three initial angle errors (+90,
+   -90, 180 degrees) at 25 % and above; 1c 10 % and 25 % of rated speed, where the targets
+   start; 1a the angle, speed and convergence targets of REQ-EST-001 .. REQ-EST-003 against
+   the plant's true angle and speed */
 static void test_flux_pll_targets(void **state)
 {
     static const double speeds[] = { 0.10, 0.25, 0.50, 1.00, 1.25 };
@@ -95,7 +99,10 @@ static void test_flux_pll_targets(void **state)
 
 /* REQ-EST-001 for the alternative estimators: the chapter-1 back-EMF and
    disturbance-observer estimators with lag compensation, and the angle-tracking
-   observer, stay within the same 5 deg bound at >= 25 % of rated speed. */
+   observer, stay within the same 5 deg bound at >= 25 % of rated speed.
+   Methods: 1b the back-EMF, disturbance-observer and angle-tracking estimators at 25 % and
+   100 % of rated speed; 1n each estimator against the same 5-degree bound on the plant's
+   true angle, beside the flux observer and PLL */
 static void test_alternative_estimators(void **state)
 {
     static const double speeds[] = { 0.25, 1.00 };
@@ -118,7 +125,10 @@ static void test_alternative_estimators(void **state)
 
 /* REQ-EST-004: with parameter errors the flux estimate acquires an amplitude and
    phase mismatch (2-29, 2-30); the PLL's measured bias matches the mean of the
-   document's 2-31 computed from the fitted mismatch, within 0.3 deg. */
+   document's 2-31 computed from the fitted mismatch, within 0.3 deg.
+   Methods: 1b an L_q error of -20 % and +20 % at 50 %, a resistance error of -30 % and +30 %
+   at 10 %; 1d parameter errors of the table against the motor; 1n the mean of 2-31 computed
+   from the fitted amplitude and phase mismatch, within 0.3 degree */
 static void test_bias_matches_analysis(void **state)
 {
     static const double lq[] = { 0.8, 1.2 };
@@ -147,7 +157,10 @@ static void test_bias_matches_analysis(void **state)
 
 /* REQ-EST-005: 0.2 A rms noise on every current sample (10 LSB of the ADC) keeps
    the flux observer + PLL within the angle targets at >= 25 % of rated speed, and
-   L_d, psi_f errors do not affect the flux observer (it uses neither). */
+   L_d, psi_f errors do not affect the flux observer (it uses neither).
+   Methods: 1d 0.2 A rms noise on every current sample (10 ADC LSB), L_d and psi_f errors of
+   the table; 1l the noise injected into the sampled currents; 1n the same run without the
+   unused parameter errors */
 static void test_noise_and_unused_parameters(void **state)
 {
     est_scenario_t sc;

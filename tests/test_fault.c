@@ -26,7 +26,9 @@
 #define TEST_SEED 777u
 #include "test_util.h"
 
-/* REQ-FAULT-001: the fault bits are the interface values, distinct, one bit each */
+/* REQ-FAULT-001: the fault bits are the interface values, distinct, one bit each
+   Methods: 1a the fault bits of REQ-FAULT-001: each the interface value, one bit each,
+   distinct, their union QFOC_FAULT_ALL */
 static void test_fault_bits(void **state)
 {
     static const uint16_t bits[] = { QFOC_FAULT_OC, QFOC_FAULT_OV, QFOC_FAULT_UV,
@@ -49,7 +51,9 @@ static void test_fault_bits(void **state)
     assert_int_equal(QFOC_FAULT_PARAM, 0x0200u);
 }
 
-/* REQ-FAULT-002: random condition sequences against the run-length model */
+/* REQ-FAULT-002: random condition sequences against the run-length model
+   Methods: 1b 2000 random condition sequences with true rates of 50 .. 97 %, run lengths 0
+   .. 12 and, for a hundred, 0 .. 65535; 1n the run-length model written in the test */
 static void test_debounce_run_length(void **state)
 {
     uint32_t trial;
@@ -81,7 +85,10 @@ static void test_debounce_run_length(void **state)
     assert_true(n_confirm > 1000u);
 }
 
-/* REQ-FAULT-002: corners: n = 0, 1, 10 (the drive's 10 ms), 65535, count above n */
+/* REQ-FAULT-002: corners: n = 0, 1, 10 (the drive's 10 ms), 65535, count above n
+   Methods: 1c n = 0, 1, 10 (the drive's 10 ms) and 65535, the n-th call and one before it,
+   the count at 65535 without wrapping; 1d a count above n (n lowered, or an instance not
+   initialised) */
 static void test_debounce_corners(void **state)
 {
     qfoc_debounce_t d;
@@ -148,7 +155,11 @@ static bool ref_criterion(const double a[3], int16_t i_min, int16_t ratio)
 
 /* REQ-FAULT-007: qfoc_phase_mon_peak is the largest of the three filter states rounded to
    nearest (x / 65536, ties away from zero, as the imbalance check reads them), against a
-   double-precision reference, on random valid states, the extremes and ties. */
+   double-precision reference, on random valid states, the extremes and ties.
+   Methods: 1b 200000 random valid filter states, equal states among them (ties between
+   phases); 1c eleven corner states (0, 1, 32767, 32768 .. 2147418112: the rounding ties and
+   the largest state) pairwise on two phases, rotated; 1n the largest state rounded in double
+   precision */
 static void test_phase_mon_peak(void **state)
 {
     static const int32_t corner[] = { 0, 1, 32767, 32768, 65535, 65536, 98303, 98304,
@@ -190,7 +201,11 @@ static void test_phase_mon_peak(void **state)
 }
 
 /* REQ-FAULT-003, REQ-FAULT-005: random currents against the double low-pass, and
-   the criterion on random thresholds */
+   the criterion on random thresholds
+   Methods: 1b 40 coefficients (1, 32767 and random) with 2000 random samples each, phase v
+   often small to reach the imbalance, random thresholds and ratios; 1c the current -32768
+   every fifth sample, negative ratios every 97th; 1n the double-precision low-pass of |i|
+   and the criterion written from the requirement */
 static void test_phase_mon_random_vs_reference(void **state)
 {
     qfoc_phase_mon_t m;
@@ -240,7 +255,10 @@ static void test_phase_mon_random_vs_reference(void **state)
 }
 
 /* REQ-FAULT-003: one phase per call, every index (3 and above select w), against the
-   double low-pass of the selected phase; the two others unchanged */
+   double low-pass of the selected phase; the two others unchanged
+   Methods: 1b 20 coefficients with 3000 random samples each, every phase index 0 .. 255 (3
+   and above select w); 1c the current -32768 every seventh sample; 1n the double-precision
+   low-pass of the selected phase, the two others unchanged */
 static void test_phase_mon_update_one_vs_reference(void **state)
 {
     qfoc_phase_mon_t m;
@@ -288,7 +306,9 @@ static void test_phase_mon_update_one_vs_reference(void **state)
 }
 
 /* REQ-FAULT-003: the coefficient for every third period, for every int16_t alpha,
-   against 1 - (1 - alpha / 32768)^3 in double (alpha below 1 taken as 1) */
+   against 1 - (1 - alpha / 32768)^3 in double (alpha below 1 taken as 1)
+   Methods: 1b every int16 coefficient (the domain enumerated); 1c alpha below 1 taken as 1
+   and the result saturated at 32767; 1n 1 - (1 - alpha / 32768)^3 in double precision */
 static void test_phase_mon_alpha3(void **state)
 {
     double max_err = 0.0;
@@ -313,7 +333,10 @@ static void test_phase_mon_alpha3(void **state)
 
 /* REQ-FAULT-003, REQ-FAULT-004, REQ-FAULT-005: the drive's use, one phase per period
    with the coefficient alpha3: a lost phase is reported, balanced currents never, and
-   each filtered magnitude follows the all-phases monitor at alpha (time constant kept) */
+   each filtered magnitude follows the all-phases monitor at alpha (time constant kept)
+   Methods: 1d a phase lost after 8000 periods of balanced currents; 1l the lost phase
+   injected into the sampled currents, reported within 100 ms; 1n one phase per period with
+   alpha3 against the all-phases monitor at alpha */
 static void test_phase_mon_round_robin(void **state)
 {
     const double two_pi = 6.28318530717958647692;
@@ -360,7 +383,10 @@ static void test_phase_mon_round_robin(void **state)
 }
 
 /* REQ-FAULT-003, REQ-FAULT-004, REQ-FAULT-005: balanced sinusoidal currents are never
-   reported, a lost phase is reported once the filter has settled */
+   reported, a lost phase is reported once the filter has settled
+   Methods: 1c the thresholds i_min 32767 and 0 and the ratios 0 and -32768 (never reported);
+   1d a lost phase (i_w = 0, i_u = -i_v) after balanced currents; 1l the lost phase injected
+   into the sampled currents, reported within 100 ms; 1a the mean |i| of a sine, 2 A / pi */
 static void test_phase_mon_phase_loss(void **state)
 {
     const double two_pi = 6.28318530717958647692;
@@ -417,7 +443,11 @@ static void test_phase_mon_phase_loss(void **state)
     assert_false(qfoc_phase_mon_imbalanced(&m, i_min, ratio));
 }
 
-/* REQ-FAULT-004: init, invalid coefficient, validity check */
+/* REQ-FAULT-004: init, invalid coefficient, validity check
+   Methods: 1b valid and invalid coefficients and states; 1c alpha 0, -32768 and 1, the
+   states -1, 2147418112 and 2147418113, full-scale currents with -32768 settling at exactly
+   32767 x 65536; 1d an invalid coefficient (the safe state); 1l filter states and
+   coefficients overwritten, refused by the validity check */
 static void test_phase_mon_init_valid(void **state)
 {
     qfoc_phase_mon_t m;
@@ -455,7 +485,10 @@ static void test_phase_mon_init_valid(void **state)
     assert_false(qfoc_phase_mon_imbalanced(&m, 1, 32767));
 }
 
-/* REQ-FAULT-006: thresholds against the definitions, corners and random values */
+/* REQ-FAULT-006: thresholds against the definitions, corners and random values
+   Methods: 1b 200000 random values and limits; 1c seven corners (-32768, -32767, -1, 0, 1,
+   32766, 32767) crossed, -32768 tripping the full-scale limit; 1n the comparisons in double
+   precision */
 static void test_fault_thresholds(void **state)
 {
     static const int16_t c[] = { -32768, -32767, -1, 0, 1, 32766, 32767 };
@@ -487,7 +520,12 @@ static void test_fault_thresholds(void **state)
 
 /* REQ-FAULT-008: the error-model band compare against its definition in double precision,
    dev > k' + 32768 v' / |w| (k' = max(k, 0), v' = clamp(v, 0, 65535)), on every corner and
-   200000 random inputs; w = 0 never exceeds. */
+   200000 random inputs; w = 0 never exceeds.
+   Methods: 1b 200000 random inputs over the domain of dev, k, v and w; 1c every combination
+   of the corners of dev and k (-32768 .. 32767), v (-100000, -1, 0, 1, 65535, 65536,
+   2000000) and w (-32768, -1, 0, 1, 32767), w = 0 never exceeding, and the drive's band one
+   code either side (4948, 4949); 1n the definition dev > k' + 32768 v' / |w| in double
+   precision */
 static void test_fault_008_band_over(void **state)
 {
     static const int16_t devs[] = { (int16_t)-32768, -1, 0, 1, 100, 5000, 32767 };
@@ -558,7 +596,9 @@ static const char *fault_name_ref(uint32_t v)
 
 /* REQ-FAULT-009: every defined bit has its own name (the macro's), short, distinct from the
    others and from the texts of no fault and of an unknown value; the reference list covers
-   QFOC_FAULT_ALL exactly (a bit added to fault.h without a name fails here) */
+   QFOC_FAULT_ALL exactly (a bit added to fault.h without a name fails here)
+   Methods: 1b every defined fault bit, against the reference list that covers QFOC_FAULT_ALL
+   exactly; 1c the longest text, QFOC_FAULT_NAME_LEN_MAX long */
 static void test_fault_009_name_each_bit(void **state)
 {
     uint16_t covered = 0u;
@@ -592,7 +632,10 @@ static void test_fault_009_name_each_bit(void **state)
 
 /* REQ-FAULT-009: total: every one of the 65536 values against the reference rule, with the
    corners named: 0, two bits, the union of all bits, each undefined bit, the top bit, 0xFFFF;
-   the same value gives the same constant text at every call */
+   the same value gives the same constant text at every call
+   Methods: 1b every one of the 65536 values (the domain enumerated); 1c 0, the union of all
+   bits, each undefined bit 0x0800 .. 0x8000, 0xFFFF; 1d values that are no single fault (two
+   bits, undefined bits): 'unknown'; 1n the reference rule written in the test */
 static void test_fault_009_name_every_value(void **state)
 {
     uint32_t v;

@@ -37,7 +37,10 @@ static double clampd(double x, double lim)
 /* low-pass                                                                  */
 /* ------------------------------------------------------------------------ */
 
-/* REQ-FLT-002, REQ-FLT-003: random coefficients and inputs vs the 2-34 recursion. */
+/* REQ-FLT-002, REQ-FLT-003: random coefficients and inputs vs the 2-34 recursion.
+   Methods: 1b 200 random coefficients in three classes (very slow 1 .. 16, almost
+   pass-through 32000 .. 32767, any) with 2000 random inputs each; 1c the input -32768 every
+   50th sample; 1n recursion 2-34 in double precision */
 static void test_lpf_random_vs_reference(void **state)
 {
     double max_state_err = 0.0;
@@ -87,7 +90,9 @@ static void test_lpf_random_vs_reference(void **state)
     assert_true(max_out_err <= 0.75);
 }
 
-/* REQ-FLT-002: step response, 63 % after about 1 / alpha samples. */
+/* REQ-FLT-002: step response, 63 % after about 1 / alpha samples.
+   Methods: 1b five coefficients from 33 to 16384 (slow to fast); 1n the exact recursion's
+   step response, n = ceil(ln(0.368) / ln(1 - a)), and 1 / alpha */
 static void test_lpf_time_constant(void **state)
 {
     static const int16_t alphas[5] = { 33, 328, 1029, 3277, 16384 };
@@ -114,7 +119,9 @@ static void test_lpf_time_constant(void **state)
     }
 }
 
-/* REQ-FLT-004: DC gain exactly 1 in Q15 after settling, corners included. */
+/* REQ-FLT-004: DC gain exactly 1 in Q15 after settling, corners included.
+   Methods: 1c the coefficients 1 and 32767 and the inputs -32768, -32767, -1, 0, 1, 32767,
+   settled from either end of the range; 1a the DC gain 1 of REQ-FLT-004 */
 static void test_lpf_dc_gain(void **state)
 {
     static const int16_t alphas[4] = { 1, 100, 10000, 32767 };
@@ -139,7 +146,11 @@ static void test_lpf_dc_gain(void **state)
     }
 }
 
-/* REQ-FLT-001, REQ-FLT-003: init rejects alpha <= 0, reset saturates, validity check. */
+/* REQ-FLT-001, REQ-FLT-003: init rejects alpha <= 0, reset saturates, validity check.
+   Methods: 1b valid and invalid coefficients; 1c alpha 0, -1, -32768 refused and 1, 32767
+   accepted, the reset to -32768 and 32767, the state INT32_MAX and INT32_MIN; 1d invalid
+   coefficients (the safe state follows the input), fields overwritten by hand; 1l a
+   corrupted state and coefficient refused by the validity check */
 static void test_lpf_init_reset_valid(void **state)
 {
     static const int16_t bad[3] = { 0, -1, (int16_t)-32768 };
@@ -177,7 +188,9 @@ static void test_lpf_init_reset_valid(void **state)
     assert_false(qfoc_lpf_is_valid(&f));
 }
 
-/* REQ-FLT-003: extreme jumps, no overflow, output between input and old output. */
+/* REQ-FLT-003: extreme jumps, no overflow, output between input and old output.
+   Methods: 1c jumps from full scale to -32768 and back with alpha 32767, and one-LSB inputs
+   with alpha 1, results computed by hand */
 static void test_lpf_corners(void **state)
 {
     qfoc_lpf_t f;
@@ -198,7 +211,9 @@ static void test_lpf_corners(void **state)
 
 /* REQ-FLT-002, REQ-FLT-003: a state at the ends of the symmetric Q31 range (set by
    hand) moves towards the input by round(alpha (u - y) / 32768); its output,
-   state / 65536 rounded = +-32768, saturates to +-32767. */
+   state / 65536 rounded = +-32768, saturates to +-32767.
+   Methods: 1c the state at +-2147483647 with the smallest and the largest alpha (the largest
+   distance 2^32 - 65537), the output saturated to +-32767, results computed by hand */
 static void test_lpf_output_saturation(void **state)
 {
     qfoc_lpf_t f;
@@ -237,7 +252,11 @@ static double ref_leaky_step(ref_leaky_t *r, double x)
     return r->y;
 }
 
-/* REQ-FLT-006, REQ-FLT-007: random coefficients and inputs vs the 2-17 recursion. */
+/* REQ-FLT-006, REQ-FLT-007: random coefficients and inputs vs the 2-17 recursion.
+   Methods: 1b 200 random gains, shifts and leaks (every fifth a pure integrator) with 3000
+   random inputs each, a third of them small; 1c the input -32768 every 101st sample and the
+   saturation of the state reached; 1n recursion 2-17 in double precision, within its
+   rounding bound */
 static void test_leaky_random_vs_reference(void **state)
 {
     double max_rel = 0.0;   /* error / bound */
@@ -287,7 +306,9 @@ static void test_leaky_random_vs_reference(void **state)
     assert_true(n_sat > 0u);
 }
 
-/* REQ-FLT-006: DC gain g / l (document 2-25/2-26 form). */
+/* REQ-FLT-006: DC gain g / l (document 2-25/2-26 form).
+   Methods: 1c the inputs -32768 and 32767 among five; 1a the DC gain g / l (2-25, 2-26) for
+   gains 1 and 0.25 */
 static void test_leaky_dc_gain(void **state)
 {
     qfoc_leaky_int_t f;
@@ -312,7 +333,10 @@ static void test_leaky_dc_gain(void **state)
     assert_true(fabs((double)qfoc_leaky_step(&f, 20000) - 5000.0) <= 0.5);
 }
 
-/* REQ-FLT-006: gain and phase for sines vs H(z) = g / (z - (1 - l)). */
+/* REQ-FLT-006: gain and phase for sines vs H(z) = g / (z - (1 - l)).
+   Methods: 1b five frequencies from 5 Hz to 1 kHz, below and above the corner; 1n the
+   analytic transfer function H(z) = g / (z - (1 - l)), gain within 1 % and phase within 0.5
+   degrees */
 static void test_leaky_sine_gain_phase(void **state)
 {
     /* fs = 10 kHz, tau = 20 ms: l = 1e-4 / 0.02 = 0.005 -> 164 / 32768;
@@ -372,7 +396,10 @@ static void test_leaky_sine_gain_phase(void **state)
                   max_gain_err, max_phase_err);
 }
 
-/* REQ-FLT-007, REQ-FLT-008: saturation at the symmetric Q31 limits, no overflow. */
+/* REQ-FLT-007, REQ-FLT-008: saturation at the symmetric Q31 limits, no overflow.
+   Methods: 1c the state driven to +-2147483647 by a pure integrator, the strongest leak on a
+   saturated state, the smallest step (gain 1, shift 15) that rounds to 0 and the one that
+   gives 1 */
 static void test_leaky_saturation(void **state)
 {
     qfoc_leaky_int_t f;
@@ -406,7 +433,11 @@ static void test_leaky_saturation(void **state)
     assert_int_equal(f.state, 0);
 }
 
-/* REQ-FLT-005: init rejects bad coefficients (safe state), reset, validity. */
+/* REQ-FLT-005: init rejects bad coefficients (safe state), reset, validity.
+   Methods: 1b valid and invalid coefficient sets; 1c gain -1, shift 16 and 255, leak -1,
+   -32768 refused, the extremes 0 / 15 / 0 and 32767 / 0 / 32767 accepted, state INT32_MIN
+   and INT32_MAX; 1d invalid coefficients (the safe state: output 0), fields overwritten by
+   hand; 1l corrupted state, gain, shift and leak refused by the validity check */
 static void test_leaky_init_reset_valid(void **state)
 {
     qfoc_leaky_int_t f;

@@ -127,7 +127,11 @@ static int16_t random_input(void)
 
 /* REQ-FLUX-003, REQ-FLUX-004, REQ-FLUX-005: random parameters, states and inputs
    (all int16 values, -32768 included) against the recursion in double: bit-exact
-   state, output and remembered current. */
+   state, output and remembered current.
+   Methods: 1b 400 random parameter sets, states and remembered currents with 250 random
+   inputs each, over every int16 value; 1c -32768 among the inputs, the state and the output
+   saturated in many steps; 1n the fixed-point recursion rewritten in double precision (exact
+   below 2^53), bit-exact */
 static void test_flux_003_004_005_step_bit_exact(void **state)
 {
     uint32_t set;
@@ -187,7 +191,11 @@ static void test_flux_003_004_005_step_bit_exact(void **state)
    rounding against the recursion in double: states at and around multiples of
    4096 (the split psi = 4096 ph + pl), exact ties of kg psi / 4096 of either sign,
    the ends of the Q31 range, and states at the output's saturation boundary
-   (32767 x 4096 + 2047 rounds to 32767, one more to 32768 -> 32767). */
+   (32767 x 4096 + 2047 rounds to 32767, one more to 32768 -> 32767).
+   Methods: 1c states at and around multiples of 4096, the exact ties of kg psi / 4096 of
+   either sign, the ends of the Q31 range and the output's saturation boundary (32767 x 4096
+   + 2047), crossed with corner gains, kg and inputs (-32768 .. 32767); 1n the recursion in
+   double precision, bit-exact */
 static void test_flux_003_005_leak_and_output_corners(void **state)
 {
     static const int32_t psis[] = {
@@ -266,7 +274,10 @@ static void test_flux_003_005_leak_and_output_corners(void **state)
 
 /* REQ-FLUX-003, REQ-FLUX-008: against the real-valued recursion without rounding
    (2-19 .. 2-24 in rotor-flux form): the state stays within 0.5625 / (g kg) Q27
-   LSB, as stated in flux.h. */
+   LSB, as stated in flux.h.
+   Methods: 1b 300 random parameter sets with 600 random unsaturated inputs each; 1n the
+   real-valued recursion without rounding (2-19 .. 2-24), within the bound 0.5625 / (g kg) of
+   flux.h */
 static void test_flux_003_008_vs_real_recursion(void **state)
 {
     uint32_t set;
@@ -519,7 +530,10 @@ static void run_rotating(double w_pu, double id, double iq, flux_run_t *res)
    integrated); magnitude within 1 % of |w| / sqrt(w^2 + kg^2); lead within
    0.15 deg of atan(kg / |w|) plus the R i(k) term; rotor angle after
    subtracting qfoc_flux_lead() within 0.2 deg plus the predicted R i(k) term
-   g R |i_q| / (2 |psi_a|) (0 at no load). */
+   g R |i_q| / (2 |psi_a|) (0 at no load).
+   Methods: 1b three speeds (0.1, 0.6 and -0.3 pu: both directions) with three loads each (no
+   load, salient with i_d, loaded); 1n the exact discrete steady state and the analytic
+   magnitude, lead and rotor angle in double precision */
 static void test_flux_003_007_008_rotating(void **state)
 {
     static const double speeds[3] = { 0.1, 0.6, -0.3 };
@@ -573,7 +587,10 @@ static int drive_bounded(const qfoc_flux_params_t *p, int64_t b, int16_t u, int1
 /* REQ-FLUX-006 (2-25/2-26): one-step invariance of a flux bound B: random
    parameters, B, states within B and inputs whose drive satisfies the bound
    (many of them at the edge): the new state stays within B and the output is
-   the exact rounded state. */
+   the exact rounded state.
+   Methods: 1b 20000 random parameter sets, bounds, states within the bound and inputs whose
+   drive satisfies it; 1c states at the bound (a quarter of the draws), the fill of the bound
+   above 0.99 reached */
 static void test_flux_006_bound_invariance(void **state)
 {
     uint32_t n_tried = 0u;
@@ -627,7 +644,10 @@ static void test_flux_006_bound_invariance(void **state)
 }
 
 /* REQ-FLUX-006: the DC steady state (2-26) psi = (u - R i) / kg and the
-   document's psi_temp = psi + L i (2-25): constant inputs, i = i_prev. */
+   document's psi_temp = psi + L i (2-25): constant inputs, i = i_prev.
+   Methods: 1b five constant (u, i) pairs of either sign; 1c the current 32767 (full scale);
+   1n the DC steady state (2-26) psi = (u - R i) / kg and psi_temp = psi + L i (2-25) in
+   double precision */
 static void test_flux_006_dc_steady_state(void **state)
 {
     static const int16_t us[5] = { 100, -33, 1000, 0, -800 };
@@ -680,7 +700,12 @@ static void test_flux_006_dc_steady_state(void **state)
     assert_true(max_err <= 1.0);
 }
 
-/* REQ-FLUX-001: parameter check, init accepting and rejecting, safe state. */
+/* REQ-FLUX-001: parameter check, init accepting and rejecting, safe state.
+   Methods: 1b valid parameters and each field out of range alone; 1c the accepted limits
+   (gain 32767, shift 15, r 0, l 32767, kg 0), gain -1, shift 16 and 255, r -32768, states
+   INT32_MIN / INT32_MAX and currents -32768 / -32767; 1d invalid parameters (the safe state:
+   output 0 whatever the input); 1l state, remembered current and kg overwritten, refused by
+   the validity check */
 static void test_flux_001_init_valid(void **state)
 {
     qfoc_flux_params_t p;
@@ -773,7 +798,9 @@ static void test_flux_001_init_valid(void **state)
 }
 
 /* REQ-FLUX-002: reset sets the state (Q15 x 4096) and the remembered current,
-   -32768 saturated; the next step continues from there. */
+   -32768 saturated; the next step continues from there.
+   Methods: 1c the reset to -32768 (saturated) and 32767; 1a a current step of 100 LSB moving
+   the estimate by -L x 100 exactly, computed by hand */
 static void test_flux_002_reset(void **state)
 {
     qfoc_flux_params_t p;
@@ -810,7 +837,11 @@ static void test_flux_002_reset(void **state)
 
 /* REQ-FLUX-004, REQ-FLUX-005: -32768 inputs act as -32767; zero parameters;
    state saturation at +-(2^31 - 1) and output saturation at +-32767 without
-   windup. */
+   windup.
+   Methods: 1c -32768 inputs acting as -32767, zero parameters, the state saturated at
+   +-(2^31 - 1) after 17 samples and the output at +-32767 after 2, the largest current step
+   (l = 32767, 65534 LSB); 1d wind-up at the saturation: the state must leave the limit at
+   once */
 static void test_flux_004_005_corners(void **state)
 {
     qfoc_flux_params_t p;
@@ -916,7 +947,9 @@ static void test_flux_004_005_corners(void **state)
 }
 
 /* REQ-FLUX-007: qfoc_flux_lead() against atan(kg / |w|) in double, the sign
-   for reverse rotation, w = 0, kg = 0 and w = -32768. */
+   for reverse rotation, w = 0, kg = 0 and w = -32768.
+   Methods: 1b 20000 random speeds and kg; 1c w = 0, w = +-kg (45 degrees), w = -32768, kg =
+   0; 1n atan2(kg, |w|) in double precision, the lead for -w the negated lead for w */
 static void test_flux_007_lead(void **state)
 {
     qfoc_flux_params_t p;

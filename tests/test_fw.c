@@ -95,7 +95,11 @@ static qfoc_fw_params_t make_params(int16_t kp, uint8_t kps, int16_t ki, uint8_t
 /* ---- tests ---------------------------------------------------------------- */
 
 /* REQ-FW-002, REQ-FW-003, REQ-FW-004, REQ-FW-005, REQ-FW-006: random parameters and
-   utilisation sequences against the double model, stage by stage and end to end */
+   utilisation sequences against the double model, stage by stage and end to end
+   Methods: 1b 300 random parameter sets with 400-sample random-walk utilisations each,
+   enabled and (2 %) disabled samples, limited samples reached more than 1000 times; 1c the
+   utilisation -32768 every 50th sample; 1n the double-precision low-pass and PI, stage by
+   stage and end to end */
 static void test_fw_random_vs_model(void **state)
 {
     double max_filt = 0.0;
@@ -166,7 +170,11 @@ static void test_fw_random_vs_model(void **state)
 }
 
 /* REQ-FW-004: step responses: utilisation above the level drives i_d down to
-   out_min, below the level it returns to 0 and never becomes positive */
+   out_min, below the level it returns to 0 and never becomes positive
+   Methods: 1b utilisations above (1.0), below (0.5) and at the level; 1c the utilisation
+   exactly at the level (the reference stays 0), i_d driven to out_min; 1d wind-up on
+   out_min: i_d must return to 0 as soon as the filtered utilisation falls below the level;
+   1n the double-precision model */
 static void test_fw_step_response(void **state)
 {
     /* kp 0.1, ki T 0.00177 (58), out_min -0.375 (-12288), level 0.95 (31130),
@@ -226,7 +234,9 @@ static void test_fw_step_response(void **state)
 }
 
 /* REQ-FW-005: release: enable false sets the reference, filter and integrator to
-   0, and a re-enabled loop starts from 0 */
+   0, and a re-enabled loop starts from 0
+   Methods: 1a the release of REQ-FW-005: reference, filter and integrator 0 on enable false,
+   a re-enabled loop starting from 0 (util_f computed by hand) */
 static void test_fw_release(void **state)
 {
     const qfoc_fw_params_t p = make_params(16384, 0u, 1000, 0u, -20000, 20000, 5000);
@@ -262,7 +272,11 @@ static void test_fw_release(void **state)
     assert_int_equal(fw.util_lpf.alpha, 5000);
 }
 
-/* REQ-FW-001, REQ-FW-002: invalid parameters give the safe state (always 0) */
+/* REQ-FW-001, REQ-FW-002: invalid parameters give the safe state (always 0)
+   Methods: 1b eight invalid parameter sets, each rule broken alone, and the valid extremes;
+   1c out_max 1, level 0 and -32768, alpha 0 and -32768, shift 16, out_min -32768 refused,
+   out_min -32767 and 0, level and alpha 1 and 32767 accepted; 1d invalid parameters (the
+   safe state: always 0 for random utilisations) */
 static void test_fw_invalid_params(void **state)
 {
     qfoc_fw_params_t bad[8];
@@ -302,7 +316,10 @@ static void test_fw_invalid_params(void **state)
     }
 }
 
-/* REQ-FW-002: the validity check rejects each broken part */
+/* REQ-FW-002: the validity check rejects each broken part
+   Methods: 1b each part of the instance broken in turn; 1c the filter state 2147418112 and
+   2147418113, -1, the reference at out_min and one below, 1 above 0; 1l the instance's
+   fields overwritten, refused by the validity check */
 static void test_fw_is_valid(void **state)
 {
     const qfoc_fw_params_t p = make_params(1000, 0u, 100, 0u, -1000, 1000, 1000);
@@ -334,7 +351,10 @@ static void test_fw_is_valid(void **state)
 }
 
 /* REQ-FW-003, REQ-FW-004, REQ-FW-006: corners: utilisation -32768 / 0 / 32767, level 1
-   and 32767, out_min -32767, the largest gains */
+   and 32767, out_min -32767, the largest gains
+   Methods: 1c the utilisation -32768 (read as 0), 0 and 32767, the level 1 and 32767,
+   out_min -32767 and 0, the largest gains (32767, shift 15); 1a a kp-only step computed by
+   hand */
 static void test_fw_corners(void **state)
 {
     qfoc_fw_t fw;
@@ -379,7 +399,9 @@ static void test_fw_corners(void **state)
      u_d = -w L_q i_q,  u_q = w (psi_f + L_d i_d),
      utilisation = |(u_d, u_q)| / (V_dc / sqrt 3)   (per unit, R neglected),
    i_d following its reference with one sample delay (ideal current loop): the
-   loop settles with the utilisation at the level and i_d at the analytic value */
+   loop settles with the utilisation at the level and i_d at the analytic value
+   Methods: 1n the loop closed over the algebraic steady-state voltage model of the reference
+   motor at 8000 rpm, 320 V, i_q 12 A, against the analytic i_d at the level */
 static void test_fw_closed_loop_reference_motor(void **state)
 {
     /* per unit (V_base 500 V, I_base 40 A, w_base 2 pi 500 rad/s) */

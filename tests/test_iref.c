@@ -80,7 +80,10 @@ static double ref_derate(int hi, int lo, int t, int t0, int t1)
 /* ---- q limit --------------------------------------------------------------- */
 
 /* REQ-IREF-002: every corner of both arguments; the floor of the exact limit, inside the
-   circle and less than 1 LSB below it. */
+   circle and less than 1 LSB below it.
+   Methods: 1c every corner of both arguments (limit -32768, -1, 0, 1, 2, 100, 16384, 32766,
+   32767, i_d -32768 .. 32767), |i_d| at the limit and beyond it, the exact 3-4-5 triangle;
+   1n the double-precision floor of sqrt(limit^2 - i_d^2) */
 static void test_iref_q_limit_corners(void **state)
 {
     static const int lim[] = { -32768, -1, 0, 1, 2, 100, 16384, 32766, 32767 };
@@ -111,7 +114,8 @@ static void test_iref_q_limit_corners(void **state)
     assert_int_equal(qfoc_iref_q_limit(25000, -15000), 20000);
 }
 
-/* REQ-IREF-002: 200000 random pairs against the double-precision limit. */
+/* REQ-IREF-002: 200000 random pairs against the double-precision limit.
+   Methods: 1b 200000 random pairs over the whole int16 domain; 1n the double-precision limit */
 static void test_iref_q_limit_random(void **state)
 {
     int k;
@@ -126,7 +130,9 @@ static void test_iref_q_limit_random(void **state)
 
 /* ---- MTPA ------------------------------------------------------------------ */
 
-/* REQ-IREF-001: 200000 random inputs against the textbook formula in double precision. */
+/* REQ-IREF-001: 200000 random inputs against the textbook formula in double precision.
+   Methods: 1b 200000 random currents, magnet fluxes and inductances; 1n the textbook MTPA
+   formula in double precision, within the bound of iref.h */
 static void test_iref_mtpa_vs_formula(void **state)
 {
     int k;
@@ -159,7 +165,9 @@ static void test_iref_mtpa_vs_formula(void **state)
 
 /* the reference motor's numbers (specs/motors/reference.toml): L_d = 2.6 mH, L_q = 4.2 mH,
    psi_f = 0.065 Wb, in the bases of its table (500 V, 40 A, 500 Hz); the library's i_d
-   maximises the torque on the current circle (REQ-IREF-001) */
+   maximises the torque on the current circle (REQ-IREF-001)
+   Methods: 1b the reference motor's currents 1000 .. 32000 in steps of 1000; 1n a
+   brute-force search of the torque-maximising current angle on the same circle */
 static void test_iref_mtpa_is_optimal(void **state)
 {
     const double v_base = 500.0;
@@ -195,7 +203,9 @@ static void test_iref_mtpa_is_optimal(void **state)
 }
 
 /* REQ-IREF-001: no saliency, inverse saliency, no current, no magnet, either sign, the
-   extremes of the types. */
+   extremes of the types.
+   Methods: 1b no saliency, inverse saliency, no current, no magnet, either sign of i_q; 1c a
+   reluctance flux below half a count, the extremes -32768 and 32767 of every argument */
 static void test_iref_mtpa_corners(void **state)
 {
     (void)state;
@@ -221,7 +231,10 @@ static void test_iref_mtpa_corners(void **state)
 
 /* ---- derating -------------------------------------------------------------- */
 
-/* REQ-IREF-003: the window, its ends, an empty window, lo above hi, random inputs. */
+/* REQ-IREF-003: the window, its ends, an empty window, lo above hi, random inputs.
+   Methods: 1b 200000 random speeds, temperatures and windows; 1c the window's ends and one
+   inside them, an empty window (a step), lo above hi, the whole range of the types (65535,
+   0, -32768, 32767); 1n the derating written in the test from its definition */
 static void test_iref_derate(void **state)
 {
     int k;
@@ -253,7 +266,10 @@ static void test_iref_derate(void **state)
 
 /* ---- the step -------------------------------------------------------------- */
 
-/* REQ-IREF-004: the step against its definition on random inputs; the circle. */
+/* REQ-IREF-004: the step against its definition on random inputs; the circle.
+   Methods: 1b 200000 random inputs, MTPA on and off, field weakening of any sign; 1c field
+   weakening beyond the circle (i_d at -i_max, no q current left); 1n the step recomposed
+   from its definition (MTPA + field weakening clamped, the q limit) */
 static void test_iref_step(void **state)
 {
     int k;

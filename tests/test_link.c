@@ -126,7 +126,9 @@ static const qfoc_cmd_t sentinel = {true, true, 12345u};
 
 /* ---- REQ-LINK-001 protected identifier ------------------------------------ */
 
-/* REQ-LINK-001: every identifier against the parity tables and the published values. */
+/* REQ-LINK-001: every identifier against the parity tables and the published values.
+   Methods: 1b every identifier 0 .. 255, bits 6 and 7 ignored; 1n the parity tables of the
+   LIN 2.x specification and its published values, written in the test */
 static void test_link_001_pid(void **state)
 {
     static const uint8_t known[][2] = {
@@ -150,7 +152,11 @@ static void test_link_001_pid(void **state)
 
 /* ---- REQ-LINK-002 enhanced checksum --------------------------------------- */
 
-/* REQ-LINK-002: the specification's example, corners and random byte strings. */
+/* REQ-LINK-002: the specification's example, corners and random byte strings.
+   Methods: 1b 20000 random byte strings of random length (up to 8, every fourth up to 255)
+   and identifier; 1c all-zero and all-0xFF data, length 0; 1n the specification's example
+   (0x4A: 0xE6), the reference sum with carry and the receiver's view (the sum over the whole
+   frame is 0xFF) */
 static void test_link_002_checksum(void **state)
 {
     static const uint8_t ex[3] = {0x55u, 0x93u, 0xE5u};
@@ -187,7 +193,9 @@ static void test_link_002_checksum(void **state)
 
 /* ---- REQ-LINK-003 / 004 command frame ------------------------------------- */
 
-/* REQ-LINK-003, REQ-LINK-004: round trip of random commands, both flags, all corners. */
+/* REQ-LINK-003, REQ-LINK-004: round trip of random commands, both flags, all corners.
+   Methods: 1b 20000 random commands with both flags of each value and random identifiers and
+   rpm_max; 1c the target 0 and rpm_max */
 static void test_link_003_004_roundtrip(void **state)
 {
     qfoc_link_cfg_t c = make_cfg();
@@ -220,7 +228,11 @@ static void test_link_003_004_roundtrip(void **state)
    0x00 <-> 0xFF changes are caught by the reserved-bit check in data bytes 0 and 3
    and by the range check in the target high byte; in the target low byte (a
    change of the target by 255 rpm within [0, rpm_max]) they are accepted: counted
-   and printed as the residual.  *cmd is untouched by every rejection. */
+   and printed as the residual.  *cmd is untouched by every rejection.
+   Methods: 1b every value of every byte of 64 frames; 1c targets with 0x00 / 0xFF bytes (0,
+   255, 256, 511, 7936, 7999, 8000); 1d the 0x00 <-> 0xFF changes the checksum cannot see; 1l
+   every single-byte corruption injected into a valid frame; 1n the reference decoder written
+   in the test */
 static void test_link_003_single_byte_corruption(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -278,7 +290,10 @@ static void test_link_003_single_byte_corruption(void **state)
 }
 
 /* REQ-LINK-003: every length 0 .. QFOC_LIN_FRAME_MAX + 1 (and up to 255) of a
-   buffer of exactly that size holding a valid frame prefix or padding. */
+   buffer of exactly that size holding a valid frame prefix or padding.
+   Methods: 1b every length 0 .. 255 of the length argument, in a buffer of exactly that
+   size; 1c the command frame's length 7 and one either side, QFOC_LIN_FRAME_MAX and one
+   above; 1d truncated and padded frames (an overread seen by memory checkers) */
 static void test_link_003_lengths(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -309,7 +324,10 @@ static void test_link_003_lengths(void **state)
 }
 
 /* REQ-LINK-003: each reserved bit (data byte 0 bits 2..7, data byte 3) with a
-   correct checksum is rejected as reserved. */
+   correct checksum is rejected as reserved.
+   Methods: 1b each reserved bit of data byte 0 and every value of data byte 3; 1d reserved
+   bits set with a correct checksum; 1l the reserved bits injected into a valid frame,
+   resealed */
 static void test_link_003_reserved_bits(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -335,7 +353,9 @@ static void test_link_003_reserved_bits(void **state)
     }
 }
 
-/* REQ-LINK-003: target speed range [0, rpm_max]. */
+/* REQ-LINK-003: target speed range [0, rpm_max].
+   Methods: 1c the target at rpm_max and rpm_max + 1, 65535 with rpm_max 65535, the target 0
+   with rpm_max 1 */
 static void test_link_003_target_range(void **state)
 {
     qfoc_link_cfg_t c = make_cfg();
@@ -361,7 +381,10 @@ static void test_link_003_target_range(void **state)
 }
 
 /* REQ-LINK-003: identifier errors (other identifier, parity bit flipped) and the
-   decoding order when several checks fail. */
+   decoding order when several checks fail.
+   Methods: 1b every one of the 64 identifiers; 1d the parity bits flipped with the
+   identifier bits right, several checks failing at once (the decoding order); 1l parity bit
+   flips injected into the identifier byte */
 static void test_link_003_id_and_order(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -439,7 +462,11 @@ static qfoc_status_t rand_status(void)
 }
 
 /* REQ-LINK-005: LIN status frame and CAN payload against the reference, random
-   and extreme inputs (saturation). */
+   and extreme inputs (saturation).
+   Methods: 1b 40000 random status records; 1c 0, 1 and 65535 for the bus and the current,
+   the temperatures -32768, -406 / -405 and 2144 / 2145 (the ends of the byte's range),
+   undefined states and sub-states 255, 16; 1n the reference payload and checksum written in
+   the test, rounding error <= 0.5 LSB */
 static void test_link_005_status_payload(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -497,7 +524,10 @@ static void test_link_005_status_payload(void **state)
     assert_true(max_temp <= 0.5);
 }
 
-/* REQ-LINK-005: the saturation ends explicitly. */
+/* REQ-LINK-005: the saturation ends explicitly.
+   Methods: 1c every field at its largest value (saturated to 0xFF) and at its smallest
+   (-32768 degrees, 0), and the scaling points 320 V, 40 A, 25 and -40 degrees C computed by
+   hand */
 static void test_link_005_saturation(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -552,7 +582,11 @@ static void test_link_005_saturation(void **state)
 /* ---- REQ-LINK-006 configuration and instance ------------------------------ */
 
 /* REQ-LINK-006: each configuration field at and beyond its bounds; rejected init
-   gives the safe, permanently lost link. */
+   gives the safe, permanently lost link.
+   Methods: 1b each configuration rule broken alone; 1c each field at its bounds (identifiers
+   0x3B / 0x3C, rpm_max 0 / 1, timeout 0, 1, 60000, 60001, CAN identifiers 0x7FF / 0x800); 1d
+   an invalid configuration (the safe, permanently lost link that never powers the drive) and
+   an instance filled with 0x5A before init */
 static void test_link_006_cfg_and_init(void **state)
 {
     qfoc_link_cfg_t c = make_cfg();
@@ -605,7 +639,10 @@ static void test_link_006_cfg_and_init(void **state)
     assert_int_equal(l.cfg.rpm_max, c.rpm_max);
 }
 
-/* REQ-LINK-006: qfoc_link_is_valid() rejects each broken invariant. */
+/* REQ-LINK-006: qfoc_link_is_valid() rejects each broken invariant.
+   Methods: 1b each part of the invariant broken in turn, and the combinations that are
+   allowed; 1c silent_ms one above the timeout; 1l the link's fields overwritten, refused by
+   the validity check */
 static void test_link_006_is_valid(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -640,7 +677,11 @@ static void test_link_006_is_valid(void **state)
 /* ---- REQ-LINK-007 effective command --------------------------------------- */
 
 /* REQ-LINK-007, REQ-LINK-009: before the first valid frame the drive is off and the link
-   not lost; malformed frames of every cause change neither the command nor the timer. */
+   not lost; malformed frames of every cause change neither the command nor the timer.
+   Methods: 1b 70000 service calls over eight kinds of frames (each malformation cause,
+   valid, out of range, none); 1d the first 2000 calls only malformed or no frames; 1l random
+   corruptions of the length, sync, identifier, data and checksum injected; 1n a twin link
+   that sees only the well-formed frames */
 static void test_link_007_malformed_no_effect(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -712,7 +753,8 @@ static void test_link_007_malformed_no_effect(void **state)
                 && (a.n_reserved > 0u) && (a.n_range > 0u));
 }
 
-/* REQ-LINK-007: the effective command follows the last valid frame. */
+/* REQ-LINK-007: the effective command follows the last valid frame.
+   Methods: 1a the command of the last valid frame taken, the drive off before the first */
 static void test_link_007_effective_command(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -784,7 +826,10 @@ static void run_timeout(uint16_t timeout, int malformed)
 }
 
 /* REQ-LINK-008: lost exactly at timeout_ms + 1 calls, not at timeout_ms; for the
-   smallest, a typical and the largest timeout, with silence and malformed frames. */
+   smallest, a typical and the largest timeout, with silence and malformed frames.
+   Methods: 1c timeout_ms and timeout_ms + 1 calls for the timeouts 1, 500 and 60000, and the
+   silent time saturated at 65535; 1d the link lost by silence and by malformed frames (a
+   wrong checksum) */
 static void test_link_008_timeout_exact(void **state)
 {
     (void)state;
@@ -795,7 +840,9 @@ static void test_link_008_timeout_exact(void **state)
     run_timeout(60000u, 0);
 }
 
-/* REQ-LINK-008: before the first valid frame the link never times out. */
+/* REQ-LINK-008: before the first valid frame the link never times out.
+   Methods: 1c 70000 calls, past the saturation of the silent time at 65535; 1d no frame ever
+   received */
 static void test_link_008_not_lost_before_first_frame(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -812,7 +859,9 @@ static void test_link_008_not_lost_before_first_frame(void **state)
 
 /* ---- REQ-LINK-009 counters ------------------------------------------------- */
 
-/* REQ-LINK-009: each counter counts its cause only and saturates at 65535. */
+/* REQ-LINK-009: each counter counts its cause only and saturates at 65535.
+   Methods: 1b each of the seven causes counted alone; 1c each counter across 65535 by 65537
+   calls and from 65534; 1d a frame of each malformation cause */
 static void test_link_009_counters_saturate(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -858,7 +907,8 @@ static void test_link_009_counters_saturate(void **state)
 
 /* ---- REQ-LINK-010 CAN ------------------------------------------------------ */
 
-/* REQ-LINK-010: CAN identifiers alternate a, b, a, ... from init; DLC 8. */
+/* REQ-LINK-010: CAN identifiers alternate a, b, a, ... from init; DLC 8.
+   Methods: 1a the identifiers a, b, a, ... from init and after a re-init, over 1000 frames */
 static void test_link_010_can_alternation(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();
@@ -886,7 +936,10 @@ static void test_link_010_can_alternation(void **state)
 
 /* REQ-LINK-011: a decoded command is taken like the same command in a frame (twin links
    fed the frame and the command give the same link state), refused above rpm_max with
-   only n_range counted; the silent time and the loss follow the frame's rule. */
+   only n_range counted; the silent time and the loss follow the frame's rule.
+   Methods: 1b 5000 random commands, targets around rpm_max and anywhere in 0 .. 65535; 1c
+   rpm_max and rpm_max + 1, the loss at timeout_ms and timeout_ms + 1, the counters at 65535;
+   1d a rejected configuration; 1n a twin link fed the same commands as frames */
 static void test_link_011_accept(void **state)
 {
     const qfoc_link_cfg_t c = make_cfg();

@@ -192,7 +192,9 @@ static int setup(void **state)
 
 /* REQ-PAR-002: the CRC-32 of "123456789" is the published check value 0xCBF43926,
    and the byte-table reference agrees with the library's nibble-table update for every
-   register value class and every byte. */
+   register value class and every byte.
+   Methods: 1b 100000 random (register, byte) pairs; 1n the published check value 0xCBF43926
+   of "123456789" and an independent byte-table CRC-32 written in the test */
 static void test_par_002_crc_check_value(void **state)
 {
     static const uint8_t msg[9] = { '1', '2', '3', '4', '5', '6', '7', '8', '9' };
@@ -214,7 +216,9 @@ static void test_par_002_crc_check_value(void **state)
 }
 
 /* REQ-PAR-002, REQ-PAR-006: the table CRC equals the reference serialisation's CRC for
-   random tables (every field random, negative values included). */
+   random tables (every field random, negative values included).
+   Methods: 1b 2000 tables of random bytes (every field random, negative values included); 1n
+   the CRC of the reference serialisation written in the test */
 static void test_par_002_table_crc_random(void **state)
 {
     uint32_t k;
@@ -232,7 +236,9 @@ static void test_par_002_table_crc_random(void **state)
 }
 
 /* REQ-PAR-004, REQ-PAR-005, REQ-TUNE-006: the generated tables pass, their stored CRC is
-   the reference CRC, and they load. */
+   the reference CRC, and they load.
+   Methods: 1a both generated tables (reference, traction350) pass the check and load, their
+   stored CRC the reference serialisation's */
 static void test_par_004_generated_tables_pass(void **state)
 {
     const qfoc_param_table_t *tabs[2] = { &qfoc_params_reference, &qfoc_params_traction350 };
@@ -289,7 +295,10 @@ static const tfield_t tfields[] = {
 /* REQ-PAR-001, REQ-PAR-002, REQ-PAR-005, REQ-PAR-006: every single-bit flip of every
    field of the reference table (the drive configuration and the stored CRC included) is
    refused (CRC-32 detects every 1-bit error), with ERR_ID when it hits magic or version,
-   and the RAM copy is left untouched. */
+   and the RAM copy is left untouched.
+   Methods: 1b every single-bit flip of every field of the reference table, the drive
+   configuration and the stored CRC included; 1d a corrupted table, refused with the RAM copy
+   untouched; 1l each single-bit flip injected into the table */
 static void test_par_002_bit_flips_refused(void **state)
 {
     size_t k;
@@ -345,7 +354,12 @@ static int32_t scan_all(const qfoc_param_table_t *t, uint32_t reg)
    CRC is itself tested against the reference serialisation above) for the generated
    table, every single-bit flip of it, tables with one range broken and random tables
    resealed or not; a step out of range does nothing; a register corrupted between two
-   steps is ERR_CRC. */
+   steps is ERR_CRC.
+   Methods: 1b the generated table, every single-bit flip of it, a table with one range
+   broken, 2000 random tables resealed or not; 1c the step numbers from
+   QFOC_PARAMS_SCAN_STEPS to 255 (out of range: BUSY); 1d a register corrupted between two
+   steps; 1l the bit flips of the table and the register's bit flip injected; 1n the verdict
+   of qfoc_params_check() for the same table */
 static void test_par_008_scan(void **state)
 {
     uint32_t k;
@@ -402,7 +416,11 @@ static void test_par_008_scan(void **state)
 }
 
 /* REQ-PAR-003: each range condition, broken alone in a table with a correct CRC, is
-   refused with ERR_RANGE; its limit value itself is accepted. */
+   refused with ERR_RANGE; its limit value itself is accepted.
+   Methods: 1b each range condition broken alone in a table with a correct CRC; 1c each limit
+   value accepted and one step beyond it refused (f_pwm 999 / 1000 and 40000 / 40001, out_min
+   -i_max - 1 / -i_max, i_trip i_max - 1 / i_max, -32768, ...); 1d values out of range with a
+   correct CRC (a table written wrongly, not corrupted) */
 static void test_par_003_ranges(void **state)
 {
     qfoc_param_table_t t;
@@ -471,7 +489,11 @@ static int64_t rpm_to_q15(uint32_t rpm, uint32_t k_rpm)
 
 /* REQ-PAR-007: each cross-field condition between the drive configuration and the table's
    limits at its boundary: the limit value accepted, one past it refused (ERR_RANGE with a
-   correct CRC), also with the limit itself moved. */
+   correct CRC), also with the limit itself moved.
+   Methods: 1b 20000 random (rpm_max, k_rpm, speed_max) triples; 1c each cross-field
+   condition at its limit and one past it, also with the limit moved, the largest product
+   65535 x 65535, the rpm whose speed converts to exactly speed_max; 1n the 64-bit conversion
+   of the rpm in the test */
 static void test_par_007_cross_field(void **state)
 {
     qfoc_param_table_t t;
@@ -543,7 +565,10 @@ static void test_par_007_cross_field(void **state)
 /* REQ-PAR-006: the generated reference table carries the drive configuration the
    defaults of tools/tune/qfoc_tune.py give for specs/motors/reference.toml (n_p 3,
    f_base 500 Hz, I_base 40 A, f_pwm 8 kHz, rated 20 A and 6000 rpm, max 8000 rpm),
-   recomputed here in double precision from the formulas of the tool's documentation. */
+   recomputed here in double precision from the formulas of the tool's documentation.
+   Methods: 1a each field of the reference table's drive configuration recomputed in double
+   precision from the formulas of the tuning tool's documentation; 1c rpm_max the largest rpm
+   within speed_max, one more beyond it */
 static void test_par_006_reference_drive_defaults(void **state)
 {
     const qfoc_drive_cfg_t *d = &qfoc_params_reference.drive;
@@ -613,7 +638,9 @@ static void test_par_006_reference_drive_defaults(void **state)
 }
 
 /* REQ-PAR-001: magic and version are checked before the CRC: a foreign table with a
-   matching CRC is still refused as foreign. */
+   matching CRC is still refused as foreign.
+   Methods: 1d a foreign table: the wrong magic or a version of another layout (1, 2, 3, the
+   next) with a matching CRC, and a wrong magic with a wrong CRC (identity checked first) */
 static void test_par_001_identity(void **state)
 {
     qfoc_param_table_t t = qfoc_params_reference;
@@ -647,7 +674,9 @@ static void test_par_001_identity(void **state)
 
 /* REQ-PAR-004, REQ-TUNE-003: the generated reference table carries the estimator
    parameters of the design the plant validation uses (sim/estim.c est_tune with
-   est_design_default). */
+   est_design_default).
+   Methods: 1n the estimator parameters of the generated table against the plant validation's
+   design (sim/estim.c est_tune) */
 static void test_par_004_reference_matches_estimator_design(void **state)
 {
     sim_motor_t m;

@@ -70,7 +70,11 @@ static qfoc_pi_params_t make_params(int16_t kp, uint8_t kps, int16_t ki, uint8_t
 /* ---- tests --------------------------------------------------------------- */
 
 /* REQ-PI-004, REQ-PI-005, REQ-PI-007, REQ-PI-008: random gains, limits and error
-   sequences against the double-precision reference with the same anti-windup. */
+   sequences against the double-precision reference with the same anti-windup.
+   Methods: 1b 400 random gain, shift and limit sets with 500 random errors each, of every
+   magnitude from full scale down to a few LSB; 1c the error -32768 every 97th sample,
+   limited and unlimited outputs both reached; 1n the double-precision PI with the same
+   anti-windup, error <= 0.5 LSB */
 static void test_pi_random_vs_reference(void **state)
 {
     double max_err = 0.0;
@@ -121,7 +125,9 @@ static void test_pi_random_vs_reference(void **state)
                   max_err, max_integ_err, (unsigned)n_limited);
 }
 
-/* REQ-PI-004: step response of a constant error: u(k) = kp e + k ki e. */
+/* REQ-PI-004: step response of a constant error: u(k) = kp e + k ki e.
+   Methods: 1a the step response u(k) = kp e + k ki T e of REQ-PI-004 computed by hand for a
+   PI and for a proportional-only controller */
 static void test_pi_step_response(void **state)
 {
     qfoc_pi_t pi;
@@ -144,7 +150,11 @@ static void test_pi_step_response(void **state)
     }
 }
 
-/* REQ-PI-001, REQ-PI-004: gains above 1 through the shift. */
+/* REQ-PI-001, REQ-PI-004: gains above 1 through the shift.
+   Methods: 1c the largest gain 32767 x 2^15 (one LSB of error reaches 32767, two are
+   limited); 1d gains of 1 and above, which a Q15 mantissa alone cannot hold (a shift
+   mishandled would wrap them); 1a gains of 2.5 and 3.0 through the shifts, results
+   computed by hand */
 static void test_pi_gain_above_one(void **state)
 {
     qfoc_pi_t pi;
@@ -169,7 +179,9 @@ static void test_pi_gain_above_one(void **state)
 }
 
 /* REQ-PI-005, REQ-PI-007, REQ-PI-008: output clamped to the limits, flag set
-   exactly then. */
+   exactly then.
+   Methods: 1c errors one LSB inside and outside each limit, and -32768 and 32767: the flag
+   set exactly when the output is clamped */
 static void test_pi_limit_flag(void **state)
 {
     qfoc_pi_t pi;
@@ -193,7 +205,10 @@ static void test_pi_limit_flag(void **state)
 }
 
 /* REQ-PI-009: moving symmetric limits; the integrator follows a limit that falls, the
-   gains and the flag stay. */
+   gains and the flag stay.
+   Methods: 1b limits that fall below the integrator and that rise above it, positive and
+   negative integrators; 1c the limits -32768, -5, 0, 1 and 32767 (non-positive limits taken
+   as 0) */
 static void test_pi_set_limit(void **state)
 {
     static const int16_t lims[] = { (int16_t)-32768, -5, 0, 1, 700, 20000, 32767 };
@@ -233,7 +248,10 @@ static void test_pi_set_limit(void **state)
 }
 
 /* REQ-PI-005: after a long saturation the output leaves the limit in the first
-   sample in which the error changes sign (no stored windup). */
+   sample in which the error changes sign (no stored windup).
+   Methods: 1c 100000 samples on the upper and on the lower limit (error 30000 and -32768);
+   1d integrator wind-up: the output must leave the limit in the first sample with the
+   opposite error */
 static void test_pi_windup_recovery(void **state)
 {
     qfoc_pi_t pi;
@@ -265,7 +283,11 @@ static void test_pi_windup_recovery(void **state)
     assert_false(pi.limited);
 }
 
-/* REQ-PI-001, REQ-PI-003: invalid parameters rejected, safe zero-gain state. */
+/* REQ-PI-001, REQ-PI-003: invalid parameters rejected, safe zero-gain state.
+   Methods: 1b valid and invalid parameter sets, one rule broken each; 1c shifts 16 and 255,
+   gains -1 and -32768, out_min -32768, min > max by one, and the valid extremes (shift 15,
+   gain 32767, a single-point range); 1d invalid parameters (the safe zero-gain state with
+   stale fields) */
 static void test_pi_invalid_params(void **state)
 {
     const qfoc_pi_params_t bad[8] = {
@@ -309,7 +331,9 @@ static void test_pi_invalid_params(void **state)
     }
 }
 
-/* REQ-PI-002: instance validity checks the integrator against the limits. */
+/* REQ-PI-002: instance validity checks the integrator against the limits.
+   Methods: 1c the integrator at each limit and one Q31 LSB beyond, the shift 16; 1l
+   integrator and shift overwritten by hand, refused by the validity check */
 static void test_pi_is_valid(void **state)
 {
     qfoc_pi_t pi;
@@ -330,7 +354,9 @@ static void test_pi_is_valid(void **state)
     assert_false(qfoc_pi_is_valid(&pi));
 }
 
-/* REQ-PI-006, REQ-PI-003: bumpless preset, clamped; init with limits excluding 0. */
+/* REQ-PI-006, REQ-PI-003: bumpless preset, clamped; init with limits excluding 0.
+   Methods: 1c presets beyond the upper limit and at -32768, limits that exclude 0 on either
+   side; 1a the bumpless preset of REQ-PI-006 */
 static void test_pi_reset(void **state)
 {
     qfoc_pi_t pi;
@@ -355,7 +381,9 @@ static void test_pi_reset(void **state)
     assert_int_equal(qfoc_pi_step(&pi, 32767), -100);
 }
 
-/* REQ-PI-004, REQ-PI-007: corner errors and rounding (ties away from zero). */
+/* REQ-PI-004, REQ-PI-007: corner errors and rounding (ties away from zero).
+   Methods: 1c the errors -32768, -32767, -1, 0, 1, 32766, 32767, the rounding ties +-0.5,
+   the largest gains with -32768, a single-point range; 1n the double-precision product */
 static void test_pi_corners(void **state)
 {
     static const int16_t errs[7] = { (int16_t)-32768, -32767, -1, 0, 1, 32766, 32767 };
@@ -397,7 +425,9 @@ static void test_pi_corners(void **state)
 }
 
 /* REQ-PI-004, REQ-PI-005, REQ-PI-007: the whole span between the limits (2^32 - 2^17
-   in Q31) covered in one step, exactly and one LSB beyond, in both directions. */
+   in Q31) covered in one step, exactly and one LSB beyond, in both directions.
+   Methods: 1c the whole span between the limits (2^32 - 2^17 in Q31) covered in one step,
+   exactly and one LSB beyond, in both directions, and the rounding ties next to the limits */
 static void test_pi_full_span(void **state)
 {
     /* 2 x 32767 x 2^15 x 2 = 65534 x 65536: the distance from -32767 to 32767 in Q31 */

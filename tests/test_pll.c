@@ -263,7 +263,12 @@ static void random_instance(qfoc_pll_t *pll)
 
 /* REQ-PLL-003, REQ-PLL-004, REQ-PLL-005, REQ-PLL-006, REQ-PLL-007, REQ-PLL-010:
    one step on random instances and random / corner flux vectors, every output
-   and the new state re-computed independently. */
+   and the new state re-computed independently.
+   Methods: 1b 60000 random instances (four gain classes) and flux vectors (uniform, tiny for
+   coasting, corners), coasting, clamped and wrapping steps each reached more than 100 times;
+   1c every pair of ten corner components (-32768 .. 32767) on four corner states
+   (accumulator 0, 0x7FFF8000, 0xFFFFFFFF, 0x8000, speed 32767 / -32768, largest gains); 1n
+   every output and the new state recomputed independently in 64-bit arithmetic */
 static void test_pll_req003_one_step_vs_reference(void **state)
 {
     uint32_t n;
@@ -325,7 +330,9 @@ static void test_pll_req003_one_step_vs_reference(void **state)
 
 /* REQ-PLL-008, REQ-PLL-010: one ATO step on random instances and EMF vectors:
    the loop uses (e_beta, -e_alpha) for an integrator >= 0, (-e_beta, e_alpha)
-   otherwise. */
+   otherwise.
+   Methods: 1b 30000 random instances and EMF vectors, integrators of both signs (the two
+   rotations of the EMF); 1n the step recomputed independently on the rotated input */
 static void test_pll_req008_emf_one_step_vs_reference(void **state)
 {
     uint32_t n;
@@ -410,7 +417,10 @@ static track_t simulate(qfoc_pll_t *pll, double w_pu, double m, double th0, uint
 /* REQ-PLL-007, REQ-PLL-011: steady-state tracking of a constant speed, acquired from
    standstill (estimate at angle 0, speed 0; the error clamp 5000 limits the rate of the
    pull-in), for two damping ratios and two flux amplitudes: angle error < 0.1 deg, speed
-   error < 0.1 %, and the same pull-in time for |psi| = 2000 and 20000 (normalisation). */
+   error < 0.1 %, and the same pull-in time for |psi| = 2000 and 20000 (normalisation).
+   Methods: 1b four speeds from 0.06 to 0.8 pu, two damping ratios, two flux amplitudes (2000
+   and 20000); 1a angle error < 0.1 degree, speed error < 0.1 %, the pull-in independent of
+   the amplitude */
 static void test_pll_req011_tracking(void **state)
 {
     static const double speeds[] = { 0.06, 0.3, 0.6, 0.8 };
@@ -446,7 +456,9 @@ static void test_pll_req011_tracking(void **state)
 }
 
 /* REQ-PLL-011: a constant acceleration a (rad/s^2) is tracked with the constant
-   angle lag a / w_n^2 (two integrators in the loop); the speed follows. */
+   angle lag a / w_n^2 (two integrators in the loop); the speed follows.
+   Methods: 1b three accelerations (0.1, 0.5, 2 pu/s) from 0.06 to 0.8 pu; 1n the analytic
+   lag a / w_n^2 of a loop with two integrators */
 static void test_pll_req011_acceleration(void **state)
 {
     static const double accels[] = { 0.1, 0.5, 2.0 };   /* pu of w_base per second */
@@ -486,7 +498,9 @@ static void test_pll_req011_acceleration(void **state)
 
 /* REQ-PLL-003, REQ-PLL-011: lock from a 90 degree angle error (speed known, as
    after a hand-over from an open-loop start), for |psi| = 2000 and 20000: the
-   normalisation makes the lock time independent of the amplitude. */
+   normalisation makes the lock time independent of the amplitude.
+   Methods: 1b three speeds and two flux amplitudes (2000 and 20000); 1c the largest angle
+   error of a hand-over, 90 degrees */
 static void test_pll_req011_lock_90deg_independent_of_magnitude(void **state)
 {
     static const double speeds[] = { 0.06, 0.3, 0.8 };
@@ -519,7 +533,10 @@ static void test_pll_req011_lock_90deg_independent_of_magnitude(void **state)
 
 /* REQ-PLL-008: angle-tracking observer on the EMF w psi_f (-sin, cos) for
    positive and negative speeds: from standstill (integrator 0, so a negative
-   speed is first tracked in the wrong direction) and with the sign preset. */
+   speed is first tracked in the wrong direction) and with the sign preset.
+   Methods: 1b five speeds of both signs (0.3, -0.3, 0.8, -0.8, -0.1 pu), from standstill and
+   with the sign preset; 1d a negative speed first tracked in the wrong direction from
+   standstill */
 static void test_pll_req008_ato_positive_negative(void **state)
 {
     static const double speeds[] = { 0.3, -0.3, 0.8, -0.8, -0.1 };
@@ -567,7 +584,10 @@ static double loop_gain_abs(const qfoc_pll_params_t *p, double w)
    measured 2 theta ripple against |T(e^{j2W})| x the first-order amplitude
    sqrt(((psi2 - psi1)^2 + (psi2 phi_b - psi1 phi_a)^2)) / (psi1 + psi2), for
    psi1 < psi2 and psi1 > psi2 (the second case of specs/equations.md E2-31 would add a
-   constant (psi2 - psi1) / (psi1 + psi2) rad; it is absent). */
+   constant (psi2 - psi1) / (psi1 + psi2) rad; it is absent).
+   Methods: 1b four amplitude and phase mismatches (psi1 < psi2, psi1 > psi2, equal) at three
+   speeds; 1d mismatched flux components (2-29, 2-30), an estimator error; 1n the analytic
+   mean bias and 2 theta ripple through the closed loop's |T| */
 static void test_pll_req012_bias_of_mismatched_flux(void **state)
 {
     static const double cases[4][4] = {
@@ -653,7 +673,11 @@ static void test_pll_req012_bias_of_mismatched_flux(void **state)
 /* ---- parameters, safe state, reset, coasting ------------------------------ */
 
 /* REQ-PLL-001: init accepts valid parameters (stored, angle 0, speed the point
-   of the limits nearest to 0) and rejects each invalid one with the safe state. */
+   of the limits nearest to 0) and rejects each invalid one with the safe state.
+   Methods: 1b valid parameters and twelve invalid ones, each rule broken alone; 1c err_clamp
+   0 and -32768, mag_min 0, k_theta 0, 32768 and 65535, speed_alpha 0 and -32768, ki_shift
+   16, limits that exclude 0; 1d invalid parameters (the safe state: angle and speed 0
+   whatever the input) */
 static void test_pll_req001_init_accepts_and_rejects(void **state)
 {
     qfoc_pll_t pll;
@@ -736,7 +760,10 @@ static void test_pll_req001_init_accepts_and_rejects(void **state)
     }
 }
 
-/* REQ-PLL-002: qfoc_pll_is_valid() rejects each broken part of an instance. */
+/* REQ-PLL-002: qfoc_pll_is_valid() rejects each broken part of an instance.
+   Methods: 1b each part of the instance broken in turn; 1c the integrator and the speed one
+   above their limits, k_theta 32768, the accumulator at 0xFFFFFFFF (valid); 1l the
+   instance's fields overwritten, refused by the validity check */
 static void test_pll_req002_is_valid(void **state)
 {
     qfoc_pll_t good;
@@ -770,7 +797,9 @@ static void test_pll_req002_is_valid(void **state)
 
 /* REQ-PLL-009: reset loads the angle (x 65536) and the clamped speed into the
    PI integrator, the low-pass and the stored speed (bumpless: the next output
-   for a zero error is that speed). */
+   for a zero error is that speed).
+   Methods: 1c presets -32768, -32767, -25000, -1, 0, 1, 25000, 32767 against the limits
+   +-24000 (clamped); 1a the bumpless reset: a flux at the estimate keeps the speed */
 static void test_pll_req009_reset(void **state)
 {
     qfoc_pll_t pll;
@@ -805,7 +834,10 @@ static void test_pll_req009_reset(void **state)
 
 /* REQ-PLL-004, REQ-PLL-006: below mag_min (zero vector included) the error is 0, the
    speed is the held integrator and the angle advances by exactly speed x k_theta per
-   sample (modulo 2^32); above it the loop tracks again. */
+   sample (modulo 2^32); above it the loop tracks again.
+   Methods: 1b flux vectors below mag_min in every direction, the zero vector; 1c the
+   magnitude 1337 (coasting) and 1338 = mag_min (tracked); 1n the angle extrapolated by speed
+   x k_theta modulo 2^32 in the test */
 static void test_pll_req004_coasting(void **state)
 {
     qfoc_pll_t pll;

@@ -180,7 +180,9 @@ static uint32_t field(uint32_t reg, uint32_t shift, uint32_t width)
 
 /* REQ-PORT-001: every register the port touches during set-up and at run time is an
    aligned word inside a peripheral block of the S32K144 memory map that the port is
-   meant to use; nothing else is written. */
+   meant to use; nothing else is written.
+   Methods: 1a every register written during set-up and at run time checked against the
+   peripheral blocks of the S32K144 memory map, aligned words only */
 static void test_port_001_registers_in_known_blocks(void **state)
 {
     static const struct { uint32_t base; uint32_t size; const char *name; } blocks[] = {
@@ -233,7 +235,10 @@ static void test_port_001_registers_in_known_blocks(void **state)
 
 /* REQ-PORT-002: 8 MHz SOSC -> SPLL -> 80 MHz core in RUN mode, every clock within the
    RM's RUN-mode limits (VCO 180..320 MHz, PLL reference 8..16 MHz, core <= 80 MHz,
-   bus <= 48 MHz, flash <= 26.67 MHz, core an integer multiple of bus and flash). */
+   bus <= 48 MHz, flash <= 26.67 MHz, core an integer multiple of bus and flash).
+   Methods: 1a the clock tree 8 MHz SOSC -> SPLL -> 80 MHz computed from the reference
+   manual's formulas; 1c each clock against its RUN-mode limit (VCO 180 .. 320 MHz, reference
+   8 .. 16 MHz, core 80, bus 48, flash 26.67 MHz) */
 static void test_port_002_clock_run_mode(void **state)
 {
     uint32_t cfg;
@@ -285,7 +290,9 @@ static void test_port_002_clock_run_mode(void **state)
     assert_int_equal(field(qfoc_fake_peek(S32K_SMC_PMCTRL), 5u, 2u), 0u);
 }
 
-/* REQ-PORT-002: a clock that does not come up is reported after a bounded wait. */
+/* REQ-PORT-002: a clock that does not come up is reported after a bounded wait.
+   Methods: 1d an oscillator that never comes up; 1l the fake register file withholds the
+   SOSC valid flag */
 static void test_port_002_clock_timeout(void **state)
 {
     (void)state;
@@ -297,7 +304,9 @@ static void test_port_002_clock_timeout(void **state)
 /* ------------------------------------------------------------------ REQ-PORT-003 */
 
 /* REQ-PORT-003: each peripheral's clock gate is on, with the functional clock the
-   port's timing assumes. */
+   port's timing assumes.
+   Methods: 1a each peripheral's clock gate and functional clock source as the port's timing
+   assumes them */
 static void test_port_003_peripheral_clocks(void **state)
 {
     static const struct { uint32_t pcc; uint32_t pcs; } gates[] = {
@@ -322,7 +331,9 @@ static void test_port_003_peripheral_clocks(void **state)
 /* ------------------------------------------------------------------ REQ-PORT-004 */
 
 /* REQ-PORT-004: pin functions (S32K144 LQFP100 IO signal table) and the gate-driver
-   enable, low until enabled. */
+   enable, low until enabled.
+   Methods: 1a each pin's function from the S32K144 LQFP100 IO signal table, the gate-driver
+   enable low until enabled */
 static void test_port_004_pins(void **state)
 {
     static const struct { uint32_t base; uint32_t pin; uint32_t alt; } pins[] = {
@@ -398,21 +409,27 @@ static void check_pwm_setup(const qfoc_param_table_t *t, qfoc_s32k_ftm_int_t opt
     assert_true((qfoc_fake_peek(S32K_FTM3_MODE) & 1u) != 0u);             /* FTMEN */
 }
 
-/* REQ-PORT-005: 8 kHz table: MOD 5000, 8000.0 Hz; reload interrupt. */
+/* REQ-PORT-005: 8 kHz table: MOD 5000, 8000.0 Hz; reload interrupt.
+   Methods: 1a the 8 kHz table: MOD 5000, 8000.0 Hz, the reload interrupt, from the timer's
+   formulas */
 static void test_port_005_pwm_8k(void **state)
 {
     (void)state;
     check_pwm_setup(&qfoc_params_reference, QFOC_S32K_FTM_INT_RELOAD);
 }
 
-/* REQ-PORT-005: 16 kHz table: MOD 2500, 16000.0 Hz; overflow interrupt. */
+/* REQ-PORT-005: 16 kHz table: MOD 2500, 16000.0 Hz; overflow interrupt.
+   Methods: 1a the 16 kHz table: MOD 2500, 16000.0 Hz, the overflow interrupt, from the
+   timer's formulas */
 static void test_port_005_pwm_16k(void **state)
 {
     (void)state;
     check_pwm_setup(&qfoc_params_reference16k, QFOC_S32K_FTM_INT_OVF);
 }
 
-/* REQ-PORT-005: a table whose period does not match the 80 MHz timer is refused. */
+/* REQ-PORT-005: a table whose period does not match the 80 MHz timer is refused.
+   Methods: 1c periods 0, 99, 4999 and 5001 (one beside the timer's 5000), 32768, 65535; 1d a
+   table whose period does not fit the 80 MHz timer */
 static void test_port_005_table_mismatch(void **state)
 {
     static const uint16_t periods[] = { 0u, 99u, 4999u, 5001u, 32768u, 65535u };
@@ -442,7 +459,10 @@ static uint32_t deadtime_ticks(uint32_t reg)
 
 /* REQ-PORT-006: the inserted dead time is never shorter than asked, at most one
    prescaler step longer; the table's 1 us is exactly 80 clocks; below the port's floor
-   the floor applies. */
+   the floor applies.
+   Methods: 1b every dead time 0 .. 1200 clocks, across the three prescaler ranges; 1c the
+   port's floor (dt_comp 0) and its largest value (dt_comp 30000 and beyond the register),
+   the prescaler steps at 63 / 64 and 252 / 253; 1a the table's 1 us exactly 80 clocks */
 static void test_port_006_deadtime(void **state)
 {
     uint32_t t;
@@ -482,7 +502,9 @@ static void test_port_006_deadtime(void **state)
 /* ------------------------------------------------------------------ REQ-PORT-007 */
 
 /* REQ-PORT-007: hardware over-current path: fault input 0 enabled, filtered, active low;
-   all channels to their inactive level on a fault, manual clearing; set-up protected. */
+   all channels to their inactive level on a fault, manual clearing; set-up protected.
+   Methods: 1a the fault input 0 enabled, filtered and active low, every channel's inactive
+   level, manual clearing and the write protection, from the reference manual */
 static void test_port_007_fault_control(void **state)
 {
     qfoc_s32k_pwm_cfg_t cfg;
@@ -512,7 +534,9 @@ static void set_samples(uint16_t iu, uint16_t iv, uint16_t vdc, uint16_t t_ipm, 
 
 /* REQ-PORT-007: a hardware trip is reported to the drive once (full-scale currents, the
    drive latches its over-current fault in the same step), and cleared only with the
-   outputs masked and the fault input back to inactive. */
+   outputs masked and the fault input back to inactive.
+   Methods: 1d a hardware over-current trip with its input still active, a clear attempted
+   while active; 1l the comparator's fault flag set in the fake register file */
 static void test_port_007_trip_reported_once_then_cleared(void **state)
 {
     static qfoc_drive_t d;
@@ -552,7 +576,9 @@ static void test_port_007_trip_reported_once_then_cleared(void **state)
 
 /* REQ-PORT-008: compare values to the even channels, clamped to the period, loaded at
    the next reload point (LDOK); the enable drives the output mask.  REQ-PORT-018: a
-   latched fault output keeps the outputs masked. */
+   latched fault output keeps the outputs masked.
+   Methods: 1c compare values 0, P / 2 and beyond the period (6000, 65535: clamped to 5000);
+   1d a latched fault output (the outputs stay masked) */
 static void test_port_008_pwm_write(void **state)
 {
     qfoc_pwm_t p = { { 0u, 2500u, 6000u }, true };
@@ -582,7 +608,9 @@ static void test_port_008_pwm_write(void **state)
 /* ------------------------------------------------------------------ REQ-PORT-009 */
 
 /* REQ-PORT-009: FTM3 initialization trigger -> TRGMUX -> PDB0/PDB1 -> ADC0/ADC1, samples
-   at the centre of the period: PDB delay = half a PWM period = the counter at MOD. */
+   at the centre of the period: PDB delay = half a PWM period = the counter at MOD.
+   Methods: 1a the trigger chain FTM3 -> TRGMUX -> PDB0 / PDB1 -> ADC0 / ADC1 and the PDB
+   delay of half a PWM period, from the reference manual */
 static void test_port_009_trigger_chain(void **state)
 {
     static const uint32_t pdb[2] = { S32K_PDB0_BASE, S32K_PDB1_BASE };
@@ -633,7 +661,9 @@ static void test_port_009_trigger_chain(void **state)
     assert_int_equal(qfoc_fake_peek(S32K_ADC1_BASE + S32K_ADC_SC3), 0u);
 }
 
-/* REQ-PORT-009: an ADC that never finishes its calibration is reported. */
+/* REQ-PORT-009: an ADC that never finishes its calibration is reported.
+   Methods: 1d an ADC that never finishes its calibration; 1l the fake register file
+   withholds the calibration's completion */
 static void test_port_009_adc_calibration_timeout(void **state)
 {
     (void)state;
@@ -652,7 +682,10 @@ static double ntc_reference_dc(uint32_t code)
 
 /* REQ-PORT-010: NTC conversion against the B-parameter equation: within 0.2 degC from -40
    to 150 degC, 0.4 degC to 180 degC, 0.8 degC to 200 degC; colder readings -40.0 degC;
-   hotter, shorted and open sensors 200.0 degC. */
+   hotter, shorted and open sensors 200.0 degC.
+   Methods: 1b every 12-bit code; 1c the ends of the ranges -40 and 150, 180, 200 degrees C,
+   the open-sensor code and above, code 0 (shorted), 65535; 1d shorted and open sensors; 1n
+   the B-parameter equation in double precision */
 static void test_port_010_ntc(void **state)
 {
     uint32_t code;
@@ -692,7 +725,9 @@ static void test_port_010_ntc(void **state)
     assert_int_equal(qfoc_s32k_ntc_to_dc(65535u), 2000);
 }
 
-/* REQ-PORT-010: the fast step's read leaves the slow channels for the tick. */
+/* REQ-PORT-010: the fast step's read leaves the slow channels for the tick.
+   Methods: 1c bits above the 12-bit result (0xF123); 1n the B-parameter equation at code
+   1000 */
 static void test_port_010_adc_read_and_temps(void **state)
 {
     qfoc_adc_t a;
@@ -794,7 +829,9 @@ static size_t uart_drain_tx(uint8_t *out, size_t max)
 }
 
 /* REQ-PORT-011: LPUART1 19200 baud 8N1 (baud = 8 MHz / ((OSR + 1) SBR)), LIN break
-   detection and 13-bit breaks, receive and idle interrupts. */
+   detection and 13-bit breaks, receive and idle interrupts.
+   Methods: 1a LPUART1 at 19200 baud 8N1 from baud = 8 MHz / ((OSR + 1) SBR), within 0.5 %,
+   LIN break detection and the interrupts */
 static void test_port_011_uart_setup(void **state)
 {
     uint32_t baud;
@@ -823,7 +860,10 @@ static void test_port_011_uart_setup(void **state)
 }
 
 /* REQ-PORT-011: frames delimited by break and idle; erroneous, overlong, echoed and
-   unclaimed frames dropped. */
+   unclaimed frames dropped.
+   Methods: 1b a valid frame, a framing error, an overlong frame, two frames before the tick,
+   a frame larger than the caller's buffer, an echo; 1d erroneous, overlong, echoed and
+   unclaimed frames; 1l a framing error injected in the middle of a frame */
 static void test_port_011_frame_receive(void **state)
 {
     uint8_t f[7];
@@ -869,7 +909,9 @@ static void test_port_011_frame_receive(void **state)
 }
 
 /* REQ-PORT-011: a queued frame is sent byte by byte by the transmit interrupt, after a
-   break; the transmitter is busy until the last stop bit. */
+   break; the transmitter is busy until the last stop bit.
+   Methods: 1c frames of length 0, QFOC_LIN_FRAME_MAX and QFOC_LIN_FRAME_MAX + 1; 1d a
+   transmit while busy, interrupt flags without their enables */
 static void test_port_011_transmit(void **state)
 {
     uint8_t tx[QFOC_LIN_FRAME_MAX];
@@ -902,7 +944,9 @@ static void test_port_011_transmit(void **state)
 /* ------------------------------------------------------------------ REQ-PORT-012 */
 
 /* REQ-PORT-012: FlexCAN0 500 kbit/s from the 8 MHz oscillator clock, sample point
-   75..90 %, out of freeze mode, MB0 an inactive transmit buffer. */
+   75..90 %, out of freeze mode, MB0 an inactive transmit buffer.
+   Methods: 1a FlexCAN0 at 500 kbit/s from the 8 MHz oscillator, its time quanta and sample
+   point (75 .. 90 %) computed from the reference manual's formulas */
 static void test_port_012_can_setup(void **state)
 {
     uint32_t c1;
@@ -932,7 +976,9 @@ static void test_port_012_can_setup(void **state)
 }
 
 /* REQ-PORT-012: a frame goes to MB0 (identifier, DLC, big-endian data, CODE last);
-   while it is pending the next one is refused. */
+   while it is pending the next one is refused.
+   Methods: 1c the identifier 0xFFFF and DLC 9 (limited to 0x7FF and 8); 1d a frame sent
+   while MB0 is still pending */
 static void test_port_012_can_send(void **state)
 {
     qfoc_can_frame_t f = { 0x310u, 8u, { 0x11u, 0x22u, 0x33u, 0x44u, 0x55u, 0x66u, 0x77u, 0x88u } };
@@ -957,7 +1003,9 @@ static void test_port_012_can_send(void **state)
 /* ------------------------------------------------------------------ REQ-PORT-013 */
 
 /* REQ-PORT-013: LPIT0 channel 0 periodic at 8 MHz: (TVAL + 1) / 8 MHz = 1 ms; the tick
-   acknowledges, counts and flags. */
+   acknowledges, counts and flags.
+   Methods: 1a LPIT0 at 8 MHz: (TVAL + 1) / 8 MHz = 1 ms, the tick's acknowledge, count and
+   flag */
 static void test_port_013_tick(void **state)
 {
     uint32_t k;
@@ -982,7 +1030,9 @@ static void test_port_013_tick(void **state)
 /* ------------------------------------------------------------------ REQ-PORT-014 */
 
 /* REQ-PORT-014: watchdog unlocked with its key, 10 ms on the 128 kHz LPO, enabled,
-   configuration locked (UPDATE 0), refreshed from the tick. */
+   configuration locked (UPDATE 0), refreshed from the tick.
+   Methods: 1a the watchdog's key, 10 ms on the 128 kHz LPO, the locked configuration and its
+   refresh from the tick */
 static void test_port_014_watchdog(void **state)
 {
     uint32_t cs;
@@ -1008,7 +1058,8 @@ static uint32_t irq_prio(uint32_t irq)
 }
 
 /* REQ-PORT-015: ADC-complete above the PWM-period interrupt above the 1 ms tick above
-   the UART; all four enabled; priorities in the 4 implemented bits. */
+   the UART; all four enabled; priorities in the 4 implemented bits.
+   Methods: 1a the four interrupts enabled, their order of priority in the 4 implemented bits */
 static void test_port_015_nvic(void **state)
 {
     static const uint32_t irqs[4] = { 40u, 122u, 48u, 33u };
@@ -1045,7 +1096,10 @@ static void test_port_015_nvic(void **state)
    entered in CATCH (flying start, REQ-DRV-027), whose zero-current loops see only the
    samples' noise here (the samples do not answer the voltage): the observer wanders
    until the loops' voltage falls below CATCH's bound, and ALIGN follows some 300 ms
-   after the RUN entry; the twins run for 800 ms, so that ALIGN is in the run. */
+   after the RUN entry; the twins run for 800 ms, so that ALIGN is in the run.
+   Methods: 1b 800 ms through PRECHARGE, calibration, STOP, RUN / CATCH and ALIGN with noisy
+   samples; 1n a twin drive called directly with the same samples, temperatures and frames:
+   the same compare registers, output mask, status and CAN frames in every period and tick */
 static void test_port_016_017_isr_twin(void **state)
 {
     static qfoc_drive_t da;
@@ -1158,7 +1212,9 @@ static void test_port_016_017_isr_twin(void **state)
 }
 
 /* REQ-PORT-017: one valid command frame in the fake UART -> the next tick sends a
-   status frame: sync, PID of the status identifier, 8 data bytes, valid checksum. */
+   status frame: sync, PID of the status identifier, 8 data bytes, valid checksum.
+   Methods: 1a one valid command frame in the UART and the status frame of the next tick:
+   sync, PID, 8 data bytes, valid checksum */
 static void test_port_017_status_frame_after_command(void **state)
 {
     static qfoc_drive_t d;
@@ -1191,7 +1247,9 @@ static void test_port_017_status_frame_after_command(void **state)
 /* REQ-PORT-017: a status frame the UART refuses (the transmitter still busy with the
    previous frame) and a CAN frame the controller refuses (MB0 still pending) are dropped
    and counted, not retried; the next command is answered and the next CAN frame sent;
-   binding a drive resets the counts. */
+   binding a drive resets the counts.
+   Methods: 1d a status frame while the transmitter is busy, a CAN frame while MB0 is
+   pending: dropped and counted, not retried */
 static void test_port_017_refused_frames_counted(void **state)
 {
     static qfoc_drive_t d;
@@ -1244,7 +1302,10 @@ static void test_port_017_refused_frames_counted(void **state)
 
 /* REQ-PORT-018: the ADC chain is supervised: up to QFOC_S32K_MISSED_STEPS_MAX missing
    fast steps per millisecond are tolerated; more latch the fault output (outputs masked,
-   gate driver off) for good. */
+   gate driver off) for good.
+   Methods: 1c QFOC_S32K_MISSED_STEPS_MAX missing fast steps per millisecond (tolerated) and
+   one more (the fault output latched); 1d missed fast steps of the ADC chain; 1l ADC
+   interrupts withheld for the periods */
 static void test_port_018_supervision(void **state)
 {
     static qfoc_drive_t d;
@@ -1287,7 +1348,8 @@ static void test_port_018_supervision(void **state)
     qfoc_s32k_isr_bind(NULL);
 }
 
-/* REQ-PORT-016: without a drive bound the ADC interrupt keeps the outputs off. */
+/* REQ-PORT-016: without a drive bound the ADC interrupt keeps the outputs off.
+   Methods: 1d the ADC interrupt with no drive bound: the outputs stay off */
 static void test_port_016_unbound_isr_outputs_off(void **state)
 {
     (void)state;
@@ -1302,7 +1364,10 @@ static void test_port_016_unbound_isr_outputs_off(void **state)
 
 /* REQ-PORT-002, REQ-PORT-012, REQ-PORT-014: every bounded wait of the set-up ends with a timeout status
    when the hardware never answers (and the set-up goes on, so main() can keep the
-   outputs off). */
+   outputs off).
+   Methods: 1b each bounded wait of the set-up (SPLL, SCS, PMSTAT, LPMACK, FRZACK, UNFRZ,
+   NOTRDY, ULK, RCS); 1d hardware that never answers; 1l the fake register file withholds
+   each flag */
 static void test_port_002_012_014_wait_timeouts(void **state)
 {
     static const struct { uint32_t withhold; int which; } cases[] = {
@@ -1337,7 +1402,9 @@ static void test_port_002_012_014_wait_timeouts(void **state)
 /* ------------------------------------------------------------------ REQ-PORT-019 */
 
 /* REQ-PORT-019: the flash configuration field: no backdoor key, no protection,
-   FSEC = 0xFE (SEC = 10: unsecured; KEYEN = 11: backdoor disabled), FOPT 0x7F. */
+   FSEC = 0xFE (SEC = 10: unsecured; KEYEN = 11: backdoor disabled), FOPT 0x7F.
+   Methods: 1a the 16 bytes of the flash configuration field (no backdoor key, no protection,
+   FSEC 0xFE, FOPT 0x7F) */
 static void test_port_019_flash_config_field(void **state)
 {
     static const uint8_t expected[16] = {

@@ -37,7 +37,10 @@ static double ref_round(double x)
     return (x >= 0.0) ? floor(x + 0.5) : -floor(-x + 0.5);
 }
 
-/* REQ-Q15-001: saturation to the symmetric Q15 range */
+/* REQ-Q15-001: saturation to the symmetric Q15 range
+ * Methods: 1b 200000 random int32 values, half of them scaled into the Q15 band; 1c
+ * INT32_MIN, INT32_MIN + 1, -32769, -32768, -32767, 32767, 32768, INT32_MAX; 1n the
+ * double-precision saturation model */
 static void test_req_q15_001_sat(void **state)
 {
     (void)state;
@@ -53,7 +56,10 @@ static void test_req_q15_001_sat(void **state)
 }
 
 /* REQ-Q15-002: saturating add and sub, all 2^32 pairs would take too long: the
- * corners crossed with every value, plus random pairs. */
+ * corners crossed with every value, plus random pairs.
+ * Methods: 1b 500000 random pairs; 1c nine corners (-32768, -32767, -16384, -1, 0, 1, 16384,
+ * 32766, 32767) crossed with every int16 value, in both operand orders; 1n the
+ * double-precision sum saturated */
 static void test_req_q15_002_add_sub(void **state)
 {
     (void)state;
@@ -74,7 +80,10 @@ static void test_req_q15_002_add_sub(void **state)
     }
 }
 
-/* REQ-Q15-003: negate and absolute value, exhaustive */
+/* REQ-Q15-003: negate and absolute value, exhaustive
+ * Methods: 1b every int16 value (the domain enumerated); 1c -32768, whose negation and
+ * absolute value saturate to 32767; 1n the double-precision negation and absolute value
+ * saturated */
 static void test_req_q15_003_neg_abs(void **state)
 {
     (void)state;
@@ -91,7 +100,10 @@ static void test_req_q15_003_neg_abs(void **state)
     assert_int_equal(qfoc_q15_abs(-32768), 32767);
 }
 
-/* REQ-Q15-004: Q30 -> Q15 with rounding to nearest, ties away from zero */
+/* REQ-Q15-004: Q30 -> Q15 with rounding to nearest, ties away from zero
+ * Methods: 1b 1000000 random int32 values; 1c INT32_MIN, INT32_MAX, the values beside the
+ * saturation of +-32767 and the rounding ties +-16384 and +-16383 (half an LSB); 1n the
+ * double-precision quotient rounded half away from zero and saturated */
 static void test_req_q15_004_from_q30(void **state)
 {
     (void)state;
@@ -124,7 +136,10 @@ static void test_req_q15_004_from_q30(void **state)
     print_message("from_q30: max |error| inside range = %.6f LSB\n", max_err);
 }
 
-/* REQ-Q15-005: Q15 x Q15, error <= 0.5 LSB, only -1 x -1 saturates */
+/* REQ-Q15-005: Q15 x Q15, error <= 0.5 LSB, only -1 x -1 saturates
+ * Methods: 1b 1000000 random pairs; 1c ten corners (-32768, -32767, -16384, -2 .. 2, 16384,
+ * 32767) crossed with every int16 value, -32768 x -32768 the only saturating product; 1n the
+ * double-precision product rounded and saturated, error <= 0.5 LSB */
 static void test_req_q15_005_mul(void **state)
 {
     (void)state;
@@ -156,7 +171,10 @@ static void test_req_q15_005_mul(void **state)
     print_message("mul: max |error| = %.6f LSB\n", max_err);
 }
 
-/* REQ-Q15-006: Q31 saturation and addition */
+/* REQ-Q15-006: Q31 saturation and addition
+ * Methods: 1b 500000 random int32 pairs; 1c INT64_MIN, INT64_MAX, +-2^31, INT32_MIN +
+ * INT32_MIN and INT32_MAX + 1 at the saturation; 1n the double-precision sum saturated to
+ * +-(2^31 - 1) */
 static void test_req_q15_006_q31(void **state)
 {
     (void)state;
@@ -175,7 +193,9 @@ static void test_req_q15_006_q31(void **state)
     }
 }
 
-/* REQ-Q15-007: multiply-accumulate acc + 2ab in Q31 */
+/* REQ-Q15-007: multiply-accumulate acc + 2ab in Q31
+ * Methods: 1b 500000 random (acc, a, b) triples; 1c -32768 x -32768, -32768 x 32767 and the
+ * accumulator at INT32_MIN and INT32_MAX; 1n the double-precision acc + 2ab saturated */
 static void test_req_q15_007_mac(void **state)
 {
     (void)state;
@@ -193,7 +213,10 @@ static void test_req_q15_007_mac(void **state)
     }
 }
 
-/* REQ-Q15-008: Q31 <-> Q15 conversions */
+/* REQ-Q15-008: Q31 <-> Q15 conversions
+ * Methods: 1b every int16 value through Q31 and back, 1000000 random int32 values; 1c
+ * INT32_MIN, INT32_MAX, the rounding ties +-32768 and the values beside the saturation; 1n
+ * the double-precision quotient rounded and saturated */
 static void test_req_q15_008_q31_q15(void **state)
 {
     (void)state;

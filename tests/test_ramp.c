@@ -56,7 +56,10 @@ static double check_one(int16_t value, int16_t target, int16_t step)
 }
 
 /* REQ-RAMP-001, REQ-RAMP-002, REQ-RAMP-003, REQ-RAMP-004: random triples against the
-   double reference */
+   double reference
+   Methods: 1b 300000 random (value, target, step) triples over the int16 domain, half of the
+   steps small so that both outcomes (target reached, one step taken) occur often; 1n the
+   double-precision model of the ramp */
 static void test_ramp_random_vs_reference(void **state)
 {
     double max_err = 0.0;
@@ -74,7 +77,10 @@ static void test_ramp_random_vs_reference(void **state)
     assert_true(max_err == 0.0);
 }
 
-/* REQ-RAMP-001, REQ-RAMP-002, REQ-RAMP-004: every combination of the corner values */
+/* REQ-RAMP-001, REQ-RAMP-002, REQ-RAMP-004: every combination of the corner values
+   Methods: 1c every combination of twelve corner values (-32768, -32767, -32766, -1, 0, 1,
+   2, 32766, 32767, ...) for value, target and step, a step of exactly the distance and one
+   less; 1n the double-precision model of the ramp */
 static void test_ramp_corners(void **state)
 {
     static const int16_t c[] = { -32768, -32767, -32766, -1000, -1, 0, 1, 2, 1000,
@@ -107,7 +113,9 @@ static void test_ramp_corners(void **state)
 }
 
 /* REQ-RAMP-002, REQ-RAMP-003, REQ-RAMP-004: a ramp reaches its target in
-   ceil(|t - v| / s) calls, moving monotonically, and then holds it */
+   ceil(|t - v| / s) calls, moving monotonically, and then holds it
+   Methods: 1b 200 ramps between random values with random steps 1 .. 2000, upward and
+   downward, counted against ceil(distance / step) */
 static void test_ramp_sequence(void **state)
 {
     uint32_t trial;

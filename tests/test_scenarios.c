@@ -88,7 +88,9 @@ static void print_misses(void)
     }
 }
 
-/* REQ-SCN-001: cold start to 3000 rpm at the nominal load. */
+/* REQ-SCN-001: cold start to 3000 rpm at the nominal load.
+   Methods: 1a the cold start of REQ-SCN-001 at the nominal load, judged against the targets
+   of specs/scenarios.toml on the plant's true state */
 static void test_scn_001_cold_start(void **state)
 {
     (void)state;
@@ -99,7 +101,9 @@ static void test_scn_001_cold_start(void **state)
     judged("angle_err_max_deg");
 }
 
-/* REQ-SCN-002: speed steps through field weakening. */
+/* REQ-SCN-002: speed steps through field weakening.
+   Methods: 1b speed steps below and through the field-weakening range up to 8000 rpm; 1c
+   8000 rpm, the top of the speed range */
 static void test_scn_002_speed_steps(void **state)
 {
     (void)state;
@@ -109,7 +113,9 @@ static void test_scn_002_speed_steps(void **state)
     assert_true(scn_value(&res, "id_8000_a") < -2.0);
 }
 
-/* REQ-SCN-003: the torque compensation removes the pulsating load's speed ripple. */
+/* REQ-SCN-003: the torque compensation removes the pulsating load's speed ripple.
+   Methods: 1n the same pulsating load with the compensation off: the ripple reduction judged
+   against its target */
 static void test_scn_003_pulsating_load(void **state)
 {
     (void)state;
@@ -118,7 +124,9 @@ static void test_scn_003_pulsating_load(void **state)
     assert_true(scn_value(&res, "ripple_on_rpm") < scn_value(&res, "ripple_off_rpm"));
 }
 
-/* REQ-SCN-004: 100 % load step at 3000 rpm. */
+/* REQ-SCN-004: 100 % load step at 3000 rpm.
+   Methods: 1c a 100 % load step (0 to the nominal torque) at 3000 rpm; 1a the recovery time
+   against its target */
 static void test_scn_004_load_step(void **state)
 {
     (void)state;
@@ -127,7 +135,8 @@ static void test_scn_004_load_step(void **state)
     assert_true(scn_value(&res, "dip_rpm") > 0.0);
 }
 
-/* REQ-SCN-005: DC-bus sag at 6000 rpm: field weakening deepens, no fault. */
+/* REQ-SCN-005: DC-bus sag at 6000 rpm: field weakening deepens, no fault.
+   Methods: 1d a DC-bus sag at 6000 rpm in field weakening (no fault may follow) */
 static void test_scn_005_bus_sag(void **state)
 {
     (void)state;
@@ -136,7 +145,9 @@ static void test_scn_005_bus_sag(void **state)
     assert_true(scn_value(&res, "id_min_a") < scn_value(&res, "id_before_a") - 2.0);
 }
 
-/* REQ-SCN-006: phase over-current: PWM off in the period of the sample. */
+/* REQ-SCN-006: phase over-current: PWM off in the period of the sample.
+   Methods: 1d a phase over-current; 1l an over-current pulse injected at the current sensor,
+   the PWM off in the period of the sample */
 static void test_scn_006_fault_oc(void **state)
 {
     (void)state;
@@ -145,7 +156,9 @@ static void test_scn_006_fault_oc(void **state)
     judged("t_error_s");
 }
 
-/* REQ-SCN-007: DC-bus over-voltage. */
+/* REQ-SCN-007: DC-bus over-voltage.
+   Methods: 1d a DC-bus over-voltage and its recovery; 1l the over-voltage injected on the
+   plant's bus */
 static void test_scn_007_fault_ov(void **state)
 {
     (void)state;
@@ -154,7 +167,8 @@ static void test_scn_007_fault_ov(void **state)
     judged("t_recover_s");
 }
 
-/* REQ-SCN-008: IPM over-temperature. */
+/* REQ-SCN-008: IPM over-temperature.
+   Methods: 1d an IPM over-temperature; 1l the temperature injected at the sensor input */
 static void test_scn_008_fault_ot(void **state)
 {
     (void)state;
@@ -162,7 +176,8 @@ static void test_scn_008_fault_ot(void **state)
     judged("t_detect_ms");
 }
 
-/* REQ-SCN-009: locked rotor. */
+/* REQ-SCN-009: locked rotor.
+   Methods: 1d a locked rotor; 1l the rotor locked on the plant */
 static void test_scn_009_fault_stall(void **state)
 {
     (void)state;
@@ -170,7 +185,8 @@ static void test_scn_009_fault_stall(void **state)
     judged("fault_bit");
 }
 
-/* REQ-SCN-010: command-link loss. */
+/* REQ-SCN-010: command-link loss.
+   Methods: 1d the command link lost while running; 1l the master's frames stopped */
 static void test_scn_010_fault_link(void **state)
 {
     (void)state;
@@ -180,7 +196,10 @@ static void test_scn_010_fault_link(void **state)
 }
 
 /* REQ-SCN-011: starts of the robustness campaign at the corners of its ranges (the
-   campaign itself, make robustness, draws them at random). */
+   campaign itself, make robustness, draws them at random).
+   Methods: 1c four corners of the robustness ranges: R_s +-30 %, L_d and L_q +-20 %, psi_f
+   +-10 %, load 0 and nominal, bus 250 and 420 V, noise 0 and 0.1 A rms, the initial angle at
+   0, 90, 180 and 270 degrees; 1d parameter errors of the table and ADC noise */
 static void test_scn_011_robust_corners(void **state)
 {
     static const double corner[4][8] = {
@@ -219,7 +238,9 @@ static void test_scn_011_robust_corners(void **state)
 }
 
 /* REQ-SCN-012: the 16 kHz table, the traction motor and the 800 V e-compressor start with
-   no code change. */
+   no code change.
+   Methods: 1b the other tables: 16 kHz, the traction motor, the 800 V e-compressor in a flux
+   base of its own */
 static void test_scn_012_other_tables(void **state)
 {
     (void)state;
@@ -240,7 +261,9 @@ static void test_scn_012_other_tables(void **state)
 }
 
 /* REQ-SCN-013: MTPA at 3000 rpm and 4.5 N m: the current reduction against i_d = 0 within 1
-   point of the analytic prediction. */
+   point of the analytic prediction.
+   Methods: 1n the same operating point with i_d = 0 and the analytic prediction of the
+   current reduction, within 1 point */
 static void test_scn_013_mtpa(void **state)
 {
     (void)state;
@@ -251,7 +274,9 @@ static void test_scn_013_mtpa(void **state)
 }
 
 /* REQ-SCN-014: thermal derating at 6000 rpm: the speed follows the derated limit and
-   recovers, no OT. */
+   recovers, no OT.
+   Methods: 1a the speed following the derated limit at 6000 rpm and recovering without an OT
+   fault, judged against its target */
 static void test_scn_014_derating(void **state)
 {
     (void)state;
@@ -262,7 +287,9 @@ static void test_scn_014_derating(void **state)
 
 /* REQ-SCN-015: flying start; restarts at +50 %, +10 %, 0 and -20 % of the rated speed:
    the +50 % rotor is caught (closed loop at its speed, well above the handover speed), the
-   others start from ALIGN; every run at the target without a fault. */
+   others start from ALIGN; every run at the target without a fault.
+   Methods: 1b restarts at +50 %, +10 %, 0 and -20 % of the rated speed (caught, started from
+   ALIGN, backwards); 1d a rotor still turning, forwards or backwards, at the run request */
 static void test_scn_015_flying_start(void **state)
 {
     (void)state;

@@ -56,7 +56,9 @@ static void open_loop_cmp(const sim_t *s, double va, double vb, uint16_t cmp[3])
     }
 }
 
-/* Motor file: every value of the reference motor as specs/reference-motor.md states. */
+/* Motor file: every value of the reference motor as specs/reference-motor.md states.
+   Methods: 1a every value of the reference motor and its bases as specs/reference-motor.md
+   states them, computed by hand */
 static void test_motor_file(void **state)
 {
     /* REQ-SIM-001 */
@@ -83,6 +85,8 @@ static void test_motor_file(void **state)
     assert_int_equal(b.period, 5000);
 }
 
+/* Methods: 1d a missing file, a value that is not a number, a file with every other key
+   missing */
 static void test_motor_file_rejects(void **state)
 {
     /* REQ-SIM-001 */
@@ -152,6 +156,8 @@ static void check_steady_state(double we, double vd, double vq)
     }
 }
 
+/* Methods: 1b DC, 100 Hz and 300 Hz electrical; 1n the closed-form steady-state phasor
+   solution of the voltage equations */
 static void test_steady_state_phasor(void **state)
 {
     /* REQ-SIM-002 */
@@ -162,7 +168,9 @@ static void test_steady_state_phasor(void **state)
 }
 
 /* First-order response at standstill: a d-axis voltage step gives
-   i_d(t) = V/R (1 - exp(-t R / L_d)) (RK4 with the PWM average voltage). */
+   i_d(t) = V/R (1 - exp(-t R / L_d)) (RK4 with the PWM average voltage).
+   Methods: 1n the closed-form first-order response i_d(t) = V / R (1 - exp(-t R / L_d)) at
+   standstill */
 static void test_current_step_response(void **state)
 {
     /* REQ-SIM-003 */
@@ -194,7 +202,9 @@ static void test_current_step_response(void **state)
     assert_true(fabs(s.iq) < 1e-9);
 }
 
-/* Dead time: every pole loses (i > 0) or gains (i < 0) Vdc td / T of its average. */
+/* Dead time: every pole loses (i > 0) or gains (i < 0) Vdc td / T of its average.
+   Methods: 1b a positive and two negative phase currents; 1n each pole's average voltage
+   less or plus Vdc td / T, computed in the test */
 static void test_dead_time_error(void **state)
 {
     /* REQ-SIM-004 */
@@ -233,7 +243,9 @@ static void test_dead_time_error(void **state)
    equation with the plant's period-average electromagnetic torque (so that the
    check is independent of how well the controller holds the torque); a first-order
    hold of the torque over one period (125 us, mechanical time constant J/B = 3 s)
-   keeps the two within 0.1 %. */
+   keeps the two within 0.1 %.
+   Methods: 1n the same mechanical equation J dw/dt = T_e - T_L - B w integrated in the test
+   from the plant's period torque, within 0.1 % */
 static void test_mechanics(void **state)
 {
     /* REQ-SIM-005 */
@@ -279,7 +291,10 @@ static void ctrl_period(sim_t *s, sim_ctrl_t *c)
 /* Breakaway torque (static friction) t_b: at standstill the rotor does not move while
    |T_e| <= t_b, starts in the period in which T_e exceeds t_b and then follows
    J dw/dt = T_e - B w (no friction torque while it turns); braked by a torque below t_b it
-   stops when that equation reaches zero speed and is held there. */
+   stops when that equation reaches zero speed and is held there.
+   Methods: 1c a torque below the breakaway torque (held), above it (starts in the first
+   period that exceeds it), a braking torque below it (stops, held); 1n J dw/dt = T_e - B w
+   integrated in the test, within one period */
 static void test_breakaway(void **state)
 {
     /* REQ-SIM-005 */
@@ -358,6 +373,8 @@ static void test_breakaway(void **state)
     assert_true(k_stop - k_ref <= 1 && k_ref - k_stop <= 1);
 }
 
+/* Methods: 1a the load torque t_mean + t_1x cos(theta_m + phi_1x) + t_2x cos(2 theta_m +
+   phi_2x) at two angles, computed by hand */
 static void test_load_profile(void **state)
 {
     /* REQ-SIM-005 */
@@ -377,7 +394,9 @@ static void test_load_profile(void **state)
     assert_true(fabs(sim_load_torque(&s) - (4.0 + 1.0 - 0.5)) < 1e-12);
 }
 
-/* ADC: offset at mid-scale, 2048 counts = full scale, clamped, noise of the stated RMS. */
+/* ADC: offset at mid-scale, 2048 counts = full scale, clamped, noise of the stated RMS.
+   Methods: 1c currents beyond full scale (clamped to 4095 and 0); 1n the offset and scale
+   computed by hand, and 20000 noisy samples against the stated 0.5 A rms */
 static void test_adc(void **state)
 {
     /* REQ-SIM-006 */

@@ -43,7 +43,11 @@ static void steps(qfoc_sm_t *sm, const qfoc_sm_in_t *in, int n)
     }
 }
 
-/* REQ-SM-001: power-on state and the invariant check. */
+/* REQ-SM-001: power-on state and the invariant check.
+   Methods: 1b each part of the invariant broken in turn (sub-state of another state, a fault
+   word outside ERROR, ERROR without a cause, first fault missing or undefined); 1c the
+   undefined state 7 and sub-state 8, the undefined bit 0x0800; 1l the instance's fields
+   overwritten, refused by the validity check */
 static void test_sm_001_init_and_validity(void **state)
 {
     qfoc_sm_t sm;
@@ -93,7 +97,9 @@ static void test_sm_001_init_and_validity(void **state)
     assert_false(qfoc_sm_is_valid(&sm));
 }
 
-/* REQ-SM-004: PRECHARGE waits precharge_ms with the bus up, calibrates, then STOP. */
+/* REQ-SM-004: PRECHARGE waits precharge_ms with the bus up, calibrates, then STOP.
+   Methods: 1c the 199th and the 200th tick of precharge_ms with the bus up; 1d a bus dip
+   during the settling time and the bus lost during the calibration */
 static void test_sm_004_precharge(void **state)
 {
     qfoc_sm_t sm;
@@ -137,7 +143,9 @@ static void to_stop(qfoc_sm_t *sm)
     assert_int_equal(sm->state, QFOC_STATE_STOP);
 }
 
-/* REQ-SM-005: STOP starts on a run request into CATCH; bus or offsets lost: PRECHARGE. */
+/* REQ-SM-005: STOP starts on a run request into CATCH; bus or offsets lost: PRECHARGE.
+   Methods: 1b the ways out of STOP: a run request, the bus lost, the offsets not calibrated;
+   1d the flying start's verdicts given in STOP, which must change nothing */
 static void test_sm_005_stop(void **state)
 {
     qfoc_sm_t sm;
@@ -171,7 +179,10 @@ static void test_sm_005_stop(void **state)
 }
 
 /* REQ-SM-006, REQ-SM-010: CATCH (standing) -> ALIGN -> OPEN_LOOP -> CLOSED_LOOP, handover
-   not before cl_hold_ms counted from ALIGN. */
+   not before cl_hold_ms counted from ALIGN.
+   Methods: 1c the 299th and 300th tick of align_ms, the handover one tick before and at
+   cl_hold_ms; 1d an observer converged early (the handover must still wait), convergence
+   lost in CLOSED_LOOP */
 static void test_sm_006_run_sequence(void **state)
 {
     qfoc_sm_t sm;
@@ -204,7 +215,9 @@ static void test_sm_006_run_sequence(void **state)
     assert_int_equal(sm.t_state, 12000);
 }
 
-/* REQ-SM-007: stop requests: at once from ALIGN and OPEN_LOOP, ramped from CLOSED_LOOP. */
+/* REQ-SM-007: stop requests: at once from ALIGN and OPEN_LOOP, ramped from CLOSED_LOOP.
+   Methods: 1b a stop request in each running sub-state (ALIGN, OPEN_LOOP, CLOSED_LOOP) and a
+   restart while ramping down */
 static void test_sm_007_stop_requests(void **state)
 {
     qfoc_sm_t sm;
@@ -244,7 +257,9 @@ static void test_sm_007_stop_requests(void **state)
     assert_int_equal(sm.state, QFOC_STATE_STOP);
 }
 
-/* REQ-SM-002: any fault in any state enters ERROR in the same tick, PWM-off state. */
+/* REQ-SM-002: any fault in any state enters ERROR in the same tick, PWM-off state.
+   Methods: 1b every one of the 16 fault-word bits in each of the eight state and sub-state
+   pairs; 1d the undefined bits 11 .. 15, which must be ignored */
 static void test_sm_002_fault_to_error(void **state)
 {
     const uint8_t subs[] = { QFOC_SUB_BUS_WAIT, QFOC_SUB_CALIB, QFOC_SUB_NONE, QFOC_SUB_ALIGN,
@@ -283,7 +298,10 @@ static void test_sm_002_fault_to_error(void **state)
     }
 }
 
-/* REQ-SM-008: STALL after ol_timeout_ms of OPEN_LOOP; LINK on a lost link while running. */
+/* REQ-SM-008: STALL after ol_timeout_ms of OPEN_LOOP; LINK on a lost link while running.
+   Methods: 1c the 2299th and 2300th tick of OPEN_LOOP (ol_timeout_ms); 1d a stalled start,
+   the link lost in ALIGN and in CLOSED_LOOP, a lost link in STOP (no fault), both faults at
+   once */
 static void test_sm_008_own_faults(void **state)
 {
     qfoc_sm_t sm;
@@ -348,7 +366,10 @@ static void test_sm_008_own_faults(void **state)
 }
 
 /* REQ-SM-003, REQ-SM-009: ERROR is left only after clear_ms, on a clear request, with no
-   fault and the table intact; to STOP, word cleared. */
+   fault and the table intact; to STOP, word cleared.
+   Methods: 1c the clear at tick 4999 and at tick 5000 of clear_ms, the times at 65535
+   (saturated); 1d a clear requested too early, with a fault still present, with the table
+   failed, and a second fault while in ERROR (the word keeps its cause) */
 static void test_sm_003_fault_clear(void **state)
 {
     qfoc_sm_t sm;
@@ -417,7 +438,11 @@ static void to_catch(qfoc_sm_t *sm, qfoc_sm_in_t *in)
 /* REQ-SM-010: the flying start.  CATCH goes to CLOSED_LOOP on a lock (the lock wins over
    still, and the caught rotor does not wait for cl_hold_ms), to ALIGN on still with both
    times restarted, waits otherwise; without a run request it stops at once; STALL after
-   ol_timeout_ms in CATCH without a verdict; a lost link in CATCH is LINK. */
+   ol_timeout_ms in CATCH without a verdict; a lost link in CATCH is LINK.
+   Methods: 1b every way out of CATCH: lock, still, lock and still at once, no verdict, no
+   run request, lost link; 1c the 1999th and 2000th tick of ol_timeout_ms in CATCH, and the
+   timeout in the same tick as a verdict; 1d a verdict outside CATCH, a lost link over a
+   lock, both faults at the timeout */
 static void test_sm_010_catch(void **state)
 {
     qfoc_sm_t sm;
@@ -647,7 +672,11 @@ static void model_step(model_t *m, const qfoc_sm_in_t *in)
    start-up, stopping, the machine's own faults, times); the invariant is checked after
    every tick.  CATCH's verdicts come in spells (a rotor that stands, one that can be
    caught, one that does neither), so that every way out of CATCH, the STALL of a CATCH
-   without a verdict included, is taken many times. */
+   without a verdict included, is taken many times.
+   Methods: 1b 2000000 random ticks with spells of each CATCH verdict, rare random fault
+   words, every sub-state visited more than 1000 times and every way out of CATCH and
+   OPEN_LOOP taken; 1d random fault words with undefined bits, lost links, clears at any
+   time; 1n the transition model written from the requirements in the test */
 static void test_sm_009_random_against_model(void **state)
 {
     qfoc_sm_t sm;
@@ -744,7 +773,10 @@ static void step_r(qfoc_sm_t *sm, const qfoc_sm_in_t *in, int n)
    standing rotor to ALIGN and OPEN_LOOP again; the third timeout is STALL, in exactly the
    tick ol_timeout_ms after the last OPEN_LOOP entry.  A handover on a retry keeps the
    count; a new RUN entry starts it at 0.  Without retries (cfg) the first timeout is
-   STALL (test_sm_008). */
+   STALL (test_sm_008).
+   Methods: 1c the 1999th and 2000th tick of OPEN_LOOP on each of the two retries and the
+   third timeout (STALL); 1d an OPEN_LOOP without a handover, a handover on a retry, CATCH's
+   own timeout with retries left */
 static void test_sm_011_start_retries(void **state)
 {
     qfoc_sm_t sm;

@@ -277,7 +277,10 @@ static const qfoc_abc_t i_zero = { 0, 0, 0 };
 
 /* ------------------------------------------------------------------ tests */
 
-/* REQ-SVPWM-001: configuration invariant */
+/* REQ-SVPWM-001: configuration invariant
+   Methods: 1b valid and invalid configurations, one field out of range each; 1c the period
+   99 / 100 and 32767 / 32768, the dead-time compensation at and above P / 4, vdc_min -1 and
+   0, the dead band 0 and -32768 */
 static void test_req_svpwm_001_cfg_valid(void **state)
 {
     qfoc_svpwm_cfg_t c;
@@ -302,7 +305,10 @@ static void test_req_svpwm_001_cfg_valid(void **state)
     assert_false(qfoc_svpwm_cfg_is_valid(&c));
 }
 
-/* REQ-SVPWM-002: invalid configuration gives the safe zero-voltage output */
+/* REQ-SVPWM-002: invalid configuration gives the safe zero-voltage output
+   Methods: 1b seven invalid configurations, each rule broken; 1c periods 0, 99 and 65535,
+   compensation 1251 for P = 5000; 1d an invalid configuration reaching the step: the safe
+   zero-voltage pattern */
 static void test_req_svpwm_002_invalid_cfg_safe(void **state)
 {
     const qfoc_svpwm_cfg_t bad[] = {
@@ -328,7 +334,10 @@ static void test_req_svpwm_002_invalid_cfg_safe(void **state)
     }
 }
 
-/* REQ-SVPWM-003: bus voltage below vdc_min (0, negative, -32768) is replaced */
+/* REQ-SVPWM-003: bus voltage below vdc_min (0, negative, -32768) is replaced
+   Methods: 1c bus voltages -32768, -32767, -1, 0, 1 and vdc_min - 1, vdc_min, vdc_min + 1,
+   32767 crossed with six voltage vectors; 1d a bus voltage at or below 0 (a failed
+   measurement); 1n the double-precision reference of section 6 of specs/equations.md */
 static void test_req_svpwm_003_vdc_clamp(void **state)
 {
     const qfoc_svpwm_cfg_t c = make_cfg(5000u, 0u, 0, 4000);
@@ -355,7 +364,10 @@ static void test_req_svpwm_003_vdc_clamp(void **state)
     }
 }
 
-/* REQ-SVPWM-004, REQ-SVPWM-010: Q15 corners of every input, three periods */
+/* REQ-SVPWM-004, REQ-SVPWM-010: Q15 corners of every input, three periods
+   Methods: 1c eight Q15 corners (-32768 .. 32767) of alpha, beta and the bus and of the
+   three currents, at the periods 100, 5000 and 32767, with and without compensation; 1n the
+   double-precision reference */
 static void test_req_svpwm_004_corners(void **state)
 {
     const qfoc_q15_t q[] = { -32768, -32767, -16384, -1, 0, 1, 16384, 32767 };
@@ -382,7 +394,10 @@ static void test_req_svpwm_004_corners(void **state)
     }
 }
 
-/* REQ-SVPWM-006: vectors on the six sector boundaries and just beside them */
+/* REQ-SVPWM-006: vectors on the six sector boundaries and just beside them
+   Methods: 1b every sector: vectors 10 degrees inside each of the six wedges at six radii;
+   1c the vectors on the six sector boundaries, the zero vector and the exact ties of the
+   equations (beta = 0); 1n the double-precision reference */
 static void test_req_svpwm_006_sector_boundaries(void **state)
 {
     const qfoc_svpwm_cfg_t c = make_cfg(5000u, 0u, 0, 1000);
@@ -428,7 +443,11 @@ static void test_req_svpwm_006_sector_boundaries(void **state)
     assert_int_equal(o.cmp[1], o.cmp[2]);
 }
 
-/* REQ-SVPWM-005, REQ-SVPWM-009: overmodulation limited onto the inscribed circle */
+/* REQ-SVPWM-005, REQ-SVPWM-009: overmodulation limited onto the inscribed circle
+   Methods: 1b 72 angles on the full-scale circle at four bus voltages; 1c |v|^2 on both
+   sides of 32767^2 (where the magnitude switches to the halved vector), the corners (32767,
+   32767) and (-32768, -32768); 1n the applied voltage reconstructed from the pole voltages
+   against Vdc / sqrt(3) */
 static void test_req_svpwm_005_overmodulation(void **state)
 {
     const qfoc_q15_t vd[] = { 100, 1000, 16000, 32767 };
@@ -499,7 +518,10 @@ static void test_req_svpwm_005_overmodulation(void **state)
     print_message("overmodulation: max |radius - vdc/sqrt3| = %.3f ticks\n", max_rad_err);
 }
 
-/* REQ-SVPWM-008, REQ-SVPWM-011: dead-time compensation sign and dead band */
+/* REQ-SVPWM-008, REQ-SVPWM-011: dead-time compensation sign and dead band
+   Methods: 1b currents of each sign, inside and outside the dead band; 1c currents exactly
+   at the band edge, the smallest current (1 LSB), dead band 0 with -32768, compensation that
+   pushes a phase beyond the period; 1n the double-precision reference */
 static void test_req_svpwm_008_dead_time(void **state)
 {
     const qfoc_svpwm_cfg_t c = make_cfg(5000u, 200u, 1000, 1000);
@@ -557,7 +579,10 @@ static void test_req_svpwm_008_dead_time(void **state)
 /* REQ-SVPWM-004, REQ-SVPWM-005, REQ-SVPWM-006, REQ-SVPWM-007, REQ-SVPWM-008, REQ-SVPWM-009,
    REQ-SVPWM-010: random inputs vs the reference, every case through check_case (ranges,
    limit flag, sector, line-to-line voltages and centred pulses, utilisation, compare
-   values) */
+   values)
+   Methods: 1b 300000 random cases in four classes: any input, typical drive at 5000 ticks,
+   any period, with dead-time compensation; 1n the double-precision reference of every
+   output, within the bound of REQ-SVPWM-010 */
 static void test_req_svpwm_010_random(void **state)
 {
     uint32_t n;
@@ -611,7 +636,11 @@ static void test_req_svpwm_010_random(void **state)
    qfoc_svpwm_step() (which the double reference checks above), and the double
    reference of specs/equations.md section 6 holds as well; outside, the compare values stay
    in [0, P]; an invalid configuration gives the safe pattern; utilisation 0, limited
-   false. */
+   false.
+   Methods: 1b 200000 random cases: vectors inside the circle and anywhere, random periods,
+   compensation and bus voltages, every 17th bus voltage any value; 1d an invalid
+   configuration (period 50): the safe pattern; 1n qfoc_svpwm_step() inside the circle and
+   the double-precision reference */
 static void test_req_svpwm_012_linear_step(void **state)
 {
     uint32_t n;
@@ -696,7 +725,9 @@ static void test_req_svpwm_012_linear_step(void **state)
     assert_true(n_inside > 100000u);
 }
 
-/* REQ-SVPWM-007, REQ-SVPWM-010, REQ-SVPWM-011: period extremes 100 and 32767 */
+/* REQ-SVPWM-007, REQ-SVPWM-010, REQ-SVPWM-011: period extremes 100 and 32767
+   Methods: 1b 52 angles of the voltage and current vectors; 1c the period extremes 100 and
+   32767, the bus at 100 and 32767; 1n the double-precision reference */
 static void test_req_svpwm_011_periods(void **state)
 {
     const uint16_t per[] = { 100u, 32767u };

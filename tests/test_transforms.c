@@ -126,7 +126,11 @@ static void check_clarke(int16_t iu, int16_t iv)
     }
 }
 
-/* REQ-TRF-001, REQ-TRF-002: every numerator i_u + 2 i_v, random pairs, corners */
+/* REQ-TRF-001, REQ-TRF-002: every numerator i_u + 2 i_v, random pairs, corners
+ * Methods: 1b every numerator i_u + 2 i_v in [-98304, 98302] (the domain of beta enumerated)
+ * and 200000 random pairs; 1c eight corners (-32768, -32767, -16384, -1, 0, 1, 16384, 32767)
+ * crossed, and |i_u + 2 i_v| = 56754 and 56755 either side of the saturation bound; 1n
+ * equations (2-3), (2-4) in double precision */
 static void test_req_trf_001_002_clarke(void **state)
 {
     int32_t s;
@@ -169,7 +173,9 @@ static void test_req_trf_001_002_clarke(void **state)
                   clarke_max_err, CLARKE_BETA_BOUND);
 }
 
-/* REQ-TRF-001, REQ-TRF-002: saturation outside the bound, values spelled out */
+/* REQ-TRF-001, REQ-TRF-002: saturation outside the bound, values spelled out
+ * Methods: 1c the corners (32767, 32767), (-32768, -32768), (-32768, 16384) and the
+ * numerators 56754 and 56755 either side of the saturation, results computed by hand */
 static void test_req_trf_002_clarke_saturation(void **state)
 {
     qfoc_ab_t out;
@@ -190,7 +196,9 @@ static void test_req_trf_002_clarke_saturation(void **state)
     assert_int_equal(out.beta, 32767);
 }
 
-/* REQ-TRF-009: a balanced three-phase set of amplitude A gives |(alpha, beta)| = A */
+/* REQ-TRF-009: a balanced three-phase set of amplitude A gives |(alpha, beta)| = A
+ * Methods: 1b 3600 angles of a balanced three-phase set at four amplitudes; 1c the amplitude
+ * 32767 (full scale); 1n A sin(x) and -A cos(x) in double precision */
 static void test_req_trf_009_clarke_balanced(void **state)
 {
     const double amps[] = { 1000.0, 16384.0, 30000.0, 32767.0 };
@@ -309,7 +317,11 @@ static void check_park(int16_t alpha, int16_t beta, qfoc_sincos_t sc, double x, 
     }
 }
 
-/* REQ-TRF-003, REQ-TRF-004, REQ-TRF-010: random vectors and angles, all corners */
+/* REQ-TRF-003, REQ-TRF-004, REQ-TRF-010: random vectors and angles, all corners
+ * Methods: 1b 200000 random vectors at random exact angles and 200000 random sine and cosine
+ * words that are not a unit pair; 1c every combination of eight corners (-32768 .. 32767)
+ * for both inputs and both sine and cosine words; 1n equations (2-7), (2-8) in double
+ * precision, with the same and with the exact sine and cosine */
 static void test_req_trf_003_004_park(void **state)
 {
     (void)state;
@@ -323,7 +335,10 @@ static void test_req_trf_003_004_park(void **state)
                   park_max_err_ideal);
 }
 
-/* REQ-TRF-004: inside the Park bound of specs/equations.md E2-9, E2-10 (|i| <= 32767, unit sin/cos) no saturation */
+/* REQ-TRF-004: inside the Park bound of specs/equations.md E2-9, E2-10 (|i| <= 32767, unit sin/cos) no saturation
+ * Methods: 1b 200000 random vectors inside the full-scale circle at random angles; 1c the
+ * full-scale vector along the rotor axis (d = 32766); 1n equations (2-7), (2-8) in double
+ * precision */
 static void test_req_trf_004_park_doc_bound(void **state)
 {
     uint32_t i;
@@ -360,7 +375,9 @@ static void test_req_trf_004_park_doc_bound(void **state)
     }
 }
 
-/* REQ-TRF-003: saturation outside the bound */
+/* REQ-TRF-003: saturation outside the bound
+ * Methods: 1c full-scale vectors at 45 degrees, -32768 included, whose d or q exceeds 32767
+ * sqrt(2) / sqrt(2): the saturation, results computed by hand */
 static void test_req_trf_003_park_saturation(void **state)
 {
     qfoc_ab_t in = { 32767, 32767 };
@@ -450,7 +467,11 @@ static int16_t rand_sym(void)
     return (x == -32768) ? (int16_t)-32767 : x;
 }
 
-/* REQ-TRF-003, REQ-TRF-005, REQ-TRF-009: the steps without clamps, random and corners */
+/* REQ-TRF-003, REQ-TRF-005, REQ-TRF-009: the steps without clamps, random and corners
+ * Methods: 1b 200000 random symmetric inputs and sine and cosine words; 1c every combination
+ * of eight corners (-32767, -32766, -16384, -1, 0, 1, 16384, 32767) for the four inputs; 1n
+ * the rounded and saturated products in double precision, and the public functions against
+ * the unclamped steps */
 static void test_req_trf_003_005_sym_steps(void **state)
 {
     static const int16_t sym_corners[] = { -32767, -32766, -16384, -1, 0, 1, 16384, 32767 };
@@ -506,7 +527,11 @@ static void test_req_trf_003_005_sym_steps(void **state)
     }
 }
 
-/* REQ-TRF-005, REQ-TRF-006, REQ-TRF-010 */
+/* REQ-TRF-005, REQ-TRF-006, REQ-TRF-010
+ * Methods: 1b 200000 random vectors at random angles, 200000 random non-unit sine and cosine
+ * pairs, 3600 angles of a voltage with harmonics (E2-39); 1c every combination of the eight
+ * corners for both inputs and both sine and cosine words; 1n the inverse Park equations in
+ * double precision */
 static void test_req_trf_005_006_inv_park(void **state)
 {
     uint32_t i;
@@ -527,7 +552,9 @@ static void test_req_trf_005_006_inv_park(void **state)
     print_message("Inverse Park max |error| vs the exact angle: %.4f LSB\n", inv_park_max_err_ideal);
 }
 
-/* REQ-TRF-005: saturation outside the bound */
+/* REQ-TRF-005: saturation outside the bound
+ * Methods: 1c full-scale (d, q) at 45 degrees, -32768 included, whose alpha or beta exceed
+ * full scale: the saturation, results computed by hand */
 static void test_req_trf_005_inv_park_saturation(void **state)
 {
     qfoc_dq_t in = { 32767, -32767 };
@@ -579,7 +606,9 @@ static void check_inv_clarke(int16_t alpha, int16_t beta)
     assert_true(e_w <= INV_CLARKE_BOUND);
 }
 
-/* REQ-TRF-007, REQ-TRF-008 */
+/* REQ-TRF-007, REQ-TRF-008
+ * Methods: 1b 200000 random pairs; 1c eight corners (-32768 .. 32767) crossed; 1n the
+ * inverse Clarke equations in double precision */
 static void test_req_trf_007_008_inv_clarke(void **state)
 {
     uint32_t i;
@@ -601,7 +630,10 @@ static void test_req_trf_007_008_inv_clarke(void **state)
                   inv_clarke_max_err, INV_CLARKE_BOUND);
 }
 
-/* REQ-TRF-008: saturation outside the full-scale circle; none inside */
+/* REQ-TRF-008: saturation outside the full-scale circle; none inside
+ * Methods: 1b 200000 random vectors inside the full-scale circle (no saturation); 1c the
+ * corners (-32767, 32767), (32767, 32767), (-32768, -32768) outside the circle, results
+ * computed by hand */
 static void test_req_trf_008_inv_clarke_saturation(void **state)
 {
     qfoc_ab_t in = { -32767, 32767 };
@@ -636,7 +668,9 @@ static void test_req_trf_008_inv_clarke_saturation(void **state)
     }
 }
 
-/* REQ-TRF-009: a rotating vector of amplitude A gives a balanced three-phase set */
+/* REQ-TRF-009: a rotating vector of amplitude A gives a balanced three-phase set
+ * Methods: 1b 3600 angles of a rotating vector at three amplitudes; 1c the amplitude 32767
+ * (full scale); 1n A cos(x - k 120 degrees) in double precision */
 static void test_req_trf_009_inv_clarke_balanced(void **state)
 {
     const double amps[] = { 1000.0, 16384.0, 32767.0 };
@@ -669,7 +703,9 @@ static void test_req_trf_009_inv_clarke_balanced(void **state)
 
 /* ------------------------------------------------------------------ round trips */
 
-/* REQ-TRF-010: Clarke(InvClarke(x)) ~ x inside the full-scale circle */
+/* REQ-TRF-010: Clarke(InvClarke(x)) ~ x inside the full-scale circle
+ * Methods: 1b 200000 random vectors inside the full-scale circle, through the inverse and
+ * the forward transform */
 static void test_req_trf_010_round_trip_clarke(void **state)
 {
     uint32_t i;
@@ -699,7 +735,9 @@ static void test_req_trf_010_round_trip_clarke(void **state)
                   (int)max_err, ROUND_TRIP_CLARKE);
 }
 
-/* REQ-TRF-010: InvPark(Park(x)) ~ x inside the full-scale circle */
+/* REQ-TRF-010: InvPark(Park(x)) ~ x inside the full-scale circle
+ * Methods: 1b 200000 random vectors inside the full-scale circle at random angles, through
+ * Park and inverse Park */
 static void test_req_trf_010_round_trip_park(void **state)
 {
     uint32_t i;

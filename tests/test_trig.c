@@ -63,7 +63,9 @@ static double angle_err(qfoc_angle_t a, double ref)
     return fabs(e);
 }
 
-/* REQ-TRIG-001: sine over all 65536 angles, range and <= 1 LSB error. */
+/* REQ-TRIG-001: sine over all 65536 angles, range and <= 1 LSB error.
+ * Methods: 1b every one of the 65536 angles (the domain enumerated); 1c the result never
+ * -32768 (the symmetric range); 1n math.h sin() in double precision, error <= 1 LSB */
 static void test_req_trig_001_sin_exhaustive(void **state)
 {
     double max_err = 0.0;
@@ -84,7 +86,9 @@ static void test_req_trig_001_sin_exhaustive(void **state)
     assert_true(max_err <= SIN_MAX_ERR_LSB);
 }
 
-/* REQ-TRIG-001: exact values on the axes and the 45-degree points. */
+/* REQ-TRIG-001: exact values on the axes and the 45-degree points.
+ * Methods: 1c the axes (0, 90, 180, 270 degrees), the 45-degree points and one count either
+ * side of 0; 1a the exact values 32767 sin(theta) rounded, computed by hand */
 static void test_req_trig_001_sin_corners(void **state)
 {
     (void)state;
@@ -103,7 +107,8 @@ static void test_req_trig_001_sin_corners(void **state)
 }
 
 /* REQ-TRIG-001: odd symmetry sin(theta + 180 deg) == -sin(theta), and
- * sin(180 deg - theta) == sin(theta), for all angles. */
+ * sin(180 deg - theta) == sin(theta), for all angles.
+ * Methods: 1b every angle, checked for the odd and mirror symmetries of the sine */
 static void test_req_trig_001_sin_symmetry(void **state)
 {
     uint32_t t;
@@ -117,7 +122,9 @@ static void test_req_trig_001_sin_symmetry(void **state)
     }
 }
 
-/* REQ-TRIG-002: sincos over all angles against sin / cos in double. */
+/* REQ-TRIG-002: sincos over all angles against sin / cos in double.
+ * Methods: 1b every one of the 65536 angles; 1c neither output ever -32768, the norm within
+ * 1.5 LSB of 32767; 1n math.h sin() and cos() in double precision */
 static void test_req_trig_002_sincos_exhaustive(void **state)
 {
     double max_s = 0.0;
@@ -152,7 +159,9 @@ static void test_req_trig_002_sincos_exhaustive(void **state)
  * result is the node's entry halved with rounding, (t + 1) / 2, with the
  * quadrant's mirror (node 256 - i in quadrants 2 and 4, the 90-degree node 256
  * included) and sign (negative in quadrants 3 and 4), for the sine and for the
- * cosine 90 degrees ahead. */
+ * cosine 90 degrees ahead.
+ * Methods: 1b every table node of each of the four quadrants, with the quadrant's mirror and
+ * sign; 1c the node 256 (90 degrees) at the quadrant boundaries */
 static void test_req_trig_001_sincos_nodes(void **state)
 {
     uint32_t q;
@@ -182,7 +191,8 @@ static void test_req_trig_001_sincos_nodes(void **state)
 }
 
 /* REQ-TRIG-002: the pair is (qfoc_sin(theta), qfoc_sin(theta + 0x4000)) for
- * every angle, the sum taken modulo 2^16 (the definition in trig.h). */
+ * every angle, the sum taken modulo 2^16 (the definition in trig.h).
+ * Methods: 1b every angle, the cosine taken 0x4000 ahead modulo 2^16 */
 static void test_req_trig_002_sincos_is_sin_pair(void **state)
 {
     uint32_t t;
@@ -195,7 +205,8 @@ static void test_req_trig_002_sincos_is_sin_pair(void **state)
     }
 }
 
-/* REQ-TRIG-002: cosine wraps modulo 2^16 (theta + 0x4000 past 0xFFFF). */
+/* REQ-TRIG-002: cosine wraps modulo 2^16 (theta + 0x4000 past 0xFFFF).
+ * Methods: 1c the angles 0xC000, 0xFFFF and 0 where theta + 90 degrees wraps past 0xFFFF */
 static void test_req_trig_002_sincos_wrap(void **state)
 {
     qfoc_sincos_t sc;
@@ -227,7 +238,11 @@ static void atan_check(int32_t y, int32_t x, double *max_err, int32_t *wy, int32
     }
 }
 
-/* REQ-TRIG-003: dense grid (multiples of 61 from -32768) plus the corners. */
+/* REQ-TRIG-003: dense grid (multiples of 61 from -32768) plus the corners.
+ * Methods: 1b a dense grid of (y, x) over the whole plane, every 61st value from -32768 in
+ * each quadrant; 1c eight corners (-32768, -32767, -16384, -1, 0, 1, 16384, 32767) crossed
+ * with each other and with every int16 value on either axis; 1n math.h atan2() in double
+ * precision, error <= 1 count */
 static void test_req_trig_003_atan2_grid(void **state)
 {
     static const int32_t corners[] = { -32768, -32767, -16384, -1, 0, 1, 16384, 32767 };
@@ -259,7 +274,9 @@ static void test_req_trig_003_atan2_grid(void **state)
 }
 
 /* REQ-TRIG-003 / REQ-TRIG-004: small vectors |v| < 50, where the ratio of
- * small integers matters, exhaustively; and random full-range vectors. */
+ * small integers matters, exhaustively; and random full-range vectors.
+ * Methods: 1b every vector of norm below 50 (the ratios of small integers) and 1000000
+ * random full-range vectors; 1n math.h atan2() in double precision */
 static void test_req_trig_003_atan2_small_and_random(void **state)
 {
     double max_small = 0.0;
@@ -289,7 +306,9 @@ static void test_req_trig_003_atan2_small_and_random(void **state)
     assert_true(max_rand <= ATAN_MAX_ERR_CNT);
 }
 
-/* REQ-TRIG-003: all diagonals |x| == |y| (exact 45 + k 90 deg). */
+/* REQ-TRIG-003: all diagonals |x| == |y| (exact 45 + k 90 deg).
+ * Methods: 1c every diagonal |x| == |y| of the four quadrants (the octant boundaries),
+ * -32768 included */
 static void test_req_trig_003_atan2_diagonals(void **state)
 {
     int32_t v;
@@ -308,7 +327,9 @@ static void test_req_trig_003_atan2_diagonals(void **state)
     }
 }
 
-/* REQ-TRIG-004: zero vector and the axes, -32768 included. */
+/* REQ-TRIG-004: zero vector and the axes, -32768 included.
+ * Methods: 1c the zero vector, every point of the four half-axes with -32768, and the points
+ * one and three counts off the axis */
 static void test_req_trig_004_atan2_axes(void **state)
 {
     int32_t v;
@@ -332,7 +353,10 @@ static void test_req_trig_004_atan2_axes(void **state)
 }
 
 /* REQ-TRIG-005: the committed tables equal their defining formulas
- * (recomputed here from math.h, independent of tools/codegen/gen_trig_tables.py). */
+ * (recomputed here from math.h, independent of tools/codegen/gen_trig_tables.py).
+ * Methods: 1b every entry of both committed tables; 1c the last entries (sine node 256 =
+ * 65534, arctangent node 128 = 32768); 1n the defining formulas recomputed from math.h,
+ * independently of the table generator */
 static void test_req_trig_005_tables(void **state)
 {
     uint32_t i;

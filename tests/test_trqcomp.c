@@ -59,7 +59,10 @@ static double clampd(double x, double lo, double hi)
 
 /* ---- mechanical-angle tracker ------------------------------------------ */
 
-/* REQ-TC-001: initialisation, bad pole-pair counts, the validity check. */
+/* REQ-TC-001: initialisation, bad pole-pair counts, the validity check.
+   Methods: 1b every pole-pair count 0 .. 255 (1 .. 16 accepted, the rest refused); 1c 0, 1,
+   16 and 17 at the ends of the range; 1d an invalid count (the safe tracker); 1l turn,
+   reciprocal and pole pairs of a tracker overwritten, refused by the validity check */
 static void test_tc_mech_init(void **state)
 {
     qfoc_mech_t m;
@@ -96,7 +99,9 @@ static void test_tc_mech_init(void **state)
 
 /* REQ-TC-002: exhaustive exactness of the reciprocal scaling: for every pole-pair
    count 1..16 a forward sweep of one count per call visits every electrical count
-   0 .. n_p 65536 - 1 of a mechanical turn (and wraps back to 0). */
+   0 .. n_p 65536 - 1 of a mechanical turn (and wraps back to 0).
+   Methods: 1b every electrical count of a mechanical turn for every pole-pair count 1 .. 16
+   (the domain enumerated); 1c the wrap back to 0 at n_p 65536 */
 static void test_tc_mech_exhaustive(void **state)
 {
     uint32_t pp;
@@ -123,7 +128,11 @@ static void test_tc_mech_exhaustive(void **state)
 
 /* REQ-TC-002: random step sequences, forward and reverse, every wrap-around, pole
    pairs 1..16, against the unwrapped double reference; error 0 counts vs the
-   floor, < 1 count vs the real quotient. */
+   floor, < 1 count vs the real quotient.
+   Methods: 1b 320 random step sequences, forward and reverse, for every pole-pair count,
+   more than 1000 turn changes; 1c the largest admissible steps +32767 and -32768 every 37th
+   call; 1n the unwrapped quotient in 64-bit and double precision (0 counts against the
+   floor, < 1 against the real quotient) */
 static void test_tc_mech_random(void **state)
 {
     uint32_t pp;
@@ -172,7 +181,10 @@ static void test_tc_mech_random(void **state)
                   (unsigned)wraps);
 }
 
-/* REQ-TC-002: the half-turn boundary of the step interpretation. */
+/* REQ-TC-002: the half-turn boundary of the step interpretation.
+   Methods: 1c the half-turn boundary of the step interpretation: +32767 (forward), +32768
+   (read as -32768), -32769 (read as +32767), -1, and the wraps across the last turn, 1 pole
+   pair */
 static void test_tc_mech_half_turn(void **state)
 {
     qfoc_mech_t m;
@@ -208,7 +220,12 @@ static void test_tc_mech_half_turn(void **state)
 
 /* ---- parameters and instance --------------------------------------------- */
 
-/* REQ-TC-003, REQ-TC-004: parameter check, safe state, reset, instance check. */
+/* REQ-TC-003, REQ-TC-004: parameter check, safe state, reset, instance check.
+   Methods: 1b each parameter field out of range alone, and the valid extremes; 1c gain -1
+   and -32768, amp_max -32768, speed_min -1 and above speed_max, pole pairs 0 and 17, all-0
+   and all-32767 / 16 accepted, the coefficients at +-amp_max and one beyond, INT32_MIN and
+   INT32_MAX; 1d invalid parameters (the safe state never learns and outputs 0); 1l
+   coefficients and pole pairs overwritten, refused by the validity check */
 static void test_tc_params_init(void **state)
 {
     qfoc_trqcomp_t tc;
@@ -324,7 +341,10 @@ static int32_t rand_coef(int16_t amp)
 }
 
 /* REQ-TC-008: the output against the double sum, random coefficients and angles,
-   all amplitude limits up to 32767 (saturation of the sum). */
+   all amplitude limits up to 32767 (saturation of the sum).
+   Methods: 1b 200000 random coefficients and angles, a quarter with random amplitude limits
+   up to 32767; 1c coefficients on the limit every 1000th draw, the sum saturated; 1n the
+   double-precision sum of the harmonics */
 static void test_tc_output_vs_reference(void **state)
 {
     qfoc_trqcomp_t tc;
@@ -371,7 +391,10 @@ static void test_tc_output_vs_reference(void **state)
                   max_err_default, max_err);
 }
 
-/* REQ-TC-005, REQ-TC-008: the speed window of the output, -32768 included. */
+/* REQ-TC-005, REQ-TC-008: the speed window of the output, -32768 included.
+   Methods: 1c the speed window's edges speed_min and speed_max and one outside, for both
+   signs, 0, 32767 and -32768 (outside even with speed_max 32767), every coefficient at
+   +-32767 pu (the sum saturated) */
 static void test_tc_output_window(void **state)
 {
     qfoc_trqcomp_t tc;
@@ -415,7 +438,11 @@ static void test_tc_output_window(void **state)
 /* ---- learning ------------------------------------------------------------ */
 
 /* REQ-TC-006, REQ-TC-007: one learning step against the double law, random
-   states, errors, angles, both directions, clamping at amp_max. */
+   states, errors, angles, both directions, clamping at amp_max.
+   Methods: 1b 200000 random states, errors, angles and speeds of both directions, random
+   gains and amplitude limits, clamping reached more than 100 times; 1c the error -32768
+   every 101st draw, coefficients clamped at amp_max; 1n the double-precision learning law of
+   the header */
 static void test_tc_learn_vs_reference(void **state)
 {
     qfoc_trqcomp_t tc;
@@ -497,7 +524,11 @@ static void test_tc_learn_vs_reference(void **state)
 
 /* REQ-TC-005, REQ-TC-006, REQ-TC-007: coefficients held outside the window, for zero gain
    and zero error; -32768 error and speed; the learning direction; the second harmonic held
-   above half the window's top. */
+   above half the window's top.
+   Methods: 1b speeds outside the window, inside at both ends, both directions, the second
+   harmonic below and above half the window's top; 1c the errors -32768 and 32767, speeds 0,
+   1, speed_min - 1, speed_max + 1, 32767, -32768, amp_max 0 and 1, gain 0 and 32767, 2
+   |speed| = speed_max and one above */
 static void test_tc_learn_corners(void **state)
 {
     qfoc_trqcomp_t tc;
@@ -574,7 +605,9 @@ static void test_tc_learn_corners(void **state)
     assert_int_equal(tc.b[0], 0);
 }
 
-/* REQ-TC-009: phase of the 1x component against atan2. */
+/* REQ-TC-009: phase of the 1x component against atan2.
+   Methods: 1b 20000 random phases and amplitudes 1000 .. 8192; 1c the zero coefficients
+   (phase 0); 1n atan2() in double precision */
 static void test_tc_phase1(void **state)
 {
     qfoc_trqcomp_t tc;
@@ -828,7 +861,10 @@ static void run_pair(const char *name, loop_cfg_t cfg, double min_reduction)
 }
 
 /* REQ-TC-010: 1x pulsation 4.5 N m x (1 + 0.5 sin(theta_m + phi)) at 1500 rpm,
-   arbitrary mechanical zero. */
+   arbitrary mechanical zero.
+   Methods: 1b an ideal current loop and a 1 ms current lag; 1a the speed ripple of a 1x load
+   pulsation at 1500 rpm reduced as REQ-TC-010 states, against the same run without
+   compensation */
 static void test_tc_closed_loop_1x(void **state)
 {
     loop_cfg_t c = { 1500.0, 4.5, 0.5, 0.7, 0.0, 0.0, 2.0, 0.0, 1, 20.0, 0, 0 };
@@ -838,7 +874,9 @@ static void test_tc_closed_loop_1x(void **state)
     run_pair("1x, 1500 rpm, current lag 1 ms", c, 0.70);
 }
 
-/* REQ-TC-010: 2x pulsation. */
+/* REQ-TC-010: 2x pulsation.
+   Methods: 1a the speed ripple of a 2x load pulsation at 1500 rpm with a 1 ms current lag
+   reduced as REQ-TC-010 states, against the same run without compensation */
 static void test_tc_closed_loop_2x(void **state)
 {
     loop_cfg_t c = { 1500.0, 4.5, 0.0, 0.0, 0.5, -1.2, 4.0, 1e-3, 1, 20.0, 0, 0 };
@@ -847,7 +885,9 @@ static void test_tc_closed_loop_2x(void **state)
 }
 
 /* REQ-TC-010: mixed 1x + 2x pulsation, random phases and mechanical zeros, other
-   speeds in the window, reverse rotation. */
+   speeds in the window, reverse rotation.
+   Methods: 1b mixed 1x + 2x pulsations with random phases and mechanical zeros, the speeds
+   1000, 1500 and 3000 rpm in the window, reverse rotation */
 static void test_tc_closed_loop_mixed(void **state)
 {
     uint32_t i;
@@ -883,7 +923,10 @@ static void test_tc_closed_loop_mixed(void **state)
    feasible.  With the drive holding the learning in a tick after a clamped fast step
    (the integration rule of REQ-TC-005) the speed stays up and the ripple falls;
    without that hold the coefficients wind up to amp_max and the speed collapses,
-   which is why the rule exists (measured and printed). */
+   which is why the rule exists (measured and printed).
+   Methods: 1c a load whose peak current fits the clamp (17.9 A of 20 A) and one beyond it
+   (23.1 A); 1d wind-up of the coefficients into amp_max without the hold after a clamped
+   step (the speed collapses) */
 static void test_tc_closed_loop_current_limit(void **state)
 {
     loop_cfg_t c = { 1500.0, 3.5, 0.5, 0.7, 0.0, 0.0, 2.0, 1e-3, 1, 20.0, 1, 0 };

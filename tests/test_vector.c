@@ -51,7 +51,10 @@ static void isqrt_check(uint32_t v)
 }
 
 /* REQ-VEC-001: isqrt exhaustive on [0, 2^21), on every k^2 - 1, k^2, k^2 + k
- * (the values next to each root change), and on random 32-bit values. */
+ * (the values next to each root change), and on random 32-bit values.
+ * Methods: 1b every value of [0, 2^21) and 1000000 random 32-bit values; 1c every k^2 - 1,
+ * k^2 and k^2 + k (the values beside each change of the root), 0x80000000, 0xFFFE0000,
+ * 0xFFFE0001 and 0xFFFFFFFF; 1n floor(sqrt()) of the C library in double precision */
 static void test_req_vec_001_isqrt(void **state)
 {
     uint32_t v;
@@ -94,7 +97,11 @@ static void mag_check(int32_t x, int32_t y, double *max_err)
     }
 }
 
-/* REQ-VEC-002: magnitude on corners, a grid, random vectors, saturation. */
+/* REQ-VEC-002: magnitude on corners, a grid, random vectors, saturation.
+ * Methods: 1b a grid of every 97th value in both components over the whole plane and 1000000
+ * random vectors; 1c ten corners (-32768, -32767, +-23170, +-16384, -1, 0, 1, 32767)
+ * crossed, the saturation of (-32768, -32768) and (-32768, 0); 1n sqrt() in double
+ * precision, error below 1 LSB */
 static void test_req_vec_002_mag(void **state)
 {
     double max_err = 0.0;
@@ -188,7 +195,11 @@ static void circle_check(int32_t d, int32_t q, int32_t vmax, double *max_short)
     }
 }
 
-/* REQ-VEC-003 / REQ-VEC-004: corners (negative vmax, -32768 components). */
+/* REQ-VEC-003 / REQ-VEC-004: corners (negative vmax, -32768 components).
+ * Methods: 1b the behaviours inside, limited in q and d beyond the limit (q = 0); 1c ten
+ * corners of d and q crossed with eight limits (-32768, -1, 0, 1, 100, 23170, 32766, 32767),
+ * a vector exactly on the circle and one LSB outside; 1d a negative limit, taken as 0; 1n
+ * the double-precision limitation model */
 static void test_req_vec_003_circle_corners(void **state)
 {
     static const int16_t vmaxes[] = { -32768, -1, 0, 1, 100, 23170, 32766, 32767 };
@@ -227,7 +238,10 @@ static void test_req_vec_003_circle_corners(void **state)
     assert_int_equal(out.q, 0);
 }
 
-/* REQ-VEC-003 / REQ-VEC-004: random inputs, all vmax signs. */
+/* REQ-VEC-003 / REQ-VEC-004: random inputs, all vmax signs.
+ * Methods: 1b 500000 random (d, q, limit) triples of every sign, and the same scaled down so
+ * that inside and outside the circle both occur often; 1d negative limits among the draws;
+ * 1n the double-precision limitation model, in place and out of place */
 static void test_req_vec_004_circle_random(void **state)
 {
     double max_short = 0.0;

@@ -23,7 +23,9 @@ static int parse_version(const char *s, unsigned *major, unsigned *minor, unsign
     return (n == 3) && (*major <= 255u) && (*minor <= 255u) && (*patch <= 255u);
 }
 
-/* REQ-VER-001: the string, the three numbers and the packed word agree; this release */
+/* REQ-VER-001: the string, the three numbers and the packed word agree; this release
+ * Methods: 1a the string, the three numbers and the packed word of REQ-VER-001 computed from
+ * each other (word = major << 16 | minor << 8 | patch) and the release's value */
 static void test_version_macros(void **state)
 {
     unsigned major = 0u;
@@ -48,7 +50,9 @@ static void test_version_macros(void **state)
     assert_int_equal(sizeof(QFOC_VERSION), 4u);
 }
 
-/* REQ-VER-002: the library's word is the headers' version; its fields read back */
+/* REQ-VER-002: the library's word is the headers' version; its fields read back
+ * Methods: 1a the library's word and string of REQ-VER-002 against the headers' macros,
+ * field by field */
 static void test_version_library(void **state)
 {
     const uint32_t v = qfoc_version();

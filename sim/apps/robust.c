@@ -33,6 +33,14 @@
  * A start succeeds when every target of the section [robust_start] of
  * specs/scenarios.toml is met.  Exit: 0 when every start (of every axis) succeeded, 1 otherwise,
  * 2 on an error.
+ *
+ * Methods: 1b uniform draws over the classes of the plant's deviation from the table
+ * (R_s +-30 %, L_d and L_q +-20 %, psi_f +-10 %), load 0 .. nominal, bus 250 .. 420 V,
+ * noise 0 .. 0.1 A rms and any initial angle, each start one draw of them all, and the
+ * axes' classes (dead time, breakaway, low flux, flying restart, the 800 V motor); 1d
+ * parameter errors of the table against the motor, ADC noise, an uncompensated dead
+ * time and static friction: the errors a table meets on a real drive (the corners of
+ * the ranges are test_scn_011_robust_corners)
  */
 #define _POSIX_C_SOURCE 200809L  /* clock_gettime, fork, mkdir */
 
@@ -49,7 +57,7 @@
 #include "scenario.h"
 #include "tables_registry.h"
 
-/* Ranges of the base axis (the robustness requirement, REQ-SCN-011). */
+/* Ranges of the base axis (the robustness requirement, REQ-SCN-011). */
 #define RS_ERR 0.30
 #define LDQ_ERR 0.20
 #define PSI_ERR 0.10

@@ -1,9 +1,12 @@
 #!/usr/bin/env python3
-"""Counts of the unit verification cases of qfoc, per suite, for specs/verification-spec.md.
+"""Counts of the unit verification cases of qfoc, per suite and per test-design method, for
+specs/verification-spec.md.
 
   python3 tools/evidence/verif_counts.py            rewrite the generated section
-  python3 tools/evidence/verif_counts.py --check    exit 1 when the committed section differs
-  python3 tools/evidence/verif_counts.py --list     print every case with its tags
+  python3 tools/evidence/verif_counts.py --check    exit 1 when a case has no valid method
+                                                    tag or the committed section differs
+  python3 tools/evidence/verif_counts.py --list     print every case with its methods and
+                                                    their reasons
   options: --root DIR (the repository root; default: two levels above this file),
            --spec PATH (default: specs/verification-spec.md under the root)
 
@@ -15,40 +18,53 @@ out):
              (a parametrised function is one case), named by the file's base name (its path
              relative to the root when two files share a base name);
   CBMC       proofs/cbmc: a case is each folder holding a harness.c;
-  target     the golden-vector groups of tools/**/tt_groups.c (the names of its suite table,
-             "drive_fast" and "drive_tick" included); their inputs are made by tt_gen.c;
+  target     the golden-vector groups of tools/**/tt_groups.c (the names of its suite table
+             tt_suites[], "drive_fast" and "drive_tick" included); their inputs are made by
+             tt_gen.c;
   robustness the campaign of sim/apps/robust.c: ROBUST_COUNT cold starts (the default of the
-             Makefile or mk/*.mk), each drawn by the same code, so each carries the same tags.
+             Makefile or mk/*.mk), each drawn by the same code, so each carries the same tag.
 The targets of specs/scenarios.toml (sections, min_/max_ keys) are counted apart: the
 scenarios themselves are the cases of tests/test_scenarios.c.
 
-Tags.  Each case gets the methods of ISO 26262-6:2018 Table 8 (derivation of test cases:
-1a analysis of requirements, 1b equivalence classes, 1c boundary values, 1d error guessing)
-and two of Table 7 (1l fault injection test, 1n back-to-back comparison test) by the rules
-of RULES below, which the generated section prints.  A case has three texts:
-  head   its name and the comment block right above its definition (for pytest also the
-         decorators and the docstring); for a CBMC harness or a target group its name;
-  inner  the comments inside its body; for a CBMC harness all comments of harness.c; for a
-         target group the comments of its generator function in tt_gen.c, of the tt_gen.c
-         functions that one calls, of its entry line and of its replay function in
-         tt_groups.c (the drive's groups: the generator's header and record_drive()); for
-         the robustness campaign all comments of robust.c;
-  code   the rest, without comments (and, for a target group, the comment above the suite
-         table, which names the requirements of every group).
-The description (head and inner) is lower-cased and split into words at every character
-that is not a letter or a digit ('test_lpf_corners' gives 'test', 'lpf', 'corners'); the
-runs of MERGE are joined first ('round trip' -> 'roundtrip'); the words that follow a
-negation (NEGATION, articles skipped) are dropped ('no fault present'); and the module prefix
-of a CMocka or pytest case's name (the 'fault' of 'test_fault_bits' in test_fault.c) is not a
-word.  A rule's 'words' and 'desc_re' match anywhere in the description, its 'head' words
-and 'head_phrases' only in the head, its 'code_re' in the code of the suite kinds it names;
-1a also takes a requirement ID from any text.  Suite rules: every target group is 1n (it
-compares the target build's outputs with the host build's); the CBMC harnesses are formal
-verification (Table 7, 1e), and the Table 7 test columns do not apply to them ('-').
+Methods.  The methods of ISO 26262-6:2018 Table 8 (derivation of test cases: 1a analysis
+of requirements, 1b equivalence classes, 1c boundary values, 1d error guessing) and two of
+Table 7 (1l fault injection test, 1n back-to-back comparison test) that derived a case are
+stated by its author in the case's specification text, in a method tag:
+
+  Methods: 1b <the classes>; 1c <the boundaries>; 1d <the error guessed>
+
+a line starting with 'Methods:' (after the comment's leader '/*', '*', '//' or '#'), in
+  CMocka   the comment block right above the test function;
+  pytest   the comment lines right above the function (above its decorators) or its
+           docstring;
+  CBMC     the header comment of harness.c (its first /* */ block);
+  target   the comment right above the group's entry in the suite table of tt_groups.c
+           (the entry of "drive_fast" and "drive_tick" gives both groups);
+  campaign the header comment of sim/apps/robust.c.
+The tag runs on over the following lines up to a blank line or the end of the comment.  Its
+entries are separated by ';'; each is a method code (1a, 1b, 1c, 1d, 1l, 1n) and the reason
+that makes the method true of the case: which classes, which boundaries, which error, which
+fault, against what.  A case has exactly one tag, each code at most once, every code with a
+reason; a tag with a Table 7 code on a CBMC harness is an error (formal verification,
+Table 7 1e: the test columns do not apply, '-').  1b .. 1n are counted from the tags alone.
+
+1a is counted from the requirements a case traces, as make trace reads them: a
+requirement ID REQ-<MOD>-NNN in the case's text (its comment, docstring, body; for a target
+group also the comment above the suite table, which names the requirements of every group;
+for a harness or the campaign its file) or a name test_<mod>_NNN_..., test_req_<mod>_NNN_...
+or test_<mod>_reqNNN_... of a defined requirement.  A tag may list 1a too, with the analysis
+(which statement, which formula); it must then name a requirement, and a case derived from
+its requirement alone has the tag 'Methods: 1a <reason>'.
+
+Errors (exit status 1, each named with file:line and the case, before any figure): a case
+without a tag, two tags, a line that looks like a tag but is not one ('methods:', 'Method:'),
+an empty tag or entry, an unknown method code, a code twice, a code without a reason, 1a
+on a case that names no requirement, 1l or 1n on a CBMC harness.
 
 The generated section lies between the markers BEGIN and END below; the rest of the spec is
 left as it is.  --check parses the figures of the committed section and names each suite and
-figure that differs from what the tool would write.
+figure that differs from what the tool would write.  parse_tag() and case_tags() are the one
+reader of the tags: a tool that needs a case's methods imports them.
 
 Requirement: REQ-EVD-007 (the tests reported with the evidence).
 """
@@ -74,101 +90,113 @@ COLUMNS = (
 )
 METHODS = tuple(k for k, _ in COLUMNS if k != "cases")
 T7 = ("1l", "1n")
+# The method codes of a tag and what each states.
+CODES = {
+    "1a": "analysis of requirements (Table 8)",
+    "1b": "generation and analysis of equivalence classes (Table 8)",
+    "1c": "analysis of boundary values (Table 8)",
+    "1d": "error guessing based on knowledge or experience (Table 8)",
+    "1l": "fault injection test (Table 7)",
+    "1n": "back-to-back comparison test (Table 7)",
+}
 
 REQ_ID = re.compile(r"\bREQ-([A-Z0-9]+)-(\d{3})\b")
 # test_<mod>_NNN..., test_req_<mod>_NNN..., test_<mod>_reqNNN...: the requirement REQ-<MOD>-NNN
 NAME_REQ = re.compile(r"^test_(?:req_)?([a-z0-9]+?)_(?:req)?(\d{3})(?:_|$)")
 
-# The rule set ('doc' is printed in the generated section).  'words': any of these words
-# of the description (a trailing '*' matches every word that starts so); 'head': words that
-# count only in the case's head (words that also name a module or a field); 'phrases' and
-# 'head_phrases': runs of words, likewise; 'desc_re': a regular expression on the
-# description's text; 'code_re': one on the code, for the suite kinds of 'code_kinds'.
-RULES = {
-    "1a": {
-        "doc": "names a requirement: an ID REQ-<MOD>-NNN in its description or code, or a "
-               "name test_<mod>_NNN_..., test_req_<mod>_NNN_... or test_<mod>_reqNNN_... "
-               "where REQ-<MOD>-NNN is defined in specs/requirements/",
-    },
-    "1b": {
-        "doc": "samples or partitions the input domain: random*, exhaustive*, every, each, "
-               "all, any, grid, class, classes, accepts, both, sign, signs, forward, reverse, "
-               "positive, negative, sector*, quadrant*, octant*, sweep*, speeds, periods, "
-               "tables, lengths, mixed; or draws its values in code (a call of rand_range, "
-               "lcg*, rnd or rand, lcg_state, random.*, rng)",
-        "words": ("random*", "exhaustive*", "every", "each", "all", "any", "grid", "class",
-                  "classes", "accepts", "both", "sign", "signs", "forward", "reverse",
-                  "positive", "negative", "sector*", "quadrant*", "octant*", "sweep*",
-                  "speeds", "periods", "tables", "lengths", "mixed"),
-        "code_re": r"\b(?:rand_range|lcg\w*|rnd|rand)\s*\(|\blcg_state\b|\brandom\.\w+|\brng\b",
-        "code_kinds": ("CMocka", "pytest", "CBMC", "target", "campaign"),
-    },
-    "1c": {
-        "doc": "aims at the edges of a range: boundar*, corner*, limit*, edge*, extreme*, "
-               "saturat*, clamp*, span, overflow*, wrap*, axis, axes, diagonals, nodes, "
-               "threshold*, window, bound, bounds, bounded, above, below, max, min, range, "
-               "or the value -32768 (INT16_MIN); or uses the limits of the C types in code "
-               "(-32768, INT8/16/32_MIN and _MAX, UINT8/16/32_MAX, 0x7FFF, 0x8000, 0xFFFF, "
-               "65535)",
-        "words": ("boundar*", "corner*", "limit*", "edge*", "extreme*", "saturat*",
-                  "clamp*", "span", "overflow*", "wrap*", "axis", "axes", "diagonals",
-                  "nodes", "threshold*", "window", "bound", "bounds", "bounded", "above",
-                  "below", "max", "min", "range"),
-        "desc_re": r"-32768\b|\bINT16_MIN\b",
-        "code_re": r"-\s*32768\b|\b(?:U?INT(?:8|16|32)_(?:MIN|MAX)|0x7[fF]{3}|0x8000"
-                   r"|0x[fF]{4}(?:[fF]{4})?|65535)[uUlL]*\b",
-        "code_kinds": ("CMocka", "pytest", "CBMC", "target", "campaign"),
-    },
-    "1d": {
-        "doc": "anticipates a failure: invalid, reject*, refuse*, flip*, corrupt*, "
-               "malformed, wrong, bad, loss, lost, timeout*, stall*, overcurrent, "
-               "overvoltage, noise, mismatch*, unbound, missing, broken, defect*, fail*, "
-               "locked, garbage; fault, faults, trip, trips, tripped in the name or the "
-               "comment above only (they also name modules and fields: fault.h, i_trip)",
-        "words": ("invalid", "reject*", "refuse*", "flip*", "corrupt*", "malformed", "wrong",
-                  "bad", "loss", "lost", "timeout*", "stall*", "overcurrent", "overvoltage",
-                  "noise", "mismatch*", "unbound", "missing", "broken", "defect*", "fail*",
-                  "locked", "garbage"),
-        "head": ("fault", "faults", "trip", "trips", "tripped"),
-    },
-    "1l": {
-        "doc": "injects a fault into the inputs or the data: flip*, corrupt*, malformed, "
-               "inject*, overcurrent, overvoltage, loss, lost, stall*, timeout*, mismatch*, "
-               "defect*, broken, locked, garbage, recheck; in the name or the comment above, "
-               "trip, trips, tripped, or fault followed by its kind (fault oc, fault ov, "
-               "fault ot, fault stall, fault link, fault reaction, fault to)",
-        "words": ("flip*", "corrupt*", "malformed", "inject*", "overcurrent", "overvoltage",
-                  "loss", "lost", "stall*", "timeout*", "mismatch*", "defect*", "broken",
-                  "locked", "garbage", "recheck"),
-        "head": ("trip", "trips", "tripped"),
-        "head_phrases": ("fault oc", "fault ov", "fault ot", "fault stall", "fault link",
-                         "fault reaction", "fault to"),
-    },
-    "1n": {
-        "doc": "compares with an independent model or a twin: vs, twin, twins, equivalent, "
-               "matches, double (a double-precision reference), against a/an/the model, "
-               "reference or double, real recursion, real valued, reference recursion, "
-               "like frame, bit exact, same as; or, in a CMocka case, computes in double "
-               "precision in its code (the type double: a reference model of the "
-               "equations)",
-        "words": ("vs", "twin", "twins", "equivalent", "matches", "double"),
-        "code_re": r"\bdouble\b",
-        "code_kinds": ("CMocka",),
-        "phrases": ("against a model", "against the model", "against a reference",
-                    "against the reference", "against an independent", "against a double",
-                    "against the double", "real recursion", "real valued",
-                    "reference recursion", "like frame", "bit exact", "same as"),
-    },
-}
-# Runs of words read as one word before the rules apply.
-MERGE = (("round trip", "roundtrip"), ("over current", "overcurrent"),
-         ("over voltage", "overvoltage"))
-# The NEGATED words after one of these (articles skipped) are negated and do not count.
-NEGATION = ("no", "not", "without", "never", "nor")
-ARTICLES = ("a", "an", "the", "any")
-NEGATED = 2   # words negated after the articles
+TAG = "Methods:"
+# A line that looks like a tag: 'methods:', 'Method :', ...
+TAG_LIKE = re.compile(r"^methods?\s*:", re.I)
+ENTRY = re.compile(r"^(\S+)(?:\s+(.*))?$", re.S)
 
-WORD = re.compile(r"[a-z0-9]+")
+
+# ------------------------------------------------------------------ the method tag
+
+def strip_leader(line):
+    """A line of a comment or docstring without its comment leader and the comment's ends
+    ('/*', '/**', '*', '//', '#', '*/')."""
+    s = line.strip()
+    if s.endswith("*/"):
+        s = s[:-2].rstrip()
+    if s.startswith("/*"):
+        s = s[2:]
+        s = s.lstrip("*")
+    elif s.startswith("//"):
+        s = s.lstrip("/")
+    elif s.startswith("#"):
+        s = s.lstrip("#")
+    elif s.startswith("*"):
+        s = s[1:]
+    return s.strip()
+
+
+def parse_tag(text, first_line=1):
+    """The method tag of a specification text (a comment or a docstring whose first line is
+    line first_line of its file).
+
+    Returns (tag, errors): tag is None when the text has no tag, else a dict with 'line'
+    (the tag's line) and 'methods' ({code: reason}, in the order written); errors is a list
+    of (line, message)."""
+    lines = [strip_leader(ln) for ln in text.split("\n")]
+    errors = []
+    starts = []
+    for k, s in enumerate(lines):
+        if s.startswith(TAG):
+            starts.append(k)
+        elif TAG_LIKE.match(s):
+            errors.append((first_line + k, f"malformed tag {s.split(':')[0]!r}: write "
+                                            f"'{TAG}'"))
+    if not starts:
+        return None, errors
+    if len(starts) > 1:
+        errors.append((first_line + starts[1], f"a second tag (the first on line "
+                                               f"{first_line + starts[0]})"))
+    k0 = starts[0]
+    parts = [lines[k0][len(TAG):].strip()]
+    k = k0 + 1
+    while k < len(lines) and lines[k] and not lines[k].startswith(TAG):
+        parts.append(lines[k])
+        k += 1
+    body = " ".join(p for p in parts if p).strip()
+    line = first_line + k0
+    methods = {}
+    if not body:
+        errors.append((line, "empty tag: name at least one method with its reason"))
+    entries = [e.strip() for e in body.split(";")]
+    if entries and entries[-1] == "" and len(entries) > 1:
+        entries.pop()          # a ';' closing the last entry
+    for e in entries if body else []:
+        m = ENTRY.match(e)
+        if not e or not m:
+            errors.append((line, "empty entry between ';'"))
+            continue
+        code, reason = m.group(1).rstrip(":,."), (m.group(2) or "").strip()
+        if code not in CODES:
+            errors.append((line, f"unknown method code {code!r} (known: {', '.join(CODES)})"))
+            continue
+        if code in methods:
+            errors.append((line, f"method {code} twice"))
+            continue
+        if not reason.strip(" .,:"):
+            errors.append((line, f"method {code} without a reason"))
+            continue
+        methods[code] = reason.rstrip()
+    return {"line": line, "methods": methods}, errors
+
+
+def case_tags(places):
+    """The tag of a case from its specification texts, places = [(text, first line)]:
+    (tag or None, errors) as parse_tag(); two tags among the places are an error."""
+    found, errors = [], []
+    for text, first in places:
+        tag, errs = parse_tag(text, first)
+        errors += errs
+        if tag is not None:
+            found.append(tag)
+    if len(found) > 1:
+        errors.append((found[1]["line"], f"a second tag (the first on line "
+                                         f"{found[0]['line']})"))
+    return (found[0] if found else None), errors
 
 
 # ------------------------------------------------------------------ C text
@@ -234,9 +262,15 @@ def c_block_end(text, open_idx):
     return n
 
 
+def line_of(text, pos):
+    """The 1-based line of position pos."""
+    return text.count("\n", 0, pos) + 1
+
+
 def comment_above(text, start):
-    """The comment lines right above position start (a /* */ block or // lines; no blank
-    line between them and the definition)."""
+    """(comment, first line) of the comment right above the line that starts at position
+    start: a /* */ block or // lines, no blank line between them and that line; first line
+    is 1-based (the line of start when there is no comment)."""
     lines = text[:start].split("\n")
     if lines and lines[-1].strip() == "":
         lines = lines[:-1]
@@ -248,11 +282,11 @@ def comment_above(text, start):
             if "/*" in lines[k]:
                 break
             k -= 1
-        return "\n".join(out)
+        return "\n".join(out), k + 1
     while k >= 0 and lines[k].lstrip().startswith("//"):
         out.insert(0, lines[k])
         k -= 1
-    return "\n".join(out)
+    return "\n".join(out), k + 2
 
 
 C_DEF = re.compile(
@@ -261,7 +295,8 @@ C_DEF = re.compile(
 
 
 def c_functions(text):
-    """name -> (comment above, body) of each function defined at the start of a line."""
+    """name -> (comment above, its first line, body, line of the definition) of each
+    function defined at the start of a line."""
     out = {}
     for m in C_DEF.finditer(text):
         name = m.group(1)
@@ -269,41 +304,44 @@ def c_functions(text):
             continue
         open_idx = m.end() - 1
         end = c_block_end(text, open_idx)
-        out.setdefault(name, (comment_above(text, m.start()), text[open_idx:end]))
+        above, first = comment_above(text, m.start())
+        out.setdefault(name, (above, first, text[open_idx:end], line_of(text, m.start())))
     return out
 
 
 def header_comment(text):
-    """The first /* */ block of a file."""
+    """(the first /* */ block of a file, its first line)."""
     m = re.match(r"\s*(/\*.*?\*/)", text, re.S)
-    return m.group(1) if m else ""
+    return (m.group(1), line_of(text, m.start(1))) if m else ("", 1)
 
 
 # ------------------------------------------------------------------ cases
 
 class Case:
-    """One verification case: its name, its description and code texts, and its tags."""
+    """One verification case: its name, where it is defined, the texts its requirements
+    are read from, the places its method tag may be, and (after read_tags) its tag."""
 
-    def __init__(self, name, head, inner, code, module=""):
+    def __init__(self, name, path, line, description, code, places, module=""):
         self.name = name
-        self.head = head          # name, comment above, docstring, decorators
-        self.inner = inner        # comments inside the body
-        self.description = head + "\n" + inner
+        self.path = path          # relative to the root
+        self.line = line          # of its definition (or entry)
+        self.description = description
         self.code = code
+        self.places = places      # [(text, first line)]
         self.module = module
-        self.kind = ""
+        self.tag = None
         self.tags = set()
         self.why = {}
+        self.errors = []          # [(line, message)]
 
 
 class Suite:
-    """A suite: its name, kind, cases and suite rules."""
+    """A suite: its name, kind, cases."""
 
-    def __init__(self, name, kind, cases, all_tags=(), no_t7=False, repeat=1):
+    def __init__(self, name, kind, cases, no_t7=False, repeat=1):
         self.name = name
         self.kind = kind
         self.cases = cases
-        self.all_tags = set(all_tags)
         self.no_t7 = no_t7
         self.repeat = repeat     # the robustness campaign: one drawing code, N runs
 
@@ -311,6 +349,10 @@ class Suite:
 def read(path):
     with open(path, encoding="utf-8", errors="replace") as f:
         return f.read()
+
+
+def rel(root, path):
+    return os.path.relpath(path, root).replace(os.sep, "/")
 
 
 def defined_requirements(root):
@@ -326,22 +368,26 @@ def cmocka_suites(root):
     for path in sorted(glob.glob(os.path.join(root, "tests", "test_*.c"))):
         text = read(path)
         funcs = c_functions(text)
-        names = re.findall(r"cmocka_unit_test\w*\(\s*(\w+)", text)
+        names = []
+        for n in re.findall(r"cmocka_unit_test\w*\(\s*(\w+)", text):
+            if n not in names:
+                names.append(n)
         if not names:
             names = re.findall(r"^(?:static\s+)?void\s+(test_\w+)\s*\(\s*void\s*\*\*", text,
                                re.M)
         module = os.path.basename(path)[len("test_"):-len(".c")]
         cases = []
         for name in names:
-            above, body = funcs.get(name, ("", ""))
+            above, first, body, line = funcs.get(name, ("", 1, "", 1))
             code, comments = c_split(body)
-            cases.append(Case(name, name + "\n" + above, comments, code, module))
-        suites.append(Suite(os.path.relpath(path, root).replace(os.sep, "/"), "CMocka",
-                            cases))
+            cases.append(Case(name, rel(root, path), line,
+                              "\n".join((name, above, comments)), code, [(above, first)],
+                              module))
+        suites.append(Suite(rel(root, path), "CMocka", cases))
     return suites
 
 
-def py_cases(path):
+def py_cases(root, path):
     text = read(path)
     lines = text.split("\n")
     tree = ast.parse(text)
@@ -362,13 +408,16 @@ def py_cases(path):
         while k >= 0 and lines[k].lstrip().startswith("#"):
             above.insert(0, lines[k])
             k -= 1
+        places = [("\n".join(above), k + 2)]
+        first_stmt = node.body[0]
+        if (isinstance(first_stmt, ast.Expr) and isinstance(first_stmt.value, ast.Constant)
+                and isinstance(first_stmt.value.value, str)):
+            # the docstring as written (not cleaned), so that its lines are the file's
+            places.append((first_stmt.value.value, first_stmt.lineno))
         seg = "\n".join(lines[first:node.end_lineno])
-        comments = "\n".join(ln for ln in seg.split("\n") if ln.lstrip().startswith("#"))
-        doc = ast.get_docstring(node) or ""
-        decorators = "\n".join(lines[first:node.lineno - 1])
-        head = "\n".join((node.name, "\n".join(above), decorators, doc))
-        code = "\n".join(ln for ln in seg.split("\n") if not ln.lstrip().startswith("#"))
-        cases.append(Case(node.name, head, comments, code, module))
+        description = "\n".join((node.name, "\n".join(above), seg))
+        cases.append(Case(node.name, rel(root, path), node.lineno, description, "", places,
+                          module))
     return cases
 
 
@@ -377,8 +426,8 @@ def pytest_suites(root):
     base = [os.path.basename(p) for p in paths]
     suites = []
     for path, b in zip(paths, base):
-        name = b if base.count(b) == 1 else os.path.relpath(path, root).replace(os.sep, "/")
-        suites.append(Suite(name, "pytest", py_cases(path)))
+        name = b if base.count(b) == 1 else rel(root, path)
+        suites.append(Suite(name, "pytest", py_cases(root, path)))
     return sorted(suites, key=lambda s: s.name)
 
 
@@ -386,8 +435,9 @@ def cbmc_suite(root):
     cases = []
     for path in sorted(glob.glob(os.path.join(root, "proofs", "cbmc", "*", "harness.c"))):
         name = os.path.basename(os.path.dirname(path))
-        code, comments = c_split(read(path))
-        cases.append(Case(name, name, comments, code))
+        text = read(path)
+        head, first = header_comment(text)
+        cases.append(Case(name, rel(root, path), 1, text, "", [(head, first)]))
     if not cases:
         return []
     return [Suite("proofs/cbmc", "CBMC", cases, no_t7=True)]
@@ -397,39 +447,29 @@ def target_suite(root):
     found = sorted(glob.glob(os.path.join(root, "tools", "**", "tt_groups.c"), recursive=True))
     if not found:
         return []
-    groups_text = read(found[0])
-    gen_path = os.path.join(os.path.dirname(found[0]), "tt_gen.c")
-    gen_text = read(gen_path) if os.path.exists(gen_path) else ""
-    funcs = c_functions(gen_text)
-    gen_of = dict(re.findall(r'\{\s*"(\w+)"\s*,\s*\w+\s*,\s*\w+\s*,\s*(\w+)\s*\}', gen_text))
-    replay_funcs = c_functions(groups_text)
-    table_at = groups_text.find("tt_suites[")
-    suite_comment = comment_above(groups_text, groups_text.rfind("\n", 0, table_at) + 1)
-    names = []
-    for m in re.finditer(r'\{\s*\{\s*"(\w+)"\s*,\s*(?:"(\w+)"|NULL)\s*\}\s*,\s*\w+\s*,'
-                         r'\s*(\w+)\s*\}', groups_text):
-        first = groups_text.rfind("\n", 0, m.start()) + 1
-        line = groups_text[first:groups_text.find("\n", m.end())]
-        replay = "\n".join(replay_funcs.get(m.group(3), ("", "")))
-        names.extend((n, "\n".join((line, replay))) for n in (m.group(1), m.group(2)) if n)
+    text = read(found[0])
+    funcs = c_functions(text)
+    table_at = text.find("tt_suites[")
+    if table_at < 0:
+        return []
+    table_line = text.rfind("\n", 0, table_at) + 1
+    # the comment above the suite table names the requirements of every group (1a)
+    suite_comment, _ = comment_above(text, table_line)
+    table_end = c_block_end(text, text.find("{", table_at))
     cases = []
-    for name, replay_text in names:
-        fn = gen_of.get(name)
-        if fn is None:
-            # the drive's groups: recorded in the closed-loop run of the generator
-            fn = "record_drive"
-            texts = [header_comment(gen_text)]
-        else:
-            texts = []
-        above, body = funcs.get(fn, ("", ""))
-        texts += [above, body]
-        for callee in sorted(set(re.findall(r"\b(\w+)\s*\(", c_split(body)[0]))):
-            if callee in funcs and callee != fn:
-                texts += list(funcs[callee])
-        code, comments = c_split("\n".join(texts + [replay_text]))
-        # the comment above the suite table names the requirements of every group (1a)
-        cases.append(Case(name, name, comments, code + "\n" + suite_comment))
-    return [Suite("target_test", "target", cases, all_tags=("1n",))]
+    for m in re.finditer(r'\{\s*\{\s*"(\w+)"\s*,\s*(?:"(\w+)"|NULL)\s*\}\s*,\s*\w+\s*,'
+                         r'\s*(\w+)\s*\}', text[table_at:table_end]):
+        at = table_at + m.start()
+        first = text.rfind("\n", 0, at) + 1
+        entry = text[first:text.find("\n", at)]
+        above, above_first = comment_above(text, first)
+        replay = funcs.get(m.group(3), ("", 1, "", 1))
+        description = "\n".join((above, entry, replay[0], replay[2], suite_comment))
+        for name in (m.group(1), m.group(2)):
+            if name:
+                cases.append(Case(name, rel(root, found[0]), line_of(text, at), description,
+                                  "", [(above, above_first)]))
+    return [Suite("target_test", "target", cases)]
 
 
 def robust_count(root):
@@ -446,8 +486,9 @@ def robust_suite(root):
     path = os.path.join(root, "sim", "apps", "robust.c")
     if not os.path.exists(path):
         return []
-    code, comments = c_split(read(path))
-    case = Case("cold start (seeded draw)", "robustness campaign", comments, code)
+    text = read(path)
+    head, first = header_comment(text)
+    case = Case("cold start (seeded draw)", rel(root, path), first, text, "", [(head, first)])
     return [Suite("robustness", "campaign", [case], repeat=robust_count(root))]
 
 
@@ -462,85 +503,67 @@ def scenario_targets(root):
     return len(sections), len(targets)
 
 
-# ------------------------------------------------------------------ tags
+# ------------------------------------------------------------------ methods of a case
 
-def words_of(case, text):
-    """The words of a text of the case: lower case, runs of MERGE joined, negated words
-    and (for a CMocka or pytest case) the module prefix of the name left out."""
-    low = " " + " ".join(WORD.findall(text.lower())) + " "
-    for run, word in MERGE:
-        low = low.replace(f" {run} ", f" {word} ")
-    words = low.split()
-    prefix = ["test"] + WORD.findall(case.module.lower())
-    if case.module and words[:len(prefix)] == prefix:
-        words = ["test"] + words[len(prefix):]
-    out, k = [], 0
-    while k < len(words):
-        if words[k] in NEGATION:
-            k += 1
-            while k < len(words) and words[k] in ARTICLES:
-                k += 1
-            k += NEGATED
-            continue
-        out.append(words[k])
-        k += 1
-    return out
-
-
-def word_match(words, patterns):
-    """The first word that a pattern matches, or None."""
-    for p in patterns:
-        for w in words:
-            if (p.endswith("*") and w.startswith(p[:-1])) or w == p:
-                return w
+def requirement_of(case, defined):
+    """The first requirement the case names (for 1a), or None."""
+    ids = sorted({m.group(0) for m in REQ_ID.finditer(case.description + "\n" + case.code)})
+    if ids:
+        return ids[0]
+    m = NAME_REQ.match(case.name)
+    if m and f"REQ-{m.group(1).upper()}-{m.group(2)}" in defined:
+        return f"name: REQ-{m.group(1).upper()}-{m.group(2)}"
     return None
 
 
-def phrase_match(words, phrases):
-    joined = " " + " ".join(words) + " "
-    return next((p for p in phrases if f" {p} " in joined), None)
+def read_tags(suite, defined):
+    """Read the tag of every case of the suite: case.tag, case.tags (the methods counted),
+    case.why (code -> reason) and case.errors."""
+    for c in suite.cases:
+        c.tag, c.errors = case_tags(c.places)
+        methods = dict(c.tag["methods"]) if c.tag else {}
+        line = c.tag["line"] if c.tag else c.line
+        if c.tag is None and not c.errors:
+            c.errors.append((c.line, f"no '{TAG}' tag ({where(suite.kind)})"))
+        req = requirement_of(c, defined)
+        if "1a" in methods and req is None:
+            c.errors.append((line, "1a in the tag, but the case names no requirement"))
+        if suite.no_t7:
+            for k in T7:
+                if k in methods:
+                    c.errors.append((line, f"{k} in the tag of a CBMC harness (formal "
+                                           f"verification; the Table 7 test methods do "
+                                           f"not apply)"))
+        c.why = {k: methods[k] for k in METHODS if k in methods and k != "1a"}
+        if req is not None:
+            c.why["1a"] = req if "1a" not in methods else f"{req}: {methods['1a']}"
+        c.tags = set(c.why)
 
 
-def tag(case, defined):
-    """The methods of a case; case.why gets the word, phrase or literal that gave each."""
-    head = words_of(case, case.head)
-    words = head + ["."] + words_of(case, case.inner)
-    why = {}
-    ids = sorted({m.group(0) for m in REQ_ID.finditer(case.description + "\n" + case.code)})
-    m = NAME_REQ.match(case.name)
-    if ids:
-        why["1a"] = ids[0]
-    elif m and f"REQ-{m.group(1).upper()}-{m.group(2)}" in defined:
-        why["1a"] = f"name: REQ-{m.group(1).upper()}-{m.group(2)}"
-    for key in ("1b", "1c", "1d", "1l", "1n"):
-        rule = RULES[key]
-        code_re = rule.get("code_re")
-        if code_re and case.kind in rule.get("code_kinds", ()):
-            m_code = re.search(code_re, case.code)
-        else:
-            m_code = None
-        desc_re = rule.get("desc_re")
-        m_desc = re.search(desc_re, case.description) if desc_re else None
-        hit = (word_match(words, rule.get("words", ()))
-               or (m_desc.group(0) if m_desc else None)
-               or word_match(head, rule.get("head", ()))
-               or phrase_match(words, rule.get("phrases", ()))
-               or phrase_match(head, rule.get("head_phrases", ()))
-               or (f"code: {m_code.group(0).strip()}" if m_code else None))
-        if hit:
-            why[key] = hit
-    case.why = why
-    return set(why)
+def where(kind):
+    return {"CMocka": "in the comment right above the test function",
+            "pytest": "in the comment right above the function or in its docstring",
+            "CBMC": "in the header comment of harness.c",
+            "target": "in the comment right above the group's entry in tt_suites[]",
+            "campaign": "in the header comment of robust.c"}.get(kind, "")
+
+
+def tag_errors(suites):
+    """'file:line: suite case: message' of every case whose tag is missing or invalid."""
+    out = []
+    for s in suites:
+        for c in s.cases:
+            for line, msg in c.errors:
+                out.append(f"{c.path}:{line}: {c.name}: {msg}")
+    return out
 
 
 def figures(suites, defined):
-    """suite name -> {column: number or None}, in the order of the suites."""
+    """suite name -> (kind, {column: number or None}), in the order of the suites."""
     out = {}
     for s in suites:
+        read_tags(s, defined)
         row = {"cases": len(s.cases) * s.repeat}
-        for c in s.cases:
-            c.kind = s.kind
-            c.tags = tag(c, defined) | s.all_tags
         for k in METHODS:
             if s.no_t7 and k in T7:
                 row[k] = None
@@ -584,13 +607,17 @@ def section(figs, scn):
             vals = [figs[n][1][key] for n in names]
             tot[key] = None if all(v is None for v in vals) else sum(v for v in vals if v)
         totals[kind] = (len(names), tot)
-    lines += ["#### Rules", "",
-              "| method | a case is tagged when its description (code for the literals) ... |",
-              "|---|---|"]
-    for key, head in COLUMNS[1:]:
-        lines.append(f"| {head} | {RULES[key]['doc']} |")
-    lines += ["| suite rules | every target_test group is T7 1n; the CBMC harnesses are formal "
-              "verification (T7 1e), their T7 test columns are '-' |", ""]
+    lines += ["#### How a case is counted", "",
+              "| column | a case is counted when ... |",
+              "|---|---|",
+              "| T8 1a requirements | it names a requirement: an ID REQ-<MOD>-NNN in its text, "
+              "or a name test_<mod>_NNN_..., test_req_<mod>_NNN_... or test_<mod>_reqNNN_... "
+              "where REQ-<MOD>-NNN is defined in specs/requirements/ |"]
+    for key, head in COLUMNS[2:]:
+        lines.append(f"| {head} | its method tag lists {key} |")
+    lines += ["| suites | a robustness campaign's tag counts once per start; the CBMC "
+              "harnesses are formal verification (T7 1e), their T7 test columns are '-' |",
+              ""]
     lines += ["#### Totals", "",
               "| kind | suites | " + " | ".join(h for _, h in COLUMNS) + " |",
               "|---|---:|" + "|".join("---:" for _ in COLUMNS) + "|"]
@@ -672,11 +699,21 @@ def main(argv=None):
     spec = a.spec or os.path.join(root, "specs", "verification-spec.md")
     suites = all_suites(root)
     figs = figures(suites, defined_requirements(root))
+    errors = tag_errors(suites)
     if a.list:
         for s in suites:
             for c in s.cases:
-                tags = " ".join(f"{k}({c.why[k]})" if k in c.why else k for k in sorted(c.tags))
-                print(f"{s.name}\t{c.name}\t{tags}")
+                line = c.tag["line"] if c.tag else c.line
+                tags = "; ".join(f"{k} {c.why[k]}" for k in METHODS if k in c.why)
+                print(f"{s.name}\t{c.name}\t{c.path}:{line}\t{tags}")
+    for msg in errors:
+        print(f"verif_counts: {msg}", file=sys.stderr)
+    if errors:
+        print(f"verif_counts: {len(errors)} method tag error(s); each case states the methods "
+              f"that derived it in a line '{TAG} 1b <classes>; 1c <boundaries>; ...' "
+              f"(tools/evidence/verif_counts.py)", file=sys.stderr)
+        return 1
+    if a.list:
         return 0
     generated = section(figs, scenario_targets(root))
     if not os.path.exists(spec):
@@ -696,7 +733,8 @@ def main(argv=None):
                   file=sys.stderr)
             return 1
         print(f"verif_counts: {os.path.relpath(spec, root)} up to date "
-              f"({sum(r['cases'] for _, r in figs.values())} cases in {len(figs)} suites)")
+              f"({sum(r['cases'] for _, r in figs.values())} cases in {len(figs)} suites, "
+              f"every case tagged)")
         return 0
     new_text = text.replace(committed, generated)
     if new_text != text:

@@ -1442,53 +1442,201 @@ static void tt_replay_drive(tt_ctx_t *c)
 
 /* TT_N_SUITES entries (tt.h); a missing one would be all zero, which the runner and the
    generator refuse (tt_runner.c: tt_consistent).  Every group: REQ-TGT-001 (its golden
-   vectors), REQ-TGT-002 (its outputs bit-identical on the Cortex-M4F). */
+   vectors), REQ-TGT-002 (its outputs bit-identical on the Cortex-M4F).  The comment right
+   above an entry is its group's method tag: how tt_gen.c derives the group's inputs
+   (tools/evidence/verif_counts.py reads it). */
 const tt_suite_t tt_suites[TT_N_SUITES] = {
+    /* Methods: 1b 2048 random int32 in four classes (corners, the Q15 band, near +-2^30,
+       uniform); 1c the 33 int32 corners C32 (INT32_MIN, INT32_MAX, +-32767 / 32768, +-2^30,
+       ...); 1n the Cortex-M4F build's digests against the host build's */
     { { "q15_sat", NULL }, 1u, tt_replay_q15_sat },
+    /* Methods: 1b 2048 random int64 (uniform, near +-(2^31 - 1), int32 and twice int32); 1c
+       INT64_MIN, INT64_MAX and the values beside +-2^31; 1n the Cortex-M4F build's digests
+       against the host build's */
     { { "q31_sat", NULL }, 1u, tt_replay_q31_sat },
+    /* Methods: 1b 2048 random pairs of the classes of rq15 (corners, small, near full scale,
+       uniform); 1c every pair of the 16 int16 corners C16 (-32768 .. 32767, +-16384 +-1); 1n
+       the Cortex-M4F build's digests against the host build's */
     { { "q15_add", NULL }, 1u, tt_replay_q15_add },
+    /* Methods: 1b 2048 random pairs of the classes of rq15; 1c every pair of the 16 int16
+       corners C16; 1n the Cortex-M4F build's digests against the host build's */
     { { "q15_sub", NULL }, 1u, tt_replay_q15_sub },
+    /* Methods: 1b 1024 random values of the classes of rq15; 1c the 16 int16 corners C16,
+       -32768 included; 1n the Cortex-M4F build's digests against the host build's */
     { { "q15_neg", NULL }, 1u, tt_replay_q15_neg },
+    /* Methods: 1b 1024 random values of the classes of rq15; 1c the 16 int16 corners C16,
+       -32768 included; 1n the Cortex-M4F build's digests against the host build's */
     { { "q15_abs", NULL }, 1u, tt_replay_q15_abs },
+    /* Methods: 1b 2048 random pairs of the classes of rq15; 1c every pair of the 16 int16
+       corners C16; 1n the Cortex-M4F build's digests against the host build's */
     { { "q15_mul", NULL }, 1u, tt_replay_q15_mul },
+    /* Methods: 1b 2048 random int32 of the classes of ri32; 1c the int32 corners C32, and 40 %
+       of the draws beside a rounding tie (m 32768 + 16384 + -1, 0, 1); 1n the Cortex-M4F
+       build's digests against the host build's */
     { { "q15_from_q30", NULL }, 1u, tt_replay_q15_from_q30 },
+    /* Methods: 1b 2048 random pairs of the classes of ri32; 1c every pair of every other int32
+       corner of C32; 1n the Cortex-M4F build's digests against the host build's */
     { { "q31_add", NULL }, 1u, tt_replay_q31_add },
+    /* Methods: 1b 2048 random (acc, a, b) of the classes of ri32 and rq15; 1c int32 corners
+       crossed with int16 corners; 1n the Cortex-M4F build's digests against the host build's */
     { { "q31_mac", NULL }, 1u, tt_replay_q31_mac },
+    /* Methods: 1b 2048 random int32 of the classes of ri32; 1c the int32 corners C32, and 40 %
+       of the draws beside a rounding tie (m 65536 + 32768 + -1, 0, 1); 1n the Cortex-M4F
+       build's digests against the host build's */
     { { "q15_from_q31", NULL }, 1u, tt_replay_q15_from_q31 },
+    /* Methods: 1b 1024 random values of the classes of rq15; 1c the 16 int16 corners C16; 1n
+       the Cortex-M4F build's digests against the host build's */
     { { "q31_from_q15", NULL }, 1u, tt_replay_q31_from_q15 },
+    /* Methods: 1b every one of the 65536 angles (the domain enumerated); 1n the Cortex-M4F
+       build's digests against the host build's */
     { { "sin", NULL }, 1u, tt_replay_sin },
+    /* Methods: 1b every one of the 65536 angles (the domain enumerated); 1n the Cortex-M4F
+       build's digests against the host build's */
     { { "sincos", NULL }, 1u, tt_replay_sincos },
+    /* Methods: 1b 8192 random pairs of the classes of rq15; 1c every pair of the C16 corners,
+       the axes and diagonals of nine magnitudes (1 .. 32767) exactly and one count off, in all
+       eight sign combinations; 1n the Cortex-M4F build's digests against the host build's */
     { { "atan2", NULL }, 1u, tt_replay_atan2 },
+    /* Methods: 1b 4096 random uint32 (uniform, shifted down, near squares); 1c 0 .. 4,
+       0xFFFFFFFF, 0xFFFE0000 .. 0xFFFE0002, 0x80000000, 0x7FFFFFFF, 0x40000000, 0x3FFFFFFF, q^2
+       - 1, q^2, q^2 + 1; 1n the Cortex-M4F build's digests against the host build's */
     { { "isqrt32", NULL }, 1u, tt_replay_isqrt32 },
+    /* Methods: 1b 4096 random pairs of the classes of rq15; 1c every pair of the 16 int16
+       corners C16; 1n the Cortex-M4F build's digests against the host build's */
     { { "vec_mag", NULL }, 1u, tt_replay_vec_mag },
+    /* Methods: 1b 4096 random (d, q, limit), the limits mostly non-negative; 1c every other C16
+       corner of d and q crossed with the limits -32768, -1, 0, 1, 15892, 16384, 32767; 1d
+       negative limits; 1n the Cortex-M4F build's digests against the host build's */
     { { "circle_limit", NULL }, 1u, tt_replay_circle_limit },
+    /* Methods: 1b 4096 random pairs of the classes of rq15; 1c every pair of the 16 int16
+       corners C16; 1n the Cortex-M4F build's digests against the host build's */
     { { "clarke", NULL }, 1u, tt_replay_clarke },
+    /* Methods: 1b 4096 random vectors with the sine and cosine of a real angle (75 %) or any
+       pair; 1c C16 corners at the axis angles, (-32768, -32768), (32767, 32767) and 45 degrees;
+       1d sine and cosine words that are not a unit pair; 1n the Cortex-M4F build's digests
+       against the host build's */
     { { "park", NULL }, 1u, tt_replay_park },
+    /* Methods: 1b 4096 random vectors with the sine and cosine of a real angle (75 %) or any
+       pair; 1c C16 corners at the axis angles, (-32768, -32768), (32767, 32767) and 45 degrees;
+       1d sine and cosine words that are not a unit pair; 1n the Cortex-M4F build's digests
+       against the host build's */
     { { "inv_park", NULL }, 1u, tt_replay_inv_park },
+    /* Methods: 1b 4096 random pairs of the classes of rq15; 1c every pair of the 16 int16
+       corners C16; 1n the Cortex-M4F build's digests against the host build's */
     { { "inv_clarke", NULL }, 1u, tt_replay_inv_clarke },
+    /* Methods: 1b 6144 cases: the reference table's configuration, random valid ones, random
+       words, vectors of any angle up to 1.3 x the linear range; 1c 30 % on a sector boundary or
+       one count beside it, currents around the dead band; 1d invalid configurations and bus
+       voltages at or below 0; 1n the Cortex-M4F build's digests against the host build's */
     { { "svpwm", NULL }, 1u, tt_replay_svpwm },
+    /* Methods: 1b 4096 random (value, target, step), 70 % of the steps small; 1c every other
+       C16 corner for value and target crossed with the steps -32768, -1, 0, 1, 10, 32767; 1n
+       the Cortex-M4F build's digests against the host build's */
     { { "ramp", NULL }, 1u, tt_replay_ramp },
+    /* Methods: 1b 2048 random pairs of the classes of rq15; 1c every pair of the 16 int16
+       corners C16; 1n the Cortex-M4F build's digests against the host build's */
     { { "fault_level", NULL }, 1u, tt_replay_fault_level },
+    /* Methods: 1b sequences of 10 .. 120 steps with conditions toggling at random; 1c n = 0, 1,
+       2, 3, 5, 10, 100 and 65535, random n; 1n the Cortex-M4F build's digests against the host
+       build's */
     { { "debounce", NULL }, 1u, tt_replay_debounce },
+    /* Methods: 1b sequences of balanced currents of any amplitude and speed, all phases and one
+       per period (alpha3), random thresholds; 1c coefficients and thresholds of any int16,
+       -32768; 1d a lost phase in 3 of 5 sequences, phase indices up to 255, corrupted samples
+       (5 %); 1l the lost phase and the corrupted samples injected into the currents; 1n the
+       Cortex-M4F build's digests against the host build's */
     { { "phase_mon", NULL }, 1u, tt_replay_phase_mon },
+    /* Methods: 1b sequences of 20 .. 150 steps with random coefficients and inputs, resets; 1c
+       coefficients of any int16 (15 %), inputs of the classes of rq15; 1d invalid coefficients;
+       1n the Cortex-M4F build's digests against the host build's */
     { { "lpf", NULL }, 1u, tt_replay_lpf },
+    /* Methods: 1b sequences of 20 .. 150 steps with random gains, shifts and leaks, resets; 1c
+       shifts 16 .. 255 and any int16 gains and leaks (invalid); 1d invalid parameters; 1n the
+       Cortex-M4F build's digests against the host build's */
     { { "leaky", NULL }, 1u, tt_replay_leaky },
+    /* Methods: 1b sequences of 20 .. 200 steps with the reference table's four PIs, random
+       valid-looking and random parameters, errors wandering and jumping; 1c shifts up to 20,
+       any int16 limits; 1d invalid parameters; 1n the Cortex-M4F build's digests against the
+       host build's */
     { { "pi", NULL }, 1u, tt_replay_pi },
+    /* Methods: 1b sequences of 50 .. 300 steps with the reference table's field weakening or
+       random parameters, utilisations wandering around the level, enable on and off; 1c
+       utilisations of any int16 (5 %); 1d invalid parameters; 1n the Cortex-M4F build's digests
+       against the host build's */
     { { "fw", NULL }, 1u, tt_replay_fw },
+    /* Methods: 1b sequences of 50 .. 400 steps of rotating voltages and currents at random
+       speeds of both signs, the reference table's or random parameters; 1c shifts 16 .. 40 and
+       any int16 parameters, inputs of the classes of rq15 (5 %); 1d invalid parameters; 1n the
+       Cortex-M4F build's digests against the host build's */
     { { "flux", NULL }, 1u, tt_replay_flux },
+    /* Methods: 1b sequences of 50 .. 400 steps of a rotating flux or EMF at random speeds of
+       both signs and amplitudes (10 % below 200: coasting), the reference table's or random
+       parameters; 1c k_theta of any uint16, any int16 parameters; 1d invalid parameters; 1n the
+       Cortex-M4F build's digests against the host build's */
     { { "pll", NULL }, 1u, tt_replay_pll },
+    /* Methods: 1b sequences of 50 .. 300 steps of rotating voltages and currents at random
+       speeds of both signs, random parameters; 1c k_theta of any uint16 and any int16
+       parameters (10 %), inputs of the classes of rq15 (5 %); 1d invalid parameters; 1n the
+       Cortex-M4F build's digests against the host build's */
     { { "emf", NULL }, 1u, tt_replay_emf },
+    /* Methods: 1b sequences of 50 .. 300 steps of rotating voltages and currents at random
+       speeds of both signs, random observer parameters; 1c shifts 16 .. 30, k_theta of any
+       uint16 and any int16 parameters (10 %); 1d invalid parameters; 1n the Cortex-M4F build's
+       digests against the host build's */
     { { "dob", NULL }, 1u, tt_replay_dob },
+    /* Methods: 1b sequences of 50 .. 300 angle steps, forward and reverse, pole pairs 1 .. 16;
+       1c steps of any int16 (-32768 .. 32767) and pole-pair counts 0 .. 255; 1d invalid
+       pole-pair counts; 1n the Cortex-M4F build's digests against the host build's */
     { { "mech", NULL }, 1u, tt_replay_mech },
+    /* Methods: 1b sequences of 100 .. 600 steps with the reference table's or random
+       parameters, speeds of both signs inside and outside the window, learning, output and
+       phase calls; 1c speeds of any int16, pole pairs 0 .. 40; 1d invalid parameters; 1n the
+       Cortex-M4F build's digests against the host build's */
     { { "trqcomp", NULL }, 1u, tt_replay_trqcomp },
+    /* Methods: 1b every identifier 0 .. 255 (the domain enumerated); 1n the Cortex-M4F build's
+       digests against the host build's */
     { { "lin_pid", NULL }, 1u, tt_replay_lin_pid },
+    /* Methods: 1b 4096 random identifiers and byte strings; 1c lengths 0 .. 12, 30 % of the
+       bytes 0xFF; 1n the Cortex-M4F build's digests against the host build's */
     { { "lin_checksum", NULL }, 1u, tt_replay_lin_checksum },
+    /* Methods: 1b 4096 frames for the reference or a random configuration, well-formed or with
+       one defect; 1c lengths 0 .. 255, targets up to 65535; 1d one bit flipped, a wrong length,
+       a reserved bit or byte, random bytes, another identifier; 1l each defect injected into a
+       well-formed frame; 1n the Cortex-M4F build's digests against the host build's */
     { { "lin_decode", NULL }, 1u, tt_replay_lin_decode },
+    /* Methods: 1b 2048 status records in the drive's ranges (70 %) or any words, with the
+       reference or a random configuration; 1c words of any value (saturation of the payload);
+       1n the Cortex-M4F build's digests against the host build's */
     { { "lin_encode", NULL }, 1u, tt_replay_lin_encode },
+    /* Methods: 1b sequences of 50 .. 400 milliseconds with frames, silence and CAN status
+       requests; 1c short timeouts of 1 .. 30 ms, so that the link is lost within the run; 1d
+       frames with one defect, random bytes, silence; 1l the defects injected into well-formed
+       frames; 1n the Cortex-M4F build's digests against the host build's */
     { { "link", NULL }, 1u, tt_replay_link },
+    /* Methods: 1b 2048 random register values and bytes; 1c the registers 0, 1, 0xFFFFFFFF,
+       0x80000000, 0x7FFFFFFF and the polynomial with every 17th byte; 1n the Cortex-M4F build's
+       digests against the host build's */
     { { "crc32_byte", NULL }, 1u, tt_replay_crc32_byte },
+    /* Methods: 1b the reference table unchanged and resealed, every byte mutated with a random
+       mask, 768 random single-bit mutations, resealed or not; 1d corrupted tables and tables
+       written wrongly with a correct CRC; 1l each mutation injected into the table; 1n the
+       Cortex-M4F build's digests against the host build's */
     { { "params", NULL }, 1u, tt_replay_params },
+    /* Methods: 1b sequences of 100 .. 600 ticks with the reference table's or random times,
+       input bits toggling at random; 1c times 0 .. 40 and any uint16; 1d fault words with one
+       bit or any bits, bits of undefined meaning; 1n the Cortex-M4F build's digests against the
+       host build's */
     { { "sm", NULL }, 1u, tt_replay_sm },
+    /* Methods: 1b the reference table unchanged and resealed, every byte mutated with a random
+       mask, 256 random single-bit mutations, resealed or not; 1d an init from a corrupted
+       table; 1l each mutation injected into the table; 1n the Cortex-M4F build's digests
+       against the host build's */
     { { "drive_init", NULL }, 1u, tt_replay_drive_init },
+    /* Methods: 1b a closed-loop run on the plant: start, field weakening at 5800 rpm,
+       high-speed inductances, torque compensation, 0.05 A rms current noise; 1d two command
+       frames with a wrong checksum, an over-current pulse; 1l the +50 A pulse on the sensed
+       phase-u current and the wrong checksums injected; 1n the Cortex-M4F build's digests at
+       both entry points against the host build's, recorded in the closed loop and replayed open
+       loop */
     { { "drive_fast", "drive_tick" }, 2u, tt_replay_drive },
 };

@@ -14,6 +14,11 @@
  *    the last max(n, 1) calls;
  *  - qfoc_fault_over / _under / _abs_over agree with x > limit, x < limit and
  *    |x| > limit computed in 32 bits, for every x and limit (-32768 included).
+ *
+ * Methods: 1b every count, condition and length n of one step, and every sequence of
+ * twelve conditions from reset; 1c n = 0 (confirmed at the first true), the count at n
+ * and 65535, every x and limit of the threshold compares with -32768 included; 1d a
+ * count above n (an instance not initialised)
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -15,6 +15,10 @@
  *  - accepted: parameters copied; rejected: the safe state (all 0);
  *  - in both cases the instance is valid with all states 0;
  *  - reset keeps it valid: i_hat = 4096 i0, i_prev = i0 (saturated), e_prev = 0.
+ *
+ * Methods: 1b every parameter set, valid and invalid, and every current; 1c ki = g =
+ * 32767 at ki_shift 0 .. 2 (lambda above 1, rejected), the currents -32768 (saturated);
+ * 1d invalid parameters: the safe state
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -13,6 +13,10 @@
  *  - positive speed: lag in [0, 0x6000]; negative speed: 0 or in [0xA000, 0xFFFF].
  * Equality with qfoc_emf_lag() at alpha = lambda is tested (tests/test_emf.c,
  * test_dob_lag).
+ *
+ * Methods: 1b every int16 speed and every valid instance, lambda of any size; 1c zero
+ * speed, k_theta = 0, -32768, lambda rounded and clamped to [1, 32767], the lag range
+ * [0, 0x6000] and [0xA000, 0xFFFF]
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -22,6 +22,9 @@
  * vector.  Its own harness (trig_atan2) and WP prove the function against that
  * contract; the stub returns every value the contract allows, so no behaviour of
  * the real function is left out.
+ *
+ * Methods: 1b every int16 voltage and current and every valid instance; 1c -32768
+ * inputs, the safe state G = 0, k_i = 0, r = 0 (product-free special cases)
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -9,6 +9,10 @@
  *    three relations (rpm_min <= rpm_max, tc_speed_min <= tc_speed_max,
  *    lin_id_status != lin_id_cmd) included;
  *  - the check reads the configuration only (it is unchanged).
+ *
+ * Methods: 1b every bit pattern of the configuration, padding included (valid and
+ * invalid); 1c each field's range as drive_cfg.h writes it, the three relations at
+ * equality; 1d garbage configurations
  */
 #include <stdint.h>
 #include <stdbool.h>

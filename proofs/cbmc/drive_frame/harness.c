@@ -8,6 +8,10 @@
  * everything but the rejection counters: state, sub-state, fault word, first fault,
  * times, references and the effective command; and no status frame is sent.
  * The signal-processing functions are the stubs of ../drive_stubs.h.
+ *
+ * Methods: 1b any valid state of the state machine, the link and the debouncers; 1c
+ * frame lengths 0 .. QFOC_LIN_FRAME_MAX; 1d any byte sequence the decoder rejects: a
+ * malformed frame must change nothing
  */
 #define DRIVE_STUBS_PURE
 #include "../drive_stubs.h"

@@ -11,6 +11,10 @@
  *  - in both cases the instance is valid with all states 0;
  *  - reset keeps it valid, sets i_prev to the saturated current and the filter
  *    states to 0, and keeps parameters and the active flag.
+ *
+ * Methods: 1b every parameter set, valid and invalid, and every current; 1c k_theta 0,
+ * 1, 32767 and 32768, alpha 0 and 1, r and l -1 and 0, the current -32768 (saturated);
+ * 1d invalid parameters: the safe, inactive state
  */
 #include <stdint.h>
 #include <stdbool.h>

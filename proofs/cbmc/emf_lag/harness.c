@@ -13,6 +13,9 @@
  * The odd symmetry lag(-w) = -lag(w) and the value against the double formula
  * are tested for every speed (tests/test_emf.c, test_lag_all_speeds): a miter of
  * two lag computations does not finish within the time budget.
+ *
+ * Methods: 1b every int16 speed and every valid instance; 1c zero speed, k_theta = 0,
+ * -32768, the lag range [0, 0x6000] (135 degrees) and [0xA000, 0xFFFF]
  */
 #include <stdint.h>
 #include <stdbool.h>

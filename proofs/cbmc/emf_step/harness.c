@@ -26,6 +26,10 @@
  * contract; with the real divider behind two 64-bit filter multipliers the
  * problem does not finish within the time budget.  The stub returns every value
  * the contract allows, so no behaviour of the real function is left out.
+ *
+ * Methods: 1b every int16 voltage and current and every valid instance, active and
+ * inactive; 1c -32768 inputs, r = 0 and l = 0 (product-free special cases), the output
+ * rounding ties; 1d an inactive instance (rejected parameters): output 0
  */
 #include <stdint.h>
 #include <stdbool.h>

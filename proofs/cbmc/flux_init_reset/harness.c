@@ -10,6 +10,9 @@
  *    is valid in both cases;
  *  - reset sets each flux state to the saturated Q15 value x 4096 and the
  *    remembered current to the saturated current; the instance stays valid.
+ *
+ * Methods: 1b every parameter set, valid and invalid, every flux and current of the
+ * reset; 1c -32768 saturated in the reset; 1d invalid parameters: the safe state
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -13,6 +13,10 @@
  * against atan() in tests/test_flux.c (test_flux_007_lead); a second call in
  * this harness (to compare the two directions) needs bit-level reasoning through
  * two dividers that does not finish within the time budget.
+ *
+ * Methods: 1b every int16 speed (forward, reverse, standstill) and every valid
+ * instance; 1c kg = 0, w = 0 (90 degrees), w = -32768, the range [0, 90] and [-90, 0]
+ * degrees modulo 2^16
  */
 #include <stdint.h>
 #include <stdbool.h>

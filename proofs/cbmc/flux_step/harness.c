@@ -18,6 +18,9 @@
  * double reference (tests/test_flux.c): properties that relate the products of
  * the step to each other (e.g. the sign of -l di) need bit-level reasoning through
  * the multipliers that does not finish within the time budget (over 10 min).
+ *
+ * Methods: 1b every int16 input and every valid instance; 1c -32768 inputs, the output
+ * saturated to +-32767, gain = 0 and l = 0 (state unchanged)
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -22,6 +22,10 @@
  * (contract of qfoc_fw_step: still_valid, util, integ, result) and tested
  * against a double model (tests/test_fw.c): bit-level reasoning through the
  * 64-bit multipliers does not finish within the time budget.
+ *
+ * Methods: 1b every valid instance, every int16 utilisation, enable true and false,
+ * every parameter set of init; 1c the utilisation -32768, the error 0, the result range
+ * [out_min, 0]; 1d invalid parameters of init
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -17,6 +17,9 @@
  * qfoc_leaky_step: behaviours exact/upper/lower) and tested against a double
  * reference (tests/test_filter.c): bit-level reasoning through the multipliers
  * does not finish within the time budget.
+ *
+ * Methods: 1b every int16 input and every valid instance; 1c -32768 inputs, the state
+ * at the ends of the symmetric Q31 range, leak = 0, x = 0 and gain = 0
  */
 #include <stdint.h>
 #include <stdbool.h>

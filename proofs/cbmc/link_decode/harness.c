@@ -19,6 +19,10 @@
  * (A miter of the per-byte sum against a sum folded once at the end does not
  * finish within the time budget for 9 addends; it is done here for the 5 addends
  * of the command frame, and for 9 addends by tests/test_link.c over random data.)
+ *
+ * Methods: 1b every byte sequence and every configuration; 1c every length 0 ..
+ * QFOC_LIN_FRAME_MAX + 1 in a buffer of exactly that size, checksums of every length 0
+ * .. 8; 1d malformed frames of every cause, checked in the decoding order
  */
 #include <stdint.h>
 #include <stdbool.h>

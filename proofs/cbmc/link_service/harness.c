@@ -20,6 +20,11 @@
  *  - a twin link that gets no frame whenever the frame is malformed has the same
  *    effective command and lost flag (a malformed frame acts like no frame);
  *  - the CAN identifier alternates a, b, a, ... and the DLC is 8.
+ *
+ * Methods: 1b five services from a fresh or any valid link with any frames and lengths,
+ * well-formed and malformed; 1c counters and the silent time saturated, lengths 0 ..
+ * QFOC_LIN_FRAME_MAX + 1, timeouts 1 .. 3 ms; 1d malformed frames and silence (a
+ * malformed frame must act like no frame)
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -21,6 +21,10 @@
  * UNWIND 17) with any previous angle and any revolution count accepted by
  * qfoc_mech_is_valid(): a single symbolic pole-pair count makes the reciprocal a
  * symbolic quotient and the 64-bit product too large for the time budget.
+ *
+ * Methods: 1b every pole-pair count 1 .. 16, every revolution count, every previous and
+ * new angle; 1c the step -32768 / 32767 deciding a forward or reverse wrap, the exact
+ * floor for 1 .. 4, 8 and 16 pole pairs
  */
 #include <stdint.h>
 #include <stdbool.h>

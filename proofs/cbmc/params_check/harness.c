@@ -15,6 +15,10 @@
  *    table out of range; ERR_CRC only for a known table; nothing else;
  *  - load: returns OK only for a known, in-range table; the RAM copy equals the
  *    table on OK and is untouched otherwise.
+ *
+ * Methods: 1b every bit pattern of every field of the table, any CRC result; 1c the
+ * ranges of params.h and drive_cfg.h and the cross-field conditions written out field
+ * by field; 1d a foreign, out-of-range or corrupted table: the RAM copy untouched
  */
 #include <stdint.h>
 #include <stdbool.h>

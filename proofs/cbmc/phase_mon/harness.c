@@ -29,6 +29,11 @@
  * are proved by Frama-C WP (contract of qfoc_phase_mon_update: valid, state_u/v/w)
  * and tested against a double reference (tests/test_fault.c): bit-level reasoning
  * through three 64-bit multipliers does not finish within the time budget.
+ *
+ * Methods: 1b every phase current, coefficient, valid state, i_min, ratio and phase
+ * index; 1c -32768 currents (taken as 32767), the ratios 0, 1 LSB, 0.25, 0.5 and -1, a
+ * zero magnitude beside the largest, alpha3 of every int16; 1d a lost phase (a zero
+ * magnitude) reported, a magnitude below i_min never
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -17,6 +17,9 @@
  * e ki 2^ki_shift) is proved by Frama-C WP (contract of qfoc_pi_step, behaviours
  * exact/upper/lower) and tested against a double reference (tests/test_pi.c):
  * a bit-level miter of two multipliers does not finish within the time budget.
+ *
+ * Methods: 1b every int16 error and every valid instance; 1c -32768, the output on its
+ * limits, e = 0, kp = 0, ki = 0 (product-free special cases)
  */
 #include <stdint.h>
 #include <stdbool.h>

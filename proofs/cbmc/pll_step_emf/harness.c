@@ -11,6 +11,10 @@
  * error clamp, speed limits, speed_f, coasting).  The flux direction chosen
  * from the integrator sign is checked on small vectors by
  * proofs/cbmc/pll_step_emf_exact.
+ *
+ * Methods: 1b every valid instance and every int16 EMF vector, integrators of both
+ * signs; 1c -32768 components, the accumulator modulo 2^32, |error| at err_clamp,
+ * coasting below mag_min
  */
 #include <stdint.h>
 #include <stdbool.h>

@@ -10,6 +10,9 @@
  * and the rounded error on it are proved by Frama-C WP (ensures mag, error of
  * qfoc_pll_step_emf with PllAtoX / PllAtoY) and tested exactly in
  * tests/test_pll.c (test_pll_req008_emf_one_step_vs_reference).
+ *
+ * Methods: 1b every valid instance and every EMF vector of 8 bits; 1c the coasting
+ * decision at mag_min^2, the magnitude as the floor square root
  */
 #include <stdint.h>
 #include <stdbool.h>

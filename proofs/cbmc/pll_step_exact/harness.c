@@ -11,6 +11,9 @@
  * error (REQ-PLL-003) and sc = qfoc_sincos(theta) are proved for every input
  * by Frama-C WP (ensures mag, error, behaviour track) and tested exactly
  * against an integer reference in tests/test_pll.c.
+ *
+ * Methods: 1b every valid instance and every flux vector of 8 bits (|x|, |y| <= 128);
+ * 1c the coasting decision at mag_min^2, mag^2 <= x^2 + y^2 < (mag + 1)^2
  */
 #include <stdint.h>
 #include <stdbool.h>

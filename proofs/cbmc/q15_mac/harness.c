@@ -5,7 +5,10 @@
  * harness checks the runtime-error properties (no overflow, no conversion loss)
  * and the range and sign of the result over the whole input domain; the exact value
  * is proved by WP (contract behaviour 'exact') and tested against double precision
- * (tests/test_q15.c). */
+ * (tests/test_q15.c).
+ *
+ * Methods: 1b every accumulator and every pair of int16 factors; 1c the accumulator
+ * INT32_MIN (the result never INT32_MIN), zero products */
 #include "qfoc/q15.h"
 
 int16_t nondet_int16(void);

@@ -1,6 +1,8 @@
 /* CBMC harness: the Q15/Q31 primitives of include/qfoc/q15.h over their whole
  * input domains (part: q15_round).  Requirements: REQ-Q15-001 .. REQ-Q15-008.
- * Each result is compared with an independent 64-bit computation. */
+ * Each result is compared with an independent 64-bit computation.
+ *
+ * Methods: 1b every int16 and int32 input of the conversions */
 #include "qfoc/q15.h"
 
 int16_t nondet_int16(void);

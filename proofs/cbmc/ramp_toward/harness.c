@@ -13,6 +13,9 @@
  *  - step 0 holds the (saturated) value; the sign of the step does not matter
  *    (REQ-RAMP-001); the result never passes the target (REQ-RAMP-004).
  * v, t and |step| are recomputed here from their definitions (sat15, |.|).
+ *
+ * Methods: 1b all 2^48 (value, target, step) triples; 1c -32768, step 0, |t - v| equal
+ * to |step|, the sign of the step
  */
 #include <stdint.h>
 #include <stdbool.h>

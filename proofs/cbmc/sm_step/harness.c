@@ -26,6 +26,11 @@
  *  - and over the whole run: a CLOSED_LOOP reached from STOP went either through CATCH
  *    straight to CLOSED_LOOP (caught), or through CATCH, ALIGN and OPEN_LOOP in that order,
  *    a retry going back to CATCH (tracked by the harness).
+ *
+ * Methods: 1b 40 ticks from any valid state with any times and any inputs at every
+ * tick, the flying start's verdicts and the retries included; 1c the timeouts
+ * ol_timeout_ms, align_ms, cl_hold_ms and clear_ms reached; 1d faults, lost links and
+ * clear requests at any tick, a CATCH without a verdict
  */
 #include "qfoc/sm.h"
 #include "../harness_util.h"

@@ -11,6 +11,11 @@
  * property shown here holds for the real functions too, and the SAT problem
  * stays small (no square-root loop).
  * Requirements: REQ-SVPWM-001 .. REQ-SVPWM-006, REQ-SVPWM-008, REQ-SVPWM-009.
+ *
+ * Methods: 1b every configuration, valid or not, every voltage command, bus voltage and
+ * phase current; 1c -32768 inputs, the period 100 and 32767 of the validity rule,
+ * compare values in [0, period], utilisation in [0, 32767]; 1d an invalid
+ * configuration: the safe zero-voltage output
  */
 #include "qfoc/svpwm.h"
 #include "qfoc/transforms.h"

@@ -1,7 +1,10 @@
 /* CBMC harness: qfoc_clarke over all int16 inputs.
  * Checks REQ-TRF-001 (range, alpha = sat(iu)) and REQ-TRF-002 (exact inside the
  * document's bound (iu + 2 iv)^2 <= 3 * 32767^2, iu != -32768, saturated outside)
- * against an independent int64 computation of round((iu + 2 iv) * 37837 / 2^16). */
+ * against an independent int64 computation of round((iu + 2 iv) * 37837 / 2^16).
+ *
+ * Methods: 1b every pair of int16 currents; 1c the document's bound (i_u + 2 i_v)^2
+ * = 3 x 32767^2, i_u = -32768, saturation outside the bound */
 #include <stdint.h>
 #include "qfoc/transforms.h"
 

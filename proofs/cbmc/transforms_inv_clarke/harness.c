@@ -8,7 +8,10 @@
  * independent reference needs the solver to prove two multiplier circuits equal,
  * which does not finish for full 16-bit operands; it is checked here for operands
  * of magnitude <= 255 and at the saturation corners, and over all inputs by WP
- * (the contract's exact behaviours) and by tests/test_transforms.c. */
+ * (the contract's exact behaviours) and by tests/test_transforms.c.
+ *
+ * Methods: 1b every int16 pair for the ranges, operands up to 255 for the exact
+ * values; 1c the saturation corners, u = sat(alpha) with -32768 */
 #include <stdint.h>
 #include "qfoc/transforms.h"
 

@@ -11,7 +11,11 @@
  * which does not finish for full 16-bit operands; it is checked here for every
  * input vector at the four axis angles (sin, cos in {0, +-32767}) and at the
  * saturation corners, and over all inputs by WP
- * (the contract's exact behaviours) and by tests/test_transforms.c. */
+ * (the contract's exact behaviours) and by tests/test_transforms.c.
+ *
+ * Methods: 1b every int16 input for the ranges, every input vector at the four axis
+ * angles for the exact values; 1c the axis angles (sin, cos in 0, +-32767), the
+ * saturation corners, the document's bound */
 #include <stdint.h>
 #include "qfoc/transforms.h"
 

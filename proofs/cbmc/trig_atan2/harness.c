@@ -5,6 +5,9 @@
  * (with the real tables, closed: a vector one count off an axis may round
  * onto it): x > 0, y > 0 -> [0, 0x4000], and so on.
  * Requirements: REQ-TRIG-003, REQ-TRIG-004.
+ *
+ * Methods: 1b every (y, x) pair, the quadrant of each result; 1c (0, 0), the four axes
+ * and the diagonals, -32768
  */
 #include "qfoc/trig.h"
 

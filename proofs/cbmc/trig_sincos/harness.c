@@ -7,6 +7,9 @@
  * cosine == qfoc_sin(theta + 0x4000) is tested over all angles in
  * tests/test_trig.c (a fourth symbolic call would only slow this proof down).
  * Requirements: REQ-TRIG-001, REQ-TRIG-002.
+ *
+ * Methods: 1b every angle, the odd symmetry sin(theta + 0x8000) = -sin(theta); 1c the
+ * axis values at 0 and 0x4000, the range [-32767, 32767]
  */
 #include "qfoc/trig.h"
 

@@ -15,6 +15,10 @@
  * values) is proved by Frama-C WP (contract of qfoc_trqcomp_learn, ensures step_*)
  * and tested against a double reference (tests/test_trqcomp.c): as a SAT problem it
  * does not finish within the time budget.
+ *
+ * Methods: 1b every valid parameter set and coefficient state, every angle, speed error
+ * and speed; 1c -32768, the speed window's edges, zero error and zero gain,
+ * coefficients at +-amp_max x 65536, gain 1
  */
 #include <stdint.h>
 #include <stdbool.h>

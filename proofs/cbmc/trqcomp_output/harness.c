@@ -12,6 +12,10 @@
  *    it does not finish within the time budget);
  *  - outside the speed window the output is 0; all coefficients 0 give 0;
  *  - phase1 is total (no undefined behaviour for any coefficients).
+ *
+ * Methods: 1b every valid parameter set and coefficient state, every angle and speed;
+ * 1c -32768, the speed window's edges, amp_max up to 255, all coefficients 0, the
+ * output range [-32767, 32767]
  */
 #include <stdint.h>
 #include <stdbool.h>

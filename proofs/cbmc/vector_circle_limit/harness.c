@@ -20,6 +20,10 @@
  * The in-place call (in == out, allowed by the contract) is covered by the
  * WP proof, which does not assume separation, and by tests/test_vector.c.
  * Requirements: REQ-VEC-003, REQ-VEC-004.
+ *
+ * Methods: 1b every int16 (d, q, vmax) for the linear properties, inside and outside
+ * the circle for 8-bit operands; 1c negative vmax (taken as 0), vectors exactly on the
+ * circle; 1d a negative limit
  */
 #include "qfoc/vector.h"
 #include "../isqrt_stub.h"

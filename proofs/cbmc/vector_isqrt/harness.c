@@ -12,6 +12,9 @@
  * tests/test_vector.c compares the result with an independent reference on
  * every v < 2^21, on every k^2 - 1, k^2, k^2 + k and on random values.
  * Requirements: REQ-VEC-001.
+ *
+ * Methods: 1b every v < 2^16 (the branches of the range estimate for k = 0 .. 7); 1c
+ * every v >= 2^32 - 2^24 (the top of the range, the largest roots and Newton sums)
  */
 #include "qfoc/vector.h"
 

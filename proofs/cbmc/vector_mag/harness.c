@@ -13,6 +13,9 @@
  * floor_sqrt / behaviour exact, and tested on all v < 2^21, on every k^2 - 1,
  * k^2, k^2 + k and on random values in tests/test_vector.c.)
  * Requirements: REQ-VEC-002.
+ *
+ * Methods: 1b every (x, y) pair for the range, 8-bit operands for the floor square
+ * root; 1c the extreme vectors (-32768, saturation at 32767)
  */
 #include "qfoc/vector.h"
 #include "../isqrt_stub.h"

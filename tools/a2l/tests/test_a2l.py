@@ -150,6 +150,9 @@ def conversion_findings(doc: ar.A2l, elf: ew.Elf, table: str) -> list[str]:
 # every /begin closed by its /end, names unique, identifiers valid, every COMPU_METHOD,
 # COMPU_VTAB, RECORD_LAYOUT and GROUP member referenced defined; every table field one
 # CHARACTERISTIC, the table's and the drive's memory in MEMORY_SEGMENTs.
+# Methods: 1a the ASAP2 1.71 structure of REQ-A2L-001 checked block by block (every /begin
+# closed, names unique, references defined, one CHARACTERISTIC per field, the memory segments);
+# 1b the firmware's table and every committed table image
 def test_a2l_structure(firmware, fw_table, table_images):
     elf_path, _out, text, doc = firmware
     sym, table = fw_table
@@ -182,6 +185,8 @@ def test_a2l_structure(firmware, fw_table, table_images):
 # REQ-A2L-002: every CHARACTERISTIC and MEASUREMENT at the address, of the size, signedness
 # and dimensions the ELF gives: the variable's symbol or DWARF location plus the DWARF member
 # offset, computed here; SYMBOL_LINK consistent; inside the MEMORY_SEGMENT of its section.
+# Methods: 1b every CHARACTERISTIC and MEASUREMENT, of every table image; 1n the address, size,
+# signedness and dimensions computed independently from the ELF's symbols and DWARF in the test
 def test_a2l_addresses_against_elf(firmware, fw_table, table_images):
     elf_path, _out, _text, doc = firmware
     sym, _table = fw_table
@@ -206,6 +211,8 @@ def test_a2l_addresses_against_elf(firmware, fw_table, table_images):
 # REQ-A2L-003: the physical value of every field, read from the image at its A2L address and
 # converted by its A2L COMPU_METHOD, is the motor file's value (or the design value the tool
 # derives) within the field's rounding, in the motor file's unit; for every committed table.
+# Methods: 1b every field of every committed table; 1a the physical value read from the image
+# and converted by the A2L, against the motor file's value within the field's rounding
 def test_a2l_conversions_match_motor_file(firmware, fw_table, table_images):
     elf_path, _out, _text, doc = firmware
     assert conversion_findings(doc, ew.Elf(elf_path), fw_table[1]) == []
@@ -217,6 +224,9 @@ def test_a2l_conversions_match_motor_file(firmware, fw_table, table_images):
 # (current loops: k_cp = L / (2 T_sigma), k_ci = R / (2 T_sigma), T_sigma = 1.5 / f_pwm +
 # t_filter; PLL: 2 zeta w_n and w_n^2; low-pass coefficients: their corner frequency; the flux
 # observer's gain: the sample time 1 / f_pwm; the dead-time compensation: the dead time).
+# Methods: 1a the derived fields' conversions against hand computations from the motor file
+# (k_cp = L / (2 T_sigma), 2 zeta w_n, w_n^2, corner frequencies, 1 / f_pwm, the dead time), the
+# reference motor's k_cp 6.933 ohm written out
 def test_a2l_derived_gains_by_hand(firmware, fw_table):
     elf_path, _out, _text, doc = firmware
     sym, table = fw_table
@@ -262,6 +272,9 @@ def test_a2l_derived_gains_by_hand(firmware, fw_table):
 
 # REQ-A2L-003: LOWER_LIMIT and UPPER_LIMIT are the library's range check (the bounds written in
 # params.h and drive_cfg.h, and the cross-field bounds at the other field's value), physical.
+# Methods: 1c LOWER_LIMIT and UPPER_LIMIT of each field against the bounds of params.h and
+# drive_cfg.h, the cross-field bounds at the other field's value (i_trip from i_max, vdc_ov from
+# vdc_uv + 1), the read-only identity and bases
 def test_a2l_limits_are_the_range_check(firmware, fw_table):
     elf_path, _out, _text, doc = firmware
     sym, _table = fw_table
@@ -308,6 +321,9 @@ def test_a2l_limits_are_the_range_check(firmware, fw_table):
 # REQ-A2L-004: the drive's status (qfoc_status_t, every member), state and sub-state (the
 # codes of sm.h as COMPU_VTABs), the fault bits of fault.h (BIT_MASK of the latched word) and
 # the Q15 estimates with the bases of the image's own table.
+# Methods: 1b every member of the drive's status, every state and sub-state code, each of the 11
+# fault bits; 1a the conversions of the status units and of the estimates with the image's own
+# bases
 def test_a2l_measurements(firmware, fw_table):
     elf_path, _out, _text, doc = firmware
     sym, _table = fw_table
@@ -362,6 +378,8 @@ def test_a2l_measurements(firmware, fw_table):
 
 # REQ-A2L-001: the same image gives the same file, byte for byte, wherever it lies; the file
 # make writes beside the image is the tool's; no absolute path and no time in it.
+# Methods: 1a the same image gives the same file byte for byte from another directory, the file
+# beside the image is the tool's, no absolute path and no time in it
 def test_a2l_reproducible(firmware, tmp_path, capsys):
     elf_path, _out, text, _doc = firmware
     copy = tmp_path / "elsewhere" / elf_path.name
@@ -379,6 +397,9 @@ def test_a2l_reproducible(firmware, tmp_path, capsys):
 # REQ-A2L-002: the checker catches a corrupted description: a missing /end, a wrong address, a
 # conversion that is not the field's, a reference to a COMPU_METHOD that does not exist, a
 # name used twice, an invalid identifier, a data type that is not the member's.
+# Methods: 1b seven kinds of corruption, one per parameter; 1d a missing /end, a wrong address,
+# a conversion not the field's, an undefined COMPU_METHOD, a duplicate name, an invalid
+# identifier, a wrong data type; 1l each corruption injected into the generated description
 @pytest.mark.parametrize("what", ["missing_end", "address", "factor", "method_ref", "duplicate",
                                   "identifier", "datatype"])
 def test_a2l_checker_catches_corruption(firmware, fw_table, what):
@@ -447,6 +468,8 @@ def test_a2l_checker_catches_corruption(firmware, fw_table, what):
 
 # REQ-A2L-001: an array member is a VAL_BLK with MATRIX_DIM (the table has none; the writer's
 # rule is read back on a three-element array).
+# Methods: 1a an array member written as a VAL_BLK with MATRIX_DIM, read back on a three-element
+# array
 def test_a2l_val_blk_for_arrays():
     mod = qa.Module()
     leaf = qa.Leaf("cmp", 0x10, 2, "int", False, (3,))
@@ -485,6 +508,9 @@ def tampered(src: Path, dst: Path, sym: str) -> None:
 
 # REQ-A2L-005: bad input is refused with exit code 1 and a message naming what was typed, and
 # nothing is written (an existing output file is left as it was).
+# Methods: 1b nine kinds of bad input, one per parameter, each with a fresh and an existing
+# output file; 1d a missing ELF, a file that is no ELF, no DWARF, unknown or absent tables and
+# drives, a drive of the wrong type, conflicting options, another table's values in the image
 @pytest.mark.parametrize("case", ["missing_elf", "not_elf", "no_dwarf", "unknown_table",
                                   "table_not_in_image", "unknown_drive", "drive_wrong_type",
                                   "drive_and_no_drive", "other_table_in_image"])

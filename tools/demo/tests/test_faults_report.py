@@ -26,6 +26,8 @@ FINDINGS = [{"id": "FND-7", "class": "adc_stuck", "what": "iu stuck at 2048"},
 
 
 # REQ-FINJ-007
+# Methods: 1a failures of the campaign that a finding names read OPEN, the finding linked to its
+# injection
 def test_named_failures_are_open():
     d = campaign()
     fr.apply_findings(d, FINDINGS)
@@ -35,6 +37,7 @@ def test_named_failures_are_open():
 
 
 # REQ-FINJ-007
+# Methods: 1d a failed flip that no finding names (s.speed_ref bit 13): FAIL
 def test_unnamed_failure_fails():
     d = campaign(flip_fail=("s.speed_ref", 13))
     fr.apply_findings(d, FINDINGS)
@@ -42,6 +45,7 @@ def test_unnamed_failure_fails():
 
 
 # REQ-FINJ-007
+# Methods: 1d an empty list of findings: every failure FAIL
 def test_without_findings_every_failure_fails():
     d = campaign()
     fr.apply_findings(d, [])
@@ -49,6 +53,8 @@ def test_without_findings_every_failure_fails():
 
 
 # REQ-FINJ-007
+# Methods: 1d a finding whose injection now passes (stale), and a flip's finding whose flip did
+# not fail at its random instant (not stale)
 def test_finding_that_passes_is_stale():
     d = campaign(stuck_pass=True, flip_fail=None)
     fr.apply_findings(d, FINDINGS)
@@ -58,6 +64,7 @@ def test_finding_that_passes_is_stale():
 
 
 # REQ-FINJ-007
+# Methods: 1d a finding with neither 'what' nor 'field': refused with exit code 2
 def test_malformed_finding_refused(tmp_path, capsys):
     p = tmp_path / "f.toml"
     p.write_text('[[finding]]\nid = "FND-1"\nclass = "adc_stuck"\n')
@@ -69,7 +76,11 @@ def test_malformed_finding_refused(tmp_path, capsys):
 # REQ-FINJ-007
 def test_repository_findings_load():
     """The committed list loads entry for entry, and each entry names a finding of the
-    safety analysis that is not marked closed there."""
+    safety analysis that is not marked closed there.
+
+    Methods: 1a the committed list loads entry for entry, each entry a finding of the safety
+    analysis that is not closed
+    """
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")
     path = os.path.join(root, "specs", "fault-findings.toml")
     items = fr.load_findings(path)
@@ -111,6 +122,8 @@ ASSUMED = {"oc": {"hazard": "h", "assumption": "a", "derivation": "d"}}
 
 
 # REQ-FINJ-008
+# Methods: 1b a mechanism within its FTTI and one detected after it; 1a the judged, detected and
+# within counts and the worst time per mechanism
 def test_ftti_rows_judge_each_mechanism_against_its_assumption():
     d = ftti_campaign()
     rows = fr.ftti_rows(d, ASSUMED)
@@ -123,6 +136,8 @@ def test_ftti_rows_judge_each_mechanism_against_its_assumption():
 
 
 # REQ-FINJ-008
+# Methods: 1c a specified reaction above the FTTI (0.5 ms) and the campaign otherwise passing;
+# 1d a mechanism slower than its FTTI
 def test_mechanism_slower_than_its_ftti_fails_the_campaign():
     d = ftti_campaign(spec_oc=0.5)
     d["classes"][1]["verdict"] = "PASS"
@@ -144,7 +159,11 @@ def _ms(text):
 def test_repository_assumptions_cover_every_mechanism():
     """specs/item-assumptions.toml has a section for every mechanism of sim/apps/faults.c, each
     with its id, hazard, assumption, derivation and a positive FTTI equal to the figure its
-    derivation ends with."""
+    derivation ends with.
+
+    Methods: 1b every one of the 13 mechanisms of sim/apps/faults.c; 1a each with its id,
+    hazard, assumption, derivation and an FTTI equal to the figure its derivation ends with
+    """
     import tomllib
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")
     with open(os.path.join(root, "specs", "item-assumptions.toml"), "rb") as f:

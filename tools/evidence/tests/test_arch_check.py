@@ -57,6 +57,8 @@ def tree(tmp_path):
 
 
 # REQ-EVD-014
+# Methods: 1a the architecture of specs/architecture.md against this repository's sources: every
+# public function and module named, one summary line
 def test_repository_passes():
     rc, out = run(ROOT)
     assert rc == 0, out
@@ -70,6 +72,7 @@ def test_repository_passes():
 
 
 # REQ-EVD-014
+# Methods: 1a the check run from another directory finds this repository
 def test_default_root_is_the_repository():
     proc = subprocess.run([sys.executable, str(CHECK)], capture_output=True, text=True,
                           check=False, cwd=str(Path("/")))
@@ -78,6 +81,8 @@ def test_default_root_is_the_repository():
 
 
 # REQ-EVD-014
+# Methods: 1d a public function renamed in the code and not in the document; 1l the rename
+# injected into a copy of the tree
 def test_renamed_function_fails(tree):
     # qfoc_ramp_toward renamed in the code, not in the document
     for f in ("include/qfoc/ramp.h", "src/qfoc_ramp.c", "src/qfoc_drive.c"):
@@ -95,6 +100,8 @@ def test_renamed_function_fails(tree):
 
 
 # REQ-EVD-014
+# Methods: 1d a module the document names that no longer exists; 1l the module removed from a
+# copy of the tree
 def test_missing_module_fails(tree):
     # a module the document names no longer exists
     os.remove(tree / "src/qfoc_ramp.c")
@@ -105,6 +112,8 @@ def test_missing_module_fails(tree):
 
 
 # REQ-EVD-014
+# Methods: 1d a new module of src/ the document does not describe; 1l the module added to a copy
+# of the tree
 def test_undescribed_module_fails(tree):
     # a new module of src/ that the document does not describe
     (tree / "src/qfoc_extra.c").write_text(
@@ -119,6 +128,8 @@ def test_undescribed_module_fails(tree):
 
 
 # REQ-EVD-014
+# Methods: 1d a public prototype added to a header and not to the interface section; 1l the
+# prototype added to a copy of the tree
 def test_undocumented_public_function_fails(tree):
     # a public function added to a header, not to the interface section
     edit(tree / "include/qfoc/sm.h", "#endif /* QFOC_SM_H */",
@@ -130,6 +141,8 @@ def test_undocumented_public_function_fails(tree):
 
 
 # REQ-EVD-014
+# Methods: 1d a requirement ID in the document that no requirement defines, reported with its
+# line; 1l the ID appended to a copy of the document
 def test_unknown_requirement_fails(tree):
     doc = tree / DOC
     text = doc.read_text(encoding="utf-8")
@@ -142,6 +155,8 @@ def test_unknown_requirement_fails(tree):
 
 
 # REQ-EVD-014
+# Methods: 1d a function named as a call in the document that nothing defines; 1l the name
+# changed in a copy of the document
 def test_unknown_function_in_document_fails(tree):
     # a name written as a call that nothing defines (a static helper renamed away)
     edit(tree / DOC, "`drv_measure()`", "`drv_sample()`")
@@ -151,6 +166,8 @@ def test_unknown_function_in_document_fails(tree):
 
 
 # REQ-EVD-014
+# Methods: 1d an include the dependency table does not list; 1l the include added to a copy of
+# src/qfoc_sm.c
 def test_dependency_table_follows_the_includes(tree):
     edit(tree / "src/qfoc_sm.c", '#include "qfoc/sm.h"\n',
          '#include "qfoc/sm.h"\n#include "qfoc/trig.h"\n', count=1)
@@ -161,6 +178,8 @@ def test_dependency_table_follows_the_includes(tree):
 
 
 # REQ-EVD-014
+# Methods: 1d a call into another module the dependency table does not list; 1l the call added
+# to a copy of src/qfoc_sm.c
 def test_dependency_table_follows_the_calls(tree):
     # the state machine starts to call a primitive of another module
     edit(tree / "src/qfoc_sm.c", '#include "qfoc/sm.h"\n',
@@ -174,6 +193,8 @@ def test_dependency_table_follows_the_calls(tree):
 
 
 # REQ-EVD-014
+# Methods: 1d the interface section renamed away; 1l the heading changed in a copy of the
+# document
 def test_missing_interface_section_fails(tree):
     edit(tree / DOC, "## 3. Interfaces", "## 3. Calls", count=1)
     rc, out = run(tree)

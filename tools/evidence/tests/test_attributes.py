@@ -135,7 +135,11 @@ def matrix(root):
 
 def test_made_up_repository_passes_and_clauses_have_no_result(tmp_path):
     """REQ-EVD-015, REQ-EVD-017: valid attribute and clause lines pass the gate; without the
-    WP report a contract clause reads 'no WP result' and is not a pass."""
+    WP report a contract clause reads 'no WP result' and is not a pass.
+
+    Methods: 1a valid attribute and clause lines on a made-up repository pass, a clause without
+    a WP report reads 'no WP result' (not a pass)
+    """
     make_repo(tmp_path)
     rc, out = run_trace(tmp_path)
     assert rc == 0, out
@@ -150,7 +154,11 @@ def test_made_up_repository_passes_and_clauses_have_no_result(tmp_path):
 
 
 def test_missing_attribute_line_fails(tmp_path):
-    """REQ-EVD-015: a requirement without its attribute line fails the trace, named."""
+    """REQ-EVD-015: a requirement without its attribute line fails the trace, named.
+
+    Methods: 1d a requirement without its attribute line; 1l the line left out of a made-up
+    repository
+    """
     make_repo(tmp_path, attrs2="")
     rc, out = run_trace(tmp_path)
     assert rc == 1
@@ -158,7 +166,11 @@ def test_missing_attribute_line_fails(tmp_path):
 
 
 def test_invalid_asil_fails(tmp_path):
-    """REQ-EVD-015: an ASIL outside QM, A .. D fails, naming the requirement and the value."""
+    """REQ-EVD-015: an ASIL outside QM, A .. D fails, naming the requirement and the value.
+
+    Methods: 1c the ASIL E just outside QM, A .. D; 1d an invalid value, named with the
+    requirement
+    """
     make_repo(tmp_path, attrs2=f"Attributes: ASIL E{SEP}kind functional{SEP}verification test")
     rc, out = run_trace(tmp_path)
     assert rc == 1
@@ -166,7 +178,11 @@ def test_invalid_asil_fails(tmp_path):
 
 
 def test_malformed_fields_fail():
-    """REQ-EVD-015: the fields are parsed strictly: separator, order, values, method order."""
+    """REQ-EVD-015: the fields are parsed strictly: separator, order, values, method order.
+
+    Methods: 1b each field malformed in turn: separators, order, kind, method, method order,
+    ASR; 1d malformed attribute lines
+    """
     ok, err = req_attrs.parse_attributes(f"Attributes: ASIL QM{SEP}kind tool{SEP}verification test")
     assert ok and err is None
     for line, reason in (
@@ -182,7 +198,11 @@ def test_malformed_fields_fail():
 
 def test_inconsistent_asil_kind_asr_fail(tmp_path):
     """REQ-EVD-015: kind safety without an ASR, an ASIL other than the one assumed for the
-    ASR, and an ASIL above QM without clauses each fail, named."""
+    ASR, and an ASIL above QM without clauses each fail, named.
+
+    Methods: 1b each inconsistency alone: kind safety without an ASR, an ASIL other than the
+    ASR's, an ASR that is not defined, ASIL above QM without clauses; 1d inconsistent attributes
+    """
     make_repo(tmp_path, attrs2=f"Attributes: ASIL D{SEP}kind functional{SEP}verification test")
     rc, out = run_trace(tmp_path)
     assert rc == 1
@@ -199,7 +219,11 @@ def test_inconsistent_asil_kind_asr_fail(tmp_path):
 
 def test_claimed_proof_without_proof_fails(tmp_path):
     """REQ-EVD-016: 'proof' claimed for a requirement that no contract with WP goals, lemma
-    or CBMC harness names fails, named; the same with 'analysis' without a bench row."""
+    or CBMC harness names fails, named; the same with 'analysis' without a bench row.
+
+    Methods: 1d 'proof' claimed without a contract, lemma or harness, 'analysis' without a bench
+    row
+    """
     make_repo(tmp_path, attrs2=f"Attributes: ASIL QM{SEP}kind functional{SEP}verification proof, analysis, test")
     rc, out = run_trace(tmp_path)
     assert rc == 1
@@ -210,7 +234,11 @@ def test_claimed_proof_without_proof_fails(tmp_path):
 
 def test_unknown_clause_fails(tmp_path):
     """REQ-EVD-017: a clause that is not a label of the function's contract, a missing test
-    or a test that does not name the requirement fails, named."""
+    or a test that does not name the requirement fails, named.
+
+    Methods: 1b a label that is no clause of the contract, a test that does not name the
+    requirement, an unknown kind, a malformed clause; 1d unknown and malformed clauses
+    """
     make_repo(tmp_path, clauses1="Clauses: qfoc_x_step:unbounded, test test_xa_002_init, cbmc nowhere")
     rc, out = run_trace(tmp_path)
     assert rc == 1
@@ -236,7 +264,11 @@ def wp_report(bounded_valid):
 
 def test_clause_status_from_the_wp_report(tmp_path):
     """REQ-EVD-017: with build/wp/<unit>.json a clause shows the goals of its property
-    (a behaviour all of its clauses); a clause not proved fails the gate, named."""
+    (a behaviour all of its clauses); a clause not proved fails the gate, named.
+
+    Methods: 1b behaviours, ensures, assigns and RTE clauses; 1d a clause the WP report does not
+    prove (NOT PROVED 0/1)
+    """
     make_repo(tmp_path, clauses1="Clauses: qfoc_x_step:bounded, qfoc_x_step:small, qfoc_x_step:assigns, "
                                  "qfoc_x_step:rte, test test_xa_001_step")
     (tmp_path / "build/wp").mkdir(parents=True)
@@ -257,7 +289,10 @@ def test_clause_status_from_the_wp_report(tmp_path):
 
 
 def test_requires_clause_counts_call_sites():
-    """REQ-EVD-017: a precondition's goals are those WP generates at the call sites."""
+    """REQ-EVD-017: a precondition's goals are those WP generates at the call sites.
+
+    Methods: 1a a precondition's goals taken from the call sites' goals of the WP report
+    """
     index = {"f": {"file": "x.h", "behaviors": set(), "ensures": set(), "requires": {"ok"}, "assigns": True}}
     wp = {"functions": {("u", "g"): {"f_requires_ok": (2, 2), "g_ensures_ok": (1, 1)}}, "lemmas": {}}
     total, valid, _s = req_attrs.wp_goals({"name": "f", "label": "ok"}, index, wp, {})
@@ -266,7 +301,11 @@ def test_requires_clause_counts_call_sites():
 
 def test_real_requirements_name_the_drive_clauses():
     """REQ-EVD-017: the over-current and PWM requirements of the drive are traced to their
-    clauses, not to the function's goals."""
+    clauses, not to the function's goals.
+
+    Methods: 1a the drive's over-current and PWM requirements traced to their contract clauses,
+    every ACSL clause of this repository's requirements existing
+    """
     attrs = req_attrs.load_attributes(ROOT)
     drv2 = [r["ref"] for r in attrs["REQ-DRV-002"]["clauses"]]
     drv3 = [r["ref"] for r in attrs["REQ-DRV-003"]["clauses"]]
@@ -281,7 +320,11 @@ def test_real_requirements_name_the_drive_clauses():
 
 def test_asr_table_generated_and_stale_table_fails(tmp_path, capsys):
     """REQ-EVD-018: the table is written from the ASR list and the attribute and clause
-    lines; --check fails, naming the row, once a requirement changes."""
+    lines; --check fails, naming the row, once a requirement changes.
+
+    Methods: 1d an empty block and a row gone stale after a requirement changed; 1l the
+    requirement changed in a made-up repository
+    """
     make_repo(tmp_path)
     root = str(tmp_path)
     assert gen_manual.main(["--root", root, "--check"]) == 1  # the empty block is stale
@@ -300,7 +343,10 @@ def test_asr_table_generated_and_stale_table_fails(tmp_path, capsys):
 
 
 def test_asr_without_requirement_fails(tmp_path, capsys):
-    """REQ-EVD-018: an ASR that no requirement names fails the check, named."""
+    """REQ-EVD-018: an ASR that no requirement names fails the check, named.
+
+    Methods: 1d an ASR that no requirement names
+    """
     make_repo(tmp_path, attrs1=f"Attributes: ASIL QM{SEP}kind functional{SEP}verification proof, test")
     assert gen_manual.main(["--root", str(tmp_path), "--check"]) == 1
     assert "ASR-01: no requirement names it" in capsys.readouterr().out
@@ -308,7 +354,11 @@ def test_asr_without_requirement_fails(tmp_path, capsys):
 
 def test_stale_figure_fails_and_write_fixes_it(tmp_path):
     """REQ-EVD-019: a figure differing from its source fails, naming the file, line, figure
-    and both values; --write replaces it; a count no template covers fails as well."""
+    and both values; --write replaces it; a count no template covers fails as well.
+
+    Methods: 1d a figure differing from its source and a hand-typed count no template covers; 1l
+    the wrong figure written into a made-up document
+    """
     make_repo(tmp_path)
     (tmp_path / "specs/safety-manual.md").write_text("x\n\nWP: 4 / 5 goals proved; 12 harnesses in all.\n")
     reg = [("specs/safety-manual.md", "{wp.proved} / {wp.goals} goals proved")]
@@ -321,7 +371,11 @@ def test_stale_figure_fails_and_write_fixes_it(tmp_path):
 
 def test_built_figure_checked_only_when_present(tmp_path):
     """REQ-EVD-019: a figure of build/ is not checked without its source (a note says so),
-    but must read the same in every document; with the source it is checked."""
+    but must read the same in every document; with the source it is checked.
+
+    Methods: 1b a built figure with and without its source; 1d the same figure differing between
+    two documents and from its source
+    """
     make_repo(tmp_path)
     (tmp_path / "specs/safety-manual.md").write_text("A: 48 groups, 333879 vectors\n")
     (tmp_path / "README.md").write_text("B: 48 groups, 333890 vectors\n")
@@ -339,7 +393,11 @@ def test_built_figure_checked_only_when_present(tmp_path):
 
 def test_firmware_figure_from_make_firmware(tmp_path):
     """REQ-EVD-019: the image's flash and RAM quoted in the port's README come from the
-    record `make firmware` writes (build/s32k144/firmware.json); a seeded wrong one fails."""
+    record `make firmware` writes (build/s32k144/firmware.json); a seeded wrong one fails.
+
+    Methods: 1b the firmware record absent and present; 1d a seeded wrong flash figure (26899
+    against 26900); 1l the wrong figure written into the port's README
+    """
     make_repo(tmp_path)
     (tmp_path / "port_s32k").mkdir(exist_ok=True)
     (tmp_path / "port_s32k/README.md").write_text("| 8 kHz | 26899 B of 512 KiB (5.1 %) | 576 B of 32 KiB |\n")
@@ -356,7 +414,12 @@ def test_firmware_figure_from_make_firmware(tmp_path):
 def test_changelog_current_section_checked(tmp_path):
     """REQ-EVD-019: a figure of the changelog's current section is checked against its source
     and a seeded wrong one fails; a count no template covers fails there, while the sections
-    of older releases are history and are not scanned."""
+    of older releases are history and are not scanned.
+
+    Methods: 1b the current section and the sections of older releases; 1d a wrong figure and a
+    hand-typed count in the current section; 1l the wrong figures written into a made-up
+    changelog
+    """
     make_repo(tmp_path)
     (tmp_path / "CHANGELOG.md").write_text(
         "# Changelog\n\n## [Unreleased]\n\n- WP: 4 / 5 goals proved.\n- 7 harnesses added.\n\n"
@@ -373,7 +436,11 @@ def test_changelog_current_section_checked(tmp_path):
 
 
 def test_repository_figures_and_table_agree():
-    """REQ-EVD-018, REQ-EVD-019: the committed documents pass both checks."""
+    """REQ-EVD-018, REQ-EVD-019: the committed documents pass both checks.
+
+    Methods: 1a the committed documents of this repository pass the figures check and the ASR
+    table's generation
+    """
     failures, _notes = figures.check(str(ROOT))
     assert failures == []
     table, errors = gen_manual.generate(str(ROOT))
@@ -383,7 +450,11 @@ def test_repository_figures_and_table_agree():
 
 def test_evidence_page_groups_by_asil(tmp_path, capsys):
     """REQ-EVD-020: the page lists the requirements per ASIL with their clauses, counts per
-    kind and method, under the summary and in the printed summary; no script."""
+    kind and method, under the summary and in the printed summary; no script.
+
+    Methods: 1a the evidence page's requirements per ASIL, their clauses and counts per kind and
+    method, no script
+    """
     make_repo(tmp_path)
     assert run_trace(tmp_path)[0] == 0
     assert ev.main(["--root", str(tmp_path)]) == 0
@@ -397,19 +468,29 @@ def test_evidence_page_groups_by_asil(tmp_path, capsys):
 
 
 def test_evidence_page_without_attributes_not_run(tmp_path, capsys):
-    """REQ-EVD-020: without attributes in the matrix the counts read 'not run'."""
+    """REQ-EVD-020: without attributes in the matrix the counts read 'not run'.
+
+    Methods: 1d a matrix without attributes: the counts read 'not run'
+    """
     assert ev.main(["--root", str(tmp_path)]) == 0
     assert "requirement attributes: not run" in capsys.readouterr().out
 
 
 def test_manual_markers_not_rendered():
-    """REQ-EVD-018: the markers of the generated table are not shown on the page."""
+    """REQ-EVD-018: the markers of the generated table are not shown on the page.
+
+    Methods: 1a the markers of the generated table are not shown on the page
+    """
     html = ev.md_to_html("a\n\n<!-- BEGIN GENERATED: asr -->\n| x |\n|---|\n| 1 |\n<!-- END GENERATED: asr -->\n")
     assert "GENERATED" not in html and "<table>" in html
 
 
 def test_methods_derived_from_the_verified_by_text():
-    """REQ-EVD-016: the rule that gave the verification attribute from a 'Verified by' text."""
+    """REQ-EVD-016: the rule that gave the verification attribute from a 'Verified by' text.
+
+    Methods: 1b a 'Verified by' text of each kind (contract and CBMC, bench, test file, review
+    record)
+    """
     assert req_attrs.derive_methods("contract of `f` (ensures `x`); CBMC harness `h`; test `t`") == ["proof", "test"]
     assert req_attrs.derive_methods("`make bench`, rows of `build/bench/bench.md`.") == ["analysis"]
     assert req_attrs.derive_methods("`tools/evidence/tests/test_evidence.py`.") == ["test"]

@@ -219,7 +219,11 @@ def run(root, *extra):
 
 def test_all_inputs_green_and_bundle_written(tmp_path, capsys):
     """REQ-EVD-001, REQ-EVD-002: every row green on a passing run; the page, the JSON and
-    the copied artefacts are written, the page is self-contained and its links resolve."""
+    the copied artefacts are written, the page is self-contained and its links resolve.
+
+    Methods: 1a every row green on a passing run, the page, the JSON and the copied artefacts
+    written, the page self-contained with every link resolving
+    """
     full_inputs(tmp_path)
     rc, data, rows = run(tmp_path, "--strict")
     assert rc == 0
@@ -240,7 +244,11 @@ def test_all_inputs_green_and_bundle_written(tmp_path, capsys):
 
 def test_failed_test_turns_tests_row_red(tmp_path):
     """REQ-EVD-007, REQ-EVD-002: one failed JUnit test makes the tests row red, with the
-    totals over every JUnit file (both dialects), and --strict exits 1."""
+    totals over every JUnit file (both dialects), and --strict exits 1.
+
+    Methods: 1b JUnit files of both dialects (CMocka and pytest); 1d one failed test: the tests
+    row red, --strict exits 1; 1l the failure written into a made-up JUnit file
+    """
     full_inputs(tmp_path)
     write(tmp_path, "build/junit/test_b.xml", JUNIT_FAIL)
     write(tmp_path, "build/junit/pytest/pytest.xml", JUNIT_PYTEST)
@@ -257,7 +265,11 @@ def test_failed_test_turns_tests_row_red(tmp_path):
 
 def test_missing_inputs_are_red_not_run(tmp_path, capsys):
     """REQ-EVD-002: with no result at all every summary row is red 'not run', the page is
-    still written and the exit status is 0 (1 with --strict)."""
+    still written and the exit status is 0 (1 with --strict).
+
+    Methods: 1c no result at all (every row 'not run'); 1d every input missing, the page still
+    written
+    """
     rc, data, rows = run(tmp_path)
     assert rc == 0
     assert data["green"] == 0 and data["red"] == len(data["summary"]) == 15
@@ -269,7 +281,11 @@ def test_missing_inputs_are_red_not_run(tmp_path, capsys):
 
 
 def test_one_missing_input_only_its_row_red(tmp_path):
-    """REQ-EVD-002, REQ-EVD-004: without build/eva/eva.json only the EVA row turns red."""
+    """REQ-EVD-002, REQ-EVD-004: without build/eva/eva.json only the EVA row turns red.
+
+    Methods: 1d one input missing and one truncated (unreadable JSON); 1l the file removed and
+    truncated among made-up inputs
+    """
     full_inputs(tmp_path)
     os.remove(tmp_path / "build" / "eva" / "eva.json")
     _rc, _data, rows = run(tmp_path)
@@ -285,7 +301,12 @@ def test_tool_validation_row_and_section(tmp_path):
     """REQ-EVD-030: the tool-validation row is green when every expected catch happened and
     the control passed; a missed catch or a failed control turns it red; the section lists
     every defect with its gates; without results.json (make check does not run the campaign)
-    the section shows a red 'not run' row and the one-screen summary has no row for it."""
+    the section shows a red 'not run' row and the one-screen summary has no row for it.
+
+    Methods: 1b every catch and the control passing, a missed catch, a failed control, no
+    results file; 1d a missed catch and a false alarm; 1l each written into made-up campaign
+    results
+    """
     full_inputs(tmp_path)
     _rc, data, rows = run(tmp_path)
     assert rows["toolval"]["status"] == "PASS"
@@ -313,7 +334,10 @@ def test_tool_validation_row_and_section(tmp_path):
 
 
 def test_wp_not_all_proved_is_red(tmp_path):
-    """REQ-EVD-004: WP with proved < total is red, with the figure proved/total."""
+    """REQ-EVD-004: WP with proved < total is red, with the figure proved/total.
+
+    Methods: 1c 12 of 13 goals, one short of all; 1d a goal not proved
+    """
     full_inputs(tmp_path)
     write(tmp_path, "proofs/wp/results.md", wp_results(12, 13))
     _rc, data, rows = run(tmp_path)
@@ -323,7 +347,10 @@ def test_wp_not_all_proved_is_red(tmp_path):
 
 
 def test_wp_prefers_fresh_build_results(tmp_path):
-    """REQ-EVD-004: build/wp/wp-summary.json written after the committed results wins."""
+    """REQ-EVD-004: build/wp/wp-summary.json written after the committed results wins.
+
+    Methods: 1b committed and built WP results, the built one newer
+    """
     full_inputs(tmp_path)
     write(tmp_path, "build/wp/wp-summary.json",
           {"proved": 20, "total": 20, "clean": True,
@@ -338,7 +365,10 @@ def test_wp_prefers_fresh_build_results(tmp_path):
 
 
 def test_wp_function_without_result_is_red(tmp_path):
-    """REQ-EVD-004: a function that src/ defines but the WP results do not list is red."""
+    """REQ-EVD-004: a function that src/ defines but the WP results do not list is red.
+
+    Methods: 1d a static function and a whole unit that the WP results do not list
+    """
     full_inputs(tmp_path)
     gates = tmp_path / "tools" / "gates"
     gates.mkdir(parents=True)
@@ -354,7 +384,11 @@ def test_wp_function_without_result_is_red(tmp_path):
 
 def test_eva_all_tables_alarm_or_missing_is_red(tmp_path):
     """REQ-EVD-004: the EVA row is green only when both analyses of make eva (the reference
-    table and every accepted table) report no alarm; a missing second analysis is red."""
+    table and every accepted table) report no alarm; a missing second analysis is red.
+
+    Methods: 1b both analyses clean, one alarm in the all-tables analysis, the second analysis
+    missing; 1d an alarm and a missing analysis
+    """
     full_inputs(tmp_path)
     _rc, _data, rows = run(tmp_path)
     assert rows["eva"]["status"] == "PASS" and "every accepted table: 0 alarms" in rows["eva"]["figure"]
@@ -370,7 +404,11 @@ def test_eva_all_tables_alarm_or_missing_is_red(tmp_path):
 
 
 def test_eva_alarm_and_cbmc_failure_are_red(tmp_path):
-    """REQ-EVD-004: an EVA runtime-error alarm, or a CBMC harness that fails, is red."""
+    """REQ-EVD-004: an EVA runtime-error alarm, or a CBMC harness that fails, is red.
+
+    Methods: 1d an EVA runtime-error alarm and a failing CBMC harness; 1l both written into
+    made-up results
+    """
     full_inputs(tmp_path)
     write(tmp_path, "build/eva/eva.json", {"frama_c_exit": 0, "seconds": 9, "rte_alarms": [
         {"file": "src/x.c", "line": 3, "message": "signed overflow. assert a + b <= 32767;"}]})
@@ -382,7 +420,10 @@ def test_eva_alarm_and_cbmc_failure_are_red(tmp_path):
 
 
 def test_cbmc_harness_without_result_is_red(tmp_path):
-    """REQ-EVD-004: a harness folder of proofs/cbmc/ missing from the results is red."""
+    """REQ-EVD-004: a harness folder of proofs/cbmc/ missing from the results is red.
+
+    Methods: 1d a harness folder missing from the results
+    """
     full_inputs(tmp_path)
     write(tmp_path, "proofs/cbmc/x_new/harness.c", "void harness(void) {}\n")
     write(tmp_path, "proofs/cbmc/x_step/harness.c", "void harness(void) {}\n")
@@ -393,7 +434,11 @@ def test_cbmc_harness_without_result_is_red(tmp_path):
 
 def test_trace_from_markdown_and_gate_failures(tmp_path):
     """REQ-EVD-003: without trace.json the matrix comes from trace.md; a requirement
-    without test or harness is not verified; trace gate failures turn the row red."""
+    without test or harness is not verified; trace gate failures turn the row red.
+
+    Methods: 1b the matrix from trace.md and from trace.json; 1d a requirement without test or
+    harness, a trace gate failure
+    """
     full_inputs(tmp_path)
     os.remove(tmp_path / "build" / "trace" / "trace.json")
     write(tmp_path, "build/trace/trace.md",
@@ -416,7 +461,12 @@ def test_trace_from_markdown_and_gate_failures(tmp_path):
 def test_misra_violation_coverage_gap_bench_over_static_unaccepted(tmp_path):
     """REQ-EVD-005, REQ-EVD-006, REQ-EVD-008, REQ-EVD-009, REQ-EVD-012: a MISRA violation,
     a branch not covered, an MC/DC outcome without justification, a limit exceeded, an
-    unaccepted finding and two different builds each turn their row red."""
+    unaccepted finding and two different builds each turn their row red.
+
+    Methods: 1b each of six rows turned red by its own defect; 1c a branch coverage of 1 / 2, a
+    bench figure over its limit; 1d a MISRA violation, an unjustified MC/DC outcome, an
+    unaccepted finding, two different builds; 1l each defect written into made-up results
+    """
     full_inputs(tmp_path)
     misra = json.loads((tmp_path / "build/misra/compliance-summary.json").read_text())
     misra["counts"]["violations"] = 1
@@ -449,7 +499,11 @@ def test_misra_violation_coverage_gap_bench_over_static_unaccepted(tmp_path):
 
 def test_mcdc_justified_exclusion_listed(tmp_path):
     """REQ-EVD-006: an outcome not covered but justified keeps MC/DC green and is listed
-    with its justification."""
+    with its justification.
+
+    Methods: 1a an outcome not covered but justified keeps MC/DC green and is listed with its
+    justification
+    """
     full_inputs(tmp_path)
     _rc, data, rows = run(tmp_path)
     assert rows["mcdc"]["status"] == "PASS"
@@ -460,7 +514,11 @@ def test_mcdc_justified_exclusion_listed(tmp_path):
 
 def test_sections_tools_manual_gates(tmp_path):
     """REQ-EVD-010, REQ-EVD-011, REQ-EVD-013: the tool classification, the rendered safety
-    manual and the gate log with its links are in the page and in the JSON."""
+    manual and the gate log with its links are in the page and in the JSON.
+
+    Methods: 1a the tool classification, the rendered safety manual and the gate log with its
+    links in the page and in the JSON
+    """
     full_inputs(tmp_path)
     _rc, data, _rows = run(tmp_path)
     page = (tmp_path / "build/evidence/index.html").read_text(encoding="utf-8")
@@ -479,7 +537,10 @@ def test_sections_tools_manual_gates(tmp_path):
     ("a < b & c", "a &lt; b &amp; c"),
 ])
 def test_markdown_inline(text, html):
-    """REQ-EVD-011: the inline markdown of the rendered documents."""
+    """REQ-EVD-011: the inline markdown of the rendered documents.
+
+    Methods: 1b code, emphasis, links and characters to escape, one case per parameter
+    """
     assert ev.md_inline(text) == html
 
 
@@ -487,7 +548,11 @@ def test_stale_results_are_red_and_their_proofs_stale(tmp_path):
     """REQ-EVD-028, REQ-EVD-027: a source changed after the runs makes every result computed
     from it stale: its row red with STALE and the file named, its figures kept, and a
     requirement whose WP and CBMC rows all hold gets the verdict 'stale'.  A committed result
-    without a stamp is stale too."""
+    without a stamp is stale too.
+
+    Methods: 1d a source changed after the runs, a committed result without a stamp; 1l the
+    source change written into the made-up tree
+    """
     full_inputs(tmp_path)
     _rc, data, rows = run(tmp_path, "--strict")
     assert data["red"] == 0
@@ -523,7 +588,11 @@ def test_stale_results_are_red_and_their_proofs_stale(tmp_path):
 def test_verdict_needs_every_named_test_passed(tmp_path):
     """REQ-EVD-027, REQ-EVD-003: a test the matrix names but the JUnit files do not hold is
     'not run' (amber, red under --strict), a failed one 'failed'; the requirements row counts
-    them and is red; the page shows each test's status."""
+    them and is red; the page shows each test's status.
+
+    Methods: 1b a test named and passed, not run, failed; 1d a named test missing from the JUnit
+    files and a failed one
+    """
     full_inputs(tmp_path)
     write(tmp_path, "build/junit/test_a.xml", JUNIT_OK.replace('    <testcase classname="test_a" name="test_two"/>\n', ""))
     _rc, data, rows = run(tmp_path)
@@ -549,7 +618,11 @@ def test_archive_holds_what_was_verified_with_manifest(tmp_path):
     """REQ-EVD-029, REQ-EVD-001: artefacts/ holds the requirements, the contracts, the sources,
     the ACSL files, the specs' work products, the tests (C and Python), the proofs and the MISRA
     records; MANIFEST.sha256 lists every other file of the bundle with its SHA-256; every
-    relative link of the page resolves to a file of the bundle; a requirement links its file."""
+    relative link of the page resolves to a file of the bundle; a requirement links its file.
+
+    Methods: 1a the archive's content, MANIFEST.sha256 of every other file with its SHA-256,
+    every relative link resolving
+    """
     full_inputs(tmp_path)
     sources = {"specs/requirements/x.md": f"### {X1} Step\nStatement: steps.\n",
                "include/qfoc/x.h": "int qfoc_x_step(void);\n", "src/qfoc_x.c": "int qfoc_x_step(void) { return 0; }\n",
@@ -584,7 +657,11 @@ def test_archive_holds_what_was_verified_with_manifest(tmp_path):
 
 def test_dates_are_those_of_the_runs(tmp_path):
     """REQ-EVD-001, REQ-EVD-028: the date shown for a result is the run's, from its stamp or
-    its JUnit timestamp, not the file's modification time."""
+    its JUnit timestamp, not the file's modification time.
+
+    Methods: 1d a file whose modification time is not its run's; 1a the date from the stamp or
+    the JUnit timestamp
+    """
     full_inputs(tmp_path)
     stamp(tmp_path, now=1_000_000_000)
     write(tmp_path, "build/junit/test_a.xml", JUNIT_OK.replace(

@@ -88,7 +88,12 @@ def test_verified_when_every_proof_proved_and_every_test_passed(tmp_path):
     """REQ-EVD-027: every kind of test (CMocka, parametrised pytest and a method, target group
     and checking program, bench rows named from the run, a scenario, the robustness campaign)
     passed and every proof (WP function, its static helper, lemma, CBMC harness) proved:
-    verified."""
+    verified.
+
+    Methods: 1b every kind of test (CMocka, parametrised pytest and a method, target group and
+    checking program, bench rows, a scenario, the campaign) and every kind of proof (WP
+    function, static helper, lemma, CBMC harness)
+    """
     r = rec(wp={"functions": [{"unit": "qfoc_x", "function": "qfoc_x_step", "goals": 10, "proved": 10},
                               {"unit": "lemmas_unit", "function": "lemma L", "goals": 1, "proved": 1}],
                 "helpers": [{"unit": "qfoc_x", "function": "x_helper", "goals": 4, "proved": 4,
@@ -112,7 +117,11 @@ def test_verified_when_every_proof_proved_and_every_test_passed(tmp_path):
 def test_test_not_run_is_not_run_never_verified(tmp_path):
     """REQ-EVD-027: a test that names the requirement but is in no result (or was skipped),
     a target group or bench of a run that did not happen: 'not run', and the verdict is
-    'not run', although every proof holds."""
+    'not run', although every proof holds.
+
+    Methods: 1b a test in no result, a skipped one, a target group and a bench of a run that did
+    not happen; 1d tests that did not run while every proof holds
+    """
     res = results(tmp_path)
     for t in ({"kind": "cmocka", "file": "tests/test_x.c", "name": "test_x_missing"},
               {"kind": "cmocka", "file": "tests/test_x.c", "name": "test_x_skipped"},
@@ -134,7 +143,11 @@ def test_test_not_run_is_not_run_never_verified(tmp_path):
 def test_failed_test_or_proof_is_failed(tmp_path):
     """REQ-EVD-027: a failed CMocka test, a scenario whose targets are not met, a bench row
     over its limit, a WP function with a goal not proved or a failing CBMC harness make the
-    verdict 'failed', which wins over 'not run'."""
+    verdict 'failed', which wins over 'not run'.
+
+    Methods: 1b each kind of failure alone and together with a test not run; 1d a failed test,
+    unmet scenario targets, a bench row over its limit, a goal not proved, a failing harness
+    """
     res = results(tmp_path)
     cases = [rec(tests=[{"kind": "cmocka", "file": "tests/test_x.c", "name": "test_x_bad"},
                         {"kind": "cmocka", "file": "tests/test_x.c", "name": "test_x_missing"}]),
@@ -155,7 +168,11 @@ def test_failed_test_or_proof_is_failed(tmp_path):
 def test_stale_results_are_stale_not_proved(tmp_path):
     """REQ-EVD-027, REQ-EVD-028: WP or CBMC rows that all hold, but from results whose inputs
     stamp is not current (inputs changed, or no stamp at all), are 'stale', and so is the
-    verdict; bench rows of a stale bench result too.  A failure still wins."""
+    verdict; bench rows of a stale bench result too.  A failure still wins.
+
+    Methods: 1b inputs changed, no stamp at all, a stale bench, a failure beside them; 1d
+    results whose inputs stamp is not current
+    """
     r = rec(wp={"functions": [{"unit": "qfoc_x", "function": "qfoc_x_step"}], "helpers": []},
             cbmc=[{"harness": "x_step"}], tests=[{"kind": "cmocka", "file": "tests/test_x.c", "name": "test_x_ok"}])
     for wp_state, cbmc_state in (("stale", "current"), ("current", "unstamped"), ("stale", "stale")):
@@ -174,7 +191,11 @@ def test_stale_results_are_stale_not_proved(tmp_path):
 
 def test_no_result_and_no_evidence(tmp_path):
     """REQ-EVD-027: a function or harness without a row, or no WP result at all, is 'no
-    result' (verdict 'not run'); a requirement that names nothing has 'no evidence'."""
+    result' (verdict 'not run'); a requirement that names nothing has 'no evidence'.
+
+    Methods: 1d a function or harness without a row, no WP result at all, a requirement that
+    names nothing
+    """
     res = results(tmp_path)
     v = vd.requirement_verdict(X1, rec(wp={"functions": [{"unit": "qfoc_x", "function": "qfoc_x_gone"}]},
                                        cbmc=["x_gone"]), res)
@@ -188,7 +209,11 @@ def test_no_result_and_no_evidence(tmp_path):
 
 def test_bench_rows_named_from_the_source(tmp_path):
     """REQ-EVD-027: a bench row the matrix named from tools/bench/count.py (the bench had not
-    run when the matrix was made) takes the rows of the run that name the requirement."""
+    run when the matrix was made) takes the rows of the run that name the requirement.
+
+    Methods: 1a a bench row named from tools/bench/count.py takes the run's rows that name the
+    requirement
+    """
     res = results(tmp_path)
     t = {"kind": "bench", "file": "tools/bench/count.py", "name": "row `qfoc_x_step`, [title]"}
     assert vd.requirement_verdict(X1, rec(tests=[t]), res)["verdict"] == vd.VERIFIED
@@ -197,7 +222,11 @@ def test_bench_rows_named_from_the_source(tmp_path):
 
 def test_loose_records_and_counts(tmp_path):
     """REQ-EVD-027: records in the loose forms of a hand-written matrix (function and harness
-    names as strings, tests as 'file: name') are read; the count line of the matrix cell."""
+    names as strings, tests as 'file: name') are read; the count line of the matrix cell.
+
+    Methods: 1b the loose forms of a hand-written matrix (names as strings, tests as 'file:
+    name') beside the full records
+    """
     res = results(tmp_path)
     v = vd.requirement_verdict(X1, {"wp": {"functions": ["qfoc_x_step"], "goals": 10, "proved": 10},
                                     "cbmc": ["x_step"], "tests": ["test_x.c: test_x_ok", "test_nowhere"]}, res)

@@ -48,6 +48,9 @@ def with_text(tmp_path, motor, old, new):
 # is code x 8 (12-bit code 0 .. 4095, 4096 codes = V_base), at most 32760; the current
 # reading is (code - offset) x 16 with the offset within 2048 +- offset_window; the
 # temperature input reads -40.0 .. 200.0 degC.
+# Methods: 1b each sensor's rule broken, one case per parameter (bus, current, temperature); 1c
+# thresholds just beyond what the sensor reads (493.5 V against a 480 V full scale: 32767 >
+# 32760); 1d thresholds the sensor cannot read
 @pytest.mark.parametrize("overrides, message", [
     # bus max 470 V, full scale 480 V: default OV 1.05 x 470 = 493.5 V -> 32767 > 32760
     (("sensing.vdc_full_scale_v=480", "inverter.vdc_max_v=470"),
@@ -81,6 +84,9 @@ def test_refused_threshold_sensor_cannot_read(tmp_path, capsys, overrides, messa
 
 # REQ-TUNE-001: a threshold or setting inside the operating range, which would trip or
 # mislead the drive in normal operation (or never act), is refused.
+# Methods: 1b each threshold or setting inside the operating range, one per parameter; 1c the
+# over-voltage below vdc_max, the under-voltage above vdc_min, phase_i_min equal to i_max; 1d
+# settings that would trip or never act in normal operation
 @pytest.mark.parametrize("override, message", [
     ("limits.vdc_ov_v=400", "limits.vdc_ov_v = 400 V is below inverter.vdc_max_v = 420 V "
                             "(rule: the DC-bus protection thresholds lie outside the operating "
@@ -100,6 +106,9 @@ def test_refused_operating_range(tmp_path, capsys, override, message):
 
 # REQ-TUNE-001: the rule of specs/scaling.md section 2 is enforced, naming scaling.f_base_hz,
 # the speed that needs more and the f_base the motor needs.
+# Methods: 1c f_base 499.9 Hz just below the least 500 Hz, k_rpm 67108.9 above 65535; 1d more
+# pole pairs or a higher speed than the base frequency allows; 1a the needed f_base computed by
+# hand (1.25 x 666.667 = 833.333 Hz)
 @pytest.mark.parametrize("overrides, message", [
     # 8000 rpm x 5 / 60 = 666.667 Hz; 1.25 x 666.667 = 833.333 Hz > 500 Hz
     (("motor.pole_pairs=5",),
@@ -128,6 +137,8 @@ def test_refused_f_base_rule(tmp_path, capsys, overrides, message):
 
 # REQ-TUNE-001: the library reads 12-bit ADC codes (drive.h, drv_adc12): adc_bits other
 # than 12 is refused rather than ignored.
+# Methods: 1b 10 and 16 bits, either side of the 12 the library reads; 1d an ADC resolution the
+# library would misread
 @pytest.mark.parametrize("bits", [10, 16])
 def test_refused_adc_bits(tmp_path, capsys, bits):
     err = refused(tmp_path, capsys, REFERENCE, "--set", f"sensing.adc_bits={bits}")
@@ -137,6 +148,7 @@ def test_refused_adc_bits(tmp_path, capsys, bits):
 
 # REQ-TUNE-001: a key or section the tool does not use is refused, named, with the close
 # match; in the file as on the command line.
+# Methods: 1d a misspelt key and section in the file, named with the close match
 @pytest.mark.parametrize("old, new, message", [
     ("pole_pairs = 3\n", "pole_pairs = 3\npole_pair = 3\n",
      "unknown key motor.pole_pair (did you mean motor.pole_pairs?)"),
@@ -153,6 +165,7 @@ def test_refused_unknown_key(tmp_path, capsys, old, new, message):
 
 
 # REQ-TUNE-001: the same refusal for a key given with --set.
+# Methods: 1d a misspelt or unknown key and an unknown section given with --set
 @pytest.mark.parametrize("override, message", [
     ("design.no_such_key=1", "unknown key design.no_such_key"),
     ("drive.tc_speed_max=7000", "unknown key drive.tc_speed_max (did you mean "
@@ -165,6 +178,7 @@ def test_refused_unknown_key_set(tmp_path, capsys, override, message):
 
 
 # REQ-TUNE-001: the [demo] keys of the simulator (sim/scenario.c) are known keys.
+# Methods: 1a the simulator's [demo] keys accepted, the table written
 def test_demo_keys_accepted(tmp_path):
     rc = qt.main([str(REFERENCE), "--out-dir", str(tmp_path / "out"), "--table-dir",
                   str(tmp_path / "tables"), "--no-plots", "--set", "demo.start_rpm=3000",
@@ -205,6 +219,9 @@ def _tc_delta_ref(cfg, ds, rpm, h):
 # TC_DELTA_MAX_DEG (the first harmonic up to the top, the second up to half of it); a window
 # where it reaches 90 deg (divergence) is refused with the key named; an explicit value above
 # the largest target is refused.
+# Methods: 1c the derived top: its phase error within TC_DELTA_MAX_DEG, 10 rpm above it beyond,
+# a rated speed below it, 8001 rpm above the speed range; 1d a slow PLL whose learning diverges
+# inside a typed window; 1n the phase error of the learning law recomputed in the test
 def test_tc_speed_max_default_derived(tmp_path, capsys):
     cfg = qt.load_config(REFERENCE, [])
     ds = qt.design_loops(cfg, qt.make_bases(cfg))
@@ -242,6 +259,8 @@ def test_tc_speed_max_default_derived(tmp_path, capsys):
 # refuses (pole_pairs 1 .. 16, drive_cfg.h) is named as typed before any computation; loop
 # models that leave the floating-point range (a plant pole far beyond the sample rate, a
 # vanishing inertia) fail the loop check, naming the keys the loops are made from.
+# Methods: 1c pole_pairs 500 (outside 1 .. 16), R_s 1e6 ohm, J 1e-12 kg m^2; 1d values that
+# would drive the loop models out of the floating-point range
 @pytest.mark.parametrize("override, message", [
     ("motor.pole_pairs=500", "refused: " + str(REFERENCE) + ": motor.pole_pairs = 500: "
                              "outside 1 .. 16"),
@@ -262,6 +281,8 @@ def test_no_python_warning(tmp_path, override, message):
 # REQ-TUNE-001: values beyond the plausible ranges (PLAUSIBLE) reach the loop models only when
 # the ranges are lifted; the models then leave the floating-point range, and the loop check
 # fails naming the keys the loops are made from, without a Python warning.
+# Methods: 1d a resistance beyond the plausible range with the ranges lifted: the loop check
+# fails naming the keys, no Python warning
 def test_loop_models_float_range(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(qt, "PLAUSIBLE", {})
     rc = qt.main([str(REFERENCE), "--out-dir", str(tmp_path / "out"), "--table-dir",
@@ -276,6 +297,9 @@ def test_loop_models_float_range(tmp_path, capsys, monkeypatch):
 # REQ-TUNE-001: a value implausible by orders of magnitude (a unit slip: mH typed as H, mOhm
 # as ohm, mWb as Wb, ms or us as s, krpm as rpm) is refused with the key, the value typed, the
 # plausible range and the value x 1e-3 or x 1e3 inside the range as "did you mean".
+# Methods: 1b one unit slip per parameter (mH as H, mOhm as ohm, mWb as Wb, ms or us as s, krpm
+# as rpm); 1c values outside the plausible range by a factor 1000; 1d unit slips, with the
+# corrected value as 'did you mean'
 @pytest.mark.parametrize("override, message", [
     ("motor.ld_h=2.6", "motor.ld_h = 2.6 H: outside the plausible range 5e-06 .. 0.05 H of a "
                        "compressor or traction PMSM drive; did you mean motor.ld_h = 0.0026 H "
@@ -308,6 +332,8 @@ def test_refused_implausible(tmp_path, capsys, override, message):
 
 # REQ-TUNE-001: the same in a motor file, every implausible value named at once; a value
 # without a factor-1000 neighbour inside the range has no "did you mean".
+# Methods: 1d three implausible values in one motor file, named at once, one without a
+# factor-1000 neighbour in the range
 def test_refused_implausible_in_file(tmp_path, capsys):
     path = with_text(tmp_path, REFERENCE, "ld_h = 2.6e-3", "ld_h = 2.6")
     path.write_text(path.read_text().replace("rs_ohm = 0.35 ", "rs_ohm = 350 "))
@@ -323,6 +349,8 @@ def test_refused_implausible_in_file(tmp_path, capsys):
 # REQ-TUNE-001: every plausible range belongs to a number key of the schema and holds the
 # values of both committed motor files (and their defaults); 0 stays accepted where the key
 # allows it (no dead time, no current filter).
+# Methods: 1b the three committed motor files, one per parameter; 1c 0 accepted where the key
+# allows it (no dead time, no current filter)
 @pytest.mark.parametrize("motor", [REFERENCE, SECOND, ECOMP])
 def test_plausible_ranges_accept_committed_motors(tmp_path, motor):
     for name in qt.PLAUSIBLE:
@@ -342,6 +370,8 @@ def test_plausible_ranges_accept_committed_motors(tmp_path, motor):
 
 # REQ-TUNE-001: the hand-over window's cover of an L_q error, against its formula in double
 # precision: tan(ho_angle) / (L_q i_start / psi_f); warned below 20 %, named with the figures.
+# Methods: 1c the cover of an L_q error below and above 20 %; 1n tan(ho_angle) / (L_q i_start /
+# psi_f) in double precision
 def test_warns_handover_window_narrow_for_lq():
     import math
     cfg = qt.load_config(ECOMP, [])
@@ -361,6 +391,7 @@ def test_warns_handover_window_narrow_for_lq():
 
 # REQ-TUNE-001: L_q < L_d is warned about (an IPM motor has L_q > L_d), naming both keys and
 # values; the table is made all the same.
+# Methods: 1d L_d and L_q swapped (L_q < L_d): warned, named, the table made all the same
 def test_warns_lq_below_ld(tmp_path, capsys):
     rc = qt.main([str(REFERENCE), "--out-dir", str(tmp_path / "out"), "--table-dir",
                   str(tmp_path / "tables"), "--no-plots", "--set", "motor.ld_h=4.2e-3",
@@ -377,6 +408,8 @@ def test_warns_lq_below_ld(tmp_path, capsys):
 
 # REQ-TUNE-001: the high-speed inductances are checked the same way; L_q = L_d (a surface
 # magnet motor) is no warning.
+# Methods: 1c L_q = L_d (a surface magnet motor: no warning); 1d the high-speed inductances
+# swapped
 def test_warns_lq_hs_below_ld_hs(tmp_path):
     cfg = qt.load_config(REFERENCE, ["motor.ld_hs_h=3e-3", "motor.lq_hs_h=2e-3"])
     assert cfg["warnings"] == [
@@ -388,6 +421,8 @@ def test_warns_lq_hs_below_ld_hs(tmp_path):
 
 # REQ-TUNE-001: docs/motor-file.md is the tool's schema (--motor-file-doc), every section and
 # key with its unit, range, default and rule; --help points to it.
+# Methods: 1a docs/motor-file.md is the tool's schema, every section and key with its unit,
+# range, default and rule
 def test_motor_file_doc_matches_schema(capsys):
     assert qt.main(["--motor-file-doc"]) == 0
     out = capsys.readouterr().out
@@ -408,6 +443,7 @@ def test_motor_file_doc_matches_schema(capsys):
 
 
 # REQ-TUNE-001: --help points to the motor-file format.
+# Methods: 1a --help names docs/motor-file.md
 def test_help_points_to_motor_file_doc(capsys):
     with pytest.raises(SystemExit):
         qt.main(["--help"])
@@ -415,6 +451,7 @@ def test_help_points_to_motor_file_doc(capsys):
 
 
 # REQ-TUNE-001: every key of the committed motor files is a key of the schema.
+# Methods: 1b the three committed motor files, one per parameter, every key in the schema
 @pytest.mark.parametrize("motor", [REFERENCE, SECOND, ECOMP])
 def test_committed_motor_keys_in_schema(motor):
     import tomllib
@@ -426,6 +463,8 @@ def test_committed_motor_keys_in_schema(motor):
 
 # REQ-TUNE-001: the simulator reads the same motor files (sim/motor.c sim_keys): every key it
 # requires is in each committed motor file, as a number.
+# Methods: 1b the three committed motor files, one per parameter; 1a every key the simulator
+# requires present as a number
 @pytest.mark.parametrize("motor", [REFERENCE, SECOND, ECOMP])
 def test_committed_motor_has_sim_keys(motor):
     import re
@@ -441,6 +480,8 @@ def test_committed_motor_has_sim_keys(motor):
 # REQ-TUNE-001: scaling.psi_shift is an integer 0 .. 4 (drive_cfg.h
 # QFOC_DRIVE_PSI_SHIFT_MAX); any other value, whatever its type, is refused with exit code 1,
 # naming the key and the value as typed.
+# Methods: 1b a value of each wrong kind, one per parameter: negative, too large, not an
+# integer, not a number; 1c -1 and 5 either side of 0 .. 4
 @pytest.mark.parametrize("value, shown, why", [
     ("-1", "-1", "outside 0 .. 4"),
     ("5", "5", "outside 0 .. 4"),
@@ -456,6 +497,7 @@ def test_refused_psi_shift(tmp_path, capsys, value, shown, why):
 
 
 # REQ-TUNE-001: the same in a motor file.
+# Methods: 1c psi_shift 7, beyond 0 .. 4, in a motor file
 def test_refused_psi_shift_in_file(tmp_path, capsys):
     path = with_text(tmp_path, REFERENCE, "[scaling]\n", "[scaling]\npsi_shift = 7\n")
     err = refused(tmp_path, capsys, path)
@@ -465,6 +507,8 @@ def test_refused_psi_shift_in_file(tmp_path, capsys):
 # REQ-TUNE-001: real DC-bus sensor full scales of 650 .. 900 V buses (1000 .. 1100 V) are
 # accepted; an over-voltage threshold the sensor cannot read stays refused: 1100 V full scale
 # reads at most 4095 / 4096 x 1100 = 1099.73 V.
+# Methods: 1c full scales 1000, 1050 and 1100 V accepted, an over-voltage threshold of 1099.9 V
+# above the largest readable 1099.73 V refused
 def test_bus_sensor_full_scale_800v(tmp_path, capsys):
     for v in (1000, 1050, 1100):
         cfg = qt.load_config(ECOMP, [f"sensing.vdc_full_scale_v={v}"])

@@ -79,6 +79,8 @@ def simple_design(tmp_path):
 
 
 # REQ-PAR-002, REQ-TUNE-006: the table CRC is CRC-32/ISO-HDLC (check value, zlib agreement).
+# Methods: 1c the empty input; 1n the published check value 0xCBF43926 and zlib's CRC-32 of 768
+# bytes
 def test_crc_check_value():
     assert qt.crc32_iso_hdlc(b"123456789") == 0xCBF43926
     data = bytes(range(256)) * 3
@@ -87,6 +89,9 @@ def test_crc_check_value():
 
 
 # REQ-TUNE-003: gains in the pi.h representation (Q15 mantissa, left shift).
+# Methods: 1c 0, the largest gain with shift 0 (32767 / 32768), 1.0 (needs shift 1), the largest
+# representable 32767, beyond it (1e6, saturated), one LSB and below half an LSB; 1a the example
+# of pi.h (2.5: 20480, shift 2)
 def test_mantissa_left_corners():
     assert qt.mant_left(0.0) == (0, 0)
     assert qt.mant_left(32767 / 32768) == (32767, 0)      # largest gain with shift 0
@@ -99,6 +104,8 @@ def test_mantissa_left_corners():
 
 
 # REQ-TUNE-002, REQ-TUNE-003: flux.h right-shift mantissa, Q15 and Qn rounding corners.
+# Methods: 1c 0.9 (no shift), the smallest values (largest shift 15), +-1.0 (symmetric range),
+# the ties +-0.5 LSB, 8 pu in Q12 (saturated); 1a the example of flux.h (25736, shift 1)
 def test_mantissa_right_and_q15_corners():
     # flux.h example: g = 3141.593 / 8000 -> 25736 with gain_shift 1
     assert qt.mant_right(2 * math.pi * 500 / 8000) == (25736, 1)
@@ -111,6 +118,7 @@ def test_mantissa_right_and_q15_corners():
 
 
 # REQ-TUNE-002, REQ-TUNE-003: bases and every chapter 2 gain against a hand computation.
+# Methods: 1a the bases and every chapter 2 gain of a simple motor computed by hand in the test
 def test_simple_motor_gains_by_hand(tmp_path):
     ds, _ = simple_design(tmp_path)
     g = ds.gains
@@ -169,6 +177,8 @@ def test_simple_motor_gains_by_hand(tmp_path):
 
 
 # REQ-TUNE-006: the serialisation length of params.h and the generated initialiser.
+# Methods: 1a the serialisation length of params.h (115 + 100 bytes) counted by hand, the
+# generated initialiser
 def test_simple_motor_passes_and_table_compiles_layout(tmp_path):
     ds, path = simple_design(tmp_path)
     items = qt.build_table(ds.cfg, ds)
@@ -184,6 +194,8 @@ def test_simple_motor_passes_and_table_compiles_layout(tmp_path):
 # REQ-TUNE-004: a scaling made too tight is rejected, naming the bound and the input.
 # I_base = 32 A: the trip 30 A (0.9375 I_base) is still below the sensor's largest reading
 # (1947 / 2048 I_base), but the Clarke output at 110 deg is 1.1 x 30720 > 32767.
+# Methods: 1c I_base 32 A: the trip still below the sensor's largest reading, the Clarke output
+# at 110 degrees beyond 32767; 1d a scaling made too tight
 def test_too_tight_scaling_rejected(tmp_path, capsys):
     rc = run(tmp_path, REFERENCE, "--set", "sensing.i_full_scale_a=32")
     err = capsys.readouterr().err
@@ -195,6 +207,8 @@ def test_too_tight_scaling_rejected(tmp_path, capsys):
 
 
 # REQ-TUNE-001: malformed motor data are rejected with exit code 2 and the field named.
+# Methods: 1b a value of each wrong kind, one per parameter: negative, not an integer, not a
+# number; 1d malformed motor data
 @pytest.mark.parametrize("override, message", [
     ("motor.rs_ohm=-1", "must be > 0"),
     ("motor.pole_pairs=2.5", "expected an integer"),
@@ -206,6 +220,7 @@ def test_bad_input_exit_2(tmp_path, capsys, override, message):
 
 
 # REQ-TUNE-001: a missing field is rejected with exit code 2.
+# Methods: 1d a required field missing from the motor file
 def test_missing_field_exit_2(tmp_path, capsys):
     path = tmp_path / "broken.toml"
     path.write_text(SIMPLE_MOTOR.replace("rs_ohm = 1.0\n", ""))
@@ -215,6 +230,8 @@ def test_missing_field_exit_2(tmp_path, capsys):
 
 # REQ-TUNE-004, REQ-TUNE-005, REQ-TUNE-006: the motors pass every bound and loop check;
 # the committed tables regenerate byte for byte.
+# Methods: 1b the three committed motors, one per parameter; 1a every bound and loop check
+# passes, the committed tables regenerate byte for byte
 @pytest.mark.parametrize("motor", [REFERENCE, SECOND, ECOMP])
 def test_motor_passes_and_table_reproducible(tmp_path, motor):
     assert run(tmp_path, motor) == 0
@@ -224,6 +241,7 @@ def test_motor_passes_and_table_reproducible(tmp_path, motor):
 
 
 # REQ-TUNE-007: the report and its Bode / step plots.
+# Methods: 1a the report and its Bode and step plots written
 def test_report_with_plots(tmp_path):
     rc = qt.main([str(REFERENCE), "--out-dir", str(tmp_path), "--table-dir", str(tmp_path)])
     assert rc == 0
@@ -235,6 +253,8 @@ def test_report_with_plots(tmp_path):
 
 
 # REQ-TUNE-005: the current-loop design of specs/equations.md section 7 gives PM 65.5 deg; every discrete loop >= 45 deg.
+# Methods: 1c every discrete loop's phase margin against the 45-degree bound; 1a the current
+# loop's 65.5 degrees of specs/equations.md section 7
 def test_loop_margins_reference():
     cfg = qt.load_config(REFERENCE, [])
     ds = qt.design_loops(cfg, qt.make_bases(cfg))
@@ -280,6 +300,8 @@ def c_values(text):
 # REQ-TUNE-006, REQ-PAR-006: the CRC in each committed table equals zlib's CRC-32 of an
 # independent serialisation: the 115-byte layout-1 part as the tool emits it, then the
 # drive fields packed here from DRIVE_LAYOUT (little-endian, own width).
+# Methods: 1b every committed table, one per parameter; 1n zlib's CRC-32 of an independent
+# serialisation, the drive fields packed in the test from DRIVE_LAYOUT
 @pytest.mark.parametrize("name", [n for n, _m, _o in manifest()])
 def test_committed_crc_independent_with_drive(name):
     import struct
@@ -318,6 +340,7 @@ def drive_of(tmp_path, motor, *extra):
 # REQ-PAR-006, REQ-TUNE-006: the documented defaults of [drive] by hand for the reference
 # motor (n_p 3, f_base 500 Hz, I_base 40 A, f_pwm 8 kHz, rated 20 A / 6000 rpm,
 # max 8000 rpm).
+# Methods: 1a every documented default of [drive] computed by hand for the reference motor
 def test_drive_defaults_by_hand(tmp_path):
     d = drive_of(tmp_path, REFERENCE)
     rpm = 3 / 60 / 500 * 32768                                # Q15 counts per rpm = 3.2768
@@ -366,6 +389,7 @@ def test_drive_defaults_by_hand(tmp_path):
 
 
 # REQ-TUNE-001: drive.ho_retries as typed: 0 .. 3 in the table, outside refused naming the key
+# Methods: 1c ho_retries 0 and 3 (accepted), -1 and 4 (refused)
 def test_ho_retries_range(tmp_path):
     assert drive_of(tmp_path / "r0", REFERENCE, "--set", "drive.ho_retries=0")["ho_retries"] == 0
     assert drive_of(tmp_path / "r3", REFERENCE, "--set", "drive.ho_retries=3")["ho_retries"] == 3
@@ -377,6 +401,8 @@ def test_ho_retries_range(tmp_path):
 # writes every documented default of [drive] explicitly gives the same table bytes as one
 # without the section, and the stored values convert back to the defaults within half a
 # count.
+# Methods: 1a a file writing every default of [drive] gives the same table bytes as one without
+# the section, the stored values within half a count of the defaults
 def test_drive_defaults_round_trip(tmp_path):
     cfg = qt.load_config(REFERENCE, [])
     ds = qt.design_loops(cfg, qt.make_bases(cfg))
@@ -399,6 +425,7 @@ def test_drive_defaults_round_trip(tmp_path):
 
 # REQ-TUNE-001, REQ-TUNE-006, REQ-PAR-006: [drive] overrides reach the table;
 # motor.ld_hs_h / lq_hs_h set the high-speed inductances.
+# Methods: 1a [drive] overrides and the high-speed inductances reach the table
 def test_drive_overrides(tmp_path):
     d = drive_of(tmp_path, REFERENCE, "--set", "drive.rpm_max=7000", "--set",
                  "drive.lin_id_cmd=0x20", "--set", "drive.tc_gain_q15=0",
@@ -411,6 +438,9 @@ def test_drive_overrides(tmp_path):
 # REQ-TUNE-004, REQ-PAR-007: the tool checks the drive ranges and the cross-field
 # conditions of params.h itself and refuses to write a table that breaks one, naming the
 # key of the motor file (the refusal comes before any computation).
+# Methods: 1b each drive range and cross-field condition broken alone, one per parameter; 1c
+# values just beyond their bound (i_align 20.01 A above i_max 20 A, ...); 1d a table the library
+# would refuse
 @pytest.mark.parametrize("override, message", [
     ("drive.i_align_a=20.01", "drive.i_align_a = 20.01 A is above limits.i_max_a"),
     ("drive.i_start_a=21", "drive.i_start_a = 21 A"),
@@ -436,6 +466,8 @@ def test_drive_range_refused(tmp_path, capsys, override, message):
 
 # REQ-TUNE-004, REQ-PAR-007: the table's own range check (behind the input rules) names
 # the motor-file keys a derived field comes from.
+# Methods: 1d a derived field out of the table's range, named with the motor-file keys it comes
+# from
 def test_table_range_names_typed_keys():
     cfg = qt.load_config(REFERENCE, [])
     ds = qt.design_loops(cfg, qt.make_bases(cfg))
@@ -450,6 +482,8 @@ def test_table_range_names_typed_keys():
 
 
 # REQ-TUNE-006, REQ-PAR-007: a boundary value of a cross-field condition is accepted.
+# Methods: 1c the boundary values of the cross-field conditions: i_align = i_max, of_speed and
+# rpm_min = 8000 rpm
 def test_drive_cross_boundary_accepted(tmp_path):
     d = drive_of(tmp_path, REFERENCE, "--set", "drive.i_align_a=20", "--set",
                  "drive.of_speed_rpm=8000", "--set", "drive.rpm_min=8000")
@@ -457,6 +491,7 @@ def test_drive_cross_boundary_accepted(tmp_path):
 
 
 # REQ-TUNE-007: the report lists the drive configuration with its ranges.
+# Methods: 1a the report lists the drive configuration with its ranges
 def test_report_lists_drive(tmp_path):
     assert run(tmp_path, REFERENCE) == 0
     report = (tmp_path / "out" / "report.md").read_text()
@@ -473,6 +508,8 @@ def test_report_lists_drive(tmp_path):
 # 1 / (2 pi 20) + 1 ms = 9.333 ms; 0.1 / (2 T_sigma) = 266.7 rad/s > 1 / (2 T_ssigma) =
 # 53.57 rad/s = 8.527 Hz; tau_s = 5 / 53.57 = 93.3 ms; ksp = 53.57 x 3e-4 / (1.5 x 3 x 0.065)
 # = 0.05494 A s/rad.
+# Methods: 1a the speed PI from its bandwidth target computed by hand for the reference motor at
+# 8 kHz (w_sc 53.57 rad/s, tau_s 93.3 ms)
 def test_speed_pi_from_bandwidth():
     cfg = qt.load_config(REFERENCE, [])
     d = cfg["design"]
@@ -494,6 +531,8 @@ def test_speed_pi_from_bandwidth():
 
 # REQ-TUNE-005: the speed-loop check of a good design: the simulated ramp 1000 -> 3000 rpm
 # with the load step of 4.5 N m leaves less than 1 % error from 1 s after the ramp's end.
+# Methods: 1b two committed motors, one per parameter; 1a the simulated ramp 1000 -> 3000 rpm
+# with a 4.5 N m load step within 1 % from 1 s after the ramp
 @pytest.mark.parametrize("motor", [REFERENCE, SECOND])
 def test_speed_check_passes(tmp_path, capsys, motor):
     assert run(tmp_path, motor) == 0
@@ -509,6 +548,8 @@ def test_speed_check_passes(tmp_path, capsys, motor):
 # REQ-TUNE-005: an integral time of J / B = 3 s (the former default) forced through the
 # override leaves the speed far from its target 1 s after the ramp: refused with exit code
 # 1, the reason and the figures, no table written.
+# Methods: 1b two motors and two integral times, one per parameter; 1d the former default J / B
+# = 3 s (and 1 s) forced through the override: refused, no table written
 @pytest.mark.parametrize("motor, tau", [(REFERENCE, 3.0), (SECOND, 3.0), (REFERENCE, 1.0)])
 def test_speed_check_refuses_long_integral_time(tmp_path, capsys, motor, tau):
     assert run(tmp_path, motor, "--set", f"design.speed_tau_s={tau}") == 1
@@ -594,6 +635,9 @@ def table_fields(name):
 # that holds the flux, computed here in webers; each ratio is away from the boundary, so
 # that the tool's quantised arithmetic cannot decide otherwise.  The traction machine at
 # its real bus sensor (1000 V) needs s = 3, the 800 V e-compressor s = 1.
+# Methods: 1b every committed table, one per parameter; 1c each flux ratio away from the bound
+# of its base (below 0.95, the next base above 1.05); 1n the smallest shift that holds the flux
+# computed in webers in the test
 @pytest.mark.parametrize("name, motor, overrides", manifest())
 def test_derived_shift_of_manifest_tables(name, motor, overrides):
     md = motor_data(motor, overrides)
@@ -611,6 +655,8 @@ def test_derived_shift_of_manifest_tables(name, motor, overrides):
 # REQ-TUNE-002: a speed times a flux is a voltage of 2^s V_base: w_pu psi_f,pu 2^s V_base
 # is the back-EMF w_e psi_f in volts, whatever the shift (the decoupling, the flying start's
 # back-EMF and the flux check rely on it).
+# Methods: 1b three motors in three flux bases, one per parameter; 1n w_pu psi_f,pu 2^s V_base
+# against the back-EMF w_e psi_f in volts
 @pytest.mark.parametrize("name, motor", [("traction350", SECOND), ("ecomp800", ECOMP),
                                          ("reference", REFERENCE)])
 def test_speed_times_flux_is_volts(name, motor):
@@ -631,6 +677,8 @@ def test_speed_times_flux_is_volts(name, motor):
 # REQ-TUNE-002, REQ-TUNE-003: the flux observer in the flux unit: g = T w_base / 2^s and
 # kg = K_gain 2^s / w_base, so g 2^s = T w_base and kg / 2^s = K_gain / w_base within the
 # rounding of the stored mantissas; g kg = T K_gain whatever s.
+# Methods: 1b three motors in three flux bases, one per parameter; 1n g 2^s = T w_base and kg /
+# 2^s = K_gain / w_base within the stored mantissas' rounding
 @pytest.mark.parametrize("name, motor", [("traction350", SECOND), ("ecomp800", ECOMP),
                                          ("reference", REFERENCE)])
 def test_observer_gain_and_kg_in_flux_base(name, motor):
@@ -652,6 +700,8 @@ def test_observer_gain_and_kg_in_flux_base(name, motor):
 
 # REQ-TUNE-002: scaling.psi_shift sets the shift: the derived value gives the same values,
 # a larger one scales every flux and inductance by 1 / 2^s and the observer's g and kg.
+# Methods: 1b the derived shift and a larger one; 1a every flux and inductance and the
+# observer's g and kg scaled by 1 / 2^s
 def test_psi_shift_override(tmp_path):
     assert run(tmp_path, SECOND, "--set", "scaling.psi_shift=3") == 0
     assert c_values((tmp_path / "tables" / "traction350_params.c").read_text()) == \
@@ -666,6 +716,9 @@ def test_psi_shift_override(tmp_path):
 # REQ-TUNE-004: a shift too small for the machine fails with the bound it breaks: the
 # traction machine's active flux 0.24 + 1.5e-3 x 330 = 0.735 Wb is above 2^2 x 1000 / 6283
 # = 0.637 Wb (s = 2), and its psi_f 0.24 Wb above 1000 / 6283 = 0.159 Wb (s = 0).
+# Methods: 1b shifts 2 and 0 for the traction machine, one per parameter; 1c the active flux
+# 0.735 Wb above the 0.637 Wb of s = 2, psi_f 0.24 Wb above the 0.159 Wb of s = 0; 1d a shift
+# too small for the machine
 @pytest.mark.parametrize("shift, bounds", [
     (2, ["flux estimate at lowest observer speed", "flux estimate at highest speed"]),
     (0, ["flux estimate at highest speed", "flux base: psi_f", "flux base: lq"]),
@@ -689,6 +742,8 @@ def test_psi_shift_too_small_fails(tmp_path, capsys, shift, bounds):
 # REQ-TUNE-002: a machine whose flux does not fit even s = 4 is refused (exit code 1,
 # nothing written), naming its active flux and the largest flux base.  The simple motor with
 # f_base = 1000 Hz and psi_f = 0.3 Wb: 16 x 100 V / (2 pi 1000 Hz) = 0.2546 Wb < 0.3 Wb.
+# Methods: 1c a flux of 0.3 Wb beyond the largest base s = 4 (0.2546 Wb); 1d a machine whose
+# flux fits no base
 def test_flux_beyond_largest_base_refused(tmp_path, capsys):
     path = tmp_path / "strong.toml"
     path.write_text(SIMPLE_MOTOR.replace("f_base_hz = 100.0", "f_base_hz = 1000.0")
@@ -714,6 +769,7 @@ def test_flux_beyond_largest_base_refused(tmp_path, capsys):
 # REQ-TUNE-002: the observer's high-pass gain kg = K_gain psi_base / V_base grows with the
 # shift; a flux that needs s = 3 with K_gain = 1000 rad/s (kg = 8 x 1000 / 6283 = 1.27) is
 # refused naming kg.
+# Methods: 1c kg = 1.27 above 1; 1d an observer gain K_gain of 1000 rad/s that needs s = 3
 def test_kg_beyond_one_refused(tmp_path, capsys):
     rc = run(tmp_path, SECOND, "--set", "design.kg_rad_s=1000")
     err = capsys.readouterr().err

@@ -60,6 +60,7 @@ def step(label, rc, output):
 
 
 # REQ-EVD-030
+# Methods: 1a the made-up catalogue's scopes and defects read back field by field
 def test_catalogue_parses():
     scopes, defects = parsed()
     assert [d["id"] for d in defects] == ["TV-01", "TV-02"]
@@ -68,6 +69,10 @@ def test_catalogue_parses():
 
 
 # REQ-EVD-030
+# Methods: 1b thirteen catalogue errors, one rule broken per parameter; 1d a duplicate or
+# malformed id, unknown or repeated gates, an unknown scope, a gate without what it needs, 'new'
+# equal to 'old', a missing class, a cover file outside src/, an unknown key, a time-out that is
+# not a number
 @pytest.mark.parametrize("change, message", [
     (('id = "TV-02"', 'id = "TV-01"'), "used twice"),
     (('id = "TV-02"', 'id = "T2"'), "TV-nn"),
@@ -91,6 +96,7 @@ def test_catalogue_errors(change, message):
 
 
 # REQ-EVD-030
+# Methods: 1c the old text occurring 0, 1 and 2 times; 1d an empty old text
 def test_substitution_exactly_once():
     assert tv.substitute("int a;\nx = 1;\n", "x = 1;", "x = 2;") == "int a;\nx = 2;\n"
     with pytest.raises(tv.CatalogueError, match="occurs 0 times"):
@@ -104,7 +110,11 @@ def test_substitution_exactly_once():
 # REQ-EVD-030
 def test_check_sources_and_copy(tmp_path, monkeypatch):
     """The catalogue fails loudly when the text moved; the copy carries the defect, the
-    original file does not change."""
+    original file does not change.
+
+    Methods: 1d text moved in the source (the substitution occurs twice), scope files missing
+    from the tree; 1a the copy carries the defect and the original stays unchanged
+    """
     (tmp_path / "src").mkdir()
     (tmp_path / "src" / "x.c").write_text("int f(void)\n{\n    a = b;\n}\n", encoding="utf-8")
     (tmp_path / "src" / "y.c").write_text("x\n", encoding="utf-8")
@@ -133,7 +143,11 @@ def test_check_sources_and_copy(tmp_path, monkeypatch):
 def test_committed_catalogue_matches_the_tree():
     """The committed catalogue: every substitution matches its file exactly once, every
     scope names files that exist, every gate catches at least one defect, at least 8
-    defects (text checks only: no gate runs)."""
+    defects (text checks only: no gate runs).
+
+    Methods: 1a the committed catalogue: every substitution matches its file exactly once, every
+    scope's files exist, every gate catches at least one defect, at least 8 defects
+    """
     scopes, defects = tv.load_catalogue(tv.CATALOGUE)
     tv.check_sources(tv.ROOT, scopes, defects)
     assert len(defects) >= 8
@@ -142,6 +156,8 @@ def test_committed_catalogue_matches_the_tree():
 
 
 # REQ-EVD-030
+# Methods: 1b a clean run, goals not proved, and three kinds of error; 1d a unit that did not
+# run cleanly, Frama-C that cannot parse, 0 / 0 goals, no exit status: errors, not catches
 def test_classify_wp():
     ok = "prove: Frama-C WP ...\n  qfoc_ramp: 31 / 31 (7 s, z3,cvc4, frama-c exit 0)\nproved 31 / 31 goals\n"
     assert tv.classify("wp", [step("prove", 0, ok)]) == ("pass", "proved 31 / 31 goals")
@@ -157,6 +173,8 @@ def test_classify_wp():
 
 
 # REQ-EVD-030
+# Methods: 1b a pass, failed properties, a harness that did not build, a failed SAT self-test;
+# 1d a build failure and a broken SAT back end: errors, not catches
 def test_classify_cbmc():
     head = "cbmc: self-test of the SAT back end: the planted overflow found, 3 properties hold\n"
     ok = head + "  ramp_toward: PASS (23 properties hold, 0 fail, unwind 1, 3 s)\n"
@@ -172,6 +190,9 @@ def test_classify_cbmc():
 
 
 # REQ-EVD-030
+# Methods: 1b a pass, failed tests, a crash, a -Werror stop, a syntax error, a run without
+# summary; 1d a crash and a build stopped by -Werror (catches), a syntax error and no summary
+# (errors)
 def test_classify_tests():
     built = step("build", 0, "")
     ok = step("run", 0, "[  PASSED  ] 3 test(s).\ntests: 1 executables\n3 passed, 0 failed\n")
@@ -191,6 +212,8 @@ def test_classify_tests():
 
 
 # REQ-EVD-030
+# Methods: 1b full coverage, a gap, a test failing under coverage, a build error; 1d a test that
+# fails under coverage is no coverage finding
 def test_classify_coverage():
     built = step("build", 0, "")
     ok = step("coverage", 0, "lines: 100.0% (11 out of 11)\nfunctions: 100.0% (1 out of 1)\n"
@@ -207,6 +230,8 @@ def test_classify_coverage():
 
 
 # REQ-EVD-030
+# Methods: 1b a clean run, a finding, a suppression without a record, a tool error, for MISRA,
+# and clean, alarm and error for EVA; 1d cppcheck failing, Frama-C stopping without an alarm
 def test_classify_misra_and_eva():
     ok = "misra: 0 unrecorded findings, 35 suppressions (35 with deviation records)\n"
     assert tv.classify("misra", [step("misra", 0, ok)])[0] == "pass"
@@ -230,6 +255,8 @@ def test_classify_misra_and_eva():
 
 
 # REQ-EVD-030
+# Methods: 1b each outcome of a defect and of the control (caught, MISSED, pass, FALSE ALARM,
+# ERROR); 1d a missed catch, a failed control, no control at all
 def test_outcomes_and_summary():
     assert tv.outcome("defect", "fail") == "caught" and tv.outcome("defect", "pass") == "MISSED"
     assert tv.outcome("control", "pass") == "pass" and tv.outcome("control", "fail") == "FALSE ALARM"
@@ -260,6 +287,8 @@ def test_outcomes_and_summary():
 
 
 # REQ-EVD-030
+# Methods: 1a one control job per scope and gate however many defects share them, one directory
+# per job
 def test_jobs_control_once_per_scope_and_gate(tmp_path):
     scopes, defects = parsed()
     twin = dict(defects[0], id="TV-03")
@@ -277,7 +306,11 @@ def test_jobs_control_once_per_scope_and_gate(tmp_path):
 # REQ-EVD-030
 def test_gate_commands_are_scoped():
     """Each gate's command names only the scope's unit, harnesses and tests; WP takes the
-    scope's prover time-out, or none (prove.sh's own) when the scope sets none."""
+    scope's prover time-out, or none (prove.sh's own) when the scope sets none.
+
+    Methods: 1b every gate's command (WP with and without the scope's time-out, CBMC, tests,
+    coverage, MISRA); 1a each names only the scope's unit, harnesses and tests
+    """
     scopes, _defects = parsed(CATALOGUE.replace("[scope.ramp]\n", "[scope.ramp]\nwp_timeout = 10\n"))
     job = {"scope": "ramp", "gate": "wp"}
     (label, argv, env), = tv.gate_steps(job, scopes, "/x/cbmc")
@@ -301,7 +334,11 @@ def test_gate_commands_are_scoped():
 # REQ-EVD-030
 def test_report_table(tmp_path):
     """results.md: one row per defect with caught / MISSED / - per gate, the scoping table,
-    the control, and the partial-run note."""
+    the control, and the partial-run note.
+
+    Methods: 1a results.md: one row per defect with caught, MISSED or '-' per gate, the scoping
+    table, the control and the partial-run note
+    """
     scopes, defects = parsed()
 
     def res(kind, name, gate, verdict):
