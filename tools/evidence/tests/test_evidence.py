@@ -677,7 +677,8 @@ def test_fmea_row_follows_the_verdicts_of_its_requirements(tmp_path):
     """REQ-EVD-031, REQ-EVD-027: an FMEA row is green only when it is current and every
     requirement it names is verified: a failed test of one of them makes the row (and the
     FMEA summary row) red 'failed', a test that did not run 'not run'; the page shows each
-    requirement's verdict beside the row."""
+    requirement's verdict beside the row.
+    Methods: 1b requirement verdicts passed, failed and not run; 1d a failed test behind a row."""
     full_inputs(tmp_path)
     _rc, data, rows = run(tmp_path, "--strict")
     assert rows["fmea"]["status"] == "PASS"
@@ -709,7 +710,8 @@ def test_fmea_row_follows_the_verdicts_of_its_requirements(tmp_path):
 def test_review_records_stale_or_unstamped_are_red(tmp_path):
     """REQ-EVD-031: a MISRA review record whose files changed since its review is stale: the
     review records row is red with STALE and the changed file named, and the section shows the
-    record red; a record without its digest is red 'unstamped'."""
+    record red; a record without its digest is red 'unstamped'.
+    Methods: 1d a review record whose file changed, a record without its digest."""
     full_inputs(tmp_path)
     _rc, data, rows = run(tmp_path)
     assert rows["reviews"]["status"] == "PASS"

@@ -94,7 +94,8 @@ def records(doc, root):
 def test_misra_record_stale_names_the_changed_file(tmp_path, capsys):
     """REQ-EVD-031: a review record carries the SHA-256 of the files its Scope names; after a
     change of one of them the record is stale and names the file (from the manifest), the
-    records that do not cover it stay current, and --check exits 1."""
+    records that do not cover it stay current, and --check exits 1.
+    Methods: 1d one covered file changed after the review: the record stale, the file named; 1b records that cover it and records that do not."""
     root = tree(tmp_path)
     rs.stamp("misra", str(root), date="2025-02-03")
     text = (root / "misra/reviews.md").read_text(encoding="utf-8")
@@ -124,7 +125,8 @@ def test_misra_record_stale_names_the_changed_file(tmp_path, capsys):
 
 def test_stamping_one_record_keeps_the_others_stale(tmp_path):
     """REQ-EVD-031: stamping the records named after their review leaves the others stale,
-    still naming the changed file (their manifest section is kept)."""
+    still naming the changed file (their manifest section is kept).
+    Methods: 1b the records stamped and those left unstamped after one change."""
     root = tree(tmp_path)
     rs.stamp("misra", str(root), date="2025-02-03")
     (root / "include/qfoc/a.h").write_text("#ifndef A_H\n#define A_H\nint qfoc_a_step(int y);\n#endif\n",
@@ -143,7 +145,8 @@ def test_stamping_one_record_keeps_the_others_stale(tmp_path):
 def test_record_without_digest_or_reviewer_is_refused(tmp_path, capsys):
     """REQ-EVD-031: a record without its Files digest, or without a Reviewed line with the date
     and the reviewer, is unstamped (never current); a Scope that names no file is invalid and
-    cannot be stamped; --check exits 1."""
+    cannot be stamped; --check exits 1.
+    Methods: 1d a record without its digest, without its Reviewed line, a Scope naming no file."""
     root = tree(tmp_path)
     _res, recs = records("misra", root)
     assert {r["state"] for r in recs.values()} == {"unstamped"}
@@ -171,7 +174,8 @@ def test_fmea_rows_follow_their_code_and_requirements(tmp_path):
     """REQ-EVD-031: an FMEA row covers the files that define or declare the identifiers of its
     block column and the requirement files of its evidence (a range names every ID in it); the
     stamp table and the Reviewed line are written; a change of the code, of a requirement file,
-    or of the function the block names makes the row stale, naming the cause."""
+    or of the function the block names makes the row stale, naming the cause.
+    Methods: 1b a change of the code, of a requirement file, of neither; 1c a requirement range."""
     root = tree(tmp_path)
     res, rows = records("fmea", root)
     assert {r["state"] for r in rows.values()} == {"unstamped"}
@@ -210,7 +214,8 @@ def test_fmea_rows_follow_their_code_and_requirements(tmp_path):
 def test_fmea_row_without_code_or_with_unknown_requirement_is_invalid(tmp_path):
     """REQ-EVD-031: a row whose block names nothing of the code, or whose evidence names a
     requirement that does not exist, is invalid, and the analysis without a Reviewed line is
-    unstamped."""
+    unstamped.
+    Methods: 1d a block naming no code, an unknown requirement, no Reviewed line."""
     root = tree(tmp_path)
     text = ANALYSIS.replace("| F-01 | `qfoc_a_step` in `d->x` |", "| F-01 | both entry points |")
     text = text.replace(f"| {X1} .. {X2} |", "| REQ-" + "X-009 |")
@@ -235,7 +240,8 @@ def test_repository_records_are_stamped_and_valid():
     """REQ-EVD-031: every record of misra/reviews.md and every FMEA row of
     specs/safety-analysis.md carries its digest and a Reviewed line with a date and a reviewer
     (a role, no commit identifier), and names files that exist; misra/reviews.md holds one
-    record per guideline whose plan names a review."""
+    record per guideline whose plan names a review.
+    Methods: 1a every record and row of the repository against REQ-EVD-031's stamp."""
     for doc in ("misra", "fmea"):
         res = rs.check(doc, str(REPO))
         assert res["present"] and not res["errors"], res["errors"]
@@ -254,7 +260,8 @@ def test_repository_records_are_stamped_and_valid():
 
 def test_repository_records_are_current_after_stamping(tmp_path):
     """REQ-EVD-031: a copy of the repository's records and the files they cover, stamped, is
-    current record by record; stamping it again changes nothing."""
+    current record by record; stamping it again changes nothing.
+    Methods: 1a the repository's records stamped in a copy: current, stamping again changes nothing."""
     for d in ("src", "include", "tables", "port_s32k", "specs/requirements"):
         shutil.copytree(REPO / d, tmp_path / d, ignore=shutil.ignore_patterns("fake", "__pycache__"))
     for rel in ("misra/reviews.md", "misra/reviews.sha256", "specs/safety-analysis.md",
@@ -280,7 +287,8 @@ def test_repository_records_are_current_after_stamping(tmp_path):
 
 def test_fmea_row_with_a_bar_in_a_cell_is_refused(tmp_path):
     """REQ-EVD-031: a row whose cells do not match its table (a '|' written inside a cell) is
-    named as an error, never silently left out; a bar written '\\|' is part of its cell."""
+    named as an error, never silently left out; a bar written '\\|' is part of its cell.
+    Methods: 1d a bar inside a cell (malformed row); 1c an escaped bar, the edge of the cell syntax."""
     root = tree(tmp_path)
     bad = ANALYSIS.replace("| value wrong | saturated |", "| value wrong | |x| saturated |")
     (root / "specs/safety-analysis.md").write_text(bad, encoding="utf-8")
