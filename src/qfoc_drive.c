@@ -622,6 +622,36 @@ static void drv_off(qfoc_drive_fast_t *f)
     f->i_dq.q = 0;
 }
 
+/* The fast half at the start of a controlled period: the state of a RUN entry when RUN
+   was entered, ALIGN follows CATCH (the rotor found standing) or CATCH starts again for
+   a start retry (REQ-DRV-027, REQ-SM-011); the sub-state remembered. */
+/*@
+  requires valid: \valid(f) && \valid_read(p);
+  requires sep: \separated(f, p);
+  requires inv: DRV_FAST(f);
+  assigns f->flux.psi_alpha, f->flux.psi_beta, f->flux.i_prev, f->pll.pi.integ,
+          f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed,
+          f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited,
+          f->phase, f->mech, f->u_last, f->u_applied, f->theta_ol, f->sub_last;
+  ensures inv: DRV_FAST(f);
+  ensures sub: f->sub_last == sub;
+*/
+static void drv_period_entry(qfoc_drive_fast_t *f, const qfoc_param_table_t *p, uint8_t sub)
+{
+    /* RUN entered, ALIGN after CATCH found the rotor standing, or CATCH again for a start
+       retry: from the state of a RUN entry.  The sub-state is stored before the restart:
+       a store after a conditional call leaves WP a goal over the joined memory. */
+    const bool restart = !f->active ||
+                         ((sub == QFOC_SUB_ALIGN) && (f->sub_last != QFOC_SUB_ALIGN)) ||
+                         ((sub == QFOC_SUB_CATCH) && (f->sub_last != QFOC_SUB_CATCH));
+    f->sub_last = sub;
+    if (restart) {
+        drv_fast_restart(f, p);
+    } else {
+        /* running on */
+    }
+}
+
 /* One controlled period in RUN (REQ-DRV-006). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
@@ -636,15 +666,7 @@ static void drv_off(qfoc_drive_fast_t *f)
 */
 static void drv_run_period(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
 {
-    if (!d->f.active || ((sub == QFOC_SUB_ALIGN) && (d->f.sub_last != QFOC_SUB_ALIGN)) ||
-        ((sub == QFOC_SUB_CATCH) && (d->f.sub_last != QFOC_SUB_CATCH))) {
-        /* RUN entered, ALIGN after CATCH found the rotor standing, or CATCH again for a
-           start retry: from the state of a RUN entry (REQ-DRV-027, REQ-SM-011) */
-        drv_fast_restart(&d->f, d->p);
-    } else {
-        /* running on */
-    }
-    d->f.sub_last = sub;
+    drv_period_entry(&d->f, d->p, sub);
     drv_control(d, sub, ff);
     drv_control_after(d, sub);
     d->f.active = true;
@@ -1993,6 +2015,25 @@ static void drv_init_fw(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
     (void)qfoc_fw_init(&s->fw, &fwp);
 }
 
+/* The state machine at initialisation: PRECHARGE for an accepted table, ERROR (PARAM)
+   for a refused one (REQ-DRV-001, REQ-SM-002). */
+/*@
+  requires valid: \valid(sm);
+  assigns *sm;
+  ensures inv: DRV_SM(sm);
+  ensures accepted: accepted == \true ==> sm->state == QFOC_STATE_PRECHARGE;
+  ensures refused: accepted == \false ==> sm->state == QFOC_STATE_ERROR;
+*/
+static void drv_init_sm(qfoc_sm_t *sm, bool accepted)
+{
+    qfoc_sm_init(sm);
+    if (!accepted) {
+        qfoc_sm_fail(sm, QFOC_FAULT_PARAM);
+    } else {
+        /* the table passed its check: PRECHARGE */
+    }
+}
+
 /* Tick data from the table (REQ-DRV-001). */
 /*@
   requires valid: \valid(s) && \valid_read(p);
@@ -2026,12 +2067,7 @@ static void drv_init_slow(qfoc_drive_slow_t *s, const qfoc_param_table_t *p, int
     tcp.speed_min = c->tc_speed_min;
     tcp.speed_max = c->tc_speed_max;
     tcp.pole_pairs = c->pole_pairs;
-    qfoc_sm_init(&s->sm);
-    if (st != QFOC_PARAMS_OK) {
-        qfoc_sm_fail(&s->sm, QFOC_FAULT_PARAM);
-    } else {
-        /* the table passed its check: PRECHARGE */
-    }
+    drv_init_sm(&s->sm, st == QFOC_PARAMS_OK);
     (void)qfoc_pi_init(&s->pi_speed, &p->pi_speed);
     drv_init_fw(s, p);
     (void)qfoc_trqcomp_init(&s->tc, &tcp);
