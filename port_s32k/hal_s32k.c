@@ -94,12 +94,16 @@ void qfoc_hal_pwm_write(const qfoc_pwm_t *pwm)
     } else {
         const uint32_t fms = s32k_read(S32K_FTM3_FMS);
         s32k_write(S32K_FTM3_OUTMASK, QFOC_S32K_PWM_CH_MASK);
-        /* A hardware trip is cleared only here: outputs masked, fault input inactive. */
-        if (((fms & S32K_FTM_FMS_FAULTF) != 0u) && ((fms & S32K_FTM_FMS_FAULTIN) == 0u)) {
+        /* A hardware trip is cleared only here, only once it was reported to the drive
+           (qfoc_hal_adc_read), with the outputs masked and the fault input inactive.  The
+           tick calls this function too (the second path to the safe state): before the
+           report it leaves the flag set, so the next fast step still sees the trip. */
+        if (((fms & S32K_FTM_FMS_FAULTF) != 0u) && ((fms & S32K_FTM_FMS_FAULTIN) == 0u) &&
+            s_hal.trip_reported) {
             s32k_write(S32K_FTM3_FMS, fms & ~S32K_FTM_FMS_FLAGS);
             s_hal.trip_reported = false;
         } else {
-            /* no flag, or the comparator still signals over-current */
+            /* no flag, the comparator still signals over-current, or not yet reported */
         }
     }
 }

@@ -348,6 +348,9 @@ static void drv_estimate(qfoc_drive_fast_t *f, const qfoc_ab_t *i_ab, const qfoc
   assigns *ref;
   ensures id: -32767 <= ref->d <= 32767;
   ensures iq: -32767 <= ref->q <= 32767;
+  ensures align: sub == QFOC_SUB_ALIGN ==> ref->q == 0;
+  ensures q_limit: sub != QFOC_SUB_ALIGN && sub != QFOC_SUB_OPEN_LOOP ==>
+                   (d->s.iq_lim > 0 ? -d->s.iq_lim <= ref->q <= d->s.iq_lim : ref->q == 0);
 */
 static bool drv_references(const qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff, qfoc_dq_t *ref)
 {

@@ -572,6 +572,40 @@ static void test_port_007_trip_reported_once_then_cleared(void **state)
     qfoc_s32k_isr_bind(NULL);
 }
 
+/* REQ-PORT-007: a hardware trip that the tick's write of the outputs off (REQ-PORT-017)
+   meets before the next fast step has reported it stays set: a short comparator pulse
+   (its input already inactive again) between two fast steps is still reported to the
+   drive, which latches OC; only then is the flag cleared.
+   Methods: 1d a trip between the two interrupts, the tick running first with the fault
+   input already inactive; 1l the comparator's fault flag set in the fake register file */
+static void test_port_007_trip_kept_until_reported(void **state)
+{
+    static qfoc_drive_t d;
+    const uint32_t wpen = S32K_FTM_FMS_WPEN;
+    const qfoc_pwm_t off = { { 0u, 0u, 0u }, false };
+    (void)state;
+    assert_int_equal(port_init_all(&qfoc_params_reference, QFOC_S32K_FTM_INT_RELOAD), QFOC_S32K_OK);
+    assert_int_equal(qfoc_drive_init(&d, &qfoc_params_reference), QFOC_PARAMS_OK);
+    qfoc_s32k_isr_bind(&d);
+    set_samples(2048u, 2048u, 2621u, 2048u, 2048u);
+    qfoc_s32k_adc_isr();
+    assert_false(d.f.trip);
+    assert_int_not_equal(d.s.sm.state, QFOC_STATE_RUN);   /* the tick writes the outputs off */
+    /* A short comparator pulse: flag latched, input inactive again. */
+    qfoc_fake_poke(S32K_FTM3_FMS, S32K_FTM_FMS_FAULTF | T_FTM_FMS_FAULTF0 | wpen);
+    qfoc_s32k_tick_isr();
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_OUTMASK), 0x3Fu);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_FMS), S32K_FTM_FMS_FAULTF | T_FTM_FMS_FAULTF0 | wpen);
+    qfoc_hal_pwm_write(&off);   /* any write before the report keeps it too */
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_FMS), S32K_FTM_FMS_FAULTF | T_FTM_FMS_FAULTF0 | wpen);
+    /* The next fast step sees the trip and latches OC; its write then clears the flag. */
+    qfoc_s32k_adc_isr();
+    assert_true(d.f.trip);
+    assert_false(d.f.out.enable);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_FMS), wpen);
+    qfoc_s32k_isr_bind(NULL);
+}
+
 /* ------------------------------------------------------------------ REQ-PORT-008 */
 
 /* REQ-PORT-008: compare values to the even channels, clamped to the period, loaded at
@@ -1431,6 +1465,7 @@ int main(void)
         cmocka_unit_test_setup(test_port_006_deadtime, setup),
         cmocka_unit_test_setup(test_port_007_fault_control, setup),
         cmocka_unit_test_setup(test_port_007_trip_reported_once_then_cleared, setup),
+        cmocka_unit_test_setup(test_port_007_trip_kept_until_reported, setup),
         cmocka_unit_test_setup(test_port_008_pwm_write, setup),
         cmocka_unit_test_setup(test_port_009_trigger_chain, setup),
         cmocka_unit_test_setup(test_port_009_adc_calibration_timeout, setup),

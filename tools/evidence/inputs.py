@@ -63,7 +63,7 @@ CURRENT, STALE, UNSTAMPED, MISSING = "current", "stale", "unstamped", "missing"
 # ----------------------------------------------------------------------------- the gates
 
 HEADERS = ["include/qfoc/*.h"]
-SOURCES = ["src/*.c"]
+SOURCES = ["src/*.c", "src/*.h"]
 ACSL = ["specs/*.acsl"]
 TABLES = ["tables/*.c", "tables/*.h"]
 SIM = ["sim/*.c", "sim/*.h"]
