@@ -17,11 +17,10 @@
 #include "qfoc/ramp.h"
 #include "qfoc_fast.h"
 #include "qfoc_drive_mon.h"
+#include "qfoc_drive_start.h"
 
 /** 1 / sqrt(3) in Q15: 0.57735 x 32768 = 18918.6 -> 18919. */
 #define DRV_INV_SQRT3 ((qfoc_q15_t)18919)
-/** ADC code to Q15 current: 2048 codes = I_base, so x 16. */
-#define DRV_I_PER_CODE ((int32_t)16)
 /** ADC code to Q15 DC bus: 4096 codes = V_base, so x 8. */
 #define DRV_V_PER_CODE ((int32_t)8)
 /** Largest offset-calibration shift (2^10 samples). */
@@ -30,12 +29,6 @@
 #define DRV_MS100_LAST ((uint8_t)99u)
 /** The table check's steps run at ms100 = 94 .. 98, one a tick, the verdict at 98. */
 #define DRV_SCAN_FIRST ((uint8_t)(DRV_MS100_LAST - QFOC_PARAMS_SCAN_STEPS))
-/** A quarter turn, 90 electrical degrees, in angle units. */
-#define DRV_QUARTER_TURN ((int32_t)16384)
-/* The current references move from ALIGN's d current to the I/f q current over at most
-   this many ticks (REQ-DRV-006): a step would overshoot the current loop and jerk a held
-   rotor; a ramp of a few current-loop time constants does neither. */
-#define DRV_OL_RAMP_MS ((int32_t)16)
 /** motorParaChange hysteresis: switch back below para_speed x 15/16. */
 #define DRV_HS_HYST_DIV ((int32_t)16)
 
@@ -67,7 +60,7 @@ static qfoc_q15_t drv_current(uint16_t code, uint16_t offset)
 {
     const int32_t c = (int32_t)drv_adc12(code);
     const int32_t o = (int32_t)drv_adc12(offset);
-    return qfoc_q15_sat((c - o) * DRV_I_PER_CODE);
+    return qfoc_q15_sat((c - o) * QFOC_DRIVE_I_PER_CODE);
 }
 
 /* Modular add of a non-negative increment to a 2^32-per-turn angle. */
@@ -99,24 +92,6 @@ static qfoc_angle_t drv_angle_shift(qfoc_angle_t theta, int32_t delta)
     return (qfoc_angle_t)s;
 }
 
-/* Signed difference a - b of two angles, in (-32768, 32767]. */
-/*@
-  assigns \nothing;
-  ensures range: -32768 <= \result <= 32767;
-*/
-static int32_t drv_angle_diff(qfoc_angle_t a, qfoc_angle_t b)
-{
-    int32_t d = (int32_t)a - (int32_t)b;
-    /*@ assert span: -65535 <= d <= 65535; */
-    if (d > 32767) {
-        d -= 65536;
-    } else if (d < -32768) {
-        d += 65536;
-    } else {
-        /* in range */
-    }
-    return d;
-}
 
 /* Angle advance of one sample at speed w: w x k_theta / 65536 (65536 per turn). */
 /*@
@@ -289,27 +264,6 @@ static void drv_restart_monitors(qfoc_drive_fast_t *f, const qfoc_param_table_t 
 {
     qfoc_phase_mon_reset(&f->phase);
     (void)qfoc_mech_init(&f->mech, p->drive.pole_pairs, 0u);
-}
-
-/*@
-  requires valid: \valid(f) && \valid_read(p);
-  requires sep: \separated(f, p);
-  requires inv: DRV_FAST(f);
-  assigns f->flux.psi_alpha, f->flux.psi_beta, f->flux.i_prev, f->pll.pi.integ,
-          f->pll.pi.limited, f->pll.speed_lpf.state, f->pll.theta_acc, f->pll.speed,
-          f->pi_id.integ, f->pi_id.limited, f->pi_iq.integ, f->pi_iq.limited,
-          f->phase, f->mech, f->u_last, f->u_applied, f->theta_ol;
-  ensures inv: DRV_FAST(f);
-*/
-static void drv_fast_restart(qfoc_drive_fast_t *f, const qfoc_param_table_t *p)
-{
-    const qfoc_ab_t zero = { 0, 0 };
-    drv_restart_estimator(f);
-    drv_restart_current(f);
-    drv_restart_monitors(f, p);
-    f->u_last = zero;
-    f->u_applied = zero;
-    f->theta_ol = 0u;
 }
 
 /* Estimator: flux observer and PLL on this period's currents and the voltage applied
@@ -649,7 +603,13 @@ static void drv_period_entry(qfoc_drive_fast_t *f, const qfoc_param_table_t *p, 
                          ((sub == QFOC_SUB_CATCH) && (f->sub_last != QFOC_SUB_CATCH));
     f->sub_last = sub;
     if (restart) {
-        drv_fast_restart(f, p);
+        const qfoc_ab_t zero = { 0, 0 };
+        drv_restart_estimator(f);
+        drv_restart_current(f);
+        drv_restart_monitors(f, p);
+        f->u_last = zero;
+        f->u_applied = zero;
+        f->theta_ol = 0u;
     } else {
         /* running on */
     }
@@ -823,191 +783,6 @@ static uint16_t drv_calibrate(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
     return fault;
 }
 
-/* Samples of 2 ms of fast steps: a current code unchanged that long is stuck. */
-#define DRV_STUCK_MS 2u
-
-/* Whether a healthy phase current can hold one code for DRV_STUCK_MS (REQ-DRV-020).  A
-   noise-free sinusoid of amplitude A codes at electrical speed w holds a code longest at its
-   peak, for at most 2 acos(1 - 1/A) / w; that is below the window T = DRV_STUCK_MS when
-   A (1 - cos(w T / 2)) > 1.  The monitor judges only where A (1 - cos(w T / 2)) >= 3/2: the
-   sampled run ends up to one period after the dwell (a factor 1.14 at 8 kHz and 50 Hz), and
-   A is taken as max(|i_d|, |i_q|) <= |i_dq|, never above the amplitude.  In Q15 counts of
-   current (16 per code): i (1 - cos) / 2 >= 12, the product rounded by qfoc_q15_mul.  Inside the
-   table's dead band (svpwm.i_deadband) the current is no sinusoid: the dead time clamps it
-   near its zero crossings, where it holds the zero code longer; the monitor judges only
-   from there up.  The angle w T / 2
-   is |speed_f| k_theta per period (2^32 per turn) over half the window, at most half a turn
-   (from there a period is shorter than the window). */
-/*@
-  requires valid: \valid_read(d) && \valid_read(d->p);
-  assigns \nothing;
-*/
-static bool drv_stuck_judged(const qfoc_drive_t *d)
-{
-    const qfoc_drive_fast_t *const f = &d->f;
-    /* f_pwm <= 65535: at most 65 periods in half the window */
-    const uint32_t half32 = ((uint32_t)d->p->f_pwm_hz / 1000u) * (DRV_STUCK_MS / 2u);
-    const uint64_t half = (uint64_t)half32;
-    const uint64_t inc = (uint64_t)drv_ol_increment(qfoc_q15_abs(f->speed_f), d->p->pll.k_theta);
-    /* inc <= 32767^2 < 2^30, x 65: < 2^37 in uint64; in 2^16 per turn */
-    const uint64_t th16 = (inc * half) / 65536u;
-    const qfoc_angle_t th = (th16 >= 32768u) ? (qfoc_angle_t)32768u : (qfoc_angle_t)th16;
-    const int32_t ad = (int32_t)qfoc_q15_abs(f->i_dq.d);
-    const int32_t aq = (int32_t)qfoc_q15_abs(f->i_dq.q);
-    const int32_t i_pk = (ad > aq) ? ad : aq;
-    qfoc_sincos_t sc;
-    qfoc_q15_t half_vers;
-    qfoc_q15_t crit;
-    qfoc_sincos(th, &sc);
-    /* (1 - cos) / 2 in Q15: (32768 - cos) / 2, cos in -32767 .. 32767 */
-    half_vers = (qfoc_q15_t)((32768 - (int32_t)sc.cosine) / 2);
-    /* i (1 - cos) / 2 >= 12 Q15 counts: A (1 - cos) >= 3/2 with A = i / 16 codes */
-    crit = qfoc_q15_mul((qfoc_q15_t)i_pk, half_vers);
-    return (crit >= (qfoc_q15_t)((3 * DRV_I_PER_CODE) / 4)) &&
-           (i_pk >= (int32_t)d->p->svpwm.i_deadband);
-}
-
-/* The stuck-sample monitor (REQ-DRV-020): in CLOSED_LOOP and STOPPING, while the stall
-   condition is false and the current is one a healthy phase cannot hold on a code for the
-   window (drv_stuck_judged), one current code unchanged for DRV_STUCK_MS ms of fast steps
-   while the other's moved gives OFFSET.  Read while the fast step may pre-empt: each count is one
-   16-bit word. */
-/*@
-  requires valid: \valid_read(d) && \valid_read(d->p);
-  assigns \nothing;
-*/
-static bool drv_sensor_fault(const qfoc_drive_t *d)
-{
-    const qfoc_drive_fast_t *const f = &d->f;
-    const qfoc_param_table_t *const p = d->p;
-    const uint8_t sub = d->s.sm.sub;
-    const bool closed = (d->s.sm.state == QFOC_STATE_RUN) &&
-                        ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
-    /* f_pwm <= 65535: at most 65 x DRV_STUCK_MS samples */
-    const uint32_t n_stuck = ((uint32_t)p->f_pwm_hz / 1000u) * DRV_STUCK_MS;
-    const bool still_u = ((uint32_t)f->same_u >= n_stuck);
-    const bool still_v = ((uint32_t)f->same_v >= n_stuck);
-    /* one channel still while the other moves: where a healthy current is slowest (its
-       peak), the other phase's is near its steepest */
-    const bool stuck = (still_u && !still_v) || (still_v && !still_u);
-    /* not while the stall condition holds (db_stall counting): a rotor at standstill
-       carries a DC current, which STALL reports */
-    const bool rotating = (d->s.db_stall.count == 0u);
-    return closed && rotating && stuck && drv_stuck_judged(d);
-}
-
-/* The timing monitor (REQ-DRV-021): in RUN, the fast steps since the previous tick against
-   f_pwm / 1000 a tick, 2 either side for the phase of the two interrupts and their
-   latencies.  n_fast is one 16-bit word the fast step writes; the difference is taken
-   mod 2^16.  Records the count for the next tick. */
-/*@
-  requires valid: \valid(d) && \valid_read(d->p);
-  requires sep: \separated(&d->s, d->p);
-  assigns d->s.fast_seen;
-  ensures seen: d->s.fast_seen == d->f.n_fast;
-*/
-static bool drv_timing_fault(qfoc_drive_t *d)
-{
-    const uint32_t n = (uint32_t)d->f.n_fast;
-    const uint32_t steps = (n + 65536u - (uint32_t)d->s.fast_seen) & 0xFFFFu;
-    const uint32_t f_pwm = (uint32_t)d->p->f_pwm_hz;
-    const uint32_t lo = f_pwm / 1000u;
-    const uint32_t hi = (f_pwm + 999u) / 1000u;
-    const bool run = (d->s.sm.state == QFOC_STATE_RUN);
-    d->s.fast_seen = (uint16_t)n;
-    return run && (((steps + 2u) < lo) || (steps > (hi + 2u)));
-}
-
-/* Handover condition (REQ-DRV-006).  The I/f current lies on the q axis of the open-loop
-   frame; with the load torque T the rotor settles where K i cos(delta) = T, delta =
-   theta_ol - theta_est in [-90 deg, 0]: -90 deg without load (the rotor's d axis on the
-   current), towards 0 as the load grows; past 0 the rotor falls behind the frame and
-   slips (delta sweeps through +180 deg).  The observer has converged on a rotor that
-   follows the frame when, for ho_dwell_ms: the I/f ramp has reached the handover speed
-   of_speed (the minimum speed: below it the back-EMF is not known to dominate the
-   inverter's voltage error), the filtered estimated speed is within 1/4 of
-   the frame speed, the flux magnitude is at least the PLL's mag_min, and
-   -(90 deg + ho_angle) < delta < ho_angle.  delta is not required to be small: a
-   pulsating load swings it by tens of degrees; the transfer presets the speed PI with
-   the rotor's torque. */
-/*@
-  requires valid: \valid(s) && \valid_read(f) && \valid_read(p);
-  requires sep: \separated(s, f, p);
-  assigns s->db_ho;
-*/
-static bool drv_converged(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
-                          const qfoc_param_table_t *p, bool open_loop)
-{
-    const int32_t wol = (int32_t)s->ol_speed;
-    const int32_t ew = (int32_t)f->speed_f - wol;
-    const int32_t tol = ((wol > 0) ? wol : (int32_t)0) / 4;
-    const int32_t dth = drv_angle_diff((qfoc_angle_t)(f->theta_ol / 65536u), f->theta_est);
-    const int32_t ho = (int32_t)p->drive.ho_angle;
-    const bool speed_ok = (ew <= tol) && (ew >= -tol);
-    const bool mag_ok = (f->psi_mag >= p->pll.mag_min);
-    const bool angle_ok = (dth < ho) && (dth > -(DRV_QUARTER_TURN + ho));
-    /* the minimum speed: the I/f ramp has reached the handover speed */
-    const bool ramp_done = (s->ol_speed >= qfoc_q15_abs(p->drive.of_speed));
-    return qfoc_debounce_step(&s->db_ho,
-                              open_loop && ramp_done && speed_ok && mag_ok && angle_ok,
-                              p->drive.ho_dwell_ms);
-}
-
-/* The I/f start current of a start (REQ-SM-011): |i_start| raised by a quarter of itself
-   per retry taken, at most |i_max| (which the table's check keeps at or above |i_start|). */
-/*@
-  requires valid: \valid_read(p);
-  assigns \nothing;
-  ensures range: 0 <= \result <= 32767;
-*/
-static qfoc_q15_t drv_start_current(const qfoc_param_table_t *p, uint8_t retry)
-{
-    const int32_t i0 = (int32_t)qfoc_q15_abs(p->drive.i_start);
-    const int32_t im = (int32_t)qfoc_q15_abs(p->i_max);
-    const int32_t i = i0 + ((i0 * (int32_t)retry) / 4);
-    return (qfoc_q15_t)((i <= im) ? i : im);
-}
-
-/* Bumpless transfer (REQ-DRV-006): the q current that gives, with i_d = 0, the torque
-   the rotor produces at the end of OPEN_LOOP.  The I/f current i lies on the q axis of
-   the open-loop frame, delta = theta_ol - theta_est ahead of the rotor: in the rotor frame
-   i_d = -i sin(delta), i_q = i cos(delta), and the torque 3/2 n_p i_q (psi_f + (L_d - L_q) i_d)
-   equals 3/2 n_p psi_f i_q' for i_q' = i_q (psi_f + (L_d - L_q) i_d) / psi_f. */
-/*@
-  requires valid: \valid_read(d) && \valid_read(d->p);
-  assigns \nothing;
-*/
-static qfoc_q15_t drv_bumpless_iq(const qfoc_drive_t *d)
-{
-    const qfoc_param_table_t *const p = d->p;
-    const int32_t dth = drv_angle_diff((qfoc_angle_t)(d->f.theta_ol / 65536u), d->f.theta_est);
-    const int32_t i_max = (int32_t)qfoc_q15_abs(p->i_max);
-    qfoc_sincos_t sc;
-    int32_t iq;
-    const int32_t a = dth + 65536;
-    qfoc_sincos((qfoc_angle_t)((uint32_t)a & 0xFFFFu), &sc);
-    {
-        const qfoc_q15_t i = qfoc_q15_sat((int32_t)d->s.iq_ref);
-        const qfoc_q15_t id_r = qfoc_q15_neg(qfoc_q15_mul(i, sc.sine));
-        const qfoc_q15_t iq_r = qfoc_q15_mul(i, sc.cosine);
-        const qfoc_q15_t dl = qfoc_q15_sat((int32_t)p->ld - (int32_t)p->lq);
-        const qfoc_q15_t psi_act = qfoc_q15_add(p->psi_f, qfoc_drive_li((int16_t)dl, id_r));
-        if (p->psi_f > 0) {
-            iq = ((int32_t)iq_r * (int32_t)psi_act) / (int32_t)p->psi_f;
-        } else {
-            iq = (int32_t)iq_r;
-        }
-    }
-    if (iq > i_max) {
-        iq = i_max;
-    } else if (iq < -i_max) {
-        iq = -i_max;
-    } else {
-        /* within the current limit */
-    }
-    return (qfoc_q15_t)iq;
-}
-
 /* Actions on a state or sub-state change (REQ-DRV-006). */
 /*@
   requires valid: \valid(d) && \valid_read(d->p);
@@ -1091,7 +866,7 @@ static void drv_on_transition(qfoc_drive_t *d, uint8_t old_state, uint8_t old_su
         /* speed reference from the estimate, within [0, speed_max] */
         s->speed_ref = qfoc_ramp_toward(0, (d->f.speed_f > 0) ? d->f.speed_f : (qfoc_q15_t)0,
                                         qfoc_q15_abs(p->speed_max));
-        s->iq_ref = drv_bumpless_iq(d);
+        s->iq_ref = qfoc_drive_start_bumpless_iq(d);
         /* the whole current limit until the tick's first MTPA / field-weakening step */
         s->iq_lim = qfoc_q15_abs(p->i_max);
         qfoc_pi_reset(&s->pi_speed, s->iq_ref);
@@ -1154,65 +929,7 @@ static void drv_iref(qfoc_drive_t *d)
     }
 }
 
-/* OPEN_LOOP's references (REQ-DRV-006): the d current to 0 and the q current to the
-   start current, each by ceil(i_max / DRV_OL_RAMP_MS) per tick (i_start <= i_max,
-   i_align <= i_max), and the I/f frame speed to of_speed at of_accel. */
-/*@
-  requires valid: \valid(s) && \valid_read(p);
-  requires sep: \separated(s, p);
-  assigns s->id_ref, s->iq_ref, s->ol_speed;
-*/
-static void drv_open_loop_refs(qfoc_drive_slow_t *s, const qfoc_param_table_t *p)
-{
-    const int32_t im = (int32_t)qfoc_q15_abs(p->i_max);
-    const qfoc_q15_t step = qfoc_q15_sat((im + DRV_OL_RAMP_MS - 1) / DRV_OL_RAMP_MS);
-    s->id_ref = qfoc_ramp_toward(s->id_ref, 0, step);
-    s->iq_ref = qfoc_ramp_toward(s->iq_ref, drv_start_current(p, s->sm.retry), step);
-    s->ol_speed = qfoc_ramp_toward(s->ol_speed, qfoc_q15_abs(p->drive.of_speed),
-                                   p->drive.of_accel);
-}
 
-/* ALIGN's d reference (REQ-DRV-006, REQ-DRV-026). */
-/*@
-  requires valid: \valid(d) && \valid_read(d->p);
-  requires sep: \separated(&d->s, d->p);
-  assigns d->s.id_ref, d->s.dt_u, d->s.dt_u0, d->s.dt_u1;
-*/
-static void drv_align_refs(qfoc_drive_t *d)
-{
-    qfoc_drive_slow_t *const s = &d->s;
-    const qfoc_drive_cfg_t *const c = &d->p->drive;
-    /* d-current ramp over the first half of align_ms, hold to three quarters, then half
-       the current for the last quarter: the d voltages at five and seven eighths and
-       at the end of the full-current hold are kept for the learning of the inverter's
-       error (REQ-DRV-026) */
-    const int32_t half = (int32_t)c->align_ms / 2;
-    const uint32_t q3 = ((uint32_t)c->align_ms * 3u) / 4u;
-    const uint32_t t = (uint32_t)s->sm.t_sub;
-    const qfoc_q15_t u_now = qfoc_q15_sat(d->f.pi_id.integ / 65536);
-    const int32_t ia = (int32_t)qfoc_q15_abs(c->i_align);
-    /* the ramp's step, ceil(ia / half), at most ia: saturated, a no-op the proof
-       needs no division bound for */
-    const qfoc_q15_t step = qfoc_q15_sat((half > 0) ? ((ia + half - 1) / half) : ia);
-    const qfoc_q15_t lo = (qfoc_q15_t)(ia / 2);
-    if (t == (((uint32_t)c->align_ms * 5u) / 8u)) {
-        s->dt_u0 = u_now;
-    } else if (t == (((uint32_t)c->align_ms * 7u) / 8u)) {
-        s->dt_u1 = u_now;
-    } else {
-        /* no eighth */
-    }
-    if ((t < q3) || ((s->id_ref != lo) && (s->id_ref != (qfoc_q15_t)ia))) {
-        /* the ramp and the full-current hold (also a ramp not done by three quarters,
-           which only a table changed after the start can give) */
-        s->id_ref = qfoc_ramp_toward(s->id_ref, (qfoc_q15_t)ia, step);
-    } else if (s->id_ref == (qfoc_q15_t)ia) {
-        s->dt_u = u_now;
-        s->id_ref = lo;
-    } else {
-        /* the half-current hold */
-    }
-}
 
 /* CLOSED_LOOP's and STOPPING's references: the speed ramp, the speed loop, the reference
    block and the torque compensation's learning (REQ-DRV-006, REQ-DRV-009). */
@@ -1278,9 +995,9 @@ static void drv_run(qfoc_drive_t *d)
         /* nothing runs; CATCH keeps the zero references and the zero q limit of RUN
            entry (zero-current control, REQ-DRV-027) */
     } else if (sub == QFOC_SUB_ALIGN) {
-        drv_align_refs(d);
+        qfoc_drive_start_align(d);
     } else if (sub == QFOC_SUB_OPEN_LOOP) {
-        drv_open_loop_refs(s, d->p);
+        qfoc_drive_start_open_loop(s, d->p);
     } else {
         drv_closed_refs(d);
     }
@@ -1494,9 +1211,9 @@ static void drv_sm_inputs(qfoc_drive_t *d, uint16_t faults, uint8_t old_state,
     s->sm_in.link_lost = qfoc_link_lost(&s->link);
     s->sm_in.fault_clear = s->cmd.fault_clear;
     s->sm_in.table_ok = s->table_ok;
-    s->sm_in.converged = drv_converged(s, &d->f, p,
-                                       (old_state == QFOC_STATE_RUN) &&
-                                       (old_sub == QFOC_SUB_OPEN_LOOP));
+    s->sm_in.converged = qfoc_drive_start_converged(s, &d->f, p,
+                                                    (old_state == QFOC_STATE_RUN) &&
+                                                    (old_sub == QFOC_SUB_OPEN_LOOP));
     of_speed = qfoc_q15_abs(c->of_speed);
     s->sm_in.stop_reached = (old_sub == QFOC_SUB_STOPPING) && (s->speed_ref <= of_speed);
     /* flying start (REQ-DRV-027): CATCH's verdict on the zero-current loops' voltage and
@@ -1588,8 +1305,8 @@ static bool drv_tick_in(qfoc_drive_t *d, const qfoc_tick_in_t *in, uint8_t old_s
         const uint16_t cal = drv_calibrate(s, &d->f, c,
                                            (old_state == QFOC_STATE_PRECHARGE) &&
                                            (old_sub == QFOC_SUB_CALIB));
-        const bool sensor = drv_sensor_fault(d);
-        const bool timing = drv_timing_fault(d);
+        const bool sensor = qfoc_drive_mon_sensor(d);
+        const bool timing = qfoc_drive_mon_timing(d);
         if ((cal != 0u) || sensor) {
             faults = (uint16_t)(faults + QFOC_FAULT_OFFSET);
         } else {

@@ -1,15 +1,65 @@
 /**
  * @file qfoc_drive_mon.c
- * @brief The drive's tick-evaluated monitors (drive.h, REQ-DRV-008, REQ-DRV-023,
- *        REQ-DRV-025): the bus and temperature thresholds, the fast step's new
- *        over-current trips, stall and the flux plausibility check, phase loss and ALIGN
- *        without current, the table's last check.  The tick (qfoc_drive.c) calls
- *        qfoc_drive_mon_tick() once a millisecond, before the state machine.
+ * @brief The drive's tick-evaluated monitors (drive.h, REQ-DRV-008, REQ-DRV-020,
+ *        REQ-DRV-021, REQ-DRV-023, REQ-DRV-025): the bus and temperature thresholds, the
+ *        fast step's new over-current trips, stall and the flux plausibility check, phase
+ *        loss and ALIGN without current, the table's last check, the stuck current sample
+ *        and the fast step's rate.  The tick (qfoc_drive.c) calls qfoc_drive_mon_tick(),
+ *        qfoc_drive_mon_sensor() and qfoc_drive_mon_timing() once a millisecond, before
+ *        the state machine.
  */
 #include "qfoc/drive.h"
 #include "qfoc/q15.h"
+#include "qfoc/trig.h"
 #include "qfoc/vector.h"
 #include "qfoc_drive_mon.h"
+
+/* Samples of 2 ms of fast steps: a current code unchanged that long is stuck. */
+#define DRV_STUCK_MS 2u
+
+/* Whether a healthy phase current can hold one code for DRV_STUCK_MS (REQ-DRV-020).  A
+   noise-free sinusoid of amplitude A codes at electrical speed w holds a code longest at its
+   peak, for at most 2 acos(1 - 1/A) / w; that is below the window T = DRV_STUCK_MS when
+   A (1 - cos(w T / 2)) > 1.  The monitor judges only where A (1 - cos(w T / 2)) >= 3/2: the
+   sampled run ends up to one period after the dwell (a factor 1.14 at 8 kHz and 50 Hz), and
+   A is taken as max(|i_d|, |i_q|) <= |i_dq|, never above the amplitude.  In Q15 counts of
+   current (16 per code): i (1 - cos) / 2 >= 12, the product rounded by qfoc_q15_mul.  Inside the
+   table's dead band (svpwm.i_deadband) the current is no sinusoid: the dead time clamps it
+   near its zero crossings, where it holds the zero code longer; the monitor judges only
+   from there up.  The angle w T / 2
+   is |speed_f| k_theta per period (2^32 per turn) over half the window, at most half a turn
+   (from there a period is shorter than the window). */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p);
+  assigns \nothing;
+*/
+static bool mon_stuck_judged(const qfoc_drive_t *d)
+{
+    const qfoc_drive_fast_t *const f = &d->f;
+    /* f_pwm <= 65535: at most 65 periods in half the window */
+    const uint32_t half32 = ((uint32_t)d->p->f_pwm_hz / 1000u) * (DRV_STUCK_MS / 2u);
+    const uint64_t half = (uint64_t)half32;
+    /* the angle per period, |speed_f| x k_theta (2^32 per turn), each factor at most 32767 */
+    const uint32_t k_theta = (uint32_t)d->p->pll.k_theta;
+    const uint32_t k = (k_theta > 32767u) ? 32767u : k_theta;
+    const uint64_t inc = (uint64_t)qfoc_q15_abs(f->speed_f) * (uint64_t)k;
+    /* inc <= 32767^2 < 2^30, x 65: < 2^37 in uint64; in 2^16 per turn */
+    const uint64_t th16 = (inc * half) / 65536u;
+    const qfoc_angle_t th = (th16 >= 32768u) ? (qfoc_angle_t)32768u : (qfoc_angle_t)th16;
+    const int32_t ad = (int32_t)qfoc_q15_abs(f->i_dq.d);
+    const int32_t aq = (int32_t)qfoc_q15_abs(f->i_dq.q);
+    const int32_t i_pk = (ad > aq) ? ad : aq;
+    qfoc_sincos_t sc;
+    qfoc_q15_t half_vers;
+    qfoc_q15_t crit;
+    qfoc_sincos(th, &sc);
+    /* (1 - cos) / 2 in Q15: (32768 - cos) / 2, cos in -32767 .. 32767 */
+    half_vers = (qfoc_q15_t)((32768 - (int32_t)sc.cosine) / 2);
+    /* i (1 - cos) / 2 >= 12 Q15 counts: A (1 - cos) >= 3/2 with A = i / 16 codes */
+    crit = qfoc_q15_mul((qfoc_q15_t)i_pk, half_vers);
+    return (crit >= (qfoc_q15_t)((3 * QFOC_DRIVE_I_PER_CODE) / 4)) &&
+           (i_pk >= (int32_t)d->p->svpwm.i_deadband);
+}
 
 /* public interface of the unit (qfoc_drive_mon.h) */
 qfoc_q15_t qfoc_drive_li(int16_t l, qfoc_q15_t i)
@@ -294,4 +344,45 @@ uint16_t qfoc_drive_mon_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
     const uint16_t w_motor = drv_faults_motor(d);
 
     return (uint16_t)(w_power + w_motor);
+}
+
+/* The stuck-sample monitor (REQ-DRV-020): in CLOSED_LOOP and STOPPING, while the stall
+   condition is false and the current is one a healthy phase cannot hold on a code for the
+   window (mon_stuck_judged), one current code unchanged for DRV_STUCK_MS ms of fast steps
+   while the other's moved gives OFFSET.  Read while the fast step may pre-empt: each count is one
+   16-bit word. */
+bool qfoc_drive_mon_sensor(const qfoc_drive_t *d)
+{
+    const qfoc_drive_fast_t *const f = &d->f;
+    const qfoc_param_table_t *const p = d->p;
+    const uint8_t sub = d->s.sm.sub;
+    const bool closed = (d->s.sm.state == QFOC_STATE_RUN) &&
+                        ((sub == QFOC_SUB_CLOSED_LOOP) || (sub == QFOC_SUB_STOPPING));
+    /* f_pwm <= 65535: at most 65 x DRV_STUCK_MS samples */
+    const uint32_t n_stuck = ((uint32_t)p->f_pwm_hz / 1000u) * DRV_STUCK_MS;
+    const bool still_u = ((uint32_t)f->same_u >= n_stuck);
+    const bool still_v = ((uint32_t)f->same_v >= n_stuck);
+    /* one channel still while the other moves: where a healthy current is slowest (its
+       peak), the other phase's is near its steepest */
+    const bool stuck = (still_u && !still_v) || (still_v && !still_u);
+    /* not while the stall condition holds (db_stall counting): a rotor at standstill
+       carries a DC current, which STALL reports */
+    const bool rotating = (d->s.db_stall.count == 0u);
+    return closed && rotating && stuck && mon_stuck_judged(d);
+}
+
+/* The timing monitor (REQ-DRV-021): in RUN, the fast steps since the previous tick against
+   f_pwm / 1000 a tick, 2 either side for the phase of the two interrupts and their
+   latencies.  n_fast is one 16-bit word the fast step writes; the difference is taken
+   mod 2^16.  Records the count for the next tick. */
+bool qfoc_drive_mon_timing(qfoc_drive_t *d)
+{
+    const uint32_t n = (uint32_t)d->f.n_fast;
+    const uint32_t steps = (n + 65536u - (uint32_t)d->s.fast_seen) & 0xFFFFu;
+    const uint32_t f_pwm = (uint32_t)d->p->f_pwm_hz;
+    const uint32_t lo = f_pwm / 1000u;
+    const uint32_t hi = (f_pwm + 999u) / 1000u;
+    const bool run = (d->s.sm.state == QFOC_STATE_RUN);
+    d->s.fast_seen = (uint16_t)n;
+    return run && (((steps + 2u) < lo) || (steps > (hi + 2u)));
 }

@@ -3,13 +3,16 @@
  * @brief Internal interface between the drive (qfoc_drive.c) and its tick-evaluated
  *        monitors (qfoc_drive_mon.c); not part of the public API.
  *
- * Requirements: REQ-DRV-008, REQ-DRV-023, REQ-DRV-025.
+ * Requirements: REQ-DRV-008, REQ-DRV-020, REQ-DRV-021, REQ-DRV-023, REQ-DRV-025.
  */
 #ifndef QFOC_DRIVE_MON_H
 #define QFOC_DRIVE_MON_H
 
 #include "qfoc/drive.h"
 #include "qfoc/q15.h"
+
+/** ADC code to Q15 current: 2048 codes = I_base, so x 16 (the drive's samples). */
+#define QFOC_DRIVE_I_PER_CODE ((int32_t)16)
 
 /**
  * @brief An inductance times a current: L (Q12 of L_base) x i (Q15 of I_base) -> Q15 flux
@@ -39,5 +42,32 @@ qfoc_q15_t qfoc_drive_li(int16_t l, qfoc_q15_t i);
   ensures bits: \result <= QFOC_FAULT_ALL - QFOC_FAULT_OFFSET - QFOC_FAULT_TIMING;
 */
 uint16_t qfoc_drive_mon_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
+
+/**
+ * @brief The stuck-sample monitor (REQ-DRV-020): in CLOSED_LOOP and STOPPING, while the stall
+ *        condition is false and the current is one a healthy phase cannot hold on a code for
+ *        the window, one current code unchanged for 2 ms of fast steps while the other's
+ *        moved gives OFFSET.  Read while the fast step may pre-empt: each count is one 16-bit
+ *        word.
+ */
+/*@
+  requires valid: \valid_read(d) && \valid_read(d->p);
+  assigns \nothing;
+*/
+bool qfoc_drive_mon_sensor(const qfoc_drive_t *d);
+
+/**
+ * @brief The timing monitor (REQ-DRV-021): in RUN, the fast steps since the previous tick
+ *        against f_pwm / 1000 a tick, 2 either side for the phase of the two interrupts and
+ *        their latencies.  n_fast is one 16-bit word the fast step writes; the difference is
+ *        taken mod 2^16.  Records the count for the next tick.
+ */
+/*@
+  requires valid: \valid(d) && \valid_read(d->p);
+  requires sep: \separated(&d->s, d->p);
+  assigns d->s.fast_seen;
+  ensures seen: d->s.fast_seen == d->f.n_fast;
+*/
+bool qfoc_drive_mon_timing(qfoc_drive_t *d);
 
 #endif /* QFOC_DRIVE_MON_H */

@@ -136,7 +136,7 @@ FIGURES = [
     (TCJ, "build/trace/trace.md: {req.count} requirements, {trace.with_tests} with tests, "
           "{trace.with_cbmc} with CBMC harnesses"),
     (README, "**{robust.successes} of {robust.count} starts succeed**"),
-    (README, "all {wp.drive_goals} goals of `src/qfoc_drive.c` and `src/qfoc_drive_mon.c`"),
+    (README, "all {wp.drive_goals} goals of `src/qfoc_drive.c`, `src/qfoc_drive_mon.c` and `src/qfoc_drive_start.c`"),
     (README, "`tests/test_port.c` ({tests.port} tests)"),
     (README, "({tt.groups} groups, {tt.vectors} vectors:"),
     (README, "{tests.cmocka} passed, {junit.failed} failed ({tests.cmocka_files} CMocka executables"),
@@ -267,7 +267,7 @@ def values(root="."):
     put("wp.proved", sum(int(r[3]) for r in wp) if wp else None, src)
     put("wp.units", len({r[0] for r in wp}) if wp else None, src)
     put("wp.iref_goals", sum(int(r[2]) for r in wp if r[0] == "qfoc_iref") if wp else None, src)
-    put("wp.drive_goals", sum(int(r[2]) for r in wp if r[0] in ("qfoc_drive", "qfoc_drive_mon"))
+    put("wp.drive_goals", sum(int(r[2]) for r in wp if r[0] in ("qfoc_drive", "qfoc_drive_mon", "qfoc_drive_start"))
         if wp else None, src)
     cb = _md_rows(_read(root, "proofs/cbmc/results.md"), 6)
     src = "proofs/cbmc/results.md"
