@@ -50,6 +50,21 @@ static int32_t drv_product(qfoc_q15_t a, qfoc_q15_t b)
     return (int32_t)a * (int32_t)b;
 }
 
+/* The I/f start current of a start (REQ-SM-011): |i_start| raised by a quarter of itself
+   per retry taken, at most |i_max| (which the table's check keeps at or above |i_start|). */
+/*@
+  requires valid: \valid_read(p);
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+*/
+static qfoc_q15_t drv_start_current(const qfoc_param_table_t *p, uint8_t retry)
+{
+    const int32_t i0 = (int32_t)qfoc_q15_abs(p->drive.i_start);
+    const int32_t im = (int32_t)qfoc_q15_abs(p->i_max);
+    const int32_t i = i0 + ((i0 * (int32_t)retry) / 4);
+    return (qfoc_q15_t)((i <= im) ? i : im);
+}
+
 /* public interface of the unit (qfoc_drive_start.h) */
 bool qfoc_drive_start_converged(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f,
                                 const qfoc_param_table_t *p, bool open_loop)
@@ -67,14 +82,6 @@ bool qfoc_drive_start_converged(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f
     return qfoc_debounce_step(&s->db_ho,
                               open_loop && ramp_done && speed_ok && mag_ok && angle_ok,
                               p->drive.ho_dwell_ms);
-}
-
-qfoc_q15_t qfoc_drive_start_current(const qfoc_param_table_t *p, uint8_t retry)
-{
-    const int32_t i0 = (int32_t)qfoc_q15_abs(p->drive.i_start);
-    const int32_t im = (int32_t)qfoc_q15_abs(p->i_max);
-    const int32_t i = i0 + ((i0 * (int32_t)retry) / 4);
-    return (qfoc_q15_t)((i <= im) ? i : im);
 }
 
 qfoc_q15_t qfoc_drive_start_bumpless_iq(const qfoc_drive_t *d)
@@ -113,7 +120,7 @@ void qfoc_drive_start_open_loop(qfoc_drive_slow_t *s, const qfoc_param_table_t *
     const int32_t im = (int32_t)qfoc_q15_abs(p->i_max);
     const qfoc_q15_t step = qfoc_q15_sat((im + DRV_OL_RAMP_MS - 1) / DRV_OL_RAMP_MS);
     s->id_ref = qfoc_ramp_toward(s->id_ref, 0, step);
-    s->iq_ref = qfoc_ramp_toward(s->iq_ref, qfoc_drive_start_current(p, s->sm.retry), step);
+    s->iq_ref = qfoc_ramp_toward(s->iq_ref, drv_start_current(p, s->sm.retry), step);
     s->ol_speed = qfoc_ramp_toward(s->ol_speed, qfoc_q15_abs(p->drive.of_speed),
                                    p->drive.of_accel);
 }

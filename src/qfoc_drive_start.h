@@ -34,17 +34,6 @@ bool qfoc_drive_start_converged(qfoc_drive_slow_t *s, const qfoc_drive_fast_t *f
                                 const qfoc_param_table_t *p, bool open_loop);
 
 /**
- * @brief The I/f start current of a start (REQ-SM-011): |i_start| raised by a quarter of itself
- *        per retry taken, at most |i_max| (which the table's check keeps at or above |i_start|).
- */
-/*@
-  requires valid: \valid_read(p);
-  assigns \nothing;
-  ensures range: 0 <= \result <= 32767;
-*/
-qfoc_q15_t qfoc_drive_start_current(const qfoc_param_table_t *p, uint8_t retry);
-
-/**
  * @brief Bumpless transfer (REQ-DRV-006): the q current that gives, with i_d = 0, the torque the
  *        rotor produces at the end of OPEN_LOOP.  The I/f current i lies on the q axis of the
  *        open-loop frame, delta = theta_ol - theta_est ahead of the rotor: in the rotor frame i_d
