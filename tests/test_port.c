@@ -532,6 +532,18 @@ static void set_samples(uint16_t iu, uint16_t iv, uint16_t vdc, uint16_t t_ipm, 
     qfoc_fake_poke(S32K_ADC1_BASE + S32K_ADC_RA + 8u, vdc);
 }
 
+/* The port set up, drive d initialised and bound, one fast step on samples at mid-scale:
+   no trip. */
+static void port_bind_untripped(qfoc_drive_t *d)
+{
+    assert_int_equal(port_init_all(&qfoc_params_reference, QFOC_S32K_FTM_INT_RELOAD), QFOC_S32K_OK);
+    assert_int_equal(qfoc_drive_init(d, &qfoc_params_reference), QFOC_PARAMS_OK);
+    qfoc_s32k_isr_bind(d);
+    set_samples(2048u, 2048u, 2621u, 2048u, 2048u);
+    qfoc_s32k_adc_isr();
+    assert_false(d->f.trip);
+}
+
 /* REQ-PORT-007: a hardware trip is reported to the drive once (full-scale currents, the
    drive latches its over-current fault in the same step), and cleared only with the
    outputs masked and the fault input back to inactive.
@@ -544,12 +556,7 @@ static void test_port_007_trip_reported_once_then_cleared(void **state)
     const qfoc_pwm_t off = { { 2500u, 2500u, 2500u }, false };
     qfoc_adc_t a;
     (void)state;
-    assert_int_equal(port_init_all(&qfoc_params_reference, QFOC_S32K_FTM_INT_RELOAD), QFOC_S32K_OK);
-    assert_int_equal(qfoc_drive_init(&d, &qfoc_params_reference), QFOC_PARAMS_OK);
-    qfoc_s32k_isr_bind(&d);
-    set_samples(2048u, 2048u, 2621u, 2048u, 2048u);
-    qfoc_s32k_adc_isr();
-    assert_false(d.f.trip);
+    port_bind_untripped(&d);
     /* Comparator trips; its input still active. */
     qfoc_fake_poke(S32K_FTM3_FMS, S32K_FTM_FMS_FAULTF | T_FTM_FMS_FAULTF0 | S32K_FTM_FMS_FAULTIN | wpen);
     qfoc_s32k_adc_isr();
@@ -584,12 +591,7 @@ static void test_port_007_trip_kept_until_reported(void **state)
     const uint32_t wpen = S32K_FTM_FMS_WPEN;
     const qfoc_pwm_t off = { { 0u, 0u, 0u }, false };
     (void)state;
-    assert_int_equal(port_init_all(&qfoc_params_reference, QFOC_S32K_FTM_INT_RELOAD), QFOC_S32K_OK);
-    assert_int_equal(qfoc_drive_init(&d, &qfoc_params_reference), QFOC_PARAMS_OK);
-    qfoc_s32k_isr_bind(&d);
-    set_samples(2048u, 2048u, 2621u, 2048u, 2048u);
-    qfoc_s32k_adc_isr();
-    assert_false(d.f.trip);
+    port_bind_untripped(&d);
     assert_int_not_equal(d.s.sm.state, QFOC_STATE_RUN);   /* the tick writes the outputs off */
     /* A short comparator pulse: flag latched, input inactive again. */
     qfoc_fake_poke(S32K_FTM3_FMS, S32K_FTM_FMS_FAULTF | T_FTM_FMS_FAULTF0 | wpen);
