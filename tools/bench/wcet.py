@@ -132,6 +132,34 @@ def _imm_target(insn):
     return None
 
 
+PIPELINE = 2      # pipeline refill after a taken branch, 1..3 on the Cortex-M4
+DIVIDE = 12       # SDIV / UDIV, at most 12 cycles
+
+
+def cycles(insn):
+    """An upper bound of the instruction's cycles by the Cortex-M4 timings (ARM DDI 0439B,
+    3.3.1), the same model as count.py's estimate taken at its worst: a single load or store
+    2 (no credit for pipelining with its neighbour), LDM / STM / PUSH / POP 1 + N (+ P when
+    the PC is loaded), LDRD / STRD 3, SDIV / UDIV 12, TBB / TBH 2 + P, a branch 1 + P as if
+    taken, BL 1 + P.  Memory wait states are not modelled."""
+    m = insn.mnemonic.split(".")[0]
+    ops = insn.op_str
+    if m in ("push", "pop", "stm", "stmia", "stmdb", "ldm", "ldmia", "ldmdb"):
+        n = len(insn.operands) - (1 if m not in ("push", "pop") else 0)
+        return 1 + n + (PIPELINE if "pc" in ops and m.startswith(("pop", "ldm")) else 0)
+    if m in ("ldrd", "strd"):
+        return 3
+    if m.startswith(("ldr", "str")) and not m.startswith(("ldrex", "strex")):
+        return 2 + (PIPELINE if m == "ldr" and ops.startswith("pc") else 0)
+    if m in ("sdiv", "udiv"):
+        return DIVIDE
+    if m in ("tbb", "tbh"):
+        return 2 + PIPELINE
+    if _is_branch(m) or m in ("bl", "blx", "bx"):
+        return 1 + PIPELINE
+    return 1
+
+
 class Function:
     """One function's instructions and control-flow edges."""
 
@@ -288,8 +316,9 @@ def _sccs(nodes, succ):
 class Analysis:
     """Bounds of every function reachable from the requested ones."""
 
-    def __init__(self, image):
+    def __init__(self, image, metric="instructions"):
         self.image = image
+        self.metric = metric
         self.funcs = {}
         self.bound = {}
         self.path = {}
@@ -310,7 +339,8 @@ class Analysis:
         weight = {}
         for a in f.order:
             callee = f.calls.get(a)
-            weight[a] = 1 + (self.of(callee) if callee else 0)
+            own = 1 if self.metric == "instructions" else cycles(f.insns[a])
+            weight[a] = own + (self.of(callee) if callee else 0)
         self.bound[name] = self._longest(f, weight)
         self.active.pop()
         return self.bound[name]
@@ -375,12 +405,14 @@ def main(argv=None):
     ap.add_argument("--elf", required=True)
     ap.add_argument("--function", action="append", default=[])
     ap.add_argument("--json")
+    ap.add_argument("--cycles", action="store_true",
+                    help="bound estimated cycles (Cortex-M4 timings) instead of instructions")
     ap.add_argument("--explain", action="store_true",
                     help="list the calls on each function's longest path")
     args = ap.parse_args(argv)
     image = Image(args.elf)
     names = args.function or sorted(image.funcs)
-    an = Analysis(image)
+    an = Analysis(image, "cycles" if args.cycles else "instructions")
     out, bad = {}, []
     for name in names:
         if name not in image.funcs:
