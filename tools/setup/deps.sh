@@ -31,7 +31,7 @@ PY=/usr/bin/python3
 PKGS="make gcc frama-c-base why3 z3 cvc4 cppcheck lcov gcovr libcmocka-dev \
 gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi \
 python3 python3-matplotlib python3-numpy python3-scipy python3-pytest \
-qemu-system-arm python3-unicorn python3-pyelftools clang-tidy debootstrap \
+qemu-system-arm python3-unicorn python3-pyelftools python3-capstone clang-tidy debootstrap \
 debian-archive-keyring dpkg-dev cmake cadical clang g++ doxygen"
 
 # have_cmds CMD...: every command is on the PATH (else "missing: CMD", status 1)
@@ -55,7 +55,7 @@ need_cmds() {
     need_a2l >/dev/null || { need_a2l; return 1; }
     have_py "matplotlib, numpy" "python3-matplotlib" || return 1
     have_py "scipy.signal, pytest" "python3-scipy or python3-pytest" || return 1
-    have_py "unicorn, elftools" "python3-unicorn or python3-pyelftools" || return 1
+    have_py "unicorn, elftools, capstone" "python3-unicorn, python3-pyelftools or python3-capstone" || return 1
     [ -f /usr/share/keyrings/debian-archive-keyring.gpg ] || { echo "missing: debian-archive-keyring"; return 1; }
     [ -x "$CBMC_PREFIX/bin/cbmc" ] || { echo "missing: cbmc ($CBMC_PREFIX)"; return 1; }
     [ -f "$HOME/.why3.conf" ] || { echo "missing: why3 prover configuration"; return 1; }
