@@ -200,11 +200,14 @@ GATES = {
     "bench": {
         "what": "the bench (make bench: mk/bench.mk, tools/bench/count.py)",
         "files": HEADERS + SOURCES + TABLES + SIM + [
-            "tools/bench/*", "specs/motors/reference.toml", "mk/bench.mk", "Makefile"],
+            "tools/bench/*", "tools/bench/tests/*.py", "specs/motors/reference.toml",
+            "mk/bench.mk", "Makefile"],
         "flags": _bench_flags,
         "tools": [("arm-none-eabi-gcc", lambda env, root: ["arm-none-eabi-gcc", "--version"]),
                   ("unicorn", lambda env, root: [PYTHON, "-c",
-                                                 "import unicorn; print(unicorn.__version__)"])],
+                                                 "import unicorn; print(unicorn.__version__)"]),
+                  ("capstone", lambda env, root: [PYTHON, "-c",
+                                                  "import capstone; print(capstone.__version__)"])],
     },
 }
 

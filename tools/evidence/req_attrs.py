@@ -489,7 +489,7 @@ def resolve_clauses(rid, refs, ctx):
                 if ctx.get("bench_rows") is None or not rows:
                     e["status"] = "no bench result (build/bench/bench.json)"
                 else:
-                    over = [r for r in rows if r.get("result") == "OVER"]
+                    over = [r for r in rows if r.get("result") in ("OVER", "UNSOUND")]
                     e["ok"] = not over
                     e["status"] = (f"{len(rows)} bench rows within their limits" if not over
                                    else f"{len(over)} of {len(rows)} bench rows OVER their limits")
