@@ -117,7 +117,8 @@ FUNC_BUDGET = {
 # the drive's SVPWM chain in the fast step: the circle limit, then the SVPWM without its own
 # limit (inverse Clarke by min-max injection, phase times, dead-time compensation)
 SVPWM_CHAIN = ("qfoc_circle_limit", "qfoc_svpwm_step_lin")
-LIMIT_SVPWM_CHAIN, GOAL_SVPWM_CHAIN = 320, 150
+LIMIT_SVPWM_CHAIN = 320
+GOAL_SVPWM_CHAIN = 150
 LIMIT_CLARKE, LIMIT_PARK, LIMIT_SVPWM = (FUNC_BUDGET[k][0] for k in ("clarke", "park", "svpwm"))
 # PWM frequencies of the load table (the tick runs at 1 kHz)
 LOAD_F_PWM_HZ = (8000, 10000, 16000, 20000)

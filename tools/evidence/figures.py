@@ -77,14 +77,25 @@ FIGURES = [
     (MANUAL, "{wp.proved} of {wp.goals} goals proved"),
     (MANUAL, "each of the {src.loops} `for` and `while` loops"),
     (MANUAL, "{bench.periods} PWM periods identical"),
-    (MANUAL, "against the goal of {bench.goal_fast} of REQ-BENCH-002 (its enforced limit, the budget to plan "
-             "with, is {bench.limit_fast})"),
-    (MANUAL, "against {bench.goal_clarke} / {bench.goal_park} / {bench.goal_inv_clarke} / {bench.goal_svpwm}; "
-             "limits {bench.limit_clarke} / {bench.limit_park} / {bench.limit_inv_clarke} / {bench.limit_svpwm}"),
+    (MANUAL, "a bound no input can exceed, {bench.fast_static} instructions (limit {bench.limit_fast_static}; "
+             "goal {bench.goal_fast} of REQ-BENCH-008), ~{bench.fast_static_cyc} cycles"),
+    (MANUAL, "the tick's {bench.tick_static} (~{bench.tick_static_cyc} cycles) take {bench.load_eight_khz} % of the CPU at "
+             "8 kHz and {bench.load_sixteen_khz} % at 16 kHz"),
+    (MANUAL, "| fast step, static bound (every input, every state) | up to {bench.fast_static} | "
+             "~{bench.fast_static_cyc} |"),
+    (MANUAL, "| tick, static bound (every input, every state, every kind of tick) | up to {bench.tick_static} | "
+             "~{bench.tick_static_cyc} |"),
+    (MANUAL, "(static bounds {bench.static_clarke} / {bench.static_park} / {bench.static_inv_clarke} / "
+             "{bench.static_svpwm_chain} against {bench.goal_clarke} / {bench.goal_park} / {bench.goal_inv_clarke} / "
+             "{bench.goal_svpwm_chain}; limits {bench.limit_clarke} / {bench.limit_park} / {bench.limit_inv_clarke} / "
+             "{bench.limit_svpwm_chain}"),
+    (MANUAL, "fast step {bench.fast_static} instructions (goal {bench.goal_fast}), tick {bench.tick_static} (goal "
+             "{bench.goal_tick}), {bench.load_sixteen_khz} % of an 80 MHz CPU at 16 kHz (goal {bench.goal_load_pct} %)"),
+    (MANUAL, "At 8 kHz the two bounds take {bench.load_eight_khz} % of the CPU"),
+    (MANUAL, "(the fast step executes up to {bench.fast_measured} instructions on its longest measured path)"),
     (MANUAL, "against the goal of {bench.goal_flash_kib} KiB (limit {bench.limit_flash_kib} KiB)"),
     (MANUAL, "(goal {bench.goal_flash_drive_kib} KiB)"),
-    (MANUAL, "REQ-BENCH-002 ({bench.goal_fast} instructions)"),
-    (MANUAL, "executes up to {bench.fast_max} instructions"),
+    (MANUAL, "REQ-BENCH-008 (fast step {bench.goal_fast} instructions on its static bound)"),
     (MANUAL, "all of `src/` takes {bench.flash_lib} B"),
     (MANUAL, "a drive links {bench.flash_drive} B of it"),
     (MANUAL, "Code: {bench.flash_lib} B for all of `src/`, of which a drive firmware links {bench.flash_drive} B"),
@@ -97,10 +108,12 @@ FIGURES = [
     (MANUAL, "the 100 ms job's CAN frame) | up to {bench.tick_max} |"),
     (MANUAL, "tick interrupt: 104 B + {bench.stack_tick} B"),
     (MANUAL, "ADC interrupt: 32 B + {bench.stack_fast} B"),
-    (README, "fast step {bench.fast_max} instructions (limit {bench.limit_fast}; the goal of {bench.goal_fast} "
-             "is not met)"),
+    (README, "fast step {bench.fast_static} instructions (limit {bench.limit_fast_static}; the goal of "
+             "{bench.goal_fast} is not met), tick {bench.tick_static} ({bench.limit_tick_static}; goal "
+             "{bench.goal_tick} not met), CPU load at 16 kHz and 80 MHz {bench.load_sixteen_khz} %"),
+    (README, "measured fast step {bench.fast_measured} instructions (limit {bench.limit_fast}), tick "
+             "{bench.tick_max} ({bench.limit_tick})"),
     (README, "{bench.limits_met} of {bench.limits} limits met"),
-    (README, "tick {bench.tick_max} ({bench.limit_tick}; goal {bench.goal_tick} met)"),
     (README, "flash {bench.flash_lib} B ({bench.limit_flash_kib} KiB; goal {bench.goal_flash_kib} KiB) and "
              "{bench.flash_drive} B linked by a drive ({bench.limit_flash_drive} B; goal "
              "{bench.goal_flash_drive_kib} KiB), RAM per motor {bench.ram_motor} B ({bench.limit_ram_motor}), "
@@ -185,7 +198,8 @@ RANGES = re.compile(r"\bDEV-\d{3}\s*(?:\.\.|to)\s*DEV-\d{3}\b|\bDEV-\d{3}\.\.\d{
                     r"\bASR-(?:01|P1)\s*(?:\.\.|to)\s*ASR-(?:\d{2}|P\d+)\b")
 
 # The form of a figure in the text (default: a number).
-FORMS = {"misra.devs": r"DEV-\d{3}\s+\.\.\s+DEV-\d{3}", "misra.devs_short": r"DEV-\d{3}\.\.\d{3}",
+FORMS = {"bench.load_eight_khz": r"\d+\.\d", "bench.load_sixteen_khz": r"\d+\.\d",
+         "misra.devs": r"DEV-\d{3}\s+\.\.\s+DEV-\d{3}", "misra.devs_short": r"DEV-\d{3}\.\.\d{3}",
          "limits.last": r"L\d+",
          "asr.lib_last": r"ASR-\d{2}", "asr.port_last": r"ASR-P\d+"}
 
@@ -238,6 +252,9 @@ def bench_budgets(root="."):
                 except Exception:  # noqa: BLE001 - an expression of other names: not a figure
                     pass
     for key, name in (("GOAL_FAST_STEP", "goal_fast"), ("LIMIT_FAST_STEP", "limit_fast"),
+                      ("STATIC_LIMIT_FAST_STEP", "limit_fast_static"),
+                      ("STATIC_LIMIT_TICK", "limit_tick_static"), ("GOAL_LOAD_PCT", "goal_load_pct"),
+                      ("LIMIT_SVPWM_CHAIN", "limit_svpwm_chain"), ("GOAL_SVPWM_CHAIN", "goal_svpwm_chain"),
                       ("GOAL_TICK", "goal_tick"), ("LIMIT_TICK", "limit_tick"),
                       ("LIMIT_RAM_MOTOR", "limit_ram_motor"), ("LIMIT_STACK_FAST", "limit_stack_fast"),
                       ("LIMIT_FLASH_DRIVE", "limit_flash_drive")):
@@ -365,8 +382,9 @@ def values(root="."):
         hits = [r.get("max") for r in rows if pred(str(r.get("item", ""))) and r.get("max") is not None]
         return max(hits) if hits else None
     for name, pred in (
-            ("bench.fast_max", lambda i: i.startswith("`qfoc_drive_fast_step`")),
-            ("bench.tick_max", lambda i: i.startswith("`qfoc_drive_tick`")),
+            ("bench.fast_max", lambda i: i.startswith("`qfoc_drive_fast_step`, CLOSED_LOOP")),
+            ("bench.fast_measured", lambda i: i.startswith("`qfoc_drive_fast_step`") and "static" not in i),
+            ("bench.tick_max", lambda i: i.startswith("`qfoc_drive_tick`") and "static" not in i),
             ("bench.flash_lib", lambda i: i.startswith("library flash, all of")),
             ("bench.flash_drive", lambda i: i.startswith("library flash a drive links")),
             ("bench.ram_motor", lambda i: i.startswith("RAM per motor")),
@@ -375,6 +393,24 @@ def values(root="."):
             ("bench.stack_tick", lambda i: i.startswith("stack, `qfoc_drive_tick`")),
             ("bench.stack_init", lambda i: i.startswith("stack, `qfoc_drive_init`"))):
         put(name, bmax(pred), "build/bench/bench.json")
+    sb = (json.loads(bench).get("static") or {}) if bench else {}
+    bfn = (json.loads(bench).get("functions") or {}) if bench else {}
+    for key in ("clarke", "park", "inv_clarke"):
+        put(f"bench.static_{key}", (bfn.get(key) or {}).get("static"), "build/bench/bench.json (functions)")
+    put("bench.static_svpwm_chain",
+        sum(sb[n]["instructions"] for n in ("qfoc_circle_limit", "qfoc_svpwm_step_lin"))
+        if all(n in sb for n in ("qfoc_circle_limit", "qfoc_svpwm_step_lin")) else None,
+        "build/bench/bench.json (static)")
+    for name, fn, key in (("bench.fast_static", "qfoc_drive_fast_step", "instructions"),
+                          ("bench.tick_static", "qfoc_drive_tick", "instructions"),
+                          ("bench.fast_static_cyc", "qfoc_drive_fast_step", "cycles"),
+                          ("bench.tick_static_cyc", "qfoc_drive_tick", "cycles")):
+        put(name, (sb.get(fn) or {}).get(key), "build/bench/bench.json (static)")
+    for f_khz in (8, 16):
+        fs, tk = (sb.get("qfoc_drive_fast_step") or {}), (sb.get("qfoc_drive_tick") or {})
+        load = (round(100.0 * (fs["cycles"] * f_khz * 1000.0 + tk["cycles"] * 1000.0) / 80e6, 1)
+                if "cycles" in fs and "cycles" in tk else None)
+        put("bench.load_eight_khz" if f_khz == 8 else "bench.load_sixteen_khz", load, "build/bench/bench.json (static)")
     limited = [r for r in rows if r.get("limit") is not None]
     put("bench.limits", len(limited) if rows else None, "build/bench/bench.json")
     put("bench.limits_met", sum(1 for r in limited if r.get("result") == "OK") if rows else None,
