@@ -114,11 +114,20 @@ FIGURES = [
     (README, "measured fast step {bench.fast_measured} instructions (limit {bench.limit_fast}), tick "
              "{bench.tick_max} ({bench.limit_tick})"),
     (README, "{bench.limits_met} of {bench.limits} limits met"),
+    (README, "| fast step | {bench.fast_static} instructions, ~{bench.fast_static_cyc} cycles at most | "
+             "{bench.fast_max} in closed loop with field weakening and torque compensation, {bench.fast_measured} "
+             "at a RUN entry | {bench.goal_fast} |"),
+    (README, "command answered) | {bench.tick_static} instructions, ~{bench.tick_static_cyc} cycles at most | "
+             "{bench.tick_max} | {bench.goal_tick} |"),
+    (README, "| CPU load at 80 MHz, fast step and tick at their cycle bounds | {bench.load_eight_khz} % at 8 kHz, "
+             "{bench.load_sixteen_khz} % at 16 kHz | - | {bench.goal_load_pct} % at 16 kHz |"),
+    (README, "| {bench.ram_motor} B | - | {bench.limit_ram_motor} B (limit) |"),
+    (README, "| {bench.stack_fast} B / {bench.stack_tick} B | - | {bench.limit_stack_fast} B (limit) |"),
     (README, "flash {bench.flash_lib} B ({bench.limit_flash_kib} KiB; goal {bench.goal_flash_kib} KiB) and "
              "{bench.flash_drive} B linked by a drive ({bench.limit_flash_drive} B; goal "
              "{bench.goal_flash_drive_kib} KiB), RAM per motor {bench.ram_motor} B ({bench.limit_ram_motor}), "
              "fast-step stack {bench.stack_fast} B ({bench.limit_stack_fast})"),
-    (README, "| {bench.flash_lib} B; {bench.flash_drive} B | {bench.goal_flash_kib} KiB; "
+    (README, "| {bench.flash_lib} B; {bench.flash_drive} B | - | {bench.goal_flash_kib} KiB; "
              "{bench.goal_flash_drive_kib} KiB |"),
     (ASR, "{tt.groups} groups, {tt.vectors} vectors"),
     (ASR, "{bench.periods} PWM periods identical"),
