@@ -125,7 +125,10 @@
  * core functions against published figures: REQ-BENCH-003), those of the tick with the
  * 100 ms table re-check, and the code a drive firmware links (REQ-BENCH-004) are each
  * gated by a limit in specs/requirements/bench.md: make bench fails when a measured
- * figure exceeds it, so the limits are the figures to plan with.  The target build gives
+ * figure exceeds it.  The figure to plan the CPU with is the static bound of
+ * qfoc_drive_fast_step() and of qfoc_drive_tick(): the longest path of the linked image
+ * over every input and every state, in instructions and estimated cycles, which no
+ * measured count exceeds (REQ-BENCH-008, tools/bench/wcet.py).  The target build gives
  * the host build's outputs bit for bit (REQ-BENCH-007; make target-test replays golden
  * vectors of every function group and of the whole drive under QEMU: REQ-TGT-001 ..
  * REQ-TGT-005 in specs/requirements/target.md, named in tools/target_test/tt.h).

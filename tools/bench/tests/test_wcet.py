@@ -106,8 +106,8 @@ def bound(elf_path, name, metric="instructions"):
     return wcet.Analysis(wcet.Image(str(elf_path)), metric).of(name)
 
 
-# REQ-BENCH-008.  Methods: 1b the bound of a function without branches equals the instructions objdump lists in
-# it, and the instructions Unicorn executes; its cycle bound is at least its instructions
+# Methods: 1n the bound against the instructions objdump lists and Unicorn executes in a
+# function without branches, and its cycle bound at least its instructions (REQ-BENCH-008)
 def test_straight_line_equals_its_instructions(elf):
     n = objdump_count(elf, "straight")
     assert bound(elf, "straight") == n
@@ -115,9 +115,8 @@ def test_straight_line_equals_its_instructions(elf):
     assert bound(elf, "straight", "cycles") >= n
 
 
-# REQ-BENCH-008.  Methods: 1b every branch of a function with calls taken by some input; the bound is at or
-# above every count Unicorn executes, and reaches the longest one within the instructions an
-# IT block may skip
+# Methods: 1b inputs that take every branch of a function with calls; 1n the bound at or
+# above every count Unicorn executes, within what an IT block may skip (REQ-BENCH-008)
 def test_branches_and_calls_bound_every_input(elf):
     b = bound(elf, "branches")
     counts = [executed(elf, "branches", [x, y])
@@ -128,8 +127,8 @@ def test_branches_and_calls_bound_every_input(elf):
     assert bound(elf, "leaf") == objdump_count(elf, "leaf")
 
 
-# REQ-BENCH-008.  Methods: 1b a loop with its bound in LOOP_BOUNDS: the bound covers the loop's executed count;
-# without the entry the loop is refused
+# Methods: 1c a loop bound equal to the loop's count and one below it, and no bound at all
+# (REQ-BENCH-008)
 def test_loop_bounds(elf, monkeypatch):
     mem = {0x20000100: b"".join(v.to_bytes(4, "little", signed=True) for v in (5, -6, 7, -8))}
     n = executed(elf, "loop4", [0x20000100], mem)
@@ -141,8 +140,8 @@ def test_loop_bounds(elf, monkeypatch):
     assert bound(elf, "loop4") < n        # the bound is only as good as LOOP_BOUNDS
 
 
-# REQ-BENCH-008.  Methods: 1e what the tool cannot bound is refused, with the reason: a loop whose count
-# depends on an input, a call through a register, recursion
+# Methods: 1d the constructs the tool cannot bound (a loop whose count depends on an input, a
+# call through a register, recursion) refused with the reason (REQ-BENCH-008)
 def test_refused(elf):
     with pytest.raises(wcet.Refused, match="LOOP_BOUNDS"):
         bound(elf, "unbounded")
@@ -154,8 +153,8 @@ def test_refused(elf):
     assert wcet.main(["--elf", str(elf), "--function", "straight"]) == 0
 
 
-# REQ-BENCH-008.  Methods: 1b the library's bench image: every entry point of the drive is bounded (no refused
-# construct in the library), and a bound of a caller is at least the bound of each callee
+# Methods: 1a every entry point of the library's bench image bounded, a caller's bound at
+# least each callee's (REQ-BENCH-008)
 def test_library_image_bounded():
     img = HERE.parents[2] / "build" / "bench" / "bench.elf"
     if not img.exists():
