@@ -220,6 +220,23 @@ def test_bench_rows_named_from_the_source(tmp_path):
     assert vd.requirement_verdict(X2, rec(id=X2, tests=[t]), res)["verdict"] == vd.FAILED
 
 
+def test_bench_rows_static_bound(tmp_path):
+    """REQ-EVD-027: a bench row with a static bound (REQ-BENCH-008): a reported row without a
+    limit passes when it carries a measured max or a static bound and is not run when it has
+    neither; a measured count above its bound (UNSOUND) fails.
+
+    Methods: 1b a row with a static bound only, with neither figure, and an UNSOUND row
+    """
+    assert vd.bench_row_status({"item": "load", "max": None, "static": 69.8, "limit": None,
+                                "result": "-"}) == vd.PASSED
+    assert vd.bench_row_status({"item": "load", "max": None, "static": None, "limit": None,
+                                "result": "-"}) == vd.NOT_RUN
+    assert vd.bench_row_status({"item": "f", "max": 50, "static": 47, "limit": 60,
+                                "result": "UNSOUND"}) == vd.FAILED
+    assert vd.bench_row_status({"item": "f", "max": 50, "static": 47, "limit": None,
+                                "result": "UNSOUND"}) == vd.FAILED
+
+
 def test_loose_records_and_counts(tmp_path):
     """REQ-EVD-027: records in the loose forms of a hand-written matrix (function and harness
     names as strings, tests as 'file: name') are read; the count line of the matrix cell.
