@@ -10,7 +10,7 @@ and specs/; it runs no gate itself) and writes into OUT (default build/evidence/
                   the one-screen summary, then one section per kind of evidence
   evidence.json   the summary rows and every section's figures, machine-readable
   artefacts/      a copy of every underlying file, under its path in the repository
-                  (artefacts/proofs/wp/results.md, artefacts/build/eva/eva.json, ...);
+                  (artefacts/proofs/wp/results.md, artefacts/build/eva/eva-all.json, ...);
                   the page links them relatively, so OUT can be archived and handed over
   tool-versions.txt  the output of `sh tools/evidence/tool_versions.sh` for this run
   MANIFEST.sha256 the SHA-256 of every other file of OUT (sha256sum format)
@@ -776,42 +776,54 @@ def collect_cbmc(bundle):
     return sec
 
 
+def _eva_result(data):
+    alarms = [a for a in as_list(data.get("rte_alarms")) if isinstance(a, dict)]
+    return {"alarms": alarms, "frama_c_exit": data.get("frama_c_exit"), "seconds": data.get("seconds"),
+            "unknown_properties": data.get("unknown_properties")}
+
+
+def _eva_figure(res):
+    n = len(res["alarms"])
+    fig = f"{n} alarm{'s' if n != 1 else ''}"
+    if res["frama_c_exit"] not in (0, None):
+        fig += f", Frama-C exit {res['frama_c_exit']}"
+    return fig
+
+
 def collect_eva(bundle):
+    """make eva's analysis over every table the drive accepts (build/eva/eva-all.json) is the
+    result; the analysis of the reference table alone (build/eva/eva.json, make eva-reference,
+    not part of make check) is shown beside it when it is there, and an alarm of it is red too."""
     sec = {"title": "Frama-C EVA"}
-    jpath = bundle.b("eva", "eva.json")
+    jpath = bundle.b("eva", "eva-all.json")
+    rpath = bundle.b("eva", "eva.json")
     data = read_json(bundle.path(jpath))
-    sec["inputs"] = bundle.inputs(*[p for p in (jpath, bundle.b("eva", "eva.md"), bundle.b("eva", "eva.log"))
+    sec["inputs"] = bundle.inputs(*[p for p in (jpath, bundle.b("eva", "eva-all.md"), bundle.b("eva", "eva-all.log"))
                                    if bundle.exists(p)] or [jpath])
     if not isinstance(data, dict):
         sec["present"] = False
         sec["summary"] = [missing_row("eva", "EVA runtime-error alarms", "sec2", jpath, bundle)]
         return sec
-    alarms = [a for a in as_list(data.get("rte_alarms")) if isinstance(a, dict)]
-    rc = data.get("frama_c_exit")
-    sec.update({"present": True, "alarms": alarms, "seconds": data.get("seconds"),
-                "frama_c_exit": rc, "unknown_properties": data.get("unknown_properties")})
-    ok = len(alarms) == 0 and rc in (0, None)
-    fig = f"{len(alarms)} alarm{'s' if len(alarms) != 1 else ''} (target 0)"
-    if rc not in (0, None):
-        fig += f", Frama-C exit {rc}"
-    if data.get("seconds") is not None:
-        fig += f", {data.get('seconds')} s"
-    # the second analysis of make eva: every table the drive accepts (eva_all_tables.c)
-    apath = bundle.b("eva", "eva-all.json")
-    adata = read_json(bundle.path(apath)) if bundle.exists(apath) else None
-    if isinstance(adata, dict):
-        a_alarms = [a for a in as_list(adata.get("rte_alarms")) if isinstance(a, dict)]
-        a_rc = adata.get("frama_c_exit")
-        sec["all_tables"] = {"alarms": a_alarms, "frama_c_exit": a_rc, "seconds": adata.get("seconds"),
-                             "unknown_properties": adata.get("unknown_properties")}
-        ok = ok and len(a_alarms) == 0 and a_rc in (0, None)
-        fig += (f"; every accepted table: {len(a_alarms)} alarm{'s' if len(a_alarms) != 1 else ''}"
-                + (f", Frama-C exit {a_rc}" if a_rc not in (0, None) else "")
-                + (f", {adata.get('seconds')} s" if adata.get("seconds") is not None else ""))
-        sec["inputs"] = sec["inputs"] + bundle.inputs(apath)
-    else:
+    res = _eva_result(data)
+    sec.update({"present": True, **res})
+    ok = len(res["alarms"]) == 0 and res["frama_c_exit"] in (0, None)
+    fig = _eva_figure(res) + " (target 0) over every accepted table"
+    if res["seconds"] is not None:
+        fig += f", {res['seconds']} s"
+    rdata = read_json(bundle.path(rpath)) if bundle.exists(rpath) else None
+    if isinstance(rdata, dict) and inp.check(bundle.path(rpath), "eva", root=bundle.root)["state"] != inp.CURRENT:
+        # an earlier make eva-reference over other sources: shown as such, not counted
+        sec["reference_stale"] = True
+        fig += "; reference table: result of other sources, not counted (make eva-reference)"
+    elif isinstance(rdata, dict):
+        ref = _eva_result(rdata)
+        sec["reference"] = ref
+        ok = ok and len(ref["alarms"]) == 0 and ref["frama_c_exit"] in (0, None)
+        fig += "; reference table: " + _eva_figure(ref)
+        sec["inputs"] = sec["inputs"] + bundle.inputs(rpath)
+    elif bundle.exists(rpath):
         ok = False
-        fig += "; every accepted table: not run (build/eva/eva-all.json)"
+        fig += f"; reference table: unreadable: {rpath}"
     sec["summary"] = [row("eva", "EVA runtime-error alarms", ok, fig, "sec2")]
     return sec
 
@@ -1474,7 +1486,7 @@ def stamped_file(bundle, key, sec):
     if key == "coverage":
         x = bundle.b("coverage", "coverage.xml")
         return x if bundle.exists(x) else bundle.b("coverage", "summary.txt")
-    return {"eva": bundle.b("eva", "eva.json"), "misra": bundle.b("misra", "compliance-summary.json"),
+    return {"eva": bundle.b("eva", "eva-all.json"), "misra": bundle.b("misra", "compliance-summary.json"),
             "bench": bundle.b("bench", "bench.json")}[key]
 
 
@@ -1881,25 +1893,32 @@ def html_sec2(wp, cbmc, eva):
         out.append(not_run(cbmc, "CBMC results (proofs/cbmc/results.md; make cbmc)"))
     out += ["<h3>2.3 Frama-C EVA over the whole drive</h3>", inputs_html(eva)]
     if eva.get("present"):
-        out.append(f"<p><b>{len(eva['alarms'])} runtime-error alarms</b> (target 0); ACSL properties EVA leaves "
-                   f"unknown (proved by WP): {esc(eva.get('unknown_properties'))}; Frama-C exit "
-                   f"{esc(eva.get('frama_c_exit'))}; {esc(eva.get('seconds'))} s.</p>")
-        ta = eva.get("all_tables")
-        if ta is not None:
-            out.append(f"<p>Every table the drive accepts (<code>proofs/eva/eva_all_tables.c</code>): "
-                       f"<b>{len(ta['alarms'])} runtime-error alarms</b> (target 0); properties left to "
-                       f"WP: {esc(ta.get('unknown_properties'))}; Frama-C exit {esc(ta.get('frama_c_exit'))}; "
-                       f"{esc(ta.get('seconds'))} s.</p>")
+        out.append(f"<p>Every table the drive accepts (<code>proofs/eva/eva_all_tables.c</code>, "
+                   f"<code>make eva</code>): <b>{len(eva['alarms'])} runtime-error alarms</b> (target 0); "
+                   f"ACSL properties EVA leaves unknown (proved by WP): {esc(eva.get('unknown_properties'))}; "
+                   f"Frama-C exit {esc(eva.get('frama_c_exit'))}; {esc(eva.get('seconds'))} s.</p>")
+        ref = eva.get("reference")
+        if ref is not None:
+            out.append(f"<p>The reference table alone (<code>proofs/eva/eva_main.c</code>, "
+                       f"<code>make eva-reference</code>): <b>{len(ref['alarms'])} runtime-error alarms</b> "
+                       f"(target 0); properties left to WP: {esc(ref.get('unknown_properties'))}; Frama-C exit "
+                       f"{esc(ref.get('frama_c_exit'))}; {esc(ref.get('seconds'))} s.</p>")
+        elif eva.get("reference_stale"):
+            out.append("<p>The reference table alone (<code>make eva-reference</code>): its result is of other "
+                       "sources (stale), not counted.</p>")
         else:
-            out.append("<p>Every table the drive accepts: not run (build/eva/eva-all.json).</p>")
-        if eva["alarms"]:
-            out.append("<table>" + th("file", "line", "alarm"))
-            for a in eva["alarms"]:
-                out.append("<tr class=fail>" + td(a.get("file")) + td(a.get("line"), True) + td(a.get("message"))
-                           + "</tr>")
+            out.append("<p>The reference table alone (<code>make eva-reference</code>): not run; the table is "
+                       "one of the accepted tables above.</p>")
+        alarms = [("every accepted table", a) for a in eva["alarms"]]
+        alarms += [("reference table", a) for a in (ref or {}).get("alarms", [])]
+        if alarms:
+            out.append("<table>" + th("analysis", "file", "line", "alarm"))
+            for which, a in alarms:
+                out.append("<tr class=fail>" + td(which) + td(a.get("file")) + td(a.get("line"), True)
+                           + td(a.get("message")) + "</tr>")
             out.append("</table>")
     else:
-        out.append(not_run(eva, "build/eva/eva.json (make eva)"))
+        out.append(not_run(eva, "build/eva/eva-all.json (make eva)"))
     return "\n".join(out)
 
 

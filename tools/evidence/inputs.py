@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The inputs of every gate's result, in one place, and the stamp that ties a result to them.
 
-A gate's result file (proofs/wp/results.md, proofs/cbmc/results.md, build/eva/eva.json,
+A gate's result file (proofs/wp/results.md, proofs/cbmc/results.md, build/eva/eva-all.json,
 build/misra/compliance-summary.json, build/coverage/coverage.xml, build/bench/bench.json,
 ...) carries the SHA-256 of the inputs it was computed from, written into it by the gate
 when it ends (the "stamp"), with the run's UTC time.  `make evidence` computes the digest
@@ -92,24 +92,30 @@ def _cbmc_flags(env):
             f"(proofs/cbmc/*/config.mk); SAT back end: {sat}")
 
 
+# the analyses' default options, as tools/gates/eva.sh sets them
+EVA_FILTER = ("eva_table_ok,eva_scaling_ok,eva_svpwm_ok,eva_pi_ok,eva_flux_ok,eva_pll_ok,eva_limits_ok,"
+              "eva_cfg_speed_ok,eva_cfg_start_ok,eva_cfg_prot_ok,eva_cfg_feat_ok,eva_cfg_derate_ok,eva_cross_ok")
+
+
 def _eva_flags(env):
-    extra = env.get("EVA_EXTRA") or "-eva-domains octagon,equality -eva-use-spec qfoc_isqrt32"
+    extra = env.get("EVA_EXTRA") or (
+        "-eva-domains octagon,equality -eva-use-spec qfoc_isqrt32,qfoc_iref_q_limit,qfoc_iref_derate")
     extra_all = env.get("EVA_ALL_EXTRA") or (
-        "-eva-domains octagon,equality -eva-use-spec qfoc_isqrt32,qfoc_mech_scale "
-        "-eva-split-return-function eva_table_ok:0,eva_scaling_ok:0,eva_svpwm_ok:0,eva_pi_ok:0,eva_flux_ok:0,eva_pll_ok:0,eva_limits_ok:0,eva_cfg_speed_ok:0,eva_cfg_start_ok:0,eva_cfg_prot_ok:0,eva_cfg_feat_ok:0,eva_cross_ok:0 "
-        "-eva-slevel-function eva_table_ok:50,eva_scaling_ok:50,eva_svpwm_ok:50,eva_pi_ok:50,eva_flux_ok:50,eva_pll_ok:50,eva_limits_ok:50,eva_cfg_speed_ok:50,eva_cfg_start_ok:50,eva_cfg_prot_ok:50,eva_cfg_feat_ok:50,eva_cross_ok:50")
+        "-eva-domains octagon,equality -eva-use-spec qfoc_isqrt32,qfoc_mech_scale,qfoc_iref_q_limit,"
+        "qfoc_iref_derate,qfoc_dtc_fade,qfoc_dtc_speed_fade "
+        "-eva-split-return-function " + ",".join(f + ":0" for f in EVA_FILTER.split(",")) + " "
+        "-eva-slevel-function " + ",".join(f + ":50" for f in EVA_FILTER.split(",")))
     precision = env.get("EVA_PRECISION") or 4
     warn = ("-warn-signed-overflow -warn-signed-downcast -warn-unsigned-overflow "
             "-warn-unsigned-downcast")
     return ("frama-c -cpp-extra-args=-Iinclude -Ispecs -Itables src/*.c tables/reference_params.c "
             f"proofs/eva/eva_main.c -eva -eva-precision {precision} {extra} {warn}; "
             "frama-c -cpp-extra-args=-Iinclude -Ispecs proofs/eva/eva_all_tables.c -wp "
-            "-wp-fct eva_table_ok,eva_scaling_ok,eva_svpwm_ok,eva_pi_ok,eva_flux_ok,eva_pll_ok,eva_limits_ok,eva_cfg_speed_ok,eva_cfg_start_ok,eva_cfg_prot_ok,eva_cfg_feat_ok,eva_cross_ok -wp-prover cvc4,z3 "
+            f"-wp-fct {EVA_FILTER} -wp-prover cvc4,z3 "
             f"-wp-timeout {env.get('WP_TIMEOUT') or 60} -wp-par 1; "
             "frama-c -cpp-extra-args=-Iinclude -Ispecs src/*.c proofs/eva/eva_all_tables.c -eva "
             f"-eva-precision {precision} {extra_all} {warn}; "
-            f"EVA_MAX_ALARMS={env.get('EVA_MAX_ALARMS') or 0}; "
-            f"EVA_RUN={env.get('EVA_RUN') or 'eva eva-all'}")
+            f"EVA_MAX_ALARMS={env.get('EVA_MAX_ALARMS') or 0}")
 
 
 def _misra_flags(env):

@@ -253,3 +253,19 @@ def test_every_gate_stamps_what_it_writes():
             f = f.strip('"').replace("$(BUILD)", "build").replace("$(BENCH_DIR)", "build/bench")
             assert f not in own, (gate, f)
     assert inputs.files("cbmc", str(REPO)) and "proofs/cbmc/results.md" not in inputs.files("cbmc", str(REPO))
+
+
+def test_eva_flags_are_the_script_defaults():
+    """REQ-EVD-028: the options the EVA stamp records are the ones tools/gates/eva.sh runs
+    with by default: the filter functions, and the functions each analysis takes by contract.
+
+    Methods: 1b the stamp's option text against the script's default options; 1d a function
+    taken by contract in the script but not in the stamp
+    """
+    text = (REPO / "tools" / "gates" / "eva.sh").read_text(encoding="utf-8")
+    flags = inputs._eva_flags({})
+    assert re.search(r'^FILTER="([a-z_,]+)"$', text, re.M).group(1) == inputs.EVA_FILTER
+    ref = re.search(r"\$\{EVA_EXTRA:-([^}]+)\}", text).group(1)
+    assert f"proofs/eva/eva_main.c -eva -eva-precision 4 {ref} -warn" in flags
+    specs = re.search(r"^ALL_DEFAULT=.*\n-eva-use-spec (\S+) ", text, re.M).group(1)
+    assert f"eva_all_tables.c -eva -eva-precision 4 -eva-domains octagon,equality -eva-use-spec {specs} " in flags
