@@ -3,8 +3,10 @@
 # All gates run even when one fails, so one run shows every shortfall; the exit
 # status is non-zero when any gate failed.  The gates run one after the other, except
 # two that use one processor for minutes and share no file with the gates beside them:
-# MC/DC (in its own chroot) runs beside the tests and coverage, EVA beside the gates after
-# CBMC (the summary lists the gates in the order they ended).
+# MC/DC (in its own chroot) runs beside the tests, EVA beside the gates after CBMC (the
+# summary lists the gates in the order they ended).  Coverage uses one processor: it runs
+# first among the gates beside EVA (before trace, which reads its result), in time EVA
+# takes anyway.
 set -u
 TOP=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$TOP"
@@ -45,11 +47,11 @@ gate_wait() {  # gate_wait NAME
 
 gate_bg mcdc  make --no-print-directory mcdc
 gate test     make --no-print-directory test
-gate coverage make --no-print-directory coverage
 gate_wait mcdc
 gate prove    make --no-print-directory prove
 gate cbmc     make --no-print-directory cbmc
 gate_bg eva   make --no-print-directory eva
+gate coverage make --no-print-directory coverage
 gate misra    make --no-print-directory misra
 gate misra-cs make --no-print-directory misra-summary
 gate static   make --no-print-directory static
