@@ -33,7 +33,8 @@ names, contract documentation) and from the committed proof results:
   scenarios  the scenarios of sim/scenario.c (the IDs each one records), and those a
              test of tests/test_scenarios.c runs while naming the ID
   named_in   the headers naming the ID anywhere: include/qfoc/*.h, the tuning tool's
-             interface tools/tune/qfoc_tune.py, the calibration description's
+             interface tools/tune/qfoc_tune.py and its identification import
+             tools/tune/qfoc_ident.py, the calibration description's
              tools/a2l/qfoc_a2l.py, the evidence generator's
              tools/evidence/evidence.py, the architecture check tools/evidence/arch_check.py,
              the vector format tools/target_test/tt.h, the
@@ -724,7 +725,8 @@ def main() -> int:
     scn = scenarios(defined, cm)
 
     interfaces = (sorted(glob.glob("include/qfoc/*.h"))
-                  + ["tools/tune/qfoc_tune.py", "tools/a2l/qfoc_a2l.py", "tools/evidence/evidence.py",
+                  + ["tools/tune/qfoc_tune.py", "tools/tune/qfoc_ident.py", "tools/a2l/qfoc_a2l.py",
+                     "tools/evidence/evidence.py",
                      "tools/evidence/arch_check.py", "tools/target_test/tt.h",
                      "sim/sim.h"]
                   + sorted(glob.glob("tools/bench/*.h")) + [FUZZ_INTERFACE])
