@@ -40,7 +40,7 @@ to the systematic errors.
 Exit codes: 0 written; 1 refused (a value or quality out of range, a measured key typed in
 the ratings file, an existing output without --force, or the tuning tool's refusal); 2
 malformed input (the record is not JSON of this format, a field is missing or not a number,
-the ratings file is unreadable).
+a text copied into the motor file holds a line break, the ratings file is unreadable).
 
 Requirement: REQ-TUNE-008 (specs/requirements/tune.md).
 """
@@ -116,13 +116,28 @@ def read_record(path: Path) -> dict:
                             "residual_pct")
         where = f"{path}: results.{key}"
         out[key] = tuple(number(where, r, f) for f in ("value",) + QUALITY_FIGURES)
-    src = rec.get("source", "")
-    if not isinstance(src, str):
-        raise Malformed(f"{path}: source = {json.dumps(src)}: not a text")
+    src = one_line(f"{path}: source", rec.get("source", ""))
     cond = rec.get("conditions", {})
     if not isinstance(cond, dict):
         raise Malformed(f"{path}: conditions: not an object")
+    for k, v in cond.items():
+        one_line(f"{path}: conditions", k)
+        if isinstance(v, bool) or not isinstance(v, (int, float, str)):
+            raise Malformed(f"{path}: conditions.{k} = {json.dumps(v)}: not a number or a text")
+        if isinstance(v, str):
+            one_line(f"{path}: conditions.{k}", v)
     return {"results": out, "source": src, "conditions": cond}
+
+
+def one_line(where: str, text: object) -> str:
+    """text, when it is a text of one line (it is copied into a comment of the motor file:
+    a line break would start a line of its own there); Malformed otherwise."""
+    if not isinstance(text, str):
+        raise Malformed(f"{where} = {json.dumps(text)}: not a text")
+    if any(ord(c) < 0x20 or ord(c) == 0x7F for c in text):
+        raise Malformed(f"{where} = {json.dumps(text)}: a control character (a line break "
+                        "would start a line of its own in the motor file)")
+    return text
 
 
 def check_results(path: Path, results: dict) -> None:

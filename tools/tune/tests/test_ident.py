@@ -122,7 +122,7 @@ def test_ident_quality_refused(tmp_path, capsys, key, field, value, text):
 # REQ-TUNE-008: a malformed record or ratings file is an input error (exit 2) naming the file
 # and the field.
 # Methods: 1d not JSON, a wrong format, a missing result, a text for a number, an unknown
-# result, NaN, a ratings file without [motor]
+# result, NaN, a line break in a text the motor file copies, a list for a condition
 @pytest.mark.parametrize("mutate, text", [
     (lambda p: p.write_text("{not json"), "not JSON"),
     (lambda p: p.write_text(json.dumps({"format": "qfoc-ident/0", "results": {}})),
@@ -135,6 +135,13 @@ def test_ident_quality_refused(tmp_path, capsys, key, field, value, text):
      "results.rs_ohm.value = NaN: not a finite number"),
     (lambda p: p.write_text(p.read_text().replace(', "residual_pct": 0.5}}}', "}}}")),
      "results.psi_f_wb.residual_pct: missing"),
+    # text copied into the motor file's comments: a line break would start a key of its own
+    (lambda p: p.write_text(p.read_text().replace('"plant, reference table"',
+                                                  '"bench\\nrs_ohm = 9"')),
+     'source = "bench\\nrs_ohm = 9": a control character'),
+    (lambda p: p.write_text(p.read_text().replace('"winding_temp_degc": 25.0',
+                                                  '"winding_temp_degc": [25]')),
+     "conditions.winding_temp_degc = [25]: not a number or a text"),
 ])
 def test_ident_malformed_record(tmp_path, capsys, mutate, text):
     rec = record(tmp_path)
