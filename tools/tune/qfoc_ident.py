@@ -63,23 +63,15 @@ MEASURED = tuple(QUALITY_LIMIT_PCT)
 QUALITY_FIGURES = ("repeat_pct", "residual_pct")
 
 
-class Refused(Exception):
-    """A refusal: exit code 1, nothing written."""
-
-
-class Malformed(Exception):
-    """Malformed input: exit code 2, nothing written."""
-
-
 def number(where: str, obj: dict, key: str) -> float:
-    """obj[key] as a finite float; Malformed naming where.key otherwise."""
+    """obj[key] as a finite float; qt.InputError naming where.key otherwise."""
     if key not in obj:
-        raise Malformed(f"{where}.{key}: missing")
+        raise qt.InputError(f"{where}.{key}: missing")
     v = obj[key]
     if isinstance(v, bool) or not isinstance(v, (int, float)):
-        raise Malformed(f"{where}.{key} = {json.dumps(v)}: not a number")
+        raise qt.InputError(f"{where}.{key} = {json.dumps(v)}: not a number")
     if not math.isfinite(float(v)):
-        raise Malformed(f"{where}.{key} = {json.dumps(v)}: not a finite number")
+        raise qt.InputError(f"{where}.{key} = {json.dumps(v)}: not a finite number")
     return float(v)
 
 
@@ -88,42 +80,42 @@ def read_record(path: Path) -> dict:
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
-        raise Malformed(f"{path}: cannot be read ({exc.strerror})") from exc
+        raise qt.InputError(f"{path}: cannot be read ({exc.strerror})") from exc
     try:
         rec = json.loads(text)
     except json.JSONDecodeError as exc:
-        raise Malformed(f"{path}: not JSON: {exc.msg} at line {exc.lineno}, column {exc.colno}") \
+        raise qt.InputError(f"{path}: not JSON: {exc.msg} at line {exc.lineno}, column {exc.colno}") \
             from exc
     if not isinstance(rec, dict):
-        raise Malformed(f"{path}: the record must be a JSON object, not {type(rec).__name__}")
+        raise qt.InputError(f"{path}: the record must be a JSON object, not {type(rec).__name__}")
     if rec.get("format") != FORMAT:
-        raise Malformed(f"{path}: format = {json.dumps(rec.get('format'))}: expected "
+        raise qt.InputError(f"{path}: format = {json.dumps(rec.get('format'))}: expected "
                         f"\"{FORMAT}\"")
     res = rec.get("results")
     if not isinstance(res, dict):
-        raise Malformed(f"{path}: results: missing or not an object")
+        raise qt.InputError(f"{path}: results: missing or not an object")
     unknown = sorted(set(res) - set(MEASURED))
     if unknown:
-        raise Malformed(f"{path}: results.{unknown[0]}: not a measured key (the record carries "
+        raise qt.InputError(f"{path}: results.{unknown[0]}: not a measured key (the record carries "
                         f"{', '.join(MEASURED)})")
     out = {}
     for key in MEASURED:
         if key not in res:
-            raise Malformed(f"{path}: results.{key}: missing")
+            raise qt.InputError(f"{path}: results.{key}: missing")
         r = res[key]
         if not isinstance(r, dict):
-            raise Malformed(f"{path}: results.{key}: not an object with value, repeat_pct, "
+            raise qt.InputError(f"{path}: results.{key}: not an object with value, repeat_pct, "
                             "residual_pct")
         where = f"{path}: results.{key}"
         out[key] = tuple(number(where, r, f) for f in ("value",) + QUALITY_FIGURES)
     src = one_line(f"{path}: source", rec.get("source", ""))
     cond = rec.get("conditions", {})
     if not isinstance(cond, dict):
-        raise Malformed(f"{path}: conditions: not an object")
+        raise qt.InputError(f"{path}: conditions: not an object")
     for k, v in cond.items():
         one_line(f"{path}: conditions", k)
         if isinstance(v, bool) or not isinstance(v, (int, float, str)):
-            raise Malformed(f"{path}: conditions.{k} = {json.dumps(v)}: not a number or a text")
+            raise qt.InputError(f"{path}: conditions.{k} = {json.dumps(v)}: not a number or a text")
         if isinstance(v, str):
             one_line(f"{path}: conditions.{k}", v)
     return {"results": out, "source": src, "conditions": cond}
@@ -131,17 +123,17 @@ def read_record(path: Path) -> dict:
 
 def one_line(where: str, text: object) -> str:
     """text, when it is a text of one line (it is copied into a comment of the motor file:
-    a line break would start a line of its own there); Malformed otherwise."""
+    a line break would start a line of its own there); qt.InputError otherwise."""
     if not isinstance(text, str):
-        raise Malformed(f"{where} = {json.dumps(text)}: not a text")
+        raise qt.InputError(f"{where} = {json.dumps(text)}: not a text")
     if any(ord(c) < 0x20 or ord(c) == 0x7F for c in text):
-        raise Malformed(f"{where} = {json.dumps(text)}: a control character (a line break "
+        raise qt.InputError(f"{where} = {json.dumps(text)}: a control character (a line break "
                         "would start a line of its own in the motor file)")
     return text
 
 
 def check_results(path: Path, results: dict) -> None:
-    """Refused when a value is not positive or a quality figure is beyond its limit."""
+    """qt.Refusal when a value is not positive or a quality figure is beyond its limit."""
     problems = []
     for key, (value, repeat, resid) in results.items():
         k = qt.SCHEMA_BY_NAME[f"motor.{key}"]
@@ -155,7 +147,7 @@ def check_results(path: Path, results: dict) -> None:
                     f"{path}: results.{key}.{fig} = {qt.fmt(val)} %: outside 0 .. {qt.fmt(lim)} % "
                     f"(half the accuracy target of {k.desc}): repeat the identification")
     if problems:
-        raise Refused("\n".join(problems))
+        raise qt.Refusal("\n".join(problems))
 
 
 SECTION_RE = re.compile(r"^\s*\[\s*([A-Za-z_][A-Za-z0-9_]*)\s*\]\s*(#.*)?$")
@@ -167,7 +159,7 @@ def motor_text(ratings: Path, rec_path: Path, rec: dict) -> str:
     try:
         lines = ratings.read_text(encoding="utf-8").splitlines()
     except (OSError, UnicodeDecodeError) as exc:
-        raise Malformed(f"{ratings}: cannot be read ({exc})") from exc
+        raise qt.InputError(f"{ratings}: cannot be read ({exc})") from exc
     section = None
     motor_at = None
     typed = []
@@ -183,9 +175,9 @@ def motor_text(ratings: Path, rec_path: Path, rec: dict) -> str:
             typed.append(f"{ratings}:{n + 1}: motor.{m.group(1)} is typed "
                          f"({line.strip()}): the identification measures it; remove the line")
     if typed:
-        raise Refused("\n".join(typed))
+        raise qt.Refusal("\n".join(typed))
     if motor_at is None:
-        raise Malformed(f"{ratings}: no [motor] section")
+        raise qt.InputError(f"{ratings}: no [motor] section")
     cond = ", ".join(f"{k} {v}" for k, v in sorted(rec["conditions"].items()))
     added = [f"# identified ({rec_path.name}{': ' + rec['source'] if rec['source'] else ''}"
              f"{'; ' + cond if cond else ''}); quality: repeat / residual in % of the value"]
@@ -223,15 +215,9 @@ def main(argv: list[str] | None = None) -> int:
         check_results(args.record, rec["results"])
         text = motor_text(args.ratings, args.record, rec)
         if out.exists() and not args.force:
-            raise Refused(f"{out}: exists; --force replaces it")
-    except Refused as exc:
-        for line in str(exc).split("\n"):
-            print(f"refused: {line}", file=sys.stderr)
-        print("qfoc_ident: refused, no motor file and no table written", file=sys.stderr)
-        return 1
-    except Malformed as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
+            raise qt.Refusal(f"{out}: exists; --force replaces it")
+    except qt.InputError as exc:
+        return qt.exit_on(exc, "qfoc_ident", "no motor file and no table written")
 
     old = out.read_bytes() if out.exists() else None
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -3077,6 +3077,21 @@ def c_name(stem: str) -> str:
     return name if name and not name[0].isdigit() else "m_" + name
 
 
+NOTHING_WRITTEN = "no table written (docs/motor-file.md)"
+
+
+def exit_on(exc: InputError, tool: str, nothing: str) -> int:
+    """Report a refusal (a line 'refused: ...' per reason, then what was not written; exit code
+    1) or malformed input (a line 'error: ...'; exit code 2) on stderr; return the code."""
+    if isinstance(exc, Refusal):
+        for line in str(exc).split("\n"):
+            print(f"refused: {line}", file=sys.stderr)
+        print(f"{tool}: refused, {nothing}", file=sys.stderr)
+        return 1
+    print(f"error: {exc}", file=sys.stderr)
+    return 2
+
+
 def main(argv: list[str] | None = None) -> int:
     """Command-line entry point; returns the exit code."""
     ap = argparse.ArgumentParser(
@@ -3119,14 +3134,8 @@ def main(argv: list[str] | None = None) -> int:
             b = make_bases(cfg)
         except Refusal as exc:
             raise Refusal(f"{args.motor}: {exc}") from exc
-    except Refusal as exc:
-        for line in str(exc).split("\n"):
-            print(f"refused: {line}", file=sys.stderr)
-        print("qfoc_tune: refused, no table written (docs/motor-file.md)", file=sys.stderr)
-        return 1
     except InputError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
+        return exit_on(exc, "qfoc_tune", NOTHING_WRITTEN)
     for w in cfg["warnings"]:
         print(f"warning: {w}", file=sys.stderr)
     name = c_name(args.name if args.name else args.motor.stem)
@@ -3141,14 +3150,13 @@ def main(argv: list[str] | None = None) -> int:
     worst, at_rpm, harm = tc_worst_phase(cfg, ds, dr["tc_speed_min_rpm"], dr["tc_speed_max_rpm"])
     if worst >= 90.0:
         top = tc_speed_limit_rpm(cfg, ds, dr["tc_speed_min_rpm"], dr["tc_speed_max_rpm"])
-        print(f"refused: {typed(cfg, 'drive.tc_speed_min_rpm')} .. "
-              f"{typed(cfg, 'drive.tc_speed_max_rpm')}: the torque compensation's "
-              f"{'first' if harm == 1 else 'second'} harmonic at {fmt(at_rpm)} rpm has a phase "
-              f"error of {fmt(worst)} deg (90 deg or more: its learning diverges, "
-              f"include/qfoc/trqcomp.h); with this lower end the window may reach "
-              f"{fmt(top)} rpm", file=sys.stderr)
-        print("qfoc_tune: refused, no table written (docs/motor-file.md)", file=sys.stderr)
-        return 1
+        return exit_on(Refusal(
+            f"{typed(cfg, 'drive.tc_speed_min_rpm')} .. "
+            f"{typed(cfg, 'drive.tc_speed_max_rpm')}: the torque compensation's "
+            f"{'first' if harm == 1 else 'second'} harmonic at {fmt(at_rpm)} rpm has a phase "
+            f"error of {fmt(worst)} deg (90 deg or more: its learning diverges, "
+            f"include/qfoc/trqcomp.h); with this lower end the window may reach "
+            f"{fmt(top)} rpm"), "qfoc_tune", NOTHING_WRITTEN)
     items = build_table(cfg, ds)
     bounds = check_bounds(cfg, ds) + range_checks(items)
     failures = []
