@@ -185,11 +185,7 @@ typedef struct {
     uint16_t vdc;  /**< DC-bus voltage, 0..4095 */
 } qfoc_adc_t;
 
-/** Output of one PWM period. */
-typedef struct {
-    uint16_t cmp[3];  /**< compare values u, v, w, 0..period */
-    bool enable;      /**< true: outputs switching; false: all switches off */
-} qfoc_pwm_t;
+/* Output of one PWM period: qfoc_pwm_t (types.h). */
 
 /** Inputs of one tick. */
 typedef struct {

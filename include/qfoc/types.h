@@ -61,6 +61,12 @@ typedef struct {
     qfoc_q15_t cosine;  /**< cos(theta) */
 } qfoc_sincos_t;
 
+/** Output of one PWM period (the drive's and the identification's fast step). */
+typedef struct {
+    uint16_t cmp[3];  /**< compare values u, v, w, 0..period */
+    bool enable;      /**< true: outputs switching; false: all switches off */
+} qfoc_pwm_t;
+
 #ifdef __cplusplus
 }
 #endif

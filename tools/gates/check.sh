@@ -65,6 +65,7 @@ gate tune     make --no-print-directory tune-check
 gate a2l      make --no-print-directory a2l-check
 gate demo     make --no-print-directory quickstart
 gate robust   make --no-print-directory robustness ROBUST_COUNT=24
+gate identify make --no-print-directory identify
 gate repro    make --no-print-directory repro
 gate cmake    make --no-print-directory cmake-check
 gate fuzz     make --no-print-directory fuzz-check

@@ -1,0 +1,356 @@
+/**
+ * @file ident.h
+ * @brief Commissioning a new motor at standstill: the measurements from which the host
+ *        computes the stator resistance R_s, the inductances L_d and L_q and the
+ *        inverter's voltage error (specs/equations.md section 12).
+ *
+ * The mode runs on the inverter and the motor it will drive, once per PWM period, in
+ * place of the drive's control (the integrator calls qfoc_ident_step() from the
+ * ADC-complete interrupt while the drive is stopped, with PWM off).  It works in the
+ * stationary frame: the first step aligns the rotor's d axis with the alpha axis (phase
+ * u), so that alpha is the rotor's d axis and beta its q axis for the steps after it.
+ * Two PI controllers (pi.h, the table's current-loop gains) hold the alpha current at the
+ * step's level and the beta current at zero; the voltage vector is modulated by
+ * qfoc_svpwm_step() without dead-time compensation, so the inverter's own voltage error
+ * is in what the motor receives and is measured, not guessed.
+ *
+ * Steps (each n_settle periods to settle, then a window of 2^win_shift periods, in two
+ * halves whose sums are kept apart; ALIGN settles for n_align periods):
+ *   ALIGN  alpha current i_hi: the rotor turns to the alpha axis and stays there;
+ *   R_LO   alpha current i_lo;
+ *   R_HI   alpha current i_hi: R_s = (V_hi - V_lo) / (I_hi - I_lo), the inverter's
+ *          voltage error V_lo - R_s I_lo (both levels positive and above its transition,
+ *          so the error is the same in both and cancels in the difference);
+ *   L_D    alpha current i_hi (the rotor held) plus a voltage v_inj cos(2 pi k / 16) on
+ *          alpha: injection at f_pwm / 16;
+ *   L_Q    the same with the injection on beta.
+ * The alpha reference moves towards each step's level by at most i_ramp per period (no
+ * current step, no overshoot of the PI).  The voltage the motor receives is taken from
+ * the compare values written (the inverter's duty cycles times the measured DC bus): the
+ * window sums hold the alpha counts 2 cmp_u - cmp_v - cmp_w and the beta counts
+ * cmp_v - cmp_w, from which the host forms u_alpha = counts V_dc / (3 P) and
+ * u_beta = counts V_dc / (sqrt 3 P).  The compare values written in period k act in
+ * period k + 1: the host's model of the injection (G = I / U at the injection frequency,
+ * a one-period delay and the sampled R-L response) accounts for it.
+ *
+ * Bounds (each checked in the period it is seen; PWM off in that period and after):
+ *   - current: |i_alpha| or |i_beta| above i_lim: QFOC_IDENT_ERR_OC (a shorted phase or
+ *     a winding far below any plausible resistance; the drive's over-current trip on
+ *     the phase currents stays the integrator's second barrier);
+ *   - DC bus below vdc_min: QFOC_IDENT_ERR_BUS;
+ *   - at each window's end, the mean alpha current off the step's level by more than a
+ *     quarter of it, or the mean beta current more than that from zero:
+ *     QFOC_IDENT_ERR_NO_CURRENT (an open phase, no motor, a bus too low for the test
+ *     current: the PI's voltage is at its limit and the current is not reached);
+ *   - at the end of R_LO, R_HI, L_D and L_Q, the mean beta voltage command above
+ *     v_move: QFOC_IDENT_ERR_MOVED (a rotor that turns induces w psi_f on the q axis,
+ *     which the beta loop must cancel);
+ *   - the whole mode lasts n_align + 4 n_settle + 5 2^win_shift periods at most.
+ * qfoc_ident_abort() ends it at once (QFOC_IDENT_ERR_ABORT).
+ *
+ * Scaling (specs/scaling.md): currents Q15 of I_base, voltages and the DC bus Q15 of
+ * V_base, compare values in timer ticks (svpwm.h).  A half window has at most 2^13
+ * periods: every 32-bit sum stays within 2^13 x 65534 < 2^30, every 64-bit product sum
+ * within 2^13 x 65534 x 32767 < 2^45; the sums are nevertheless saturating (no input can
+ * overflow them).
+ *
+ * Every function is total: a configuration that fails qfoc_ident_cfg_is_valid() is
+ * refused by qfoc_ident_start() (QFOC_IDENT_ERR_CFG, PWM off, nothing run).
+ *
+ * Requirements: REQ-IDENT-001 .. REQ-IDENT-006 (specs/requirements/ident.md).
+ */
+#ifndef QFOC_IDENT_H
+#define QFOC_IDENT_H
+
+#include "qfoc/types.h"
+#include "qfoc/pi.h"
+#include "qfoc/svpwm.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Results (qfoc_ident_result()). */
+#define QFOC_IDENT_IDLE           ((uint8_t)0u)  /**< not started */
+#define QFOC_IDENT_RUNNING        ((uint8_t)1u)  /**< measuring: PWM on */
+#define QFOC_IDENT_DONE           ((uint8_t)2u)  /**< every step measured: the record is complete */
+#define QFOC_IDENT_ERR_CFG        ((uint8_t)3u)  /**< configuration refused: nothing ran */
+#define QFOC_IDENT_ERR_BUS        ((uint8_t)4u)  /**< DC bus below vdc_min */
+#define QFOC_IDENT_ERR_OC         ((uint8_t)5u)  /**< a current above i_lim */
+#define QFOC_IDENT_ERR_NO_CURRENT ((uint8_t)6u)  /**< the step's current not reached */
+#define QFOC_IDENT_ERR_MOVED      ((uint8_t)7u)  /**< the rotor turned */
+#define QFOC_IDENT_ERR_ABORT      ((uint8_t)8u)  /**< ended by qfoc_ident_abort() */
+
+/* Steps (qfoc_ident_step_now()); the record has one entry per step. */
+#define QFOC_IDENT_ALIGN  ((uint8_t)0u)  /**< aligning the rotor */
+#define QFOC_IDENT_R_LO   ((uint8_t)1u)  /**< the first resistance level */
+#define QFOC_IDENT_R_HI   ((uint8_t)2u)  /**< the second resistance level */
+#define QFOC_IDENT_L_D    ((uint8_t)3u)  /**< injection on the d (alpha) axis */
+#define QFOC_IDENT_L_Q    ((uint8_t)4u)  /**< injection on the q (beta) axis */
+#define QFOC_IDENT_STEPS  (5u)           /**< number of steps */
+
+/** Smallest and largest window: 2^5 .. 2^14 periods (halves of 16 .. 8192). */
+#define QFOC_IDENT_WIN_MIN ((uint8_t)5u)
+#define QFOC_IDENT_WIN_MAX ((uint8_t)14u)  /**< largest window shift */
+
+/** The saturation bound of the 32-bit and of the 64-bit window sums. */
+#define QFOC_IDENT_SUM32_MAX (2147483647)
+#define QFOC_IDENT_SUM64_MAX (4611686018427387904LL)
+
+/** Configuration: what the host tool derives from the motor's ratings and the table. */
+typedef struct {
+    qfoc_q15_t i_lo;       /**< first resistance level, Q15 of I_base, > 0 */
+    qfoc_q15_t i_hi;       /**< second level, alignment and bias current, > i_lo */
+    qfoc_q15_t i_lim;      /**< the mode's current bound, > i_hi */
+    qfoc_q15_t i_ramp;     /**< largest change of the alpha reference per period, > 0 */
+    qfoc_q15_t v_inj;      /**< injection amplitude, Q15 of V_base, > 0 */
+    qfoc_q15_t v_move;     /**< mean beta voltage of a turning rotor, Q15 of V_base, > 0 */
+    qfoc_q15_t vdc_min;    /**< lowest DC bus the test runs on, Q15 of V_base, > 0 */
+    uint16_t n_align;      /**< periods of ALIGN before its window, > 0 */
+    uint16_t n_settle;     /**< periods of the other steps before their window, > 0 */
+    uint8_t win_shift;     /**< window of 2^win_shift periods, WIN_MIN .. WIN_MAX */
+    qfoc_pi_params_t pi;   /**< current PI of both axes (pi.h; valid, out_min < 0 < out_max) */
+    qfoc_svpwm_cfg_t pwm;  /**< modulation (svpwm.h; valid, dt_comp = 0) */
+} qfoc_ident_cfg_t;
+
+/** The sums of one half window (x: the step's injected axis, alpha in R_LO, R_HI and
+    ALIGN; y: the other axis). */
+typedef struct {
+    int32_t n;        /**< periods summed */
+    int32_t i_a;      /**< sum of i_alpha, Q15 */
+    int32_t i_b;      /**< sum of i_beta, Q15 */
+    int32_t u_a;      /**< sum of 2 cmp_u - cmp_v - cmp_w, ticks */
+    int32_t u_b;      /**< sum of cmp_v - cmp_w, ticks */
+    int32_t vdc;      /**< sum of the DC bus, Q15 */
+    int32_t vb_cmd;   /**< sum of the beta voltage command, Q15 */
+    int64_t u_c;      /**< sum of the x counts times cos(2 pi k / 16) (Q15) */
+    int64_t u_s;      /**< sum of the x counts times sin(2 pi k / 16) */
+    int64_t i_c;      /**< sum of i_x times cos */
+    int64_t i_s;      /**< sum of i_x times sin */
+    int64_t j_c;      /**< sum of i_y times cos (cross-coupling) */
+    int64_t j_s;      /**< sum of i_y times sin */
+} qfoc_ident_sums_t;
+
+/** The mode's state (one per motor; written by the fast step's context only). */
+typedef struct {
+    qfoc_ident_cfg_t cfg;   /**< configuration taken at the start */
+    qfoc_pi_t pi_a;         /**< alpha current loop */
+    qfoc_pi_t pi_b;         /**< beta current loop */
+    qfoc_q15_t ref;         /**< alpha current reference now, Q15 */
+    uint32_t n;             /**< periods spent in this step (at most 65535 + 2^14) */
+    uint8_t step;           /**< QFOC_IDENT_ALIGN .. QFOC_IDENT_L_Q */
+    uint8_t result;         /**< QFOC_IDENT_IDLE .. QFOC_IDENT_ERR_ABORT */
+    uint8_t k;              /**< injection phase, 0 .. 15 */
+    qfoc_ident_sums_t rec[QFOC_IDENT_STEPS][2];  /**< the record: each step's two halves */
+} qfoc_ident_t;
+
+/*@
+  predicate IdentCfgValid(qfoc_ident_cfg_t *c) =
+    0 < c->i_lo < c->i_hi < c->i_lim && 0 < c->i_ramp && 0 < c->v_inj && 0 < c->v_move &&
+    0 < c->vdc_min && 0 < c->n_align && 0 < c->n_settle &&
+    QFOC_IDENT_WIN_MIN <= c->win_shift <= QFOC_IDENT_WIN_MAX &&
+    PiParamsValid(&c->pi) && c->pi.out_min < 0 < c->pi.out_max &&
+    SvpwmCfgValid(c->pwm.period, c->pwm.dt_comp, c->pwm.i_deadband, c->pwm.vdc_min) &&
+    c->pwm.dt_comp == 0;
+  predicate IdentValid(qfoc_ident_t *id) =
+    id->step < QFOC_IDENT_STEPS && id->result <= QFOC_IDENT_ERR_ABORT && id->k <= 15 &&
+    PiValid(&id->pi_a) && PiValid(&id->pi_b) &&
+    (id->result == QFOC_IDENT_RUNNING ==> IdentCfgValid(&id->cfg) && 0 <= id->ref <= id->cfg.i_hi &&
+                                           id->n <= 65535 + 16384);
+  logic integer IdentAbs(integer x) = (x < 0) ? -x : x;
+*/
+
+/**
+ * @brief Check a configuration (the predicate IdentCfgValid).
+ * @param[in] c the configuration (any values)
+ * @return true iff 0 < i_lo < i_hi < i_lim, i_ramp, v_inj, v_move, vdc_min, n_align and
+ *         n_settle are positive, QFOC_IDENT_WIN_MIN <= win_shift <= QFOC_IDENT_WIN_MAX,
+ *         the PI parameters are valid with out_min < 0 < out_max, and the modulation is
+ *         valid without dead-time compensation.
+ * Requirements: REQ-IDENT-001.
+ */
+/*@
+  requires valid: \valid_read(c);
+  assigns \nothing;
+  ensures result: \result <==> IdentCfgValid(c);
+*/
+bool qfoc_ident_cfg_is_valid(const qfoc_ident_cfg_t *c);
+
+/**
+ * @brief The idle state: PWM off, result QFOC_IDENT_IDLE, an empty record.
+ * @param[out] id the state
+ * Requirements: REQ-IDENT-001.
+ */
+/*@
+  requires valid: \valid(id);
+  assigns *id;
+  ensures inv: IdentValid(id);
+  ensures idle: id->result == QFOC_IDENT_IDLE && id->step == QFOC_IDENT_ALIGN;
+*/
+void qfoc_ident_init(qfoc_ident_t *id);
+
+/**
+ * @brief Start the mode with a configuration (copied), from any state.
+ * @param[in,out] id the state (valid)
+ * @param[in]     c  the configuration (any values)
+ * @return QFOC_IDENT_RUNNING: started at ALIGN with an empty record and zero current;
+ *         QFOC_IDENT_ERR_CFG: refused (the state is the idle state with that result,
+ *         the PWM stays off).
+ * Requirements: REQ-IDENT-001.
+ */
+/*@
+  requires valid: \valid(id) && \valid_read(c);
+  requires sep: \separated(id, c);
+  assigns *id;
+  ensures inv: IdentValid(id);
+  ensures step: id->step == QFOC_IDENT_ALIGN && id->n == 0 && id->ref == 0;
+  behavior taken:
+    assumes IdentCfgValid(c);
+    ensures result: \result == QFOC_IDENT_RUNNING && id->result == QFOC_IDENT_RUNNING;
+  behavior refused:
+    assumes !IdentCfgValid(c);
+    ensures result: \result == QFOC_IDENT_ERR_CFG && id->result == QFOC_IDENT_ERR_CFG;
+  complete behaviors;
+  disjoint behaviors;
+*/
+uint8_t qfoc_ident_start(qfoc_ident_t *id, const qfoc_ident_cfg_t *c);
+
+/**
+ * @brief End a running mode at once (QFOC_IDENT_ERR_ABORT); any other state is kept.
+ * @param[in,out] id the state (valid)
+ * Requirements: REQ-IDENT-003.
+ */
+/*@
+  requires valid: \valid(id);
+  requires inv: IdentValid(id);
+  assigns id->result;
+  ensures inv: IdentValid(id);
+  ensures result: \old(id->result) == QFOC_IDENT_RUNNING ?
+                    id->result == QFOC_IDENT_ERR_ABORT : id->result == \old(id->result);
+*/
+void qfoc_ident_abort(qfoc_ident_t *id);
+
+/**
+ * @brief One PWM period of the mode (the file comment's steps and bounds).
+ * @param[in,out] id  the state (valid)
+ * @param[in]     i   this period's stator current, alpha and beta, Q15 of I_base
+ * @param[in]     vdc this period's DC bus, Q15 of V_base
+ * @return the compare values and the enable: enabled only while the mode runs and no
+ *         bound is broken in this period; disabled, with every compare value at half the
+ *         period (0 for an invalid modulation configuration), otherwise.
+ * Requirements: REQ-IDENT-002, REQ-IDENT-003, REQ-IDENT-004.
+ */
+/*@
+  requires valid: \valid(id) && \valid_read(i);
+  requires sep: \separated(id, i);
+  requires inv: IdentValid(id);
+  assigns *id;
+  ensures inv: IdentValid(id);
+  ensures only_running: \result.enable ==> \old(id->result) == QFOC_IDENT_RUNNING &&
+                                            id->result != QFOC_IDENT_ERR_OC &&
+                                            id->result != QFOC_IDENT_ERR_BUS;
+  ensures off_after_end: \old(id->result) != QFOC_IDENT_RUNNING ==>
+                           !\result.enable && id->result == \old(id->result);
+  ensures over_current: \old(id->result) == QFOC_IDENT_RUNNING &&
+                        (IdentAbs(i->alpha) > \old(id->cfg.i_lim) ||
+                         IdentAbs(i->beta) > \old(id->cfg.i_lim)) ==>
+                          !\result.enable && id->result == QFOC_IDENT_ERR_OC;
+  ensures bus: \old(id->result) == QFOC_IDENT_RUNNING &&
+               IdentAbs(i->alpha) <= \old(id->cfg.i_lim) &&
+               IdentAbs(i->beta) <= \old(id->cfg.i_lim) && vdc < \old(id->cfg.vdc_min) ==>
+                 !\result.enable && id->result == QFOC_IDENT_ERR_BUS;
+  ensures cmp: \result.enable ==> \result.cmp[0] <= id->cfg.pwm.period &&
+                                  \result.cmp[1] <= id->cfg.pwm.period &&
+                                  \result.cmp[2] <= id->cfg.pwm.period;
+  ensures mid: !\result.enable ==> \result.cmp[0] == id->cfg.pwm.period / 2 &&
+                                   \result.cmp[1] == id->cfg.pwm.period / 2 &&
+                                   \result.cmp[2] == id->cfg.pwm.period / 2;
+  ensures ref: \result.enable ==> 0 <= id->ref <= id->cfg.i_hi;
+*/
+qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc);
+
+/**
+ * @brief The mode's result: QFOC_IDENT_IDLE .. QFOC_IDENT_ERR_ABORT.
+ * @param[in] id the state
+ * @return the result
+ * Requirements: REQ-IDENT-005.
+ */
+/*@
+  requires valid: \valid_read(id);
+  assigns \nothing;
+  ensures result: \result == id->result;
+*/
+uint8_t qfoc_ident_result(const qfoc_ident_t *id);
+
+/**
+ * @brief The step the mode is in (or ended in): QFOC_IDENT_ALIGN .. QFOC_IDENT_L_Q.
+ * @param[in] id the state
+ * @return the step
+ * Requirements: REQ-IDENT-005.
+ */
+/*@
+  requires valid: \valid_read(id);
+  assigns \nothing;
+  ensures result: \result == id->step;
+*/
+uint8_t qfoc_ident_step_now(const qfoc_ident_t *id);
+
+/**
+ * @brief Copy one half window's sums out of the record.
+ * @param[in]  id   the state
+ * @param[in]  step QFOC_IDENT_ALIGN .. QFOC_IDENT_L_Q (any value)
+ * @param[in]  half 0 or 1 (any value)
+ * @param[out] out  the copy (all zero when step or half is out of range)
+ * @return true when step and half are in range
+ * Requirements: REQ-IDENT-005.
+ */
+/*@
+  requires valid: \valid_read(id) && \valid(out);
+  requires sep: \separated(id, out);
+  assigns *out;
+  behavior in_range:
+    assumes step < QFOC_IDENT_STEPS && half < 2;
+    ensures result: \result == \true;
+    ensures copy: *out == id->rec[step][half];
+  behavior out_of_range:
+    assumes step >= QFOC_IDENT_STEPS || half >= 2;
+    ensures result: \result == \false;
+    ensures zero: out->n == 0 && out->i_a == 0 && out->u_a == 0 && out->i_c == 0;
+  complete behaviors;
+  disjoint behaviors;
+*/
+bool qfoc_ident_sums(const qfoc_ident_t *id, uint8_t step, uint8_t half,
+                     qfoc_ident_sums_t *out);
+
+/** Frames of the record: one header, then one per sum field. */
+#define QFOC_IDENT_FIELDS  (13u)  /**< fields of qfoc_ident_sums_t, in declaration order */
+#define QFOC_IDENT_FRAMES  ((uint16_t)(1u + (QFOC_IDENT_STEPS * 2u * QFOC_IDENT_FIELDS)))
+
+/**
+ * @brief Frame k of the record, 8 bytes for a CAN, LIN or UART transport.
+ *        Frame 0: byte 0 = 0xA5, byte 1 = result, byte 2 = step, byte 3 = win_shift,
+ *        bytes 4..5 = the PWM period (little endian), bytes 6..7 = QFOC_IDENT_FRAMES.
+ *        Frame k >= 1: with j = k - 1, step = j / 26, half = (j / 13) % 2 and field =
+ *        j % 13 (qfoc_ident_sums_t's order): byte 0 = k (mod 256), byte 1 = 32 step +
+ *        16 half + field, bytes 2..7 = the field's value as a 48-bit two's complement
+ *        number, little endian (every sum fits: |sum| < 2^45; a 64-bit sum beyond 48
+ *        bits, which only a saturated sum could be, is sent as +-(2^47 - 1)).
+ * @param[in]  id  the state
+ * @param[in]  k   0 .. QFOC_IDENT_FRAMES - 1 (any value)
+ * @param[out] buf 8 bytes (all zero for k out of range)
+ * @return true for k in range
+ * Requirements: REQ-IDENT-005.
+ */
+/*@
+  requires valid: \valid_read(id) && \valid(buf + (0 .. 7));
+  requires sep: \separated(id, buf + (0 .. 7));
+  assigns buf[0 .. 7];
+  ensures result: \result <==> k < QFOC_IDENT_FRAMES;
+*/
+bool qfoc_ident_frame(const qfoc_ident_t *id, uint16_t k, uint8_t buf[8]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* QFOC_IDENT_H */
