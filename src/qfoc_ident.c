@@ -119,6 +119,20 @@ static void ident_clear_record(qfoc_ident_t *id)
     }
 }
 
+/* Both current loops from one parameter set. */
+/*@
+  requires valid: \valid(id) && \valid_read(p);
+  requires sep: \separated(id, p);
+  assigns id->pi_a, id->pi_b;
+  ensures inv: PiValid(&id->pi_a) && PiValid(&id->pi_b);
+  ensures params: PiParamsValid(p) ==> id->pi_a.params == *p && id->pi_b.params == *p;
+*/
+static void ident_init_pi(qfoc_ident_t *id, const qfoc_pi_params_t *p)
+{
+    (void)qfoc_pi_init(&id->pi_a, p);
+    (void)qfoc_pi_init(&id->pi_b, p);
+}
+
 bool qfoc_ident_cfg_is_valid(const qfoc_ident_cfg_t *c)
 {
     bool ok = (c->i_lo > 0) && (c->i_hi > c->i_lo) && (c->i_lim > c->i_hi);
@@ -149,13 +163,12 @@ void qfoc_ident_init(qfoc_ident_t *id)
     id->cfg.pwm.dt_comp = 0u;
     id->cfg.pwm.i_deadband = 0;
     id->cfg.pwm.vdc_min = 0;
-    (void)qfoc_pi_init(&id->pi_a, &off);
-    (void)qfoc_pi_init(&id->pi_b, &off);
     id->ref = 0;
     id->n = 0u;
     id->step = QFOC_IDENT_ALIGN;
     id->result = QFOC_IDENT_IDLE;
     id->k = 0u;
+    ident_init_pi(id, &off);
 }
 
 uint8_t qfoc_ident_start(qfoc_ident_t *id, const qfoc_ident_cfg_t *c)
@@ -164,8 +177,7 @@ uint8_t qfoc_ident_start(qfoc_ident_t *id, const qfoc_ident_cfg_t *c)
     qfoc_ident_init(id);
     if (qfoc_ident_cfg_is_valid(c)) {
         id->cfg = *c;
-        (void)qfoc_pi_init(&id->pi_a, &c->pi);
-        (void)qfoc_pi_init(&id->pi_b, &c->pi);
+        ident_init_pi(id, &c->pi);
         r = QFOC_IDENT_RUNNING;
     } else {
         r = QFOC_IDENT_ERR_CFG;

@@ -185,7 +185,8 @@ bool qfoc_ident_cfg_is_valid(const qfoc_ident_cfg_t *c);
   requires valid: \valid(id);
   assigns *id;
   ensures inv: IdentValid(id);
-  ensures idle: id->result == QFOC_IDENT_IDLE && id->step == QFOC_IDENT_ALIGN;
+  ensures idle: id->result == QFOC_IDENT_IDLE && id->step == QFOC_IDENT_ALIGN &&
+                id->n == 0 && id->ref == 0;
 */
 void qfoc_ident_init(qfoc_ident_t *id);
 
