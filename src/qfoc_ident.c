@@ -7,6 +7,9 @@
 #include "qfoc/ident.h"
 #include "qfoc/q15.h"
 
+/* The PI parameters of the idle state: every gain and limit 0 (a valid set). */
+static const qfoc_pi_params_t ident_pi_off = { 0, 0u, 0, 0u, 0, 0 };
+
 /* cos(2 pi k / 16) in Q15 (rounded 32767 cos); sin(2 pi k / 16) is entry (k + 12) % 16. */
 static const int16_t ident_cos16[16] = {
     32767, 30273, 23170, 12539, 0, -12539, -23170, -30273,
@@ -23,12 +26,17 @@ static bool ident_above(qfoc_q15_t x, qfoc_q15_t lim)
     return a > (int32_t)lim;
 }
 
-/* Saturating 32-bit accumulation of a term |x| <= 2^17. */
+/*@
+  logic integer IdentSat32(integer v) =
+    (v > QFOC_IDENT_SUM32_MAX) ? QFOC_IDENT_SUM32_MAX :
+    (v < -QFOC_IDENT_SUM32_MAX) ? -QFOC_IDENT_SUM32_MAX : v;
+*/
+
+/* Saturating 32-bit accumulation of a term |x| <= 2^17 to any sum s. */
 /*@
   requires term: -131072 <= x <= 131072;
   assigns \nothing;
-  ensures result: \result == ((s + x > QFOC_IDENT_SUM32_MAX) ? QFOC_IDENT_SUM32_MAX :
-                              (s + x < -QFOC_IDENT_SUM32_MAX) ? -QFOC_IDENT_SUM32_MAX : s + x);
+  ensures result: \result == IdentSat32(s + x);
 */
 static int32_t ident_acc32(int32_t s, int32_t x)
 {
@@ -39,6 +47,9 @@ static int32_t ident_acc32(int32_t s, int32_t x)
         r = -QFOC_IDENT_SUM32_MAX;
     } else {
         r = s + x;
+    }
+    if (r < -QFOC_IDENT_SUM32_MAX) {
+        r = -QFOC_IDENT_SUM32_MAX;  /* s = -2^31 and x = 0 */
     }
     return r;
 }
@@ -103,19 +114,19 @@ static void ident_zero(qfoc_ident_sums_t *z)
 
 /*@
   requires valid: \valid(id);
-  assigns id->rec[0 .. QFOC_IDENT_STEPS - 1][0 .. 1];
+  assigns id->rec;
 */
 static void ident_clear_record(qfoc_ident_t *id)
 {
     uint8_t s;
     /*@
       loop invariant range: 0 <= s <= QFOC_IDENT_STEPS;
-      loop assigns s, id->rec[0 .. QFOC_IDENT_STEPS - 1][0 .. 1];
+      loop assigns s, id->rec;
       loop variant QFOC_IDENT_STEPS - s;
     */
     for (s = 0u; s < QFOC_IDENT_STEPS; s++) {
-        ident_zero(&id->rec[s][0]);
-        ident_zero(&id->rec[s][1]);
+        ident_zero(&id->rec.s[s][0]);
+        ident_zero(&id->rec.s[s][1]);
     }
 }
 
@@ -124,7 +135,7 @@ static void ident_clear_record(qfoc_ident_t *id)
   requires valid: \valid(id) && \valid_read(p);
   requires sep: \separated(id, p);
   assigns id->pi_a, id->pi_b;
-  ensures inv: PiValid(&id->pi_a) && PiValid(&id->pi_b);
+  ensures inv: IDENT_PI(&id->pi_a) && IDENT_PI(&id->pi_b);
   ensures params: PiParamsValid(p) ==> id->pi_a.params == *p && id->pi_b.params == *p;
 */
 static void ident_init_pi(qfoc_ident_t *id, const qfoc_pi_params_t *p)
@@ -133,6 +144,7 @@ static void ident_init_pi(qfoc_ident_t *id, const qfoc_pi_params_t *p)
     (void)qfoc_pi_init(&id->pi_b, p);
 }
 
+/* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
 bool qfoc_ident_cfg_is_valid(const qfoc_ident_cfg_t *c)
 {
     bool ok = (c->i_lo > 0) && (c->i_hi > c->i_lo) && (c->i_lim > c->i_hi);
@@ -144,10 +156,13 @@ bool qfoc_ident_cfg_is_valid(const qfoc_ident_cfg_t *c)
     return ok;
 }
 
-void qfoc_ident_init(qfoc_ident_t *id)
+/* The idle configuration: every field 0 (not valid: the mode cannot run on it). */
+/*@
+  requires valid: \valid(id);
+  assigns id->cfg;
+*/
+static void ident_idle_cfg(qfoc_ident_t *id)
 {
-    static const qfoc_pi_params_t off = { 0, 0u, 0, 0u, 0, 0 };
-    ident_clear_record(id);
     id->cfg.i_lo = 0;
     id->cfg.i_hi = 0;
     id->cfg.i_lim = 0;
@@ -158,31 +173,71 @@ void qfoc_ident_init(qfoc_ident_t *id)
     id->cfg.n_align = 0u;
     id->cfg.n_settle = 0u;
     id->cfg.win_shift = 0u;
-    id->cfg.pi = off;
+    id->cfg.pi.kp = 0;
+    id->cfg.pi.kp_shift = 0u;
+    id->cfg.pi.ki = 0;
+    id->cfg.pi.ki_shift = 0u;
+    id->cfg.pi.out_min = 0;
+    id->cfg.pi.out_max = 0;
     id->cfg.pwm.period = 0u;
     id->cfg.pwm.dt_comp = 0u;
     id->cfg.pwm.i_deadband = 0;
     id->cfg.pwm.vdc_min = 0;
+}
+
+/* The state at a step's start with result r: ALIGN, zero reference, an empty record. */
+/*@
+  requires valid: \valid(id);
+  requires result: r <= QFOC_IDENT_ERR_ABORT;
+  assigns id->rec, id->ref, id->n, id->step, id->k,
+          id->result;
+  ensures state: id->step == QFOC_IDENT_ALIGN && id->n == 0 && id->ref == 0 && id->k == 0 &&
+                 id->result == r;
+*/
+static void ident_reset(qfoc_ident_t *id, uint8_t r)
+{
+    ident_clear_record(id);
     id->ref = 0;
     id->n = 0u;
     id->step = QFOC_IDENT_ALIGN;
-    id->result = QFOC_IDENT_IDLE;
     id->k = 0u;
-    ident_init_pi(id, &off);
+    id->result = r;
+}
+
+/* cppcheck-suppress misra-c2012-8.7 ; DEV-002 */
+void qfoc_ident_init(qfoc_ident_t *id)
+{
+    ident_idle_cfg(id);
+    ident_init_pi(id, &ident_pi_off);
+    ident_reset(id, QFOC_IDENT_IDLE);
+}
+
+/* Take a valid configuration. */
+/*@
+  requires valid: \valid(id) && \valid_read(c);
+  requires sep: \separated(id, c);
+  requires cfg: IDENT_CFG_VALID(c);
+  assigns id->cfg;
+  ensures cfg: IDENT_CFG_VALID(&id->cfg);
+*/
+static void ident_take_cfg(qfoc_ident_t *id, const qfoc_ident_cfg_t *c)
+{
+    id->cfg = *c;
 }
 
 uint8_t qfoc_ident_start(qfoc_ident_t *id, const qfoc_ident_cfg_t *c)
 {
     uint8_t r;
-    qfoc_ident_init(id);
     if (qfoc_ident_cfg_is_valid(c)) {
-        id->cfg = *c;
+        ident_take_cfg(id, c);
         ident_init_pi(id, &c->pi);
         r = QFOC_IDENT_RUNNING;
     } else {
+        ident_idle_cfg(id);
+        ident_init_pi(id, &ident_pi_off);
         r = QFOC_IDENT_ERR_CFG;
     }
-    id->result = r;
+    ident_reset(id, r);
     return r;
 }
 
@@ -193,9 +248,49 @@ void qfoc_ident_abort(qfoc_ident_t *id)
     }
 }
 
+/* Half a window, 2^(win_shift - 1) periods. */
+/*@
+  requires shift: QFOC_IDENT_WIN_MIN <= s <= QFOC_IDENT_WIN_MAX;
+  assigns \nothing;
+  ensures result: 16 <= \result <= 8192;
+*/
+static uint16_t ident_half(uint8_t s)
+{
+    static const uint16_t halves[10] = { 16u, 32u, 64u, 128u, 256u, 512u, 1024u, 2048u,
+                                         4096u, 8192u };
+    return halves[s - QFOC_IDENT_WIN_MIN];
+}
+
+/* The step after one that is not the last. */
+/*@
+  requires step: step < QFOC_IDENT_L_Q;
+  assigns \nothing;
+  ensures result: \result == step + 1;
+*/
+static uint8_t ident_next(uint8_t step)
+{
+    uint8_t n;
+    switch (step) {
+    case QFOC_IDENT_ALIGN:
+        n = QFOC_IDENT_R_LO;
+        break;
+    case QFOC_IDENT_R_LO:
+        n = QFOC_IDENT_R_HI;
+        break;
+    case QFOC_IDENT_R_HI:
+        n = QFOC_IDENT_L_D;
+        break;
+    default:
+        n = QFOC_IDENT_L_Q;
+        break;
+    }
+    return n;
+}
+
 /* The alpha current level of a step. */
 /*@
-  requires cfg: IdentCfgValid(c);
+  requires valid: \valid_read(c);
+  requires cfg: IDENT_CFG_VALID(c);
   assigns \nothing;
   ensures result: 0 < \result <= c->i_hi;
 */
@@ -239,7 +334,8 @@ static void ident_accumulate(qfoc_ident_sums_t *z, const qfoc_ab_t *i, const uin
     const int32_t ua = (2 * (int32_t)cmp[0]) - (int32_t)cmp[1] - (int32_t)cmp[2];
     const int32_t ub = (int32_t)cmp[1] - (int32_t)cmp[2];
     const int16_t c = ident_cos16[k];
-    const int16_t s = ident_cos16[(uint8_t)((k + 12u) & 15u)];
+    const uint8_t ks = (k >= 4u) ? (uint8_t)(k - 4u) : (uint8_t)(k + 12u);
+    const int16_t s = ident_cos16[ks];
     const int32_t ux = beta ? ub : ua;
     const int32_t ix = beta ? (int32_t)i->beta : (int32_t)i->alpha;
     const int32_t iy = beta ? (int32_t)i->alpha : (int32_t)i->beta;
@@ -258,19 +354,34 @@ static void ident_accumulate(qfoc_ident_sums_t *z, const qfoc_ab_t *i, const uin
     z->j_s = ident_acc64(z->j_s, iy, s);
 }
 
+/* Add this period to the half window h of the step the mode is in. */
+/*@
+  requires valid: \valid(id) && \valid_read(i) && \valid_read(cmp + (0 .. 2));
+  requires sep: \separated(id, i) && \separated(id, cmp + (0 .. 2));
+  requires cmp_range: \forall integer j; 0 <= j < 3 ==> cmp[j] <= 32767;
+  requires ranges: id->step < QFOC_IDENT_STEPS && h < 2 && id->k <= 15;
+  assigns id->rec;
+*/
+static void ident_sum(qfoc_ident_t *id, uint8_t h, const qfoc_ab_t *i, const uint16_t *cmp,
+                      qfoc_q15_t vdc, qfoc_q15_t vb_cmd)
+{
+    ident_accumulate(&id->rec.s[id->step][h], i, cmp, vdc, vb_cmd, id->step == QFOC_IDENT_L_Q,
+                     id->k);
+}
+
 /* The verdict at a window's end: QFOC_IDENT_RUNNING (go on) or the error. */
 /*@
   requires valid: \valid_read(id);
-  requires inv: IdentValid(id) && id->result == QFOC_IDENT_RUNNING;
+  requires state: id->step < QFOC_IDENT_STEPS && IDENT_CFG_VALID(&id->cfg);
   assigns \nothing;
   ensures result: \result == QFOC_IDENT_RUNNING || \result == QFOC_IDENT_ERR_NO_CURRENT ||
                   \result == QFOC_IDENT_ERR_MOVED;
 */
 static uint8_t ident_verdict(const qfoc_ident_t *id)
 {
-    const qfoc_ident_sums_t *h0 = &id->rec[id->step][0];
-    const qfoc_ident_sums_t *h1 = &id->rec[id->step][1];
-    const int64_t m = (int64_t)((uint32_t)1u << id->cfg.win_shift);
+    const qfoc_ident_sums_t *h0 = &id->rec.s[id->step][0];
+    const qfoc_ident_sums_t *h1 = &id->rec.s[id->step][1];
+    const int64_t m = 2 * (int64_t)ident_half(id->cfg.win_shift);
     const int64_t level = (int64_t)ident_level(&id->cfg, id->step);
     const int64_t sa = (int64_t)h0->i_a + (int64_t)h1->i_a;
     const int64_t sb = (int64_t)h0->i_b + (int64_t)h1->i_b;
@@ -306,7 +417,7 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
             static const qfoc_abc_t no_dtc = { 0, 0, 0 };
             const uint16_t settle = (id->step == QFOC_IDENT_ALIGN) ? id->cfg.n_align
                                                                     : id->cfg.n_settle;
-            const uint16_t half = (uint16_t)(1u << (id->cfg.win_shift - 1u));
+            const uint16_t half = ident_half(id->cfg.win_shift);
             const qfoc_q15_t level = ident_level(&id->cfg, id->step);
             qfoc_ab_t v;
             qfoc_q15_t inj;
@@ -335,10 +446,9 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
             out.enable = true;
             if (id->n >= settle) {
                 const uint8_t h = ((id->n - (uint32_t)settle) >= (uint32_t)half) ? 1u : 0u;
-                ident_accumulate(&id->rec[id->step][h], i, so.cmp, vdc, v.beta,
-                                 id->step == QFOC_IDENT_L_Q, id->k);
+                ident_sum(id, h, i, so.cmp, vdc, v.beta);
             }
-            id->k = (uint8_t)((id->k + 1u) & 15u);
+            id->k = (id->k >= 15u) ? 0u : (uint8_t)(id->k + 1u);
             id->n++;
             if (id->n >= ((uint32_t)settle + (2u * (uint32_t)half))) {
                 const uint8_t r = ident_verdict(id);
@@ -347,7 +457,7 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
                 } else if (id->step == QFOC_IDENT_L_Q) {
                     id->result = QFOC_IDENT_DONE;
                 } else {
-                    id->step++;
+                    id->step = ident_next(id->step);
                     id->n = 0u;
                 }
             }
@@ -379,7 +489,7 @@ bool qfoc_ident_sums(const qfoc_ident_t *id, uint8_t step, uint8_t half,
 {
     bool ok = false;
     if ((step < QFOC_IDENT_STEPS) && (half < 2u)) {
-        *out = id->rec[step][half];
+        *out = id->rec.s[step][half];
         ok = true;
     } else {
         ident_zero(out);
@@ -432,15 +542,17 @@ bool qfoc_ident_frame(const qfoc_ident_t *id, uint16_t k, uint8_t buf[8])
         buf[2] = id->step;
         buf[3] = id->cfg.win_shift;
         buf[4] = (uint8_t)(id->cfg.pwm.period & 0xFFu);
-        buf[5] = (uint8_t)(id->cfg.pwm.period >> 8u);
+        buf[5] = (uint8_t)(id->cfg.pwm.period / 256u);
         buf[6] = (uint8_t)(QFOC_IDENT_FRAMES & 0xFFu);
-        buf[7] = (uint8_t)(QFOC_IDENT_FRAMES >> 8u);
+        buf[7] = (uint8_t)(QFOC_IDENT_FRAMES / 256u);
     } else if (k < QFOC_IDENT_FRAMES) {
-        const uint16_t j = (uint16_t)(k - 1u);
-        const uint8_t step = (uint8_t)(j / (2u * QFOC_IDENT_FIELDS));
-        const uint8_t half = (uint8_t)((j / QFOC_IDENT_FIELDS) % 2u);
-        const uint8_t field = (uint8_t)(j % QFOC_IDENT_FIELDS);
-        int64_t v = ident_field(&id->rec[step][half], field);
+        const uint32_t j = (uint32_t)k - 1u;
+        const uint32_t step = j / (2u * QFOC_IDENT_FIELDS);
+        const uint32_t half = (j / QFOC_IDENT_FIELDS) % 2u;
+        const uint32_t field = j % QFOC_IDENT_FIELDS;
+        int64_t v;
+        /*@ assert ranges: step < QFOC_IDENT_STEPS && half < 2 && field < QFOC_IDENT_FIELDS; */
+        v = ident_field(&id->rec.s[step][half], (uint8_t)field);
         uint64_t u;
         if (v > lim48) {
             v = lim48;
@@ -450,7 +562,10 @@ bool qfoc_ident_frame(const qfoc_ident_t *id, uint16_t k, uint8_t buf[8])
             /* fits */
         }
         /* the 48-bit two's complement: v + 2^48 for a negative v */
-        u = (uint64_t)((v < 0) ? (v + 281474976710656LL) : v);
+        if (v < 0) {
+            v += 281474976710656LL;
+        }
+        u = (uint64_t)v;
         buf[0] = (uint8_t)(k & 0xFFu);
         buf[1] = (uint8_t)((32u * step) + (16u * half) + field);
         /*@

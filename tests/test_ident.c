@@ -1134,21 +1134,21 @@ static void test_req_ident_005_saturation(void **state)
             (void)feed(&id, alpha, 0, VDC_NOM);
         }
         k = p % 16;
-        id.rec[0][0].n = (int32_t)m32;
-        id.rec[0][0].i_a = (int32_t)((m32 - alpha) + 1);
-        id.rec[0][0].i_b = (int32_t)(sg * (-m32 + 50));
-        id.rec[0][0].u_a = (int32_t)(sg * 5);
-        id.rec[0][0].vdc = (int32_t)(m32 - 5);
-        id.rec[0][0].u_c = sg * (m64 - 1);
-        id.rec[0][0].u_s = -sg * (m64 - 1);
-        id.rec[0][0].i_c = m64 - 1;
-        id.rec[0][0].i_s = -(m64 - 1);
-        id.rec[0][0].j_c = sg * (m64 - 1);
-        id.rec[0][0].j_s = 12345;
-        z0 = id.rec[0][0];
+        id.rec.s[0][0].n = (int32_t)m32;
+        id.rec.s[0][0].i_a = (int32_t)((m32 - alpha) + 1);
+        id.rec.s[0][0].i_b = (int32_t)(sg * (-m32 + 50));
+        id.rec.s[0][0].u_a = (int32_t)(sg * 5);
+        id.rec.s[0][0].vdc = (int32_t)(m32 - 5);
+        id.rec.s[0][0].u_c = sg * (m64 - 1);
+        id.rec.s[0][0].u_s = -sg * (m64 - 1);
+        id.rec.s[0][0].i_c = m64 - 1;
+        id.rec.s[0][0].i_s = -(m64 - 1);
+        id.rec.s[0][0].j_c = sg * (m64 - 1);
+        id.rec.s[0][0].j_s = 12345;
+        z0 = id.rec.s[0][0];
         out = feed(&id, alpha, beta, VDC_NOM);
         assert_true(out.enable);
-        z1 = id.rec[0][0];
+        z1 = id.rec.s[0][0];
         cs = ref_cos(k);
         sn = ref_sin(k);
         ua = (2 * (int64_t)out.cmp[0]) - out.cmp[1] - out.cmp[2];
@@ -1199,8 +1199,8 @@ static void test_req_ident_005_sums_range(void **state)
     qfoc_ident_init(&id);
     for (s = 0; s < 5; s++) {
         for (h = 0; h < 2; h++) {
-            id.rec[s][h].n = (int32_t)((s * 2) + h + 1);
-            id.rec[s][h].j_s = -(int64_t)((s * 2) + h + 1) * 1000000007;
+            id.rec.s[s][h].n = (int32_t)((s * 2) + h + 1);
+            id.rec.s[s][h].j_s = -(int64_t)((s * 2) + h + 1) * 1000000007;
         }
     }
     for (s = 0; s < 5; s++) {
@@ -1208,7 +1208,7 @@ static void test_req_ident_005_sums_range(void **state)
             memset(&z, 0x77, sizeof z);
             assert_true(qfoc_ident_sums(&id, (uint8_t)s, (uint8_t)h, &z));
             for (f = 0; f < 13; f++) {
-                assert_true(field_of(&z, f) == field_of(&id.rec[s][h], f));
+                assert_true(field_of(&z, f) == field_of(&id.rec.s[s][h], f));
             }
             assert_int_equal(z.n, (s * 2) + h + 1);
         }
@@ -1303,7 +1303,7 @@ static void test_req_ident_005_frames(void **state)
     /* random values of either sign in every field */
     for (s = 0; s < 5; s++) {
         for (h = 0; h < 2; h++) {
-            qfoc_ident_sums_t *z = &id.rec[s][h];
+            qfoc_ident_sums_t *z = &id.rec.s[s][h];
             z->n = (int32_t)lcg_next();
             z->i_a = (int32_t)lcg_next();
             z->i_b = (int32_t)lcg_next();
@@ -1319,11 +1319,11 @@ static void test_req_ident_005_frames(void **state)
             z->j_s = (int64_t)rand_range(INT32_MIN, INT32_MAX) * 65535;
         }
     }
-    id.rec[0][0].i_a = INT32_MIN;
-    id.rec[0][1].i_b = INT32_MAX;
-    id.rec[1][0].u_c = l47;
-    id.rec[1][1].u_s = -l47;
-    id.rec[4][1].j_s = -1;
+    id.rec.s[0][0].i_a = INT32_MIN;
+    id.rec.s[0][1].i_b = INT32_MAX;
+    id.rec.s[1][0].u_c = l47;
+    id.rec.s[1][1].u_s = -l47;
+    id.rec.s[4][1].j_s = -1;
     assert_true(check_frames(&id) > 20);
 
     /* beyond 48 bits: the bound of the sign */
@@ -1337,12 +1337,12 @@ static void test_req_ident_005_frames(void **state)
             const int hf = j % 2;
             const int k = 1 + (st * 26) + (hf * 13) + f;
             int64_t *p64[6];
-            p64[0] = &id.rec[st][hf].u_c;
-            p64[1] = &id.rec[st][hf].u_s;
-            p64[2] = &id.rec[st][hf].i_c;
-            p64[3] = &id.rec[st][hf].i_s;
-            p64[4] = &id.rec[st][hf].j_c;
-            p64[5] = &id.rec[st][hf].j_s;
+            p64[0] = &id.rec.s[st][hf].u_c;
+            p64[1] = &id.rec.s[st][hf].u_s;
+            p64[2] = &id.rec.s[st][hf].i_c;
+            p64[3] = &id.rec.s[st][hf].i_s;
+            p64[4] = &id.rec.s[st][hf].j_c;
+            p64[5] = &id.rec.s[st][hf].j_s;
             *p64[f - 7] = big[j];
             memset(buf, 0xEE, sizeof buf);
             assert_true(qfoc_ident_frame(&id, (uint16_t)k, buf));

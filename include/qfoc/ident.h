@@ -93,8 +93,9 @@ extern "C" {
 #define QFOC_IDENT_WIN_MIN ((uint8_t)5u)
 #define QFOC_IDENT_WIN_MAX ((uint8_t)14u)  /**< largest window shift */
 
-/** The saturation bound of the 32-bit and of the 64-bit window sums. */
+/** The saturation bound of the 32-bit window sums. */
 #define QFOC_IDENT_SUM32_MAX (2147483647)
+/** The saturation bound of the 64-bit window sums, 2^62. */
 #define QFOC_IDENT_SUM64_MAX (4611686018427387904LL)
 
 /** Configuration: what the host tool derives from the motor's ratings and the table. */
@@ -131,6 +132,11 @@ typedef struct {
     int64_t j_s;      /**< sum of i_y times sin */
 } qfoc_ident_sums_t;
 
+/** The record: each step's two half windows. */
+typedef struct {
+    qfoc_ident_sums_t s[QFOC_IDENT_STEPS][2];  /**< [step][half] */
+} qfoc_ident_record_t;
+
 /** The mode's state (one per motor; written by the fast step's context only). */
 typedef struct {
     qfoc_ident_cfg_t cfg;   /**< configuration taken at the start */
@@ -141,27 +147,17 @@ typedef struct {
     uint8_t step;           /**< QFOC_IDENT_ALIGN .. QFOC_IDENT_L_Q */
     uint8_t result;         /**< QFOC_IDENT_IDLE .. QFOC_IDENT_ERR_ABORT */
     uint8_t k;              /**< injection phase, 0 .. 15 */
-    qfoc_ident_sums_t rec[QFOC_IDENT_STEPS][2];  /**< the record: each step's two halves */
+    qfoc_ident_record_t rec;  /**< the record */
 } qfoc_ident_t;
 
-/*@
-  predicate IdentCfgValid(qfoc_ident_cfg_t *c) =
-    0 < c->i_lo < c->i_hi < c->i_lim && 0 < c->i_ramp && 0 < c->v_inj && 0 < c->v_move &&
-    0 < c->vdc_min && 0 < c->n_align && 0 < c->n_settle &&
-    QFOC_IDENT_WIN_MIN <= c->win_shift <= QFOC_IDENT_WIN_MAX &&
-    PiParamsValid(&c->pi) && c->pi.out_min < 0 < c->pi.out_max &&
-    SvpwmCfgValid(c->pwm.period, c->pwm.dt_comp, c->pwm.i_deadband, c->pwm.vdc_min) &&
-    c->pwm.dt_comp == 0;
-  predicate IdentValid(qfoc_ident_t *id) =
-    id->step < QFOC_IDENT_STEPS && id->result <= QFOC_IDENT_ERR_ABORT && id->k <= 15 &&
-    PiValid(&id->pi_a) && PiValid(&id->pi_b) &&
-    (id->result == QFOC_IDENT_RUNNING ==> IdentCfgValid(&id->cfg) && 0 <= id->ref <= id->cfg.i_hi &&
-                                           id->n <= 65535 + 16384);
-  logic integer IdentAbs(integer x) = (x < 0) ? -x : x;
-*/
+#ifdef __FRAMAC__
+/* ACSL logic over the types above, read by Frama-C only (DEV-001). */
+/* cppcheck-suppress misra-c2012-20.1 ; DEV-001 */
+#include "ident.acsl"
+#endif
 
 /**
- * @brief Check a configuration (the predicate IdentCfgValid).
+ * @brief Check a configuration (IDENT_CFG_VALID of specs/ident.acsl).
  * @param[in] c the configuration (any values)
  * @return true iff 0 < i_lo < i_hi < i_lim, i_ramp, v_inj, v_move, vdc_min, n_align and
  *         n_settle are positive, QFOC_IDENT_WIN_MIN <= win_shift <= QFOC_IDENT_WIN_MAX,
@@ -172,7 +168,7 @@ typedef struct {
 /*@
   requires valid: \valid_read(c);
   assigns \nothing;
-  ensures result: \result <==> IdentCfgValid(c);
+  ensures result: \result <==> IDENT_CFG_VALID(c);
 */
 bool qfoc_ident_cfg_is_valid(const qfoc_ident_cfg_t *c);
 
@@ -184,7 +180,7 @@ bool qfoc_ident_cfg_is_valid(const qfoc_ident_cfg_t *c);
 /*@
   requires valid: \valid(id);
   assigns *id;
-  ensures inv: IdentValid(id);
+  ensures inv: IDENT_VALID(id);
   ensures idle: id->result == QFOC_IDENT_IDLE && id->step == QFOC_IDENT_ALIGN &&
                 id->n == 0 && id->ref == 0;
 */
@@ -203,13 +199,13 @@ void qfoc_ident_init(qfoc_ident_t *id);
   requires valid: \valid(id) && \valid_read(c);
   requires sep: \separated(id, c);
   assigns *id;
-  ensures inv: IdentValid(id);
+  ensures inv: IDENT_VALID(id);
   ensures step: id->step == QFOC_IDENT_ALIGN && id->n == 0 && id->ref == 0;
   behavior taken:
-    assumes IdentCfgValid(c);
+    assumes IDENT_CFG_VALID(c);
     ensures result: \result == QFOC_IDENT_RUNNING && id->result == QFOC_IDENT_RUNNING;
   behavior refused:
-    assumes !IdentCfgValid(c);
+    assumes !IDENT_CFG_VALID(c);
     ensures result: \result == QFOC_IDENT_ERR_CFG && id->result == QFOC_IDENT_ERR_CFG;
   complete behaviors;
   disjoint behaviors;
@@ -223,9 +219,9 @@ uint8_t qfoc_ident_start(qfoc_ident_t *id, const qfoc_ident_cfg_t *c);
  */
 /*@
   requires valid: \valid(id);
-  requires inv: IdentValid(id);
+  requires inv: IDENT_VALID(id);
   assigns id->result;
-  ensures inv: IdentValid(id);
+  ensures inv: IDENT_VALID(id);
   ensures result: \old(id->result) == QFOC_IDENT_RUNNING ?
                     id->result == QFOC_IDENT_ERR_ABORT : id->result == \old(id->result);
 */
@@ -244,9 +240,9 @@ void qfoc_ident_abort(qfoc_ident_t *id);
 /*@
   requires valid: \valid(id) && \valid_read(i);
   requires sep: \separated(id, i);
-  requires inv: IdentValid(id);
+  requires inv: IDENT_VALID(id);
   assigns *id;
-  ensures inv: IdentValid(id);
+  ensures inv: IDENT_VALID(id);
   ensures only_running: \result.enable ==> \old(id->result) == QFOC_IDENT_RUNNING &&
                                             id->result != QFOC_IDENT_ERR_OC &&
                                             id->result != QFOC_IDENT_ERR_BUS;
@@ -312,7 +308,7 @@ uint8_t qfoc_ident_step_now(const qfoc_ident_t *id);
   behavior in_range:
     assumes step < QFOC_IDENT_STEPS && half < 2;
     ensures result: \result == \true;
-    ensures copy: *out == id->rec[step][half];
+    ensures copy: *out == id->rec.s[step][half];
   behavior out_of_range:
     assumes step >= QFOC_IDENT_STEPS || half >= 2;
     ensures result: \result == \false;
@@ -325,7 +321,7 @@ bool qfoc_ident_sums(const qfoc_ident_t *id, uint8_t step, uint8_t half,
 
 /** Frames of the record: one header, then one per sum field. */
 #define QFOC_IDENT_FIELDS  (13u)  /**< fields of qfoc_ident_sums_t, in declaration order */
-#define QFOC_IDENT_FRAMES  ((uint16_t)(1u + (QFOC_IDENT_STEPS * 2u * QFOC_IDENT_FIELDS)))
+#define QFOC_IDENT_FRAMES  ((uint16_t)131u)  /**< 1 + QFOC_IDENT_STEPS x 2 x QFOC_IDENT_FIELDS */
 
 /**
  * @brief Frame k of the record, 8 bytes for a CAN, LIN or UART transport.
