@@ -1181,6 +1181,55 @@ static void test_req_ident_005_saturation(void **state)
     }
 }
 
+/* REQ-IDENT-005: a sum already beyond its bound (a record written by other code than the
+   mode's) is first brought to the bound, then the term is added and the result saturated
+   again: the 32-bit sums from -2^31 with a zero term, the 64-bit ones from the type's
+   extremes.
+   Methods: 1c -2^31 and +-(2^63 - 1) or -2^63 in the sums, a zero and a non-zero term;
+   1d a record changed behind the mode's back */
+static void test_req_ident_005_sums_beyond_bound(void **state)
+{
+    static qfoc_ident_t id;
+    const qfoc_ident_cfg_t c = base_cfg();
+    const int64_t m32 = 2147483647;
+    const int64_t m64 = (int64_t)1 << 62;
+    const int alpha = 6554;
+    qfoc_ident_sums_t z1;
+    qfoc_pwm_t out;
+    int64_t cs;
+    int64_t sn;
+    int64_t ua;
+    int p;
+    int k;
+    (void)state;
+    assert_int_equal(qfoc_ident_start(&id, &c), QFOC_IDENT_RUNNING);
+    for (p = 0; p < ((int)c.n_align + 2); p++) {
+        (void)feed(&id, alpha, 0, VDC_NOM);
+    }
+    k = p % 16;
+    id.rec.s[0][0].i_b = INT32_MIN;
+    id.rec.s[0][0].vb_cmd = INT32_MIN;
+    id.rec.s[0][0].u_c = INT64_MAX;
+    id.rec.s[0][0].u_s = INT64_MIN;
+    id.rec.s[0][0].i_c = INT64_MIN;
+    id.rec.s[0][0].j_s = INT64_MAX;
+    out = feed(&id, alpha, 0, VDC_NOM);
+    assert_true(out.enable);
+    z1 = id.rec.s[0][0];
+    cs = ref_cos(k);
+    sn = ref_sin(k);
+    ua = (2 * (int64_t)out.cmp[0]) - out.cmp[1] - out.cmp[2];
+    /* beta 0 and ALIGN's beta command 0: -2^31 + 0 is brought to -(2^31 - 1) */
+    assert_true(z1.i_b == -m32);
+    assert_true(z1.vb_cmd == -m32);
+    /* from the bound of each sign, the term added, then saturated */
+    assert_true(z1.u_c == ref_sat(m64, ua * cs, m64));
+    assert_true(z1.u_s == ref_sat(-m64, ua * sn, m64));
+    assert_true(z1.i_c == ref_sat(-m64, alpha * cs, m64));
+    assert_true(z1.j_s == m64);  /* beta 0: the bound itself */
+    assert_true((cs > 0) && (z1.i_c == -m64 + (alpha * cs)));
+}
+
 /* REQ-IDENT-005: the record's accessor: every step and half in range copies the sums,
    step 5 or half 2 (and the type's largest values) give false and all zero.
    Methods: 1b in and out of range, each index on its own; 1c step 4 / 5, half 1 / 2,
@@ -1393,6 +1442,7 @@ int main(void)
         cmocka_unit_test(test_req_ident_003_abort),
         cmocka_unit_test(test_req_ident_004_off_at_window_end),
         cmocka_unit_test(test_req_ident_005_saturation),
+        cmocka_unit_test(test_req_ident_005_sums_beyond_bound),
         cmocka_unit_test(test_req_ident_005_sums_range),
         cmocka_unit_test(test_req_ident_005_frames),
     };
