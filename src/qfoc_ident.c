@@ -296,7 +296,11 @@ static uint8_t ident_next(uint8_t step)
 */
 static qfoc_q15_t ident_level(const qfoc_ident_cfg_t *c, uint8_t step)
 {
-    return (step == QFOC_IDENT_R_LO) ? c->i_lo : c->i_hi;
+    qfoc_q15_t level = c->i_hi;
+    if (step == QFOC_IDENT_R_LO) {
+        level = c->i_lo;
+    }
+    return level;
 }
 
 /* The reference one period on: towards the level by at most i_ramp. */
@@ -311,11 +315,13 @@ static qfoc_q15_t ident_ramp(qfoc_q15_t ref, qfoc_q15_t level, qfoc_q15_t ramp)
 {
     const int32_t up = (int32_t)ref + (int32_t)ramp;
     const int32_t down = (int32_t)ref - (int32_t)ramp;
-    qfoc_q15_t r;
-    if (ref <= level) {
-        r = (up >= (int32_t)level) ? level : (qfoc_q15_t)up;
+    qfoc_q15_t r = level;
+    if ((ref <= level) && (up < (int32_t)level)) {
+        r = (qfoc_q15_t)up;
+    } else if ((ref > level) && (down > (int32_t)level)) {
+        r = (qfoc_q15_t)down;
     } else {
-        r = (down <= (int32_t)level) ? level : (qfoc_q15_t)down;
+        /* the level is within one step */
     }
     return r;
 }
