@@ -392,8 +392,7 @@ static FILE *scn_open(const scn_opts_t *o, const char *file)
     return f;
 }
 
-/* The motor of a table: its motor file with the table's overrides. */
-static int scn_motor(const scn_table_t *tab, sim_motor_t *m)
+int scn_table_motor(const scn_table_t *tab, sim_motor_t *m)
 {
     int rc = sim_motor_load(tab->motor_file, m);
     if (rc == 0 && tab->overrides != NULL) {
@@ -1465,7 +1464,7 @@ int scn_run(const char *scenario, const scn_table_t *tab, const scn_opts_t *o, s
     sim_motor_t m;
     int rc = scn_begin(&c, scenario, o, r);
     if (rc == 0) {
-        rc = scn_motor(tab, &m);
+        rc = scn_table_motor(tab, &m);
     }
     if (rc == 0) {
         if (strcmp(scenario, "cold_start") == 0) {
@@ -1511,7 +1510,7 @@ int scn_run_start(const scn_table_t *tab, const scn_start_t *st, const scn_opts_
     sim_motor_t m;
     int rc = scn_begin(&c, "robust_start", o, r);
     if (rc == 0) {
-        rc = scn_motor(tab, &m);
+        rc = scn_table_motor(tab, &m);
     }
     if (rc == 0) {
         const double target = 10.0 * floor(m.rated_speed_rpm / 20.0 + 0.5);

@@ -130,6 +130,10 @@ int scn_run(const char *scenario, const scn_table_t *tab, const scn_opts_t *o, s
 int scn_run_start(const scn_table_t *tab, const scn_start_t *st, const scn_opts_t *o,
                   scn_result_t *r);
 
+/** The motor of a table: its motor file with the table's overrides; 0, or -1 when the
+    file cannot be read or an override is malformed. */
+int scn_table_motor(const scn_table_t *tab, sim_motor_t *m);
+
 /** The value of metric key, NAN when absent. */
 double scn_value(const scn_result_t *r, const char *key);
 

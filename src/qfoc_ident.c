@@ -437,10 +437,11 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
             } else {
                 v.beta = qfoc_pi_step(&id->pi_b, qfoc_q15_neg(i->beta));
             }
-            inj = qfoc_q15_mul(id->cfg.v_inj, ident_cos16[id->k]);
             if (id->step == QFOC_IDENT_L_D) {
+                inj = qfoc_q15_mul(id->cfg.v_inj, ident_cos16[id->k]);
                 v.alpha = qfoc_q15_add(v.alpha, inj);
             } else if (id->step == QFOC_IDENT_L_Q) {
+                inj = qfoc_q15_mul(id->cfg.v_inj, ident_cos16[id->k]);
                 v.beta = qfoc_q15_add(v.beta, inj);
             } else {
                 /* no injection */

@@ -38,21 +38,6 @@
 
 #define SQ3 1.73205080756887729353
 
-/* The motor of a table: its motor file with the table's overrides. */
-static int motor_of(const scn_table_t *tab, sim_motor_t *m)
-{
-    int rc = sim_motor_load(tab->motor_file, m);
-    if (rc == 0 && tab->overrides != NULL) {
-        char buf[256];
-        char *tok;
-        snprintf(buf, sizeof buf, "%s", tab->overrides);
-        for (tok = strtok(buf, " \t"); tok != NULL && rc == 0; tok = strtok(NULL, " \t")) {
-            rc = sim_motor_set(m, tok);
-        }
-    }
-    return rc;
-}
-
 static int16_t q15_of(double x)
 {
     double r = floor(x * 32768.0 + 0.5);
@@ -120,7 +105,7 @@ static int run_one(const scn_table_t *tab, const opts_t *o)
     uint16_t f;
     uint8_t res;
     bool surged = false;
-    if (motor_of(tab, &m) != 0) {
+    if (scn_table_motor(tab, &m) != 0) {
         fprintf(stderr, "qfoc_identify: cannot read the motor of table %s (%s)\n", tab->name,
                 tab->motor_file);
         return 2;
