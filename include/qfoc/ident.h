@@ -94,7 +94,7 @@ extern "C" {
 #define QFOC_IDENT_WIN_MAX ((uint8_t)14u)  /**< largest window shift */
 
 /** The saturation bound of the 32-bit window sums. */
-#define QFOC_IDENT_SUM32_MAX (2147483647)
+#define QFOC_IDENT_SUM32_MAX ((int32_t)2147483647)
 /** The saturation bound of the 64-bit window sums, 2^62. */
 #define QFOC_IDENT_SUM64_MAX (4611686018427387904LL)
 

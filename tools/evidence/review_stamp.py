@@ -9,7 +9,7 @@ Two documents hold records of a manual review:
           (every backticked token there is a pattern relative to the repository root and
           must match at least one file).
   fmea    specs/safety-analysis.md, section 2: one record per row of the software FMEA
-          (ID I-nn, F-nn, T-nn, A-nn, O-nn).  The files a row covers are derived from the
+          (ID I-nn, F-nn, T-nn, A-nn, M-nn, O-nn).  The files a row covers are derived from the
           row: the files of the code that define (a .c file: a function or a file-scope
           object) or declare (a header) each identifier written in backticks in its block
           column (src/*.c, src/*.h, include/qfoc/*.h, tables/*.c, tables/*.h; a backticked
@@ -25,7 +25,7 @@ sorted by repository-relative path, then the SHA-256 of that list, with the gate
   misra   the record's lines '- Reviewed: <YYYY-MM-DD>, <who>' (the reviewer's role) and
           '- Files: sha256 <hex> over N files (tools/evidence/review_stamp.py)'
   fmea    one 'Reviewed: <YYYY-MM-DD>, <who>' line for the analysis (section 2) and, per
-          row, its files and their digest in the generated table of section 2.6 (between
+          row, its files and their digest in the generated table of section 2.7 (between
           '<!-- BEGIN GENERATED: fmea-stamps' and '<!-- END GENERATED: fmea-stamps -->')
 
 and beside the document a manifest (misra/reviews.sha256, specs/safety-analysis.sha256:
