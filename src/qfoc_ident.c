@@ -6,6 +6,8 @@
  */
 #include "qfoc/ident.h"
 #include "qfoc/q15.h"
+#include "qfoc/transforms.h"
+#include "qfoc/trig.h"
 
 /* The PI parameters of the idle state: every gain and limit 0 (a valid set). */
 static const qfoc_pi_params_t ident_pi_off = { 0, 0u, 0, 0u, 0, 0 };
@@ -93,6 +95,7 @@ static int64_t ident_acc64(int64_t s, int32_t x, int16_t c)
   assigns *z;
   ensures zero: z->n == 0 && z->i_a == 0 && z->i_b == 0 && z->u_a == 0 && z->u_b == 0 &&
                 z->vdc == 0 && z->vb_cmd == 0 && z->u_c == 0 && z->u_s == 0 &&
+                z->v_c == 0 && z->v_s == 0 &&
                 z->i_c == 0 && z->i_s == 0 && z->j_c == 0 && z->j_s == 0;
 */
 static void ident_zero(qfoc_ident_sums_t *z)
@@ -106,6 +109,8 @@ static void ident_zero(qfoc_ident_sums_t *z)
     z->vb_cmd = 0;
     z->u_c = 0;
     z->u_s = 0;
+    z->v_c = 0;
+    z->v_s = 0;
     z->i_c = 0;
     z->i_s = 0;
     z->j_c = 0;
@@ -148,9 +153,11 @@ static void ident_init_pi(qfoc_ident_t *id, const qfoc_pi_params_t *p)
 bool qfoc_ident_cfg_is_valid(const qfoc_ident_cfg_t *c)
 {
     bool ok = (c->i_lo > 0) && (c->i_hi > c->i_lo) && (c->i_lim > c->i_hi);
-    ok = ok && (c->i_ramp > 0) && (c->v_inj > 0) && (c->v_move > 0) && (c->vdc_min > 0);
+    ok = ok && (c->i_ramp > 0) && (c->v_inj > 0) && (c->v_inj <= c->v_inj_max);
+    ok = ok && (c->i_inj > 0) && (c->v_move > 0) && (c->vdc_min > 0);
     ok = ok && (c->n_align > 0u) && (c->n_settle > 0u);
     ok = ok && (c->win_shift >= QFOC_IDENT_WIN_MIN) && (c->win_shift <= QFOC_IDENT_WIN_MAX);
+    ok = ok && (c->w_psi > 0u) && (c->w_psi <= QFOC_IDENT_W_MAX) && (c->n_ramp > 0u);
     ok = ok && qfoc_pi_params_is_valid(&c->pi) && (c->pi.out_min < 0) && (c->pi.out_max > 0);
     ok = ok && qfoc_svpwm_cfg_is_valid(&c->pwm) && (c->pwm.dt_comp == 0u);
     return ok;
@@ -168,11 +175,15 @@ static void ident_idle_cfg(qfoc_ident_t *id)
     id->cfg.i_lim = 0;
     id->cfg.i_ramp = 0;
     id->cfg.v_inj = 0;
+    id->cfg.v_inj_max = 0;
+    id->cfg.i_inj = 0;
     id->cfg.v_move = 0;
     id->cfg.vdc_min = 0;
     id->cfg.n_align = 0u;
     id->cfg.n_settle = 0u;
     id->cfg.win_shift = 0u;
+    id->cfg.w_psi = 0u;
+    id->cfg.n_ramp = 0u;
     id->cfg.pi.kp = 0;
     id->cfg.pi.kp_shift = 0u;
     id->cfg.pi.ki = 0;
@@ -189,16 +200,21 @@ static void ident_idle_cfg(qfoc_ident_t *id)
 /*@
   requires valid: \valid(id);
   requires result: r <= QFOC_IDENT_ERR_ABORT;
-  assigns id->rec, id->ref, id->n, id->step, id->k,
-          id->result;
+  assigns id->rec, id->ref, id->n, id->theta, id->inj, id->pk_max, id->pk_min, id->inj_hold,
+          id->step, id->k, id->result;
   ensures state: id->step == QFOC_IDENT_ALIGN && id->n == 0 && id->ref == 0 && id->k == 0 &&
-                 id->result == r;
+                 id->result == r && id->inj == id->cfg.v_inj;
 */
 static void ident_reset(qfoc_ident_t *id, uint8_t r)
 {
     ident_clear_record(id);
     id->ref = 0;
     id->n = 0u;
+    id->theta = 0u;
+    id->inj = id->cfg.v_inj;
+    id->pk_max = QFOC_Q15_MIN;
+    id->pk_min = QFOC_Q15_MAX;
+    id->inj_hold = true;
     id->step = QFOC_IDENT_ALIGN;
     id->k = 0u;
     id->result = r;
@@ -263,7 +279,7 @@ static uint16_t ident_half(uint8_t s)
 
 /* The step after one that is not the last. */
 /*@
-  requires step: step < QFOC_IDENT_L_Q;
+  requires step: step < QFOC_IDENT_PSI;
   assigns \nothing;
   ensures result: \result == step + 1;
 */
@@ -280,8 +296,11 @@ static uint8_t ident_next(uint8_t step)
     case QFOC_IDENT_R_HI:
         n = QFOC_IDENT_L_D;
         break;
-    default:
+    case QFOC_IDENT_L_D:
         n = QFOC_IDENT_L_Q;
+        break;
+    default:
+        n = QFOC_IDENT_PSI;
         break;
     }
     return n;
@@ -326,53 +345,160 @@ static qfoc_q15_t ident_ramp(qfoc_q15_t ref, qfoc_q15_t level, qfoc_q15_t ramp)
     return r;
 }
 
-/* Add this period to the half window's sums. */
+/* Add this period to the half window's sums: ic the current in the control frame, i the
+   stationary current, (c, s) the reference angle's cosine and sine. */
 /*@
-  requires valid: \valid(z) && \valid_read(i) && \valid_read(cmp + (0 .. 2));
-  requires sep: \separated(z, i) && \separated(z, cmp + (0 .. 2));
+  requires valid: \valid(z) && \valid_read(ic) && \valid_read(i) && \valid_read(cmp + (0 .. 2));
+  requires sep: \separated(z, ic) && \separated(z, i) && \separated(z, cmp + (0 .. 2));
   requires cmp_range: \forall integer j; 0 <= j < 3 ==> cmp[j] <= 32767;
-  requires k: k <= 15;
+  requires ref: -32767 <= c <= 32767 && -32767 <= s <= 32767;
   assigns *z;
 */
-static void ident_accumulate(qfoc_ident_sums_t *z, const qfoc_ab_t *i, const uint16_t *cmp,
-                             qfoc_q15_t vdc, qfoc_q15_t vb_cmd, bool beta, uint8_t k)
+static void ident_accumulate(qfoc_ident_sums_t *z, const qfoc_ab_t *ic, const qfoc_ab_t *i,
+                             const uint16_t *cmp, qfoc_q15_t vdc, qfoc_q15_t vb_cmd,
+                             int16_t c, int16_t s)
 {
     const int32_t ua = (2 * (int32_t)cmp[0]) - (int32_t)cmp[1] - (int32_t)cmp[2];
     const int32_t ub = (int32_t)cmp[1] - (int32_t)cmp[2];
-    const int16_t c = ident_cos16[k];
-    const uint8_t ks = (k >= 4u) ? (uint8_t)(k - 4u) : (uint8_t)(k + 12u);
-    const int16_t s = ident_cos16[ks];
-    const int32_t ux = beta ? ub : ua;
-    const int32_t ix = beta ? (int32_t)i->beta : (int32_t)i->alpha;
-    const int32_t iy = beta ? (int32_t)i->alpha : (int32_t)i->beta;
     z->n = ident_acc32(z->n, 1);
-    z->i_a = ident_acc32(z->i_a, (int32_t)i->alpha);
-    z->i_b = ident_acc32(z->i_b, (int32_t)i->beta);
+    z->i_a = ident_acc32(z->i_a, (int32_t)ic->alpha);
+    z->i_b = ident_acc32(z->i_b, (int32_t)ic->beta);
     z->u_a = ident_acc32(z->u_a, ua);
     z->u_b = ident_acc32(z->u_b, ub);
     z->vdc = ident_acc32(z->vdc, (int32_t)vdc);
     z->vb_cmd = ident_acc32(z->vb_cmd, (int32_t)vb_cmd);
-    z->u_c = ident_acc64(z->u_c, ux, c);
-    z->u_s = ident_acc64(z->u_s, ux, s);
-    z->i_c = ident_acc64(z->i_c, ix, c);
-    z->i_s = ident_acc64(z->i_s, ix, s);
-    z->j_c = ident_acc64(z->j_c, iy, c);
-    z->j_s = ident_acc64(z->j_s, iy, s);
+    z->u_c = ident_acc64(z->u_c, ua, c);
+    z->u_s = ident_acc64(z->u_s, ua, s);
+    z->v_c = ident_acc64(z->v_c, ub, c);
+    z->v_s = ident_acc64(z->v_s, ub, s);
+    z->i_c = ident_acc64(z->i_c, (int32_t)i->alpha, c);
+    z->i_s = ident_acc64(z->i_s, (int32_t)i->alpha, s);
+    z->j_c = ident_acc64(z->j_c, (int32_t)i->beta, c);
+    z->j_s = ident_acc64(z->j_s, (int32_t)i->beta, s);
 }
 
 /* Add this period to the half window h of the step the mode is in. */
 /*@
-  requires valid: \valid(id) && \valid_read(i) && \valid_read(cmp + (0 .. 2));
-  requires sep: \separated(id, i) && \separated(id, cmp + (0 .. 2));
+  requires valid: \valid(id) && \valid_read(ic) && \valid_read(i) && \valid_read(cmp + (0 .. 2));
+  requires sep: \separated(id, ic) && \separated(id, i) && \separated(id, cmp + (0 .. 2));
   requires cmp_range: \forall integer j; 0 <= j < 3 ==> cmp[j] <= 32767;
-  requires ranges: id->step < QFOC_IDENT_STEPS && h < 2 && id->k <= 15;
+  requires ranges: id->step < QFOC_IDENT_STEPS && h < 2;
+  requires ref: -32767 <= c <= 32767 && -32767 <= s <= 32767;
   assigns id->rec;
 */
-static void ident_sum(qfoc_ident_t *id, uint8_t h, const qfoc_ab_t *i, const uint16_t *cmp,
-                      qfoc_q15_t vdc, qfoc_q15_t vb_cmd)
+static void ident_sum(qfoc_ident_t *id, uint8_t h, const qfoc_ab_t *ic, const qfoc_ab_t *i,
+                      const uint16_t *cmp, qfoc_q15_t vdc, qfoc_q15_t vb_cmd, int16_t c,
+                      int16_t s)
 {
-    ident_accumulate(&id->rec.s[id->step][h], i, cmp, vdc, vb_cmd, id->step == QFOC_IDENT_L_Q,
-                     id->k);
+    ident_accumulate(&id->rec.s[id->step][h], ic, i, cmp, vdc, vb_cmd, c, s);
+}
+
+/* L_D's and L_Q's injection amplitude: the injected axis's current x tracked over each
+   injection period (16 PWM periods, k = 0 .. 15); at the end of one that is judged, a
+   peak-to-peak below i_inj (an amplitude below half the aim) doubles the amplitude, up to
+   v_inj_max, one above 4 i_inj (an amplitude above twice the aim) halves it.  The period
+   after a change, and the first (partial) period of a step, are not judged: the current
+   settles on the new amplitude first. */
+/*@
+  requires valid: \valid(id);
+  requires ranges: 0 < id->inj <= id->cfg.v_inj_max && id->k <= 15 && 0 < id->cfg.i_inj;
+  assigns id->inj, id->pk_max, id->pk_min, id->inj_hold;
+  ensures range: 0 < id->inj <= id->cfg.v_inj_max;
+*/
+static void ident_adapt(qfoc_ident_t *id, qfoc_q15_t x)
+{
+    if (x > id->pk_max) {
+        id->pk_max = x;
+    }
+    if (x < id->pk_min) {
+        id->pk_min = x;
+    }
+    if (id->k >= 15u) {
+        const qfoc_q15_t before = id->inj;
+        if (!id->inj_hold) {
+            const int32_t pp = (int32_t)id->pk_max - (int32_t)id->pk_min;
+            const int32_t aim = (int32_t)id->cfg.i_inj;
+            const int32_t up = 2 * (int32_t)id->inj;
+            const int32_t down = (int32_t)id->inj / 2;
+            if ((pp < aim) && (up > (int32_t)id->cfg.v_inj_max)) {
+                id->inj = id->cfg.v_inj_max;
+            } else if (pp < aim) {
+                id->inj = (qfoc_q15_t)up;
+            } else if ((pp > (4 * aim)) && (down >= 1)) {
+                id->inj = (qfoc_q15_t)down;
+            } else {
+                /* within the aim's band */
+            }
+        }
+        id->inj_hold = (id->inj != before);
+        id->pk_max = QFOC_Q15_MIN;
+        id->pk_min = QFOC_Q15_MAX;
+    }
+}
+
+/* The control frame of this period: the reference angle (PSI: the rotating current's
+   angle; the other steps: the injection's, 2 pi k / 16) and the current in the control
+   frame (PSI: d and q of the rotating frame; the other steps: alpha and beta). */
+/*@
+  requires valid: \valid_read(i) && \valid(sc) && \valid(ic);
+  requires sep: \separated(sc, ic) && \separated(i, sc) && \separated(i, ic);
+  requires k: k <= 15;
+  assigns *sc, *ic;
+  ensures ref: QfocQ15Sym(sc->sine) && QfocQ15Sym(sc->cosine);
+  ensures still: !psi ==> ic->alpha == i->alpha && ic->beta == i->beta;
+*/
+static void ident_ctrl_frame(bool psi, qfoc_angle_t theta, uint8_t k, const qfoc_ab_t *i,
+                             qfoc_sincos_t *sc, qfoc_ab_t *ic)
+{
+    if (psi) {
+        qfoc_dq_t dq;
+        qfoc_sincos(theta, sc);
+        qfoc_park(i, sc, &dq);
+        ic->alpha = dq.d;
+        ic->beta = dq.q;
+    } else {
+        const uint8_t ks = (k >= 4u) ? (uint8_t)(k - 4u) : (uint8_t)(k + 12u);
+        sc->cosine = ident_cos16[k];
+        sc->sine = ident_cos16[ks];
+        ic->alpha = i->alpha;
+        ic->beta = i->beta;
+    }
+}
+
+/* The periods before a step's window: ALIGN n_align, PSI its ramp and n_settle, the
+   others n_settle. */
+/*@
+  requires valid: \valid_read(c);
+  assigns \nothing;
+  ensures result: \result <= 65535 + 65535;
+*/
+static uint32_t ident_settle(const qfoc_ident_cfg_t *c, uint8_t step)
+{
+    uint32_t n = (uint32_t)c->n_settle;
+    if (step == QFOC_IDENT_ALIGN) {
+        n = (uint32_t)c->n_align;
+    } else if (step == QFOC_IDENT_PSI) {
+        n = (uint32_t)c->n_ramp + (uint32_t)c->n_settle;
+    } else {
+        /* n_settle */
+    }
+    return n;
+}
+
+/* PSI's angle step in period n: w_psi n / n_ramp on the ramp, w_psi after it. */
+/*@
+  requires cfg: 0 < c->n_ramp && c->w_psi <= QFOC_IDENT_W_MAX;
+  requires valid: \valid_read(c);
+  assigns \nothing;
+  ensures result: \result <= c->w_psi;
+*/
+static uint16_t ident_speed(const qfoc_ident_cfg_t *c, uint32_t n)
+{
+    uint16_t w = c->w_psi;
+    if (n < (uint32_t)c->n_ramp) {
+        w = (uint16_t)(((uint32_t)c->w_psi * n) / (uint32_t)c->n_ramp);
+    }
+    return w;
 }
 
 /* The verdict at a window's end: QFOC_IDENT_RUNNING (go on) or the error. */
@@ -397,7 +523,7 @@ static uint8_t ident_verdict(const qfoc_ident_t *id)
     uint8_t r = QFOC_IDENT_RUNNING;
     if ((ea > tol) || (ea < -tol) || (sb > tol) || (sb < -tol)) {
         r = QFOC_IDENT_ERR_NO_CURRENT;
-    } else if ((id->step != QFOC_IDENT_ALIGN) &&
+    } else if ((id->step != QFOC_IDENT_ALIGN) && (id->step != QFOC_IDENT_PSI) &&
                ((sv > (m * (int64_t)id->cfg.v_move)) || (sv < -(m * (int64_t)id->cfg.v_move)))) {
         r = QFOC_IDENT_ERR_MOVED;
     } else {
@@ -421,30 +547,43 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
             id->result = QFOC_IDENT_ERR_BUS;
         } else {
             static const qfoc_abc_t no_dtc = { 0, 0, 0 };
-            const uint16_t settle = (id->step == QFOC_IDENT_ALIGN) ? id->cfg.n_align
-                                                                    : id->cfg.n_settle;
+            const bool psi = (id->step == QFOC_IDENT_PSI);
+            const uint32_t settle = ident_settle(&id->cfg, id->step);
             const uint16_t half = ident_half(id->cfg.win_shift);
             const qfoc_q15_t level = ident_level(&id->cfg, id->step);
+            qfoc_sincos_t sc;
+            qfoc_ab_t ic;
+            qfoc_ab_t vc;
             qfoc_ab_t v;
             qfoc_q15_t inj;
             qfoc_svpwm_out_t so;
+            ident_ctrl_frame(psi, id->theta, id->k, i, &sc, &ic);
             id->ref = ident_ramp(id->ref, level, id->cfg.i_ramp);
-            v.alpha = qfoc_pi_step(&id->pi_a, qfoc_q15_sub(id->ref, i->alpha));
+            vc.alpha = qfoc_pi_step(&id->pi_a, qfoc_q15_sub(id->ref, ic.alpha));
             if (id->step == QFOC_IDENT_ALIGN) {
                 /* the beta axis short-circuited through the inverter: the current a
                    swinging rotor's back-EMF drives there brakes it */
-                v.beta = 0;
+                vc.beta = 0;
             } else {
-                v.beta = qfoc_pi_step(&id->pi_b, qfoc_q15_neg(i->beta));
+                vc.beta = qfoc_pi_step(&id->pi_b, qfoc_q15_neg(ic.beta));
             }
             if (id->step == QFOC_IDENT_L_D) {
-                inj = qfoc_q15_mul(id->cfg.v_inj, ident_cos16[id->k]);
-                v.alpha = qfoc_q15_add(v.alpha, inj);
+                inj = qfoc_q15_mul(id->inj, ident_cos16[id->k]);
+                vc.alpha = qfoc_q15_add(vc.alpha, inj);
             } else if (id->step == QFOC_IDENT_L_Q) {
-                inj = qfoc_q15_mul(id->cfg.v_inj, ident_cos16[id->k]);
-                v.beta = qfoc_q15_add(v.beta, inj);
+                inj = qfoc_q15_mul(id->inj, ident_cos16[id->k]);
+                vc.beta = qfoc_q15_add(vc.beta, inj);
             } else {
                 /* no injection */
+            }
+            if (psi) {
+                qfoc_dq_t vdq;
+                vdq.d = vc.alpha;
+                vdq.q = vc.beta;
+                qfoc_inv_park(&vdq, &sc, &v);
+            } else {
+                v.alpha = vc.alpha;
+                v.beta = vc.beta;
             }
             qfoc_svpwm_step(&id->cfg.pwm, &v, vdc, &no_dtc, &so);
             out.cmp[0] = so.cmp[0];
@@ -452,20 +591,34 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
             out.cmp[2] = so.cmp[2];
             out.enable = true;
             if (id->n >= settle) {
-                const uint8_t h = ((id->n - (uint32_t)settle) >= (uint32_t)half) ? 1u : 0u;
-                ident_sum(id, h, i, so.cmp, vdc, v.beta);
+                const uint8_t h = ((id->n - settle) >= (uint32_t)half) ? 1u : 0u;
+                ident_sum(id, h, &ic, i, so.cmp, vdc, vc.beta, sc.cosine, sc.sine);
+            } else if ((id->step == QFOC_IDENT_L_D) && (id->n < (settle / 2u))) {
+                ident_adapt(id, ic.alpha);
+            } else if ((id->step == QFOC_IDENT_L_Q) && (id->n < (settle / 2u))) {
+                ident_adapt(id, ic.beta);
+            } else {
+                /* settling with the amplitude held */
             }
             id->k = (id->k >= 15u) ? 0u : (uint8_t)(id->k + 1u);
+            if (psi) {
+                const uint32_t th = (uint32_t)id->theta + (uint32_t)ident_speed(&id->cfg, id->n);
+                id->theta = (qfoc_angle_t)(th & 0xFFFFu);
+            }
             id->n++;
-            if (id->n >= ((uint32_t)settle + (2u * (uint32_t)half))) {
+            if (id->n >= (settle + (2u * (uint32_t)half))) {
                 const uint8_t r = ident_verdict(id);
                 if (r != QFOC_IDENT_RUNNING) {
                     id->result = r;
-                } else if (id->step == QFOC_IDENT_L_Q) {
+                } else if (id->step == QFOC_IDENT_PSI) {
                     id->result = QFOC_IDENT_DONE;
                 } else {
                     id->step = ident_next(id->step);
                     id->n = 0u;
+                    id->inj = id->cfg.v_inj;
+                    id->pk_max = QFOC_Q15_MIN;
+                    id->pk_min = QFOC_Q15_MAX;
+                    id->inj_hold = true;
                 }
             }
             if (id->result != QFOC_IDENT_RUNNING) {
@@ -504,7 +657,7 @@ bool qfoc_ident_sums(const qfoc_ident_t *id, uint8_t step, uint8_t half,
     return ok;
 }
 
-/* Field f (0 .. 12, qfoc_ident_sums_t's order) of a half window's sums. */
+/* Field f (0 .. 14, qfoc_ident_sums_t's order) of a half window's sums. */
 /*@
   requires valid: \valid_read(z);
   assigns \nothing;
@@ -522,9 +675,11 @@ static int64_t ident_field(const qfoc_ident_sums_t *z, uint8_t f)
     case 6u: v = (int64_t)z->vb_cmd; break;
     case 7u: v = z->u_c; break;
     case 8u: v = z->u_s; break;
-    case 9u: v = z->i_c; break;
-    case 10u: v = z->i_s; break;
-    case 11u: v = z->j_c; break;
+    case 9u: v = z->v_c; break;
+    case 10u: v = z->v_s; break;
+    case 11u: v = z->i_c; break;
+    case 12u: v = z->i_s; break;
+    case 13u: v = z->j_c; break;
     default: v = z->j_s; break;
     }
     return v;

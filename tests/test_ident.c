@@ -13,12 +13,16 @@
  * a turning rotor, a back-EMF e on beta (u_beta - e acts).  The currents the mode sees
  * are the model's, rounded to Q15.
  *
- * Checked against that reference: the schedule (n_align + 4 n_settle + 5 2^win_shift
- * periods, the step of every period), the window sums recomputed here from the inputs and
- * the outputs of every period (cos and sin of 2 pi k / 16 computed here, k the periods
- * since the start), the stator resistance from R_LO and R_HI, the admittance I / U at
- * f_pwm / 16 of L_D and L_Q against the model's b e^{-jw} / (e^{jw} - a), the reference
- * ramp, every bound of the header with its boundary, and the frames decoded back.
+ * Checked against that reference: the schedule (n_align + 5 n_settle + n_ramp +
+ * 6 2^win_shift periods, the step of every period), the window sums recomputed here from
+ * the inputs and the outputs of every period (cos and sin of 2 pi k / 16 computed here, k
+ * the periods since the start; in PSI of the rotating current's angle, recomputed here
+ * from the header's speed ramp, with a slack for the Q15 sine table and the rounded
+ * transform), the stator resistance from R_LO and R_HI, the admittance I / U at
+ * f_pwm / 16 of L_D and L_Q against the model's b e^{-jw} / (e^{jw} - a), PSI's rotating
+ * current (in the rotating frame at its level; its phasor i_hi / 2 per period), the
+ * reference ramp, every bound of the header with its boundary, and the frames decoded
+ * back.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -36,6 +40,8 @@
 #include "test_util.h"
 
 #define PI_D 3.14159265358979323846
+#define NSTEP 6   /* steps of the header: ALIGN .. PSI */
+#define NF 15     /* fields of qfoc_ident_sums_t */
 #define SQRT3_D 1.73205080756887729353
 
 /* ---- the configuration and the model ------------------------------------------ */
@@ -50,7 +56,11 @@ static int16_t bus_at(int p)
 }
 
 /* A valid configuration: levels 0.1 and 0.2 of I_base, bound 0.4, a ramp of 100 LSB per
-   period, injection 0.05 of V_base, v_move 300 LSB, the current PI kp = 2, ki T = 0.1
+   period, injection 0.05 of V_base at first (at most 0.25; the injected current's
+   amplitude aimed at 800 LSB, so that L_D keeps its first amplitude on the model and L_Q
+   doubles it once), v_move 300 LSB, PSI's current turning 1024 counts
+   per period (64 periods a turn: two turns a half window) after a ramp of 256 periods,
+   the current PI kp = 2, ki T = 0.1
    (its zero kp / (kp + ki T) = 0.952 next to the model's alpha pole a = 0.95), limits
    +-16000, a period of 5000 ticks. */
 static qfoc_ident_cfg_t base_cfg(void)
@@ -62,11 +72,15 @@ static qfoc_ident_cfg_t base_cfg(void)
     c.i_lim = 13107;
     c.i_ramp = 100;
     c.v_inj = 1638;
+    c.v_inj_max = 8192;
+    c.i_inj = 800;
     c.v_move = 300;
     c.vdc_min = 16384;
     c.n_align = 300u;
     c.n_settle = 200u;
     c.win_shift = 8u;
+    c.w_psi = 1024u;
+    c.n_ramp = 256u;
     c.pi.kp = 16384;
     c.pi.kp_shift = 2u;
     c.pi.ki = 3277;
@@ -210,7 +224,22 @@ static qfoc_pwm_t feed(qfoc_ident_t *id, int alpha, int beta, int vdc)
 
 static int settle_of(const qfoc_ident_cfg_t *c, int s)
 {
-    return (s == 0) ? (int)c->n_align : (int)c->n_settle;
+    return (s == 0) ? (int)c->n_align :
+           ((s == 5) ? ((int)c->n_ramp + (int)c->n_settle) : (int)c->n_settle);
+}
+
+/* PSI's angle at the start of its period o, 65536 counts a turn: the speed w_psi o /
+   n_ramp (rounded down) on the ramp, w_psi after it, added period by period */
+static unsigned ref_theta(const qfoc_ident_cfg_t *c, int o)
+{
+    unsigned th = 0u;
+    int j;
+    for (j = 0; j < o; j++) {
+        const unsigned w = (j < (int)c->n_ramp) ?
+                           (unsigned)(((long)c->w_psi * j) / (long)c->n_ramp) : c->w_psi;
+        th = (th + w) % 65536u;
+    }
+    return th;
 }
 
 /* the step of period p of a mode that keeps running (offset: the period within it) */
@@ -218,7 +247,7 @@ static int ref_step(const qfoc_ident_cfg_t *c, int p, int *offset)
 {
     int s = 0;
     int start = 0;
-    while (s < 4) {
+    while (s < (NSTEP - 1)) {
         const int len = settle_of(c, s) + (1 << c->win_shift);
         if (p < start + len) {
             break;
@@ -232,7 +261,8 @@ static int ref_step(const qfoc_ident_cfg_t *c, int p, int *offset)
 
 static int ref_total(const qfoc_ident_cfg_t *c)
 {
-    return (int)c->n_align + (4 * (int)c->n_settle) + (5 * (1 << c->win_shift));
+    return (int)c->n_align + (5 * (int)c->n_settle) + (int)c->n_ramp +
+           (NSTEP * (1 << c->win_shift));
 }
 
 /* rounded 32767 cos and sin of 2 pi k / 16, computed here */
@@ -246,32 +276,38 @@ static int64_t ref_sin(int k)
     return (int64_t)round(32767.0 * sin(2.0 * PI_D * (double)k / 16.0));
 }
 
-/* the 13 fields of a half window, in the header's order */
+/* the 15 fields of a half window, in the header's order */
 typedef struct {
-    int64_t f[13];
+    int64_t f[NF];
 } rsums_t;
 
-enum { F_N, F_IA, F_IB, F_UA, F_UB, F_VDC, F_VB, F_UC, F_US, F_IC, F_IS, F_JC, F_JS };
+enum { F_N, F_IA, F_IB, F_UA, F_UB, F_VDC, F_VB, F_UC, F_US, F_VC, F_VS, F_IC, F_IS, F_JC,
+       F_JS };
 
 static int64_t field_of(const qfoc_ident_sums_t *z, int f)
 {
-    const int64_t v[13] = { z->n, z->i_a, z->i_b, z->u_a, z->u_b, z->vdc, z->vb_cmd,
-                            z->u_c, z->u_s, z->i_c, z->i_s, z->j_c, z->j_s };
+    const int64_t v[NF] = { z->n, z->i_a, z->i_b, z->u_a, z->u_b, z->vdc, z->vb_cmd,
+                            z->u_c, z->u_s, z->v_c, z->v_s, z->i_c, z->i_s, z->j_c, z->j_s };
     return v[f];
 }
 
 /* the record of the logged periods 0 .. n - 1, from the inputs and the outputs, and the
    slack of each field: zero, except for the voltage sums of the half that holds a
-   period which ended the mode.  That period's output is disabled, so the compare values
-   the mode modulated (and summed) need not be the ones it returned: the slack is the
-   largest term of that period, |2 cmp_u - cmp_v - cmp_w| <= 2 P, |cmp_v - cmp_w| <= P,
-   times 32767 in the products. */
-static void ref_record(const qfoc_ident_cfg_t *c, int n, rsums_t rec[5][2],
-                       rsums_t slack[5][2])
+   period which ended the mode, and for PSI's rotating frame.  A period that ended the
+   mode has its output disabled, so the compare values the mode modulated (and summed)
+   need not be the ones it returned: the slack is the largest term of that period,
+   |2 cmp_u - cmp_v - cmp_w| <= 2 P, |cmp_v - cmp_w| <= P, times 32767 in the products.
+   In PSI the reference cosine and sine are the Q15 sine table's (within 1 LSB of
+   32767 cos and sin, trig.h) and the current in the rotating frame is the rounded,
+   saturated transform (within 1 LSB of its exact value, plus the table's error times
+   |i| / 32768 <= 1 LSB per component): the slack is 2 |x| per product term and 3 LSB per
+   current term, recomputed here in double precision from the exact angle. */
+static void ref_record(const qfoc_ident_cfg_t *c, int n, rsums_t rec[NSTEP][2],
+                       rsums_t slack[NSTEP][2])
 {
     int p;
-    memset(rec, 0, sizeof(rsums_t) * 10u);
-    memset(slack, 0, sizeof(rsums_t) * 10u);
+    memset(rec, 0, sizeof(rsums_t) * 2u * NSTEP);
+    memset(slack, 0, sizeof(rsums_t) * 2u * NSTEP);
     for (p = 0; p < n; p++) {
         int o;
         const int s = ref_step(c, p, &o);
@@ -281,64 +317,96 @@ static void ref_record(const qfoc_ident_cfg_t *c, int n, rsums_t rec[5][2],
             const uint16_t *cmp = lg[p].out.cmp;
             const int64_t ua = (2 * (int64_t)cmp[0]) - cmp[1] - cmp[2];
             const int64_t ub = (int64_t)cmp[1] - cmp[2];
-            const bool q = (s == 4);
-            const int64_t ux = q ? ub : ua;
-            const int64_t ix = q ? lg[p].ib : lg[p].ia;
-            const int64_t iy = q ? lg[p].ia : lg[p].ib;
-            const int64_t cs = ref_cos(p % 16);
-            const int64_t sn = ref_sin(p % 16);
+            const int64_t ia = lg[p].ia;
+            const int64_t ib = lg[p].ib;
             int64_t *f = rec[s][h].f;
+            int64_t *sl = slack[s][h].f;
+            int64_t cs;
+            int64_t sn;
+            if (s == 5) {
+                const double th = 2.0 * PI_D * (double)ref_theta(c, o) / 65536.0;
+                const double dc = cos(th);
+                const double ds = sin(th);
+                cs = (int64_t)round(32767.0 * dc);
+                sn = (int64_t)round(32767.0 * ds);
+                f[F_IA] += (int64_t)round(((double)ia * dc) + ((double)ib * ds));
+                f[F_IB] += (int64_t)round(((double)ib * dc) - ((double)ia * ds));
+                sl[F_IA] += 3;
+                sl[F_IB] += 3;
+                sl[F_UC] += 2 * llabs(ua);
+                sl[F_US] += 2 * llabs(ua);
+                sl[F_VC] += 2 * llabs(ub);
+                sl[F_VS] += 2 * llabs(ub);
+                sl[F_IC] += 2 * llabs(ia);
+                sl[F_IS] += 2 * llabs(ia);
+                sl[F_JC] += 2 * llabs(ib);
+                sl[F_JS] += 2 * llabs(ib);
+            } else {
+                cs = ref_cos(p % 16);
+                sn = ref_sin(p % 16);
+                f[F_IA] += ia;
+                f[F_IB] += ib;
+            }
             if (lg[p].result != QFOC_IDENT_RUNNING) {
-                int64_t *sl = slack[s][h].f;
-                sl[F_UA] = 2 * (int64_t)PERIOD;
-                sl[F_UB] = (int64_t)PERIOD;
-                sl[F_UC] = 2 * (int64_t)PERIOD * 32767;
-                sl[F_US] = 2 * (int64_t)PERIOD * 32767;
+                sl[F_UA] += 2 * (int64_t)PERIOD;
+                sl[F_UB] += (int64_t)PERIOD;
+                sl[F_UC] += 2 * (int64_t)PERIOD * 32767;
+                sl[F_US] += 2 * (int64_t)PERIOD * 32767;
+                sl[F_VC] += (int64_t)PERIOD * 32767;
+                sl[F_VS] += (int64_t)PERIOD * 32767;
             }
             f[F_N] += 1;
-            f[F_IA] += lg[p].ia;
-            f[F_IB] += lg[p].ib;
             f[F_UA] += ua;
             f[F_UB] += ub;
             f[F_VDC] += lg[p].vdc;
-            f[F_UC] += ux * cs;
-            f[F_US] += ux * sn;
-            f[F_IC] += ix * cs;
-            f[F_IS] += ix * sn;
-            f[F_JC] += iy * cs;
-            f[F_JS] += iy * sn;
+            f[F_UC] += ua * cs;
+            f[F_US] += ua * sn;
+            f[F_VC] += ub * cs;
+            f[F_VS] += ub * sn;
+            f[F_IC] += ia * cs;
+            f[F_IS] += ia * sn;
+            f[F_JC] += ib * cs;
+            f[F_JS] += ib * sn;
         }
     }
 }
 
 /* a step's two halves added */
-static void both_halves(const qfoc_ident_t *id, int s, int64_t out[13])
+static void both_halves(const qfoc_ident_t *id, int s, int64_t out[NF])
 {
     qfoc_ident_sums_t h0;
     qfoc_ident_sums_t h1;
     int f;
     assert_true(qfoc_ident_sums(id, (uint8_t)s, 0u, &h0));
     assert_true(qfoc_ident_sums(id, (uint8_t)s, 1u, &h1));
-    for (f = 0; f < 13; f++) {
+    for (f = 0; f < NF; f++) {
         out[f] = field_of(&h0, f) + field_of(&h1, f);
     }
 }
 
-/* the admittance I / U at f_pwm / 16 of a step's sums (U from the counts on the mean bus) */
-static double complex measured_g(const int64_t t[13], double counts_to_volts)
+/* the admittance I / U at f_pwm / 16 of a step's sums on the alpha axis (beta: false)
+   or the beta axis (true), U from the counts on the mean bus */
+static double complex measured_g(const int64_t t[NF], bool beta, double counts_to_volts)
 {
-    const double complex i = (double)t[F_IC] - (I * (double)t[F_IS]);
-    const double complex u = ((double)t[F_UC] - (I * (double)t[F_US])) * counts_to_volts;
+    const double complex i = beta ? ((double)t[F_JC] - (I * (double)t[F_JS]))
+                                  : ((double)t[F_IC] - (I * (double)t[F_IS]));
+    const double complex u = (beta ? ((double)t[F_VC] - (I * (double)t[F_VS]))
+                                   : ((double)t[F_UC] - (I * (double)t[F_US]))) *
+                             counts_to_volts;
     return i / u;
 }
 
 /* the model's I / U of the samples against the written voltages: one period of delay
    before the voltage acts and the sampled R-L response, b z^-1 / (z - a), z = e^{jw} */
-static double complex model_g(double a, double r)
+static double complex model_g_at(double a, double r, double w)
 {
-    const double w = 2.0 * PI_D / 16.0;
     const double complex z = cexp(I * w);
     return ((1.0 - a) / r) / (z * (z - a));
+}
+
+static double complex model_g(double a, double r)
+{
+    return model_g_at(a, r, 2.0 * PI_D / 16.0);
 }
 
 /* ---- tests -------------------------------------------------------------------- */
@@ -356,8 +424,9 @@ static bool ref_cfg_valid(const qfoc_ident_cfg_t *c)
                         (c->pwm.dt_comp <= (c->pwm.period / 4u)) && (c->pwm.i_deadband >= 0) &&
                         (c->pwm.vdc_min > 0);
     return (0 < c->i_lo) && (c->i_lo < c->i_hi) && (c->i_hi < c->i_lim) && (c->i_ramp > 0) &&
-           (c->v_inj > 0) && (c->v_move > 0) && (c->vdc_min > 0) && (c->n_align > 0u) &&
-           (c->n_settle > 0u) && (c->win_shift >= 5u) && (c->win_shift <= 14u) && pi_ok &&
+           (c->v_inj > 0) && (c->v_inj <= c->v_inj_max) && (c->i_inj > 0) && (c->v_move > 0) && (c->vdc_min > 0) && (c->n_align > 0u) &&
+           (c->n_settle > 0u) && (c->win_shift >= 5u) && (c->win_shift <= 14u) &&
+           (c->w_psi > 0u) && (c->w_psi <= 4096u) && (c->n_ramp > 0u) && pi_ok &&
            (c->pi.out_min < 0) && (c->pi.out_max > 0) && pwm_ok && (c->pwm.dt_comp == 0u);
 }
 
@@ -387,7 +456,7 @@ static void check_cfg_at(const qfoc_ident_cfg_t *c, bool want, int line)
    others hold), each boundary one code either side.
    Methods: 1b valid and invalid configurations, one class per condition; 1c every
    threshold at and beside its edge (i_lo 0 / 1, i_hi = i_lo, i_lim = i_hi, win_shift 4, 5,
-   14, 15, the PI's out_min and out_max at 0, dt_comp 0 / 1, period 99 / 100); 1n the
+   14, 15, w_psi 0 / 1 / 4096 / 4097, n_ramp 0 / 1, the PI's out_min and out_max at 0, dt_comp 0 / 1, period 99 / 100); 1n the
    header's rule written here, with the PI and modulation rules of pi.h and svpwm.h */
 static void test_req_ident_001_cfg_conditions(void **state)
 {
@@ -405,6 +474,10 @@ static void test_req_ident_001_cfg_conditions(void **state)
     c = base_cfg(); c.i_ramp = -1; check_cfg(&c, false);
     c = base_cfg(); c.i_ramp = 1; check_cfg(&c, true);
     c = base_cfg(); c.v_inj = 0; check_cfg(&c, false);
+    c = base_cfg(); c.v_inj_max = (int16_t)(c.v_inj - 1); check_cfg(&c, false);
+    c = base_cfg(); c.v_inj_max = c.v_inj; check_cfg(&c, true);
+    c = base_cfg(); c.i_inj = 0; check_cfg(&c, false);
+    c = base_cfg(); c.i_inj = 1; check_cfg(&c, true);
     c = base_cfg(); c.v_move = 0; check_cfg(&c, false);
     c = base_cfg(); c.vdc_min = 0; check_cfg(&c, false);
     c = base_cfg(); c.vdc_min = -32768; check_cfg(&c, false);
@@ -415,6 +488,12 @@ static void test_req_ident_001_cfg_conditions(void **state)
     c = base_cfg(); c.win_shift = 5u; check_cfg(&c, true);
     c = base_cfg(); c.win_shift = 14u; check_cfg(&c, true);
     c = base_cfg(); c.win_shift = 15u; check_cfg(&c, false);
+    c = base_cfg(); c.w_psi = 0u; check_cfg(&c, false);
+    c = base_cfg(); c.w_psi = 1u; check_cfg(&c, true);
+    c = base_cfg(); c.w_psi = 4096u; check_cfg(&c, true);
+    c = base_cfg(); c.w_psi = 4097u; check_cfg(&c, false);
+    c = base_cfg(); c.n_ramp = 0u; check_cfg(&c, false);
+    c = base_cfg(); c.n_ramp = 1u; check_cfg(&c, true);
     c = base_cfg(); c.pi.kp = -1; check_cfg(&c, false);          /* PI parameters invalid */
     c = base_cfg(); c.pi.ki_shift = 16u; check_cfg(&c, false);
     c = base_cfg(); c.pi.out_min = 0; check_cfg(&c, false);      /* valid PI, out_min = 0 */
@@ -436,7 +515,8 @@ static void test_req_ident_001_cfg_conditions(void **state)
 static void test_req_ident_001_cfg_random(void **state)
 {
     static const int16_t q[] = { -32768, -1, 0, 1, 2, 3276, 3277, 6554, 13107, 32766, 32767 };
-    static const uint16_t u[] = { 0u, 1u, 2u, 99u, 100u, 1250u, 5000u, 32767u, 32768u, 65535u };
+    static const uint16_t u[] = { 0u, 1u, 2u, 99u, 100u, 1250u, 4096u, 4097u, 5000u, 32767u,
+                                  32768u, 65535u };
     static const uint8_t ws[] = { 0u, 4u, 5u, 6u, 13u, 14u, 15u, 255u };
     static const uint8_t sh[] = { 0u, 2u, 15u, 16u };
     const size_t nq = sizeof q / sizeof q[0];
@@ -454,11 +534,15 @@ static void test_req_ident_001_cfg_random(void **state)
         PICK(c.i_lim, q, nq)
         PICK(c.i_ramp, q, nq)
         PICK(c.v_inj, q, nq)
+        PICK(c.v_inj_max, q, nq)
+        PICK(c.i_inj, q, nq)
         PICK(c.v_move, q, nq)
         PICK(c.vdc_min, q, nq)
         PICK(c.n_align, u, nu)
         PICK(c.n_settle, u, nu)
         PICK(c.win_shift, ws, sizeof ws)
+        PICK(c.w_psi, u, nu)
+        PICK(c.n_ramp, u, nu)
         PICK(c.pi.kp, q, nq)
         PICK(c.pi.kp_shift, sh, sizeof sh)
         PICK(c.pi.ki, q, nq)
@@ -483,11 +567,11 @@ static void check_record_zero(const qfoc_ident_t *id)
     int s;
     int h;
     int f;
-    for (s = 0; s < 5; s++) {
+    for (s = 0; s < NSTEP; s++) {
         for (h = 0; h < 2; h++) {
             qfoc_ident_sums_t z;
             assert_true(qfoc_ident_sums(id, (uint8_t)s, (uint8_t)h, &z));
-            for (f = 0; f < 13; f++) {
+            for (f = 0; f < NF; f++) {
                 assert_true(field_of(&z, f) == 0);
             }
         }
@@ -584,12 +668,12 @@ static void test_req_ident_001_init_start(void **state)
 static void test_req_ident_002_model_run(void **state)
 {
     static qfoc_ident_t id;
-    static const int level[5] = { 6554, 3277, 6554, 6554, 6554 };
+    static const int level[NSTEP] = { 6554, 3277, 6554, 6554, 6554, 6554 };
     const qfoc_ident_cfg_t c = base_cfg();
     plant_t pl = base_plant();
-    rsums_t rec[5][2];
-    rsums_t slack[5][2];
-    int64_t t[5][13];
+    rsums_t rec[NSTEP][2];
+    rsums_t slack[NSTEP][2];
+    int64_t t[NSTEP][NF];
     const int half = 1 << (c.win_shift - 1);
     const int total = ref_total(&c);
     int p;
@@ -600,10 +684,10 @@ static void test_req_ident_002_model_run(void **state)
     (void)state;
     assert_int_equal(qfoc_ident_start(&id, &c), QFOC_IDENT_RUNNING);
     p = run_plant(&id, &pl, 100000);
-    assert_int_equal(total, 300 + 800 + 1280);
+    assert_int_equal(total, 300 + 1000 + 256 + 1536);
     assert_int_equal(p, total);
     assert_int_equal(qfoc_ident_result(&id), QFOC_IDENT_DONE);
-    assert_int_equal(qfoc_ident_step_now(&id), QFOC_IDENT_L_Q);
+    assert_int_equal(qfoc_ident_step_now(&id), QFOC_IDENT_PSI);
 
     for (p = 0; p < total; p++) {
         int o;
@@ -621,8 +705,14 @@ static void test_req_ident_002_model_run(void **state)
         if (o >= settle) {
             assert_int_equal(lg[p].ref_after, level[sref]);
         }
-        if (lg[p].ia > ia_max) {
+        if ((sref < 5) && (lg[p].ia > ia_max)) {
             ia_max = lg[p].ia;
+        }
+        /* the rotating current of PSI: its magnitude within a fifth of i_hi (the model's
+           saliency stands still while the current turns, L_q / L_d = 1.7: a ripple at
+           twice the speed that the rotating frame's PI sees as a disturbance of 15 %) */
+        if (sref == 5) {
+            assert_true(hypot(lg[p].ia, lg[p].ib) < (1.2 * c.i_hi));
         }
         /* without injection (ALIGN, R_LO, R_HI) the ramped reference gives no overshoot
            beyond 1 % of i_hi, nor below i_lo by 1 % once the reference has fallen to it */
@@ -644,7 +734,7 @@ static void test_req_ident_002_model_run(void **state)
     {
         qfoc_ident_sums_t before;
         qfoc_ident_sums_t after;
-        assert_true(qfoc_ident_sums(&id, 4u, 1u, &before));
+        assert_true(qfoc_ident_sums(&id, 5u, 1u, &before));
         for (p = 0; p < 3; p++) {
             const qfoc_pwm_t out = feed(&id, 20000, -20000, 0);
             assert_false(out.enable);
@@ -653,8 +743,8 @@ static void test_req_ident_002_model_run(void **state)
             assert_int_equal(out.cmp[2], PERIOD / 2u);
             assert_int_equal(qfoc_ident_result(&id), QFOC_IDENT_DONE);
         }
-        assert_true(qfoc_ident_sums(&id, 4u, 1u, &after));
-        for (f = 0; f < 13; f++) {
+        assert_true(qfoc_ident_sums(&id, 5u, 1u, &after));
+        for (f = 0; f < NF; f++) {
             assert_true(field_of(&before, f) == field_of(&after, f));
         }
     }
@@ -662,12 +752,12 @@ static void test_req_ident_002_model_run(void **state)
     /* the record against the sums recomputed here (every field but vb_cmd exactly, up to
        the slack of the last period's voltages) */
     ref_record(&c, total, rec, slack);
-    for (s = 0; s < 5; s++) {
+    for (s = 0; s < NSTEP; s++) {
         for (h = 0; h < 2; h++) {
             qfoc_ident_sums_t z;
             assert_true(qfoc_ident_sums(&id, (uint8_t)s, (uint8_t)h, &z));
             assert_int_equal(z.n, half);
-            for (f = 0; f < 13; f++) {
+            for (f = 0; f < NF; f++) {
                 if (f != F_VB) {
                     const int64_t d = field_of(&z, f) - rec[s][h].f[f];
                     assert_true((d <= slack[s][h].f[f]) && (d >= -slack[s][h].f[f]));
@@ -677,15 +767,17 @@ static void test_req_ident_002_model_run(void **state)
         both_halves(&id, s, t[s]);
     }
 
-    /* the currents at the steps' levels: the mean within 1 % (beta within 5 LSB) */
-    for (s = 0; s < 5; s++) {
+    /* the currents at the steps' levels (PSI: in the rotating frame): the mean within 1 %
+       (the second axis within 5 LSB) */
+    for (s = 0; s < NSTEP; s++) {
         const double m = (double)t[s][F_N];
         const double mean_a = (double)t[s][F_IA] / m;
         const double mean_b = (double)t[s][F_IB] / m;
         assert_true(fabs(mean_a - level[s]) < (0.01 * level[s]));
         assert_true(fabs(mean_b) < 5.0);
-        /* the beta voltage command against the beta voltage the compare values give */
-        {
+        /* the beta voltage command against the beta voltage the compare values give
+           (the standstill steps, whose control frame is the stationary one) */
+        if (s < 5) {
             const double vdc = (double)t[s][F_VDC] / m;
             const double ub = ((double)t[s][F_UB] / m) * vdc / (SQRT3_D * (double)PERIOD);
             assert_true(fabs(((double)t[s][F_VB] / m) - ub) < 3.0);
@@ -712,8 +804,8 @@ static void test_req_ident_002_model_run(void **state)
     {
         const double vdc_d = (double)t[3][F_VDC] / (double)t[3][F_N];
         const double vdc_q = (double)t[4][F_VDC] / (double)t[4][F_N];
-        const double complex gd = measured_g(t[3], vdc_d / (3.0 * PERIOD));
-        const double complex gq = measured_g(t[4], vdc_q / (SQRT3_D * PERIOD));
+        const double complex gd = measured_g(t[3], false, vdc_d / (3.0 * PERIOD));
+        const double complex gq = measured_g(t[4], true, vdc_q / (SQRT3_D * PERIOD));
         const double complex md = model_g(pl.a_d, pl.r);
         const double complex mq = model_g(pl.a_q, pl.r);
         print_message("G_d = %.4f%+.4fj (model %.4f%+.4fj), G_q = %.4f%+.4fj (model %.4f%+.4fj)\n",
@@ -725,8 +817,35 @@ static void test_req_ident_002_model_run(void **state)
            the cross-coupling sums small */
         assert_true(cabs((double)t[3][F_JC] - (I * (double)t[3][F_JS])) <
                     0.05 * cabs((double)t[3][F_IC] - (I * (double)t[3][F_IS])));
-        assert_true(cabs((double)t[4][F_JC] - (I * (double)t[4][F_JS])) <
-                    0.05 * cabs((double)t[4][F_IC] - (I * (double)t[4][F_IS])));
+        assert_true(cabs((double)t[4][F_IC] - (I * (double)t[4][F_IS])) <
+                    0.05 * cabs((double)t[4][F_JC] - (I * (double)t[4][F_JS])));
+    }
+
+    /* PSI: the current turns with the reference angle at i_hi: its positive-sequence
+       phasor sum (i_alpha + j i_beta) e^{-j theta} = I_alpha + j I_beta is n i_hi (within
+       1 %; the standing saliency's negative sequence cancels in it),
+       and the voltage phasors drive the currents the model's admittance at PSI's speed
+       gives (alpha less the inverter error's fundamental, 4 / pi v_err along the alpha
+       current; within 3 %) */
+    {
+        const double n = (double)t[5][F_N];
+        const double complex ia = ((double)t[5][F_IC] - (I * (double)t[5][F_IS])) / 32767.0;
+        const double complex ib = ((double)t[5][F_JC] - (I * (double)t[5][F_JS])) / 32767.0;
+        const double vdc = (double)t[5][F_VDC] / n;
+        const double w = 2.0 * PI_D * (double)c.w_psi / 65536.0;
+        const double complex ua = ((double)t[5][F_UC] - (I * (double)t[5][F_US])) / 32767.0 *
+                                  vdc / (3.0 * PERIOD);
+        const double complex ub = ((double)t[5][F_VC] - (I * (double)t[5][F_VS])) / 32767.0 *
+                                  vdc / (SQRT3_D * PERIOD);
+        const double complex ua_net = ua - ((4.0 / PI_D) * pl.v_err * (n / 2.0) * ia / cabs(ia));
+        print_message("PSI: I_alpha %.1f%+.1fj I_beta %.1f%+.1fj (n i_hi / 2 = %.1f)\n",
+                      creal(ia), cimag(ia), creal(ib), cimag(ib), n * c.i_hi / 2.0);
+        assert_true(cabs(((ia + (I * ib)) / (n * c.i_hi)) - 1.0) < 0.01);
+        print_message("PSI: G_alpha %.5f G_beta %.5f (model %.5f, %.5f)\n", cabs(ia / ua_net),
+                      cabs(ib / ub), cabs(model_g_at(pl.a_d, pl.r, w)),
+                      cabs(model_g_at(pl.a_q, pl.r, w)));
+        assert_true(cabs(((ia / ua_net) / model_g_at(pl.a_d, pl.r, w)) - 1.0) < 0.03);
+        assert_true(cabs(((ib / ub) / model_g_at(pl.a_q, pl.r, w)) - 1.0) < 0.03);
     }
 }
 
@@ -755,7 +874,7 @@ static void test_req_ident_002_window_extremes(void **state)
         p = run_plant(&id, &pl, 200000);
         assert_int_equal(p, ref_total(&c));
         assert_int_equal(qfoc_ident_result(&id), QFOC_IDENT_DONE);
-        for (s = 0; s < 5; s++) {
+        for (s = 0; s < NSTEP; s++) {
             for (h = 0; h < 2; h++) {
                 qfoc_ident_sums_t z;
                 assert_true(qfoc_ident_sums(&id, (uint8_t)s, (uint8_t)h, &z));
@@ -765,23 +884,188 @@ static void test_req_ident_002_window_extremes(void **state)
     }
 }
 
-/* REQ-IDENT-002: the longest settling the configuration admits: n_align or n_settle
-   65535 (valid: the header bounds them by > 0 only) with the largest and the smallest
-   window; the mode, fed its levels exactly, still ends (DONE) after n_align + 4 n_settle
-   + 5 2^win_shift periods, the header's bound on its length, with halves of
-   2^(win_shift - 1) periods.  A configuration the unit refuses instead passes as well.
-   Methods: 1c n_align = 65535 with win_shift 14, n_settle = 65535 with win_shift 5 (the
-   period count of a step, settle + 2^win_shift, beyond 16 bits); 1d a counter that
-   wraps; 1n the header's schedule */
+/* Run a configuration on the model to its end, checking the injection amplitude of L_D
+   and L_Q in every period against the header's rule written here: v_inj at each step's
+   start; over each injection period (the PWM periods from k = 0 to k = 15) of the first
+   half of the settling, the injected axis's peak-to-peak current; at its end, unless it
+   is the step's first (partial) period or the one after a change, the amplitude doubles
+   (at most v_inj_max) when the peak-to-peak is below i_inj and halves (at least 1) when
+   it is above 4 i_inj; held from then on (the whole window).  amp[0], amp[1]: L_D's and
+   L_Q's amplitude in their windows. */
+static void run_amplitude(qfoc_ident_t *id, const qfoc_ident_cfg_t *c, plant_t *pl,
+                          int amp[2])
+{
+    int p = 0;
+    int want = c->v_inj;   /* the rule's amplitude */
+    int hi = -32768;       /* the injection period's extremes */
+    int lo = 32767;
+    bool hold = true;
+    assert_int_equal(qfoc_ident_start(id, c), QFOC_IDENT_RUNNING);
+    assert_int_equal(id->inj, c->v_inj);
+    amp[0] = -1;
+    amp[1] = -1;
+    while ((p < 200000) && (qfoc_ident_result(id) == QFOC_IDENT_RUNNING)) {
+        qfoc_ab_t i;
+        qfoc_pwm_t out;
+        const int16_t vdc = bus_at(p);
+        const uint8_t s = qfoc_ident_step_now(id);
+        const int n = (int)id->n;
+        const int k = id->k;
+        const int settle = settle_of(c, s);
+        i.alpha = sample(pl->ia);
+        i.beta = sample(pl->ib);
+        out = qfoc_ident_step(id, &i, vdc);
+        plant_advance(pl, p, (double)vdc);
+        pl->acting = out;
+        p++;
+        if (((s == QFOC_IDENT_L_D) || (s == QFOC_IDENT_L_Q)) && (n < (settle / 2))) {
+            const int x = (s == QFOC_IDENT_L_D) ? i.alpha : i.beta;
+            hi = (x > hi) ? x : hi;
+            lo = (x < lo) ? x : lo;
+            if (k == 15) {
+                const int before = want;
+                if (!hold) {
+                    const int pp = hi - lo;
+                    if (pp < c->i_inj) {
+                        want = (2 * want > c->v_inj_max) ? c->v_inj_max : 2 * want;
+                    } else if ((pp > 4 * c->i_inj) && (want / 2 >= 1)) {
+                        want = want / 2;
+                    }
+                }
+                hold = (want != before);
+                hi = -32767;
+                lo = 32767;
+            }
+        }
+        if (qfoc_ident_step_now(id) != s) {
+            /* a new step starts from v_inj */
+            want = c->v_inj;
+            hi = -32767;
+            lo = 32767;
+            hold = true;
+        }
+        assert_int_equal(id->inj, want);
+        if (((s == QFOC_IDENT_L_D) || (s == QFOC_IDENT_L_Q)) && (n >= settle) &&
+            (qfoc_ident_step_now(id) == s)) {
+            const int j = (s == QFOC_IDENT_L_D) ? 0 : 1;
+            if (amp[j] < 0) {
+                amp[j] = id->inj;
+            }
+            assert_int_equal(id->inj, amp[j]);
+        }
+    }
+    assert_int_equal(qfoc_ident_result(id), QFOC_IDENT_DONE);
+}
+
+/* the injected current's amplitude of a step's window: 2 |I| / n (its phasor) */
+static double inj_amplitude(const qfoc_ident_t *id, int s)
+{
+    int64_t t[NF];
+    both_halves(id, s, t);
+    return (s == 3) ? 2.0 * cabs((double)t[F_IC] - (I * (double)t[F_IS])) / 32767.0 / (double)t[F_N]
+                    : 2.0 * cabs((double)t[F_JC] - (I * (double)t[F_JS])) / 32767.0 / (double)t[F_N];
+}
+
+/* REQ-IDENT-002: L_D's and L_Q's injection amplitude is adapted in the first half of the
+   settling: from a start far below the aim it doubles until the injected current's
+   peak-to-peak reaches i_inj, from one far above it halves until it is at most 4 i_inj;
+   it never exceeds v_inj_max nor falls below 1, each step starts again from v_inj, and
+   the window runs on one amplitude.  On the R-L model (|G_d| = 0.26, |G_q| = 0.155
+   at f_pwm / 16) the window's current amplitude then lies within [i_inj / 2, 2 i_inj]
+   unless the cap holds it lower.
+   Methods: 1b below the aim, above it, capped, at the floor; 1c v_inj_max = v_inj and the
+   amplitude 1; 1n the header's rule and the model's admittance */
+static void test_req_ident_002_injection_amplitude(void **state)
+{
+    static qfoc_ident_t id;
+    int amp[2];
+    int j;
+    (void)state;
+    {   /* from below: 100 doubles (a power of two times 100) until the current's
+           peak-to-peak reaches 1638 */
+        qfoc_ident_cfg_t c = base_cfg();
+        plant_t pl = base_plant();
+        c.v_inj = 100;
+        c.i_inj = 1638;
+        c.n_settle = 400u;  /* 200 periods of adaptation: 6 judged injection periods */
+        run_amplitude(&id, &c, &pl, amp);
+        for (j = 0; j < 2; j++) {
+            const double a = inj_amplitude(&id, 3 + j);
+            print_message("from below: L_%c amplitude %d, current %.0f LSB (aim %d)\n",
+                          (j == 0) ? 'd' : 'q', amp[j], a, c.i_inj);
+            assert_true((amp[j] > 100) && ((amp[j] % 100) == 0) &&
+                        (((amp[j] / 100) & ((amp[j] / 100) - 1)) == 0));
+            assert_true((a >= (c.i_inj / 3.0)) && (a <= (1.05 * 2.0 * c.i_inj)));
+        }
+    }
+    {   /* from above: 8000 halves until the peak-to-peak is at most 4 x 200 */
+        qfoc_ident_cfg_t c = base_cfg();
+        plant_t pl = base_plant();
+        c.v_inj = 8000;
+        c.v_inj_max = 8000;
+        c.i_inj = 200;
+        c.i_lim = 32767;
+        c.n_settle = 400u;
+        run_amplitude(&id, &c, &pl, amp);
+        for (j = 0; j < 2; j++) {
+            const double a = inj_amplitude(&id, 3 + j);
+            print_message("from above: L_%c amplitude %d, current %.0f LSB (aim %d)\n",
+                          (j == 0) ? 'd' : 'q', amp[j], a, c.i_inj);
+            assert_true((amp[j] < 8000) && ((8000 % amp[j]) == 0) &&
+                        (((8000 / amp[j]) & ((8000 / amp[j]) - 1)) == 0));
+            assert_true((a >= (c.i_inj / 3.0)) && (a <= (1.05 * 2.0 * c.i_inj)));
+        }
+    }
+    {   /* capped: v_inj_max 300 holds both below the aim */
+        qfoc_ident_cfg_t c = base_cfg();
+        plant_t pl = base_plant();
+        c.v_inj = 100;
+        c.v_inj_max = 300;
+        c.i_inj = 5000;
+        run_amplitude(&id, &c, &pl, amp);
+        assert_int_equal(amp[0], 300);
+        assert_int_equal(amp[1], 300);
+    }
+    {   /* v_inj_max = v_inj: never changed */
+        qfoc_ident_cfg_t c = base_cfg();
+        plant_t pl = base_plant();
+        c.v_inj_max = c.v_inj;
+        c.i_inj = 5000;
+        run_amplitude(&id, &c, &pl, amp);
+        assert_int_equal(amp[0], c.v_inj);
+        assert_int_equal(amp[1], c.v_inj);
+    }
+    {   /* the floor: amplitude 1 with an aim of 1 LSB stays at 1 */
+        qfoc_ident_cfg_t c = base_cfg();
+        plant_t pl = base_plant();
+        c.v_inj = 1;
+        c.i_inj = 1;
+        pl.v_err = 0.0;
+        run_amplitude(&id, &c, &pl, amp);
+        assert_int_equal(amp[0], 1);
+        assert_int_equal(amp[1], 1);
+    }
+}
+
+/* REQ-IDENT-002: the longest settling the configuration admits: n_align, n_settle or
+   n_ramp 65535 (valid: the header bounds them by > 0 only) with the largest and the
+   smallest window; the mode, fed its levels exactly (PSI: the current turning with its
+   angle), still ends (DONE) after n_align + 5 n_settle + n_ramp + 6 2^win_shift periods,
+   the header's bound on its length, with halves of 2^(win_shift - 1) periods.  A
+   configuration the unit refuses instead passes as well.
+   Methods: 1c n_align = 65535 with win_shift 14, n_settle = 65535 with win_shift 5,
+   n_ramp = n_settle = 65535 with win_shift 14 (PSI's period count 2 x 65535 + 2^14, the
+   invariant's bound); 1d a counter that wraps; 1n the header's schedule */
 static void test_req_ident_002_longest_settling(void **state)
 {
     static qfoc_ident_t id;
-    static const uint16_t na[2] = { 65535u, 1u };
-    static const uint16_t ns[2] = { 1u, 65535u };
-    static const uint8_t ws[2] = { 14u, 5u };
+    static const uint16_t na[3] = { 65535u, 1u, 1u };
+    static const uint16_t ns[3] = { 1u, 65535u, 65535u };
+    static const uint16_t nr[3] = { 1u, 1u, 65535u };
+    static const uint8_t ws[3] = { 14u, 5u, 14u };
     int j;
     (void)state;
-    for (j = 0; j < 2; j++) {
+    for (j = 0; j < 3; j++) {
         qfoc_ident_cfg_t c = base_cfg();
         long p;
         long total;
@@ -789,19 +1073,26 @@ static void test_req_ident_002_longest_settling(void **state)
         int h;
         c.n_align = na[j];
         c.n_settle = ns[j];
+        c.n_ramp = nr[j];
         c.win_shift = ws[j];
-        total = (long)c.n_align + (4L * (long)c.n_settle) + (5L << c.win_shift);
+        total = (long)c.n_align + (5L * (long)c.n_settle) + (long)c.n_ramp +
+                (6L << c.win_shift);
         if (!qfoc_ident_cfg_is_valid(&c)) {
             continue;
         }
         assert_int_equal(qfoc_ident_start(&id, &c), QFOC_IDENT_RUNNING);
         for (p = 0; (p <= total) && (qfoc_ident_result(&id) == QFOC_IDENT_RUNNING); p++) {
             const int a = (qfoc_ident_step_now(&id) == QFOC_IDENT_R_LO) ? c.i_lo : c.i_hi;
-            (void)feed(&id, a, 0, VDC_NOM);
+            if (qfoc_ident_step_now(&id) == QFOC_IDENT_PSI) {
+                const double th = 2.0 * PI_D * (double)id.theta / 65536.0;
+                (void)feed(&id, (int)lround(a * cos(th)), (int)lround(a * sin(th)), VDC_NOM);
+            } else {
+                (void)feed(&id, a, 0, VDC_NOM);
+            }
         }
         assert_int_equal(qfoc_ident_result(&id), QFOC_IDENT_DONE);
         assert_int_equal(p, total);
-        for (s = 0; s < 5; s++) {
+        for (s = 0; s < NSTEP; s++) {
             for (h = 0; h < 2; h++) {
                 qfoc_ident_sums_t z;
                 assert_true(qfoc_ident_sums(&id, (uint8_t)s, (uint8_t)h, &z));
@@ -1065,7 +1356,7 @@ static void test_req_ident_003_abort(void **state)
 }
 
 /* REQ-IDENT-004: the output of a period that ends the mode at a window's end (the
-   verdict ERR_NO_CURRENT or ERR_MOVED, or DONE after L_Q) is "disabled, with every
+   verdict ERR_NO_CURRENT or ERR_MOVED, or DONE after PSI) is "disabled, with every
    compare value at half the period" (ident.h, qfoc_ident_step's @return), as in every
    other disabled period: the compare values of that period are P / 2, not the modulated
    ones.
@@ -1141,6 +1432,8 @@ static void test_req_ident_005_saturation(void **state)
         id.rec.s[0][0].vdc = (int32_t)(m32 - 5);
         id.rec.s[0][0].u_c = sg * (m64 - 1);
         id.rec.s[0][0].u_s = -sg * (m64 - 1);
+        id.rec.s[0][0].v_c = -sg * (m64 - 1);
+        id.rec.s[0][0].v_s = sg * 77;
         id.rec.s[0][0].i_c = m64 - 1;
         id.rec.s[0][0].i_s = -(m64 - 1);
         id.rec.s[0][0].j_c = sg * (m64 - 1);
@@ -1161,6 +1454,8 @@ static void test_req_ident_005_saturation(void **state)
         assert_true(z1.vdc == m32);                       /* saturated */
         assert_true(z1.u_c == ref_sat(z0.u_c, ua * cs, m64));
         assert_true(z1.u_s == ref_sat(z0.u_s, ua * sn, m64));
+        assert_true(z1.v_c == ref_sat(z0.v_c, ub * cs, m64));
+        assert_true(z1.v_s == z0.v_s + (ub * sn));
         assert_true(z1.i_c == ref_sat(z0.i_c, alpha * cs, m64));
         assert_true(z1.i_s == ref_sat(z0.i_s, alpha * sn, m64));
         assert_true(z1.j_c == ref_sat(z0.j_c, beta * cs, m64));
@@ -1231,14 +1526,14 @@ static void test_req_ident_005_sums_beyond_bound(void **state)
 }
 
 /* REQ-IDENT-005: the record's accessor: every step and half in range copies the sums,
-   step 5 or half 2 (and the type's largest values) give false and all zero.
-   Methods: 1b in and out of range, each index on its own; 1c step 4 / 5, half 1 / 2,
+   step 6 or half 2 (and the type's largest values) give false and all zero.
+   Methods: 1b in and out of range, each index on its own; 1c step 5 / 6, half 1 / 2,
    255; 1n the header's contract */
 static void test_req_ident_005_sums_range(void **state)
 {
     static qfoc_ident_t id;
-    static const uint8_t bad[][2] = { { 5u, 0u }, { 0u, 2u }, { 5u, 2u }, { 255u, 1u },
-                                      { 4u, 255u } };
+    static const uint8_t bad[][2] = { { 6u, 0u }, { 0u, 2u }, { 6u, 2u }, { 255u, 1u },
+                                      { 5u, 255u } };
     qfoc_ident_sums_t z;
     size_t j;
     int s;
@@ -1246,17 +1541,17 @@ static void test_req_ident_005_sums_range(void **state)
     int f;
     (void)state;
     qfoc_ident_init(&id);
-    for (s = 0; s < 5; s++) {
+    for (s = 0; s < NSTEP; s++) {
         for (h = 0; h < 2; h++) {
             id.rec.s[s][h].n = (int32_t)((s * 2) + h + 1);
             id.rec.s[s][h].j_s = -(int64_t)((s * 2) + h + 1) * 1000000007;
         }
     }
-    for (s = 0; s < 5; s++) {
+    for (s = 0; s < NSTEP; s++) {
         for (h = 0; h < 2; h++) {
             memset(&z, 0x77, sizeof z);
             assert_true(qfoc_ident_sums(&id, (uint8_t)s, (uint8_t)h, &z));
-            for (f = 0; f < 13; f++) {
+            for (f = 0; f < NF; f++) {
                 assert_true(field_of(&z, f) == field_of(&id.rec.s[s][h], f));
             }
             assert_int_equal(z.n, (s * 2) + h + 1);
@@ -1265,7 +1560,7 @@ static void test_req_ident_005_sums_range(void **state)
     for (j = 0; j < sizeof bad / sizeof bad[0]; j++) {
         memset(&z, 0x77, sizeof z);
         assert_false(qfoc_ident_sums(&id, bad[j][0], bad[j][1], &z));
-        for (f = 0; f < 13; f++) {
+        for (f = 0; f < NF; f++) {
             assert_true(field_of(&z, f) == 0);
         }
     }
@@ -1286,14 +1581,14 @@ static int64_t decode48(const uint8_t *b)
    returns the number of negative values seen */
 static int check_frames(const qfoc_ident_t *id)
 {
-    const int frames = 1 + (5 * 2 * 13);
+    const int frames = 1 + (NSTEP * 2 * NF);
     int negative = 0;
     int k;
     for (k = 1; k < frames; k++) {
         const int j = k - 1;
-        const int s = j / 26;
-        const int h = (j / 13) % 2;
-        const int f = j % 13;
+        const int s = j / (2 * NF);
+        const int h = (j / NF) % 2;
+        const int f = j % NF;
         uint8_t buf[8];
         qfoc_ident_sums_t z;
         int64_t v;
@@ -1316,7 +1611,7 @@ static int check_frames(const qfoc_ident_t *id)
    value beyond 48 bits sent as the bound of its sign, +-(2^47 - 1) (the library's
    symmetric saturation); k out of range false with all eight bytes zero.
    Methods: 1b header and data frames, every step, half and field, both signs; 1c values
-   +-(2^47 - 1), +-2^47, +-2^62 and the 32-bit extremes, k = 130 / 131 / 65535; 1d a
+   +-(2^47 - 1), +-2^47, +-2^62 and the 32-bit extremes, k = 180 / 181 / 65535; 1d a
    saturated sum sent over a narrower field; 1n the decoding written here from the
    header */
 static void test_req_ident_005_frames(void **state)
@@ -1324,7 +1619,7 @@ static void test_req_ident_005_frames(void **state)
     static qfoc_ident_t id;
     const qfoc_ident_cfg_t c = base_cfg();
     plant_t pl = base_plant();
-    const int frames = 1 + (5 * 2 * 13);
+    const int frames = 1 + (NSTEP * 2 * NF);
     const int64_t l47 = ((int64_t)1 << 47) - 1;
     uint8_t buf[8];
     int s;
@@ -1341,7 +1636,7 @@ static void test_req_ident_005_frames(void **state)
     assert_true(qfoc_ident_frame(&id, 0u, buf));
     assert_int_equal(buf[0], 0xA5);
     assert_int_equal(buf[1], QFOC_IDENT_DONE);
-    assert_int_equal(buf[2], QFOC_IDENT_L_Q);
+    assert_int_equal(buf[2], QFOC_IDENT_PSI);
     assert_int_equal(buf[3], c.win_shift);
     assert_int_equal(buf[4] | (buf[5] << 8), PERIOD);
     assert_int_equal(buf[6] | (buf[7] << 8), frames);
@@ -1350,7 +1645,7 @@ static void test_req_ident_005_frames(void **state)
     assert_true(check_frames(&id) > 0);
 
     /* random values of either sign in every field */
-    for (s = 0; s < 5; s++) {
+    for (s = 0; s < NSTEP; s++) {
         for (h = 0; h < 2; h++) {
             qfoc_ident_sums_t *z = &id.rec.s[s][h];
             z->n = (int32_t)lcg_next();
@@ -1362,6 +1657,8 @@ static void test_req_ident_005_frames(void **state)
             z->vb_cmd = (int32_t)lcg_next();
             z->u_c = (int64_t)rand_range(INT32_MIN, INT32_MAX) * 65536;
             z->u_s = (int64_t)rand_range(INT32_MIN, INT32_MAX) * 1024;
+            z->v_c = -(int64_t)rand_range(0, INT32_MAX) * 4096;
+            z->v_s = (int64_t)rand_range(INT32_MIN, INT32_MAX) * 3;
             z->i_c = (int64_t)rand_range(INT32_MIN, INT32_MAX);
             z->i_s = (int64_t)rand_range(-100, 100);
             z->j_c = (int64_t)rand_range(INT32_MIN, INT32_MAX) * 32768;
@@ -1372,7 +1669,8 @@ static void test_req_ident_005_frames(void **state)
     id.rec.s[0][1].i_b = INT32_MAX;
     id.rec.s[1][0].u_c = l47;
     id.rec.s[1][1].u_s = -l47;
-    id.rec.s[4][1].j_s = -1;
+    id.rec.s[5][1].j_s = -1;
+    id.rec.s[5][0].v_s = -l47;
     assert_true(check_frames(&id) > 20);
 
     /* beyond 48 bits: the bound of the sign */
@@ -1381,17 +1679,19 @@ static void test_req_ident_005_frames(void **state)
                                        (int64_t)1 << 62, -((int64_t)1 << 62),
                                        INT64_MAX, INT64_MIN };
         for (j = 0; j < (int)(sizeof big / sizeof big[0]); j++) {
-            const int f = 7 + (j % 6);          /* u_c .. j_s */
-            const int st = j % 5;
+            const int f = 7 + (j % 8);          /* u_c .. j_s */
+            const int st = j % NSTEP;
             const int hf = j % 2;
-            const int k = 1 + (st * 26) + (hf * 13) + f;
-            int64_t *p64[6];
+            const int k = 1 + (st * 2 * NF) + (hf * NF) + f;
+            int64_t *p64[8];
             p64[0] = &id.rec.s[st][hf].u_c;
             p64[1] = &id.rec.s[st][hf].u_s;
-            p64[2] = &id.rec.s[st][hf].i_c;
-            p64[3] = &id.rec.s[st][hf].i_s;
-            p64[4] = &id.rec.s[st][hf].j_c;
-            p64[5] = &id.rec.s[st][hf].j_s;
+            p64[2] = &id.rec.s[st][hf].v_c;
+            p64[3] = &id.rec.s[st][hf].v_s;
+            p64[4] = &id.rec.s[st][hf].i_c;
+            p64[5] = &id.rec.s[st][hf].i_s;
+            p64[6] = &id.rec.s[st][hf].j_c;
+            p64[7] = &id.rec.s[st][hf].j_s;
             *p64[f - 7] = big[j];
             memset(buf, 0xEE, sizeof buf);
             assert_true(qfoc_ident_frame(&id, (uint16_t)k, buf));
@@ -1402,9 +1702,9 @@ static void test_req_ident_005_frames(void **state)
 
     /* the last frame and those beyond */
     assert_true(qfoc_ident_frame(&id, (uint16_t)(frames - 1), buf));
-    assert_int_equal(buf[1], (32 * 4) + 16 + 12);
+    assert_int_equal(buf[1], (32 * 5) + 16 + 14);
     {
-        static const uint16_t out[] = { 131u, 132u, 256u, 65535u };
+        static const uint16_t out[] = { 181u, 182u, 256u, 65535u };
         for (j = 0; j < 4; j++) {
             int b;
             memset(buf, 0xEE, sizeof buf);
@@ -1433,6 +1733,7 @@ int main(void)
         cmocka_unit_test(test_req_ident_001_init_start),
         cmocka_unit_test(test_req_ident_002_model_run),
         cmocka_unit_test(test_req_ident_002_window_extremes),
+        cmocka_unit_test(test_req_ident_002_injection_amplitude),
         cmocka_unit_test(test_req_ident_002_longest_settling),
         cmocka_unit_test(test_req_ident_003_overcurrent),
         cmocka_unit_test(test_req_ident_003_bus),

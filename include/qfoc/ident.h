@@ -87,11 +87,15 @@ extern "C" {
 #define QFOC_IDENT_R_HI   ((uint8_t)2u)  /**< the second resistance level */
 #define QFOC_IDENT_L_D    ((uint8_t)3u)  /**< injection on the d (alpha) axis */
 #define QFOC_IDENT_L_Q    ((uint8_t)4u)  /**< injection on the q (beta) axis */
-#define QFOC_IDENT_STEPS  (5u)           /**< number of steps */
+#define QFOC_IDENT_PSI    ((uint8_t)5u)  /**< the rotor turned by a rotating current (I/f) */
+#define QFOC_IDENT_STEPS  (6u)           /**< number of steps */
 
 /** Smallest and largest window: 2^5 .. 2^14 periods (halves of 16 .. 8192). */
 #define QFOC_IDENT_WIN_MIN ((uint8_t)5u)
 #define QFOC_IDENT_WIN_MAX ((uint8_t)14u)  /**< largest window shift */
+
+/** Largest angle step of PSI's rotating current, counts per period (f_pwm / 16). */
+#define QFOC_IDENT_W_MAX ((uint16_t)4096u)
 
 /** The saturation bound of the 32-bit window sums. */
 #define QFOC_IDENT_SUM32_MAX ((int32_t)2147483647)
@@ -104,32 +108,40 @@ typedef struct {
     qfoc_q15_t i_hi;       /**< second level, alignment and bias current, > i_lo */
     qfoc_q15_t i_lim;      /**< the mode's current bound, > i_hi */
     qfoc_q15_t i_ramp;     /**< largest change of the alpha reference per period, > 0 */
-    qfoc_q15_t v_inj;      /**< injection amplitude, Q15 of V_base, > 0 */
+    qfoc_q15_t v_inj;      /**< first injection amplitude of L_D and L_Q, Q15 of V_base, > 0 */
+    qfoc_q15_t v_inj_max;  /**< largest injection amplitude, Q15 of V_base, >= v_inj */
+    qfoc_q15_t i_inj;      /**< injected current amplitude aimed at, Q15 of I_base, > 0 */
     qfoc_q15_t v_move;     /**< mean beta voltage of a turning rotor, Q15 of V_base, > 0 */
     qfoc_q15_t vdc_min;    /**< lowest DC bus the test runs on, Q15 of V_base, > 0 */
     uint16_t n_align;      /**< periods of ALIGN before its window, > 0 */
     uint16_t n_settle;     /**< periods of the other steps before their window, > 0 */
     uint8_t win_shift;     /**< window of 2^win_shift periods, WIN_MIN .. WIN_MAX */
+    uint16_t w_psi;        /**< PSI's angle step per period at its test speed, 1 .. W_MAX */
+    uint16_t n_ramp;       /**< periods of PSI's speed ramp from standstill to w_psi, > 0 */
     qfoc_pi_params_t pi;   /**< current PI of both axes (pi.h; valid, out_min < 0 < out_max) */
     qfoc_svpwm_cfg_t pwm;  /**< modulation (svpwm.h; valid, dt_comp = 0) */
 } qfoc_ident_cfg_t;
 
-/** The sums of one half window (x: the step's injected axis, alpha in R_LO, R_HI and
-    ALIGN; y: the other axis). */
+/** The sums of one half window.  The control frame is the stationary frame (alpha,
+    beta) in ALIGN .. L_Q and the frame of the rotating current in PSI (d along the
+    current); the reference angle of the demodulated sums is 2 pi k / 16 in ALIGN .. L_Q
+    (the injection's) and the rotating current's angle in PSI. */
 typedef struct {
     int32_t n;        /**< periods summed */
-    int32_t i_a;      /**< sum of i_alpha, Q15 */
-    int32_t i_b;      /**< sum of i_beta, Q15 */
-    int32_t u_a;      /**< sum of 2 cmp_u - cmp_v - cmp_w, ticks */
-    int32_t u_b;      /**< sum of cmp_v - cmp_w, ticks */
+    int32_t i_a;      /**< sum of the current on the control frame's first axis, Q15 */
+    int32_t i_b;      /**< sum of the current on its second axis, Q15 */
+    int32_t u_a;      /**< sum of the alpha counts 2 cmp_u - cmp_v - cmp_w, ticks */
+    int32_t u_b;      /**< sum of the beta counts cmp_v - cmp_w, ticks */
     int32_t vdc;      /**< sum of the DC bus, Q15 */
-    int32_t vb_cmd;   /**< sum of the beta voltage command, Q15 */
-    int64_t u_c;      /**< sum of the x counts times cos(2 pi k / 16) (Q15) */
-    int64_t u_s;      /**< sum of the x counts times sin(2 pi k / 16) */
-    int64_t i_c;      /**< sum of i_x times cos */
-    int64_t i_s;      /**< sum of i_x times sin */
-    int64_t j_c;      /**< sum of i_y times cos (cross-coupling) */
-    int64_t j_s;      /**< sum of i_y times sin */
+    int32_t vb_cmd;   /**< sum of the second axis's voltage command, Q15 */
+    int64_t u_c;      /**< sum of the alpha counts times the reference cosine (Q15) */
+    int64_t u_s;      /**< sum of the alpha counts times the reference sine */
+    int64_t v_c;      /**< sum of the beta counts times the reference cosine */
+    int64_t v_s;      /**< sum of the beta counts times the reference sine */
+    int64_t i_c;      /**< sum of i_alpha times the reference cosine */
+    int64_t i_s;      /**< sum of i_alpha times the reference sine */
+    int64_t j_c;      /**< sum of i_beta times the reference cosine */
+    int64_t j_s;      /**< sum of i_beta times the reference sine */
 } qfoc_ident_sums_t;
 
 /** The record: each step's two half windows. */
@@ -143,8 +155,14 @@ typedef struct {
     qfoc_pi_t pi_a;         /**< alpha current loop */
     qfoc_pi_t pi_b;         /**< beta current loop */
     qfoc_q15_t ref;         /**< alpha current reference now, Q15 */
-    uint32_t n;             /**< periods spent in this step (at most 65535 + 2^14) */
-    uint8_t step;           /**< QFOC_IDENT_ALIGN .. QFOC_IDENT_L_Q */
+    uint32_t n;             /**< periods spent in this step (at most 2 x 65535 + 2^14) */
+    qfoc_angle_t theta;     /**< angle of PSI's rotating current */
+    qfoc_q15_t inj;         /**< injection amplitude now, Q15 of V_base */
+    qfoc_q15_t pk_max;      /**< largest injected-axis current of this injection period */
+    qfoc_q15_t pk_min;      /**< smallest injected-axis current of this injection period */
+    bool inj_hold;          /**< true: this injection period is not judged (the first one
+                                 after an amplitude change or a step's start) */
+    uint8_t step;           /**< QFOC_IDENT_ALIGN .. QFOC_IDENT_PSI */
     uint8_t result;         /**< QFOC_IDENT_IDLE .. QFOC_IDENT_ERR_ABORT */
     uint8_t k;              /**< injection phase, 0 .. 15 */
     qfoc_ident_record_t rec;  /**< the record */
@@ -320,15 +338,15 @@ bool qfoc_ident_sums(const qfoc_ident_t *id, uint8_t step, uint8_t half,
                      qfoc_ident_sums_t *out);
 
 /** Frames of the record: one header, then one per sum field. */
-#define QFOC_IDENT_FIELDS  (13u)  /**< fields of qfoc_ident_sums_t, in declaration order */
-#define QFOC_IDENT_FRAMES  ((uint16_t)131u)  /**< 1 + QFOC_IDENT_STEPS x 2 x QFOC_IDENT_FIELDS */
+#define QFOC_IDENT_FIELDS  (15u)  /**< fields of qfoc_ident_sums_t, in declaration order */
+#define QFOC_IDENT_FRAMES  ((uint16_t)181u)  /**< 1 + QFOC_IDENT_STEPS x 2 x QFOC_IDENT_FIELDS */
 
 /**
  * @brief Frame k of the record, 8 bytes for a CAN, LIN or UART transport.
  *        Frame 0: byte 0 = 0xA5, byte 1 = result, byte 2 = step, byte 3 = win_shift,
  *        bytes 4..5 = the PWM period (little endian), bytes 6..7 = QFOC_IDENT_FRAMES.
- *        Frame k >= 1: with j = k - 1, step = j / 26, half = (j / 13) % 2 and field =
- *        j % 13 (qfoc_ident_sums_t's order): byte 0 = k (mod 256), byte 1 = 32 step +
+ *        Frame k >= 1: with j = k - 1, step = j / 30, half = (j / 15) % 2 and field =
+ *        j % 15 (qfoc_ident_sums_t's order): byte 0 = k (mod 256), byte 1 = 32 step +
  *        16 half + field, bytes 2..7 = the field's value as a 48-bit two's complement
  *        number, little endian (every sum fits: |sum| < 2^45; a 64-bit sum beyond 48
  *        bits, which only a saturated sum could be, is sent as +-(2^47 - 1)).

@@ -69,18 +69,38 @@ static void ident_cfg_of(const qfoc_param_table_t *t, const sim_motor_t *m, cons
     c->i_lo = q15_of(0.2 * m->rated_current_a / b->i_base);
     c->i_hi = q15_of(i_hi / b->i_base);
     c->i_lim = q15_of(fmin(m->rated_current_a, 0.95 * b->i_base) / b->i_base);
-    c->v_inj = q15_of(0.25 * i_hi * w_inj * l_guess / b->v_base);
+    /* the injection starts at half the ratings guess and doubles (or halves) every
+       second injection period of the first half of the settling until the injected
+       current's amplitude lies within [1/2, 2] of i_hi / 4; at most a quarter of the
+       phase voltage */
+    c->v_inj = q15_of(0.5 * 0.25 * i_hi * w_inj * l_guess / b->v_base);
+    if (c->v_inj < 1) c->v_inj = 1;
+    c->v_inj_max = q15_of(0.25 * v_phase / b->v_base);
+    if (c->v_inj_max < c->v_inj) c->v_inj_max = c->v_inj;
+    c->i_inj = q15_of(0.25 * i_hi / b->i_base);
     /* 4 PWM counts of beta voltage at the nominal bus: a rotor turning at
        4 V_dc / (sqrt 3 P psi_f) rad/s (electrical) or faster */
     c->v_move = q15_of(4.0 * m->vdc_nominal_v / (SQ3 * (double)t->svpwm.period) / b->v_base);
     (void)psi_guess;
     c->vdc_min = q15_of(0.5 * m->vdc_nominal_v / b->v_base);
     c->n_align = periods(2.5, b->t_s);
-    c->n_settle = periods(0.05, b->t_s);
+    c->n_settle = periods(0.1, b->t_s);
     c->i_ramp = q15_of(i_hi / b->i_base / (0.1 / b->t_s));
     if (c->i_ramp < 1) c->i_ramp = 1;
     win = log2(0.2 / b->t_s);
     c->win_shift = (uint8_t)fmax(QFOC_IDENT_WIN_MIN, fmin(QFOC_IDENT_WIN_MAX, ceil(win)));
+    /* PSI: the current turns at 0.2 of the rated speed, rounded to whole turns in each
+       half window (a multiple of 2^(17 - win_shift) counts a period), after a ramp of
+       1 s from standstill */
+    {
+        const double quantum = ldexp(1.0, 17 - (int)c->win_shift);
+        const double w = 0.2 * w_rated * b->t_s * 65536.0 / (2.0 * SIM_PI);
+        double q = quantum * floor(w / quantum + 0.5);
+        if (q < quantum) q = quantum;
+        if (q > (double)QFOC_IDENT_W_MAX) q = quantum * floor((double)QFOC_IDENT_W_MAX / quantum);
+        c->w_psi = (uint16_t)q;
+        c->n_ramp = periods(1.0, b->t_s);
+    }
     c->pi = t->pi_id;
     c->pwm = t->svpwm;
     c->pwm.dt_comp = 0u;
@@ -176,11 +196,11 @@ static int run_one(const scn_table_t *tab, const opts_t *o)
     }
     res = qfoc_ident_result(&id);
     printf("motor %s rs_ohm=%.9g ld_h=%.9g lq_h=%.9g psi_f_wb=%.9g dead_time_s=%.9g "
-           "t_s=%.9g period=%u v_base=%.9g i_base=%.9g pole_pairs=%g result=%u step=%u "
+           "t_s=%.9g period=%u v_base=%.9g i_base=%.9g pole_pairs=%g w_psi=%u result=%u step=%u "
            "periods=%ld enabled=%ld motor_time_s=%.6f theta_end_deg=%.3f w_end=%.4g\n",
            tab->name, m.rs_ohm, m.ld_h, m.lq_h, m.psi_f_wb, m.dead_time_s, s.bases.t_s,
            (unsigned)ic.pwm.period, s.bases.v_base, s.bases.i_base, m.pole_pairs,
-           (unsigned)res, (unsigned)qfoc_ident_step_now(&id), n_run, n_on,
+           (unsigned)ic.w_psi, (unsigned)res, (unsigned)qfoc_ident_step_now(&id), n_run, n_on,
            (double)n_run * s.bases.t_s, sim_wrap_pi(sim_theta_e(&s)) * 180.0 / SIM_PI, sim_w_e(&s));
     for (f = 0u; f < QFOC_IDENT_FRAMES; f++) {
         uint8_t buf[8];

@@ -1,32 +1,50 @@
 #!/usr/bin/env python3
-"""Decode the standstill identification's record (include/qfoc/ident.h) into R_s, L_d,
-L_q and the inverter's voltage error, in double precision (specs/equations.md section 12).
+"""Decode the identification's record (include/qfoc/ident.h) into R_s, L_d, L_q, psi_f
+and the inverter's voltage error, in double precision (specs/equations.md section 12).
 
 Input: the text the drive's host reads (sim/apps/identify.c writes the same): for each
-motor a line "motor NAME key=value ..." (at least t_s, period, v_base, i_base; the truth
-rs_ohm, ld_h, lq_h when known, for the report), the frames of qfoc_ident_frame() as
-"frame B0 B1 ... B7" in hex, and "end NAME".
+motor a line "motor NAME key=value ..." (at least t_s, period, v_base, i_base and w_psi,
+the configuration's PSI speed; the truth rs_ohm, ld_h, lq_h, psi_f_wb when known, for
+the report), the frames of qfoc_ident_frame() as "frame B0 B1 ... B7" in hex, and
+"end NAME".
 
 For each motor the result is:
   R_s     (U_hi - U_lo) / (I_hi - I_lo) over the two resistance steps' windows, the
           voltages from the compare values written (u_alpha = counts V_dc / (3 P));
   v_err   U_lo - R_s I_lo: the inverter's voltage error on the alpha axis at those
           currents (dead time and switch drops), positive along the current;
-  L_d, L_q  from the injection at f_pwm / 16 on alpha (d) and beta (q): the complex
+  L_d, L_q  from the injection at f_pwm / 16 on alpha (d) and beta (q) (L_q: the beta
+          counts v_c, v_s and the beta current j_c, j_s): the complex
           ratio G = I / U at the injection frequency, modelled as the sampled R-L circuit
           behind a one-period delay, G = b e^{-j W} / (e^{j W} - a), W = 2 pi / 16, so
           that the imaginary part of e^{-j W} U / I = (e^{j W} - a) / b is sin W / b; with
           the measured R_s, b = (1 - e^{-R_s T / L}) / R_s gives
           L = -R_s T / ln(1 - R_s b) (the real part, which holds a, is not used: for a
           motor of milliohms a = e^{-R_s T / L} lies within 10^-3 of 1);
+  psi_f   from PSI, the rotor turned by a current i_hi that turns at
+          w = w_psi 2 pi / (65536 T): the rotating (positive-sequence) phasors of the
+          voltage and the current, V = (U_alpha + j U_beta) / n and I = (I_alpha +
+          j I_beta) / n (U_x = sum x e^{-j theta}), the voltage turned back by 1.5 w T
+          (it acts one period after it is written, at the middle of that period); the
+          back-EMF E = V - R_s I - v_dt I / |I| with the inverter error's fundamental
+          v_dt = 3 v_err / pi (v_err is 4/3 of a phase's error on the aligned axis, a
+          sinusoidal current sees 4 / pi of it); the stator flux E / (j w), the active
+          flux psi_a = E / (j w) - L_q I along the rotor's d axis, and
+          psi_f = |psi_a| - (L_d - L_q) i_d with i_d the current along psi_a;
   quality each value's repeatability (the two half windows' values apart, % of the
           value) and residual: for R_s the mean beta current against the alpha current
           (the current off the aligned axis, %), for L the current answering on the other
-          axis (cross-coupling: a rotor off the alignment, %).
+          axis (cross-coupling: a rotor off the alignment, %), for psi_f the voltage's
+          negative sequence against its positive one (a rotor that does not turn with
+          the current, whose saliency then stands still, %).
 
-usage: ident_decode.py [FILE|-] [--json OUT] [--check [--known NAME:KEY ...]]
-  --check: exit 1 unless every motor ended DONE and, where the truth is given, R_s is
-           within 5 % and L_d, L_q within 10 % (the targets of REQ-IDENT-006).
+usage: ident_decode.py [FILE|-] [--json OUT] [--record-dir DIR] [--check [--known NAME:KEY ...]]
+  --json: every motor's results as a JSON list;
+  --record-dir: for each motor that ended DONE, DIR/NAME.json, the record tools/tune/
+           qfoc_ident.py reads (format "qfoc-ident/1": the four values with their
+           repeatability and residual, the source, the bus);
+  --check: exit 1 unless every motor ended DONE and, where the truth is given, R_s and
+           psi_f are within 5 % and L_d, L_q within 10 % (the targets of REQ-IDENT-006).
 Exit 2 on malformed input, naming the line.
 """
 import argparse
@@ -36,12 +54,12 @@ import math
 import sys
 
 FIELDS = ("n", "i_a", "i_b", "u_a", "u_b", "vdc", "vb_cmd",
-          "u_c", "u_s", "i_c", "i_s", "j_c", "j_s")
-STEPS = ("align", "r_lo", "r_hi", "l_d", "l_q")
+          "u_c", "u_s", "v_c", "v_s", "i_c", "i_s", "j_c", "j_s")
+STEPS = ("align", "r_lo", "r_hi", "l_d", "l_q", "psi")
 RESULTS = ("IDLE", "RUNNING", "DONE", "ERR_CFG", "ERR_BUS", "ERR_OC", "ERR_NO_CURRENT",
            "ERR_MOVED", "ERR_ABORT")
 N_FRAMES = 1 + len(STEPS) * 2 * len(FIELDS)
-TARGETS = {"rs_ohm": 5.0, "ld_h": 10.0, "lq_h": 10.0}
+TARGETS = {"rs_ohm": 5.0, "ld_h": 10.0, "lq_h": 10.0, "psi_f_wb": 5.0}
 
 
 class DecodeError(Exception):
@@ -100,7 +118,8 @@ def record(frames):
     sums = [[dict() for _ in range(2)] for _ in STEPS]
     for k, f in enumerate(frames[1:], 1):
         j = k - 1
-        step, half, field = j // 26, (j // 13) % 2, j % 13
+        nf = len(FIELDS)
+        step, half, field = j // (2 * nf), (j // nf) % 2, j % nf
         if f[0] != (k & 0xFF) or f[1] != 32 * step + 16 * half + field:
             raise DecodeError(f"frame {k}: header {f[0]:02X} {f[1]:02X} out of order")
         sums[step][half][FIELDS[field]] = _s48(f[2:])
@@ -118,9 +137,10 @@ def decode(m):
         period = float(info["period"])
         v_base = float(info["v_base"])
         i_base = float(info["i_base"])
+        w_psi = float(info["w_psi"])
     except (KeyError, ValueError) as e:
-        raise DecodeError(f"motor {m['name']}: the motor line lacks t_s, period, v_base or "
-                          f"i_base ({e})")
+        raise DecodeError(f"motor {m['name']}: the motor line lacks t_s, period, v_base, "
+                          f"i_base or w_psi ({e})")
     result, step, win, _, sums = record(m["frames"])
     out = {"name": m["name"], "result": RESULTS[result] if result < len(RESULTS) else str(result),
            "step": STEPS[step] if step < len(STEPS) else str(step)}
@@ -154,9 +174,10 @@ def decode(m):
     w = 2.0 * math.pi / 16.0
 
     def l_of(s, beta):
-        u = _phasor(s, "u_c", "u_s") * volts_per_count(s, beta)
-        i = _phasor(s, "i_c", "i_s") / 32768.0 * i_base
-        j = _phasor(s, "j_c", "j_s") / 32768.0 * i_base
+        u = _phasor(s, "v_c" if beta else "u_c", "v_s" if beta else "u_s") * \
+            volts_per_count(s, beta)
+        i = _phasor(s, "j_c" if beta else "i_c", "j_s" if beta else "i_s") / 32768.0 * i_base
+        j = _phasor(s, "i_c" if beta else "j_c", "i_s" if beta else "j_s") / 32768.0 * i_base
         q = cmath.exp(-1j * w) * u / i
         b = math.sin(w) / q.imag
         # the sampled R-L circuit: b = (1 - e^{-R T / L}) / R with R the measured R_s
@@ -171,6 +192,33 @@ def decode(m):
         l_h = [l_of(sums[st][h], beta)[0] for h in (0, 1)]
         out[key] = {"value": l, "repeat_pct": 100.0 * abs(l_h[0] - l_h[1]) / abs(l),
                     "residual_pct": 100.0 * cross}
+    ld, lq = out["ld_h"]["value"], out["lq_h"]["value"]
+    w_e = w_psi * 2.0 * math.pi / (65536.0 * t_s)
+    v_dt = 3.0 * v_err / math.pi
+
+    def psi_of(s):
+        n = s["n"]
+        ua = _phasor(s, "u_c", "u_s") / 32767.0 * volts_per_count(s, False)
+        ub = _phasor(s, "v_c", "v_s") / 32767.0 * volts_per_count(s, True)
+        ia = _phasor(s, "i_c", "i_s") / 32767.0 / 32768.0 * i_base
+        ib = _phasor(s, "j_c", "j_s") / 32767.0 / 32768.0 * i_base
+        back = cmath.exp(-1.5j * w_e * t_s)
+        v = (ua + 1j * ub) / n * back
+        v_neg = abs(ua - 1j * ub) / n
+        i = (ia + 1j * ib) / n
+        if abs(i) == 0.0:
+            raise DecodeError(f"motor {m['name']}: no current in PSI")
+        e = v - r * i - v_dt * i / abs(i)
+        psi_a = e / (1j * w_e) - lq * i
+        if abs(psi_a) == 0.0:
+            raise DecodeError(f"motor {m['name']}: no flux in PSI")
+        i_d = (i * psi_a.conjugate()).real / abs(psi_a)
+        return abs(psi_a) - (ld - lq) * i_d, 100.0 * v_neg / abs(v)
+
+    psi, neg = psi_of(merged(sums[5]))
+    psi_h = [psi_of(sums[5][h])[0] for h in (0, 1)]
+    out["psi_f_wb"] = {"value": psi, "repeat_pct": 100.0 * abs(psi_h[0] - psi_h[1]) / abs(psi),
+                       "residual_pct": neg}
     for key in TARGETS:
         if key in info:
             true = float(info[key])
@@ -187,7 +235,7 @@ def table(results):
             lines.append(f"| {r['name']} | {r['result']} (in {r['step']}) | | | | | | |")
             continue
         for key, label, unit, scale in (("rs_ohm", "R_s", "mOhm", 1e3), ("ld_h", "L_d", "mH", 1e3),
-                                        ("lq_h", "L_q", "mH", 1e3)):
+                                        ("lq_h", "L_q", "mH", 1e3), ("psi_f_wb", "psi_f", "mWb", 1e3)):
             v = r[key]
             true = f"{v['true'] * scale:.4g} {unit}" if "true" in v else "-"
             err = f"{v['error_pct']:+.2f}" if "error_pct" in v else "-"
