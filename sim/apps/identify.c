@@ -84,7 +84,7 @@ static void ident_cfg_of(const qfoc_param_table_t *t, const sim_motor_t *m, cons
     (void)psi_guess;
     c->vdc_min = q15_of(0.5 * m->vdc_nominal_v / b->v_base);
     c->n_align = periods(2.5, b->t_s);
-    c->n_settle = periods(0.1, b->t_s);
+    c->n_settle = periods(0.05, b->t_s);
     c->i_ramp = q15_of(i_hi / b->i_base / (0.1 / b->t_s));
     if (c->i_ramp < 1) c->i_ramp = 1;
     win = log2(0.2 / b->t_s);

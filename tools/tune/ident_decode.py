@@ -51,6 +51,7 @@ import argparse
 import cmath
 import json
 import math
+import os
 import sys
 
 FIELDS = ("n", "i_a", "i_b", "u_a", "u_b", "vdc", "vb_cmd",
@@ -171,6 +172,7 @@ def decode(m):
     out["rs_ohm"] = {"value": r, "repeat_pct": 100.0 * abs(r_h[0] - r_h[1]) / abs(r),
                      "residual_pct": 100.0 * ib / abs(i_hi)}
     out["v_err_v"] = v_err
+    out["vdc_v"] = mean(merged(sums[2]), "vdc") / 32768.0 * v_base
     w = 2.0 * math.pi / 16.0
 
     def l_of(s, beta):
@@ -227,6 +229,18 @@ def decode(m):
     return out
 
 
+def ident_record(r, m):
+    """The record tools/tune/qfoc_ident.py reads (format qfoc-ident/1) of a motor ended DONE:
+    the four values with their quality, the source and the bus of the run."""
+    info = m["info"]
+    src = (f"standstill identification (ident.h) of table {m['name']}, "
+           f"{float(info['period']):.0f} ticks a PWM period, decoded by ident_decode.py")
+    cond = {"vdc_v": round(r["vdc_v"], 2), "v_err_v": round(r["v_err_v"], 4)}
+    return {"format": "qfoc-ident/1", "source": src, "conditions": cond,
+            "results": {k: {f: r[k][f] for f in ("value", "repeat_pct", "residual_pct")}
+                        for k in TARGETS}}
+
+
 def table(results):
     lines = ["| motor | result | parameter | true | identified | error % | repeat % | "
              "residual % |", "|---|---|---|---:|---:|---:|---:|---:|"]
@@ -269,6 +283,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("input", nargs="?", default="-")
     ap.add_argument("--json")
+    ap.add_argument("--record-dir", metavar="DIR",
+                    help="write DIR/NAME.json (format qfoc-ident/1) for each motor ended DONE")
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--known", action="append", default=[], metavar="NAME:KEY",
                     help="a target shortfall reported but not failed (stated in the note)")
@@ -290,6 +306,13 @@ def main(argv=None):
     if a.json:
         with open(a.json, "w", encoding="utf-8") as f:
             json.dump(results, f, indent=1)
+    if a.record_dir:
+        os.makedirs(a.record_dir, exist_ok=True)
+        for r, m in zip(results, motors):
+            if r["result"] == "DONE":
+                path = os.path.join(a.record_dir, f"{r['name']}.json")
+                with open(path, "w", encoding="utf-8") as f:
+                    json.dump(ident_record(r, m), f, indent=1)
     if a.check:
         for k in a.known:
             name, _, key = k.partition(":")

@@ -3,6 +3,7 @@
 
     python3 tools/tune/qfoc_ident.py RECORD.json RATINGS.toml --motor-out MOTOR.toml
             [--name NAME] [--table-dir DIR] [--out-dir DIR] [--no-plots] [--force]
+            [--set SECTION.KEY=VALUE ...]
 
 An identification measures the machine's electrical parameters on the inverter; the
 integrator types only the ratings and limits.  This tool joins the two:
@@ -207,10 +208,17 @@ def main(argv: list[str] | None = None) -> int:
                     help="directory of <name>_params.c/.h (default tables/)")
     ap.add_argument("--out-dir", type=Path, help="report directory (default build/tune/<name>/)")
     ap.add_argument("--no-plots", action="store_true", help="skip the PNG figures")
+    ap.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
+                    help="an override for the tuning tool, as in tables/manifest.txt (never "
+                         "one of the measured keys)")
     args = ap.parse_args(argv)
 
     out = args.motor_out
     try:
+        for s in args.set:
+            if s.split("=", 1)[0].strip() in {f"motor.{k}" for k in MEASURED}:
+                raise qt.InputError(f"--set {s}: motor.{s.split('=', 1)[0].strip()[6:]} is "
+                                    "measured by the identification, not set")
         rec = read_record(args.record)
         check_results(args.record, rec["results"])
         text = motor_text(args.ratings, args.record, rec)
@@ -228,6 +236,8 @@ def main(argv: list[str] | None = None) -> int:
         tune_args += ["--out-dir", str(args.out_dir)]
     if args.no_plots:
         tune_args.append("--no-plots")
+    for s in args.set:
+        tune_args += ["--set", s]
     rc = qt.main(tune_args)
     if rc != 0:
         # the tuning tool wrote no table; the motor file goes too (or returns to what it was)
