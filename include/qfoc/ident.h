@@ -1,58 +1,71 @@
 /**
  * @file ident.h
- * @brief Commissioning a new motor at standstill: the measurements from which the host
- *        computes the stator resistance R_s, the inductances L_d and L_q and the
+ * @brief Commissioning a new motor: the measurements from which the host computes the
+ *        stator resistance R_s, the inductances L_d and L_q, the magnet flux psi_f and the
  *        inverter's voltage error (specs/equations.md section 12).
  *
  * The mode runs on the inverter and the motor it will drive, once per PWM period, in
  * place of the drive's control (the integrator calls qfoc_ident_step() from the
- * ADC-complete interrupt while the drive is stopped, with PWM off).  It works in the
- * stationary frame: the first step aligns the rotor's d axis with the alpha axis (phase
- * u), so that alpha is the rotor's d axis and beta its q axis for the steps after it.
- * Two PI controllers (pi.h, the table's current-loop gains) hold the alpha current at the
- * step's level and the beta current at zero; the voltage vector is modulated by
- * qfoc_svpwm_step() without dead-time compensation, so the inverter's own voltage error
- * is in what the motor receives and is measured, not guessed.
+ * ADC-complete interrupt while the drive is stopped, with PWM off; safety manual AoU-26).
+ * The first step aligns the rotor's d axis with the alpha axis (phase u), so that alpha is
+ * the rotor's d axis and beta its q axis for the standstill steps after it.  Two PI
+ * controllers (pi.h, the table's current-loop gains) hold the current of the control
+ * frame's first axis at the step's level and that of its second axis at zero; the control
+ * frame is the stationary one (alpha, beta) in ALIGN .. L_Q and the frame that turns with
+ * PSI's current in PSI.  The voltage vector is modulated by qfoc_svpwm_step() without
+ * dead-time compensation, so the inverter's own voltage error is in what the motor
+ * receives and is measured, not guessed.
  *
  * Steps (each n_settle periods to settle, then a window of 2^win_shift periods, in two
- * halves whose sums are kept apart; ALIGN settles for n_align periods):
+ * halves whose sums are kept apart; ALIGN settles for n_align periods, PSI for n_ramp +
+ * n_settle):
  *   ALIGN  alpha current i_hi: the rotor turns to the alpha axis and stays there;
  *   R_LO   alpha current i_lo;
  *   R_HI   alpha current i_hi: R_s = (V_hi - V_lo) / (I_hi - I_lo), the inverter's
  *          voltage error V_lo - R_s I_lo (both levels positive and above its transition,
  *          so the error is the same in both and cancels in the difference);
- *   L_D    alpha current i_hi (the rotor held) plus a voltage v_inj cos(2 pi k / 16) on
+ *   L_D    alpha current i_hi (the rotor held) plus a voltage A cos(2 pi k / 16) on
  *          alpha: injection at f_pwm / 16;
- *   L_Q    the same with the injection on beta.
- * The alpha reference moves towards each step's level by at most i_ramp per period (no
- * current step, no overshoot of the PI).  The voltage the motor receives is taken from
- * the compare values written (the inverter's duty cycles times the measured DC bus): the
- * window sums hold the alpha counts 2 cmp_u - cmp_v - cmp_w and the beta counts
- * cmp_v - cmp_w, from which the host forms u_alpha = counts V_dc / (3 P) and
- * u_beta = counts V_dc / (sqrt 3 P).  The compare values written in period k act in
- * period k + 1: the host's model of the injection (G = I / U at the injection frequency,
- * a one-period delay and the sampled R-L response) accounts for it.
+ *   L_Q    the same with the injection on beta;
+ *   PSI    the current i_hi turning at an angle step that ramps from 0 to w_psi per period
+ *          over n_ramp periods, then holds w_psi: the rotor turns with it (I/f), and the
+ *          voltage it takes gives psi_f (E12-3).
+ * The injection amplitude A starts at v_inj in L_D and in L_Q and is found on the motor
+ * over the first half of their settling: at the end of each injection period (16 PWM
+ * periods) that follows one without a change, it doubles (at most v_inj_max) when the
+ * injected axis's peak-to-peak current was below i_inj and halves (at least 1) when it was
+ * above 4 i_inj; it is held over the window.  The reference on the control frame's first
+ * axis moves towards each step's level by at most i_ramp per period (no current step, no
+ * overshoot of the PI).  The voltage the motor receives is taken from the compare values
+ * written (the inverter's duty cycles times the measured DC bus): the window sums hold the
+ * alpha counts 2 cmp_u - cmp_v - cmp_w and the beta counts cmp_v - cmp_w, from which the
+ * host forms u_alpha = counts V_dc / (3 P) and u_beta = counts V_dc / (sqrt 3 P).  The
+ * compare values written in period k act in period k + 1: the host's models (E12-2,
+ * E12-3) account for it.
  *
  * Bounds (each checked in the period it is seen; PWM off in that period and after):
  *   - current: |i_alpha| or |i_beta| above i_lim: QFOC_IDENT_ERR_OC (a shorted phase or
  *     a winding far below any plausible resistance; the drive's over-current trip on
  *     the phase currents stays the integrator's second barrier);
  *   - DC bus below vdc_min: QFOC_IDENT_ERR_BUS;
- *   - at each window's end, the mean alpha current off the step's level by more than a
- *     quarter of it, or the mean beta current more than that from zero:
- *     QFOC_IDENT_ERR_NO_CURRENT (an open phase, no motor, a bus too low for the test
- *     current: the PI's voltage is at its limit and the current is not reached);
+ *   - at each window's end, the mean current of the control frame's first axis off the
+ *     step's level by more than a quarter of it, or that of its second axis more than
+ *     that from zero: QFOC_IDENT_ERR_NO_CURRENT (an open phase, no motor, a bus too low
+ *     for the test current: the PI's voltage is at its limit and the current is not
+ *     reached);
  *   - at the end of R_LO, R_HI, L_D and L_Q, the mean beta voltage command above
- *     v_move: QFOC_IDENT_ERR_MOVED (a rotor that turns induces w psi_f on the q axis,
- *     which the beta loop must cancel);
- *   - the whole mode lasts n_align + 4 n_settle + 5 2^win_shift periods at most.
+ *     v_move: QFOC_IDENT_ERR_MOVED (a rotor that creeps induces w psi_f on the q axis,
+ *     which the beta loop must cancel; a rotor that turns through whole turns within a
+ *     window averages this out and is seen by the current bounds or by the host's
+ *     quality figures);
+ *   - the whole mode lasts n_align + 5 n_settle + n_ramp + 6 2^win_shift periods at most.
  * qfoc_ident_abort() ends it at once (QFOC_IDENT_ERR_ABORT).
  *
  * Scaling (specs/scaling.md): currents Q15 of I_base, voltages and the DC bus Q15 of
- * V_base, compare values in timer ticks (svpwm.h).  A half window has at most 2^13
- * periods: every 32-bit sum stays within 2^13 x 65534 < 2^30, every 64-bit product sum
- * within 2^13 x 65534 x 32767 < 2^45; the sums are nevertheless saturating (no input can
- * overflow them).
+ * V_base, compare values in timer ticks (svpwm.h), angles in 65536 counts a turn.  A half
+ * window has at most 2^13 periods: every 32-bit sum stays within 2^13 x 65534 < 2^30,
+ * every 64-bit product sum within 2^13 x 65534 x 32767 < 2^45; the sums are nevertheless
+ * saturating (no input can overflow them).
  *
  * Every function is total: a configuration that fails qfoc_ident_cfg_is_valid() is
  * refused by qfoc_ident_start() (QFOC_IDENT_ERR_CFG, PWM off, nothing run).
@@ -107,7 +120,7 @@ typedef struct {
     qfoc_q15_t i_lo;       /**< first resistance level, Q15 of I_base, > 0 */
     qfoc_q15_t i_hi;       /**< second level, alignment and bias current, > i_lo */
     qfoc_q15_t i_lim;      /**< the mode's current bound, > i_hi */
-    qfoc_q15_t i_ramp;     /**< largest change of the alpha reference per period, > 0 */
+    qfoc_q15_t i_ramp;     /**< largest change of the reference per period, > 0 */
     qfoc_q15_t v_inj;      /**< first injection amplitude of L_D and L_Q, Q15 of V_base, > 0 */
     qfoc_q15_t v_inj_max;  /**< largest injection amplitude, Q15 of V_base, >= v_inj */
     qfoc_q15_t i_inj;      /**< injected current amplitude aimed at, Q15 of I_base, > 0 */
@@ -152,9 +165,9 @@ typedef struct {
 /** The mode's state (one per motor; written by the fast step's context only). */
 typedef struct {
     qfoc_ident_cfg_t cfg;   /**< configuration taken at the start */
-    qfoc_pi_t pi_a;         /**< alpha current loop */
-    qfoc_pi_t pi_b;         /**< beta current loop */
-    qfoc_q15_t ref;         /**< alpha current reference now, Q15 */
+    qfoc_pi_t pi_a;         /**< current loop of the control frame's first axis */
+    qfoc_pi_t pi_b;         /**< current loop of its second axis */
+    qfoc_q15_t ref;         /**< the first axis's current reference now, Q15 */
     uint32_t n;             /**< periods spent in this step (at most 2 x 65535 + 2^14) */
     qfoc_angle_t theta;     /**< angle of PSI's rotating current */
     qfoc_q15_t inj;         /**< injection amplitude now, Q15 of V_base */
@@ -177,10 +190,11 @@ typedef struct {
 /**
  * @brief Check a configuration (IDENT_CFG_VALID of specs/ident.acsl).
  * @param[in] c the configuration (any values)
- * @return true iff 0 < i_lo < i_hi < i_lim, i_ramp, v_inj, v_move, vdc_min, n_align and
- *         n_settle are positive, QFOC_IDENT_WIN_MIN <= win_shift <= QFOC_IDENT_WIN_MAX,
- *         the PI parameters are valid with out_min < 0 < out_max, and the modulation is
- *         valid without dead-time compensation.
+ * @return true iff 0 < i_lo < i_hi < i_lim, i_ramp, v_inj, i_inj, v_move, vdc_min,
+ *         n_align, n_settle and n_ramp are positive, v_inj <= v_inj_max,
+ *         0 < w_psi <= QFOC_IDENT_W_MAX, QFOC_IDENT_WIN_MIN <= win_shift <=
+ *         QFOC_IDENT_WIN_MAX, the PI parameters are valid with out_min < 0 < out_max, and
+ *         the modulation is valid without dead-time compensation.
  * Requirements: REQ-IDENT-001.
  */
 /*@
@@ -298,7 +312,7 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
 uint8_t qfoc_ident_result(const qfoc_ident_t *id);
 
 /**
- * @brief The step the mode is in (or ended in): QFOC_IDENT_ALIGN .. QFOC_IDENT_L_Q.
+ * @brief The step the mode is in (or ended in): QFOC_IDENT_ALIGN .. QFOC_IDENT_PSI.
  * @param[in] id the state
  * @return the step
  * Requirements: REQ-IDENT-005.
@@ -313,7 +327,7 @@ uint8_t qfoc_ident_step_now(const qfoc_ident_t *id);
 /**
  * @brief Copy one half window's sums out of the record.
  * @param[in]  id   the state
- * @param[in]  step QFOC_IDENT_ALIGN .. QFOC_IDENT_L_Q (any value)
+ * @param[in]  step QFOC_IDENT_ALIGN .. QFOC_IDENT_PSI (any value)
  * @param[in]  half 0 or 1 (any value)
  * @param[out] out  the copy (all zero when step or half is out of range)
  * @return true when step and half are in range
