@@ -1045,6 +1045,27 @@ static void test_req_ident_002_injection_amplitude(void **state)
         assert_int_equal(amp[0], 1);
         assert_int_equal(amp[1], 1);
     }
+    {   /* the floor from above: a current swinging +-100 LSB (peak-to-peak 200 > 4 x 1)
+           at the amplitude 1 leaves it at 1 */
+        qfoc_ident_cfg_t c = base_cfg();
+        int p;
+        c.v_inj = 1;
+        c.i_inj = 1;
+        c.n_align = 1u;
+        c.n_settle = 64u;
+        c.win_shift = 5u;
+        assert_int_equal(qfoc_ident_start(&id, &c), QFOC_IDENT_RUNNING);
+        for (p = 0; (p < 1000) && (qfoc_ident_step_now(&id) != QFOC_IDENT_L_D); p++) {
+            const int a = (qfoc_ident_step_now(&id) == QFOC_IDENT_R_LO) ? c.i_lo : c.i_hi;
+            (void)feed(&id, a, 0, VDC_NOM);
+        }
+        assert_int_equal(qfoc_ident_step_now(&id), QFOC_IDENT_L_D);
+        for (p = 0; p < 64; p++) {
+            (void)feed(&id, c.i_hi + (((p % 2) == 0) ? 100 : -100), 0, VDC_NOM);
+            assert_int_equal(id.inj, 1);
+        }
+        assert_int_equal(qfoc_ident_result(&id), QFOC_IDENT_RUNNING);
+    }
 }
 
 /* REQ-IDENT-002: the longest settling the configuration admits: n_align, n_settle or
