@@ -133,7 +133,8 @@ void dsim_period(dsim_t *ds)
     ds->fast_ran = (ds->skip_fast <= 0);
     if (ds->fast_ran) {
         ds->fast_state = ds->drv.s.sm.state;
-        ds->pwm = qfoc_drive_fast_step(&ds->drv, &adc);
+        ds->pwm = (ds->ident != NULL) ? qfoc_commission_fast_step(&ds->drv, ds->ident, &adc)
+                                      : qfoc_drive_fast_step(&ds->drv, &adc);
         sim_set_compare(&ds->plant, ds->pwm.cmp);
         sim_set_enable(&ds->plant, ds->pwm.enable);
     } else {

@@ -10,6 +10,7 @@
 
 #include "sim.h"
 #include "qfoc/drive.h"
+#include "qfoc/commission.h"
 
 typedef struct {
     sim_t plant;
@@ -35,6 +36,8 @@ typedef struct {
     int skip_tick;           /**< the next ticks not called (the frames of those ms are lost) */
     uint32_t garbage;        /**< != 0: a frame of random bytes, never a valid command frame,
                                   on every tick without a command frame (xorshift state) */
+    qfoc_ident_t *ident;     /**< NULL: the drive's fast step; else the identification
+                                  beside it: qfoc_commission_fast_step() (commission.h) */
     uint8_t fast_state;      /**< the drive state the last fast step ran in */
     bool fast_ran;           /**< the fast step ran in the last period */
     /* last outputs */

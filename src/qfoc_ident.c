@@ -154,7 +154,7 @@ bool qfoc_ident_cfg_is_valid(const qfoc_ident_cfg_t *c)
 {
     bool ok = (c->i_lo > 0) && (c->i_hi > c->i_lo) && (c->i_lim > c->i_hi);
     ok = ok && (c->i_ramp > 0) && (c->v_inj > 0) && (c->v_inj <= c->v_inj_max);
-    ok = ok && (c->i_inj > 0) && (c->v_move > 0) && (c->vdc_min > 0);
+    ok = ok && (c->i_inj > 0) && (c->v_move > 0) && (c->vdc_min > 0) && (c->vdc_max > c->vdc_min);
     ok = ok && (c->n_align > 0u) && (c->n_settle > 0u);
     ok = ok && (c->win_shift >= QFOC_IDENT_WIN_MIN) && (c->win_shift <= QFOC_IDENT_WIN_MAX);
     ok = ok && (c->w_psi > 0u) && (c->w_psi <= QFOC_IDENT_W_MAX) && (c->n_ramp > 0u);
@@ -179,6 +179,7 @@ static void ident_idle_cfg(qfoc_ident_t *id)
     id->cfg.i_inj = 0;
     id->cfg.v_move = 0;
     id->cfg.vdc_min = 0;
+    id->cfg.vdc_max = 0;
     id->cfg.n_align = 0u;
     id->cfg.n_settle = 0u;
     id->cfg.win_shift = 0u;
@@ -199,7 +200,7 @@ static void ident_idle_cfg(qfoc_ident_t *id)
 /* The state at a step's start with result r: ALIGN, zero reference, an empty record. */
 /*@
   requires valid: \valid(id);
-  requires result: r <= QFOC_IDENT_ERR_ABORT;
+  requires result: r <= QFOC_IDENT_ERR_DRIVE;
   assigns id->rec, id->ref, id->n, id->theta, id->inj, id->pk_max, id->pk_min, id->inj_hold,
           id->step, id->k, id->result;
   ensures state: id->step == QFOC_IDENT_ALIGN && id->n == 0 && id->ref == 0 && id->k == 0 &&
@@ -255,6 +256,13 @@ uint8_t qfoc_ident_start(qfoc_ident_t *id, const qfoc_ident_cfg_t *c)
     }
     ident_reset(id, r);
     return r;
+}
+
+void qfoc_ident_refuse(qfoc_ident_t *id)
+{
+    ident_idle_cfg(id);
+    ident_init_pi(id, &ident_pi_off);
+    ident_reset(id, QFOC_IDENT_ERR_DRIVE);
 }
 
 void qfoc_ident_abort(qfoc_ident_t *id)
@@ -543,7 +551,7 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
     if (id->result == QFOC_IDENT_RUNNING) {
         if (ident_above(i->alpha, id->cfg.i_lim) || ident_above(i->beta, id->cfg.i_lim)) {
             id->result = QFOC_IDENT_ERR_OC;
-        } else if (vdc < id->cfg.vdc_min) {
+        } else if ((vdc < id->cfg.vdc_min) || (vdc > id->cfg.vdc_max)) {
             id->result = QFOC_IDENT_ERR_BUS;
         } else {
             static const qfoc_abc_t no_dtc = { 0, 0, 0 };
@@ -603,7 +611,7 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
             id->k = (id->k >= 15u) ? 0u : (uint8_t)(id->k + 1u);
             if (psi) {
                 const uint32_t th = (uint32_t)id->theta + (uint32_t)ident_speed(&id->cfg, id->n);
-                id->theta = (qfoc_angle_t)(th & 0xFFFFu);
+                id->theta = (qfoc_angle_t)(th % 65536u);
             }
             id->n++;
             if (id->n >= (settle + (2u * (uint32_t)half))) {

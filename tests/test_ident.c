@@ -76,6 +76,7 @@ static qfoc_ident_cfg_t base_cfg(void)
     c.i_inj = 800;
     c.v_move = 300;
     c.vdc_min = 16384;
+    c.vdc_max = 30000;
     c.n_align = 300u;
     c.n_settle = 200u;
     c.win_shift = 8u;
@@ -424,7 +425,8 @@ static bool ref_cfg_valid(const qfoc_ident_cfg_t *c)
                         (c->pwm.dt_comp <= (c->pwm.period / 4u)) && (c->pwm.i_deadband >= 0) &&
                         (c->pwm.vdc_min > 0);
     return (0 < c->i_lo) && (c->i_lo < c->i_hi) && (c->i_hi < c->i_lim) && (c->i_ramp > 0) &&
-           (c->v_inj > 0) && (c->v_inj <= c->v_inj_max) && (c->i_inj > 0) && (c->v_move > 0) && (c->vdc_min > 0) && (c->n_align > 0u) &&
+           (c->v_inj > 0) && (c->v_inj <= c->v_inj_max) && (c->i_inj > 0) && (c->v_move > 0) &&
+           (c->vdc_max > c->vdc_min) && (c->vdc_min > 0) && (c->n_align > 0u) &&
            (c->n_settle > 0u) && (c->win_shift >= 5u) && (c->win_shift <= 14u) &&
            (c->w_psi > 0u) && (c->w_psi <= 4096u) && (c->n_ramp > 0u) && pi_ok &&
            (c->pi.out_min < 0) && (c->pi.out_max > 0) && pwm_ok && (c->pwm.dt_comp == 0u);
@@ -481,6 +483,8 @@ static void test_req_ident_001_cfg_conditions(void **state)
     c = base_cfg(); c.v_move = 0; check_cfg(&c, false);
     c = base_cfg(); c.vdc_min = 0; check_cfg(&c, false);
     c = base_cfg(); c.vdc_min = -32768; check_cfg(&c, false);
+    c = base_cfg(); c.vdc_max = c.vdc_min; check_cfg(&c, false);
+    c = base_cfg(); c.vdc_max = (int16_t)(c.vdc_min + 1); check_cfg(&c, true);
     c = base_cfg(); c.n_align = 0u; check_cfg(&c, false);
     c = base_cfg(); c.n_settle = 0u; check_cfg(&c, false);
     c = base_cfg(); c.n_align = 1u; c.n_settle = 1u; check_cfg(&c, true);
@@ -538,6 +542,7 @@ static void test_req_ident_001_cfg_random(void **state)
         PICK(c.i_inj, q, nq)
         PICK(c.v_move, q, nq)
         PICK(c.vdc_min, q, nq)
+        PICK(c.vdc_max, q, nq)
         PICK(c.n_align, u, nu)
         PICK(c.n_settle, u, nu)
         PICK(c.win_shift, ws, sizeof ws)
@@ -1176,22 +1181,25 @@ static void test_req_ident_003_overcurrent(void **state)
     }
 }
 
-/* REQ-IDENT-003: a DC bus below vdc_min ends the mode with ERR_BUS, PWM off in that
-   period and after; vdc_min itself does not.
-   Methods: 1b a low bus in ALIGN and in L_Q; 1c vdc = vdc_min and vdc_min - 1, 0,
-   -32768; 1d a collapsing DC link; 1l a low bus measurement; 1n the header's bound */
+/* REQ-IDENT-003: a DC bus below vdc_min or above vdc_max ends the mode with ERR_BUS, PWM
+   off in that period and after; vdc_min and vdc_max themselves do not.
+   Methods: 1b a low and a high bus in ALIGN and in L_Q; 1c vdc = vdc_min and
+   vdc_min - 1, vdc_max and vdc_max + 1, 0, -32768, 32767; 1d a collapsing or a rising DC
+   link; 1l a bus measurement out of range; 1n the header's bounds */
 static void test_req_ident_003_bus(void **state)
 {
     static qfoc_ident_t id;
-    static const int low[3] = { 16383, 0, -32768 };
+    static const int low[5] = { 16383, 0, -32768, 30001, 32767 };
     const qfoc_ident_cfg_t c = base_cfg();
     int j;
     (void)state;
-    for (j = 0; j < 3; j++) {
+    for (j = 0; j < 5; j++) {
         plant_t pl = base_plant();
         qfoc_pwm_t out;
         run_to(&id, &pl, &c, (j == 1) ? 2300 : 20);
         out = feed(&id, sample(pl.ia), sample(pl.ib), c.vdc_min);
+        assert_true(out.enable);
+        out = feed(&id, sample(pl.ia), sample(pl.ib), c.vdc_max);
         assert_true(out.enable);
         out = feed(&id, sample(pl.ia), sample(pl.ib), low[j]);
         check_off(out);

@@ -47,7 +47,8 @@
  *   - current: |i_alpha| or |i_beta| above i_lim: QFOC_IDENT_ERR_OC (a shorted phase or
  *     a winding far below any plausible resistance; the drive's over-current trip on
  *     the phase currents stays the integrator's second barrier);
- *   - DC bus below vdc_min: QFOC_IDENT_ERR_BUS;
+ *   - DC bus below vdc_min or above vdc_max: QFOC_IDENT_ERR_BUS (the drive's own
+ *     bus monitors do not run while the mode has the PWM, commission.h);
  *   - at each window's end, the mean current of the control frame's first axis off the
  *     step's level by more than a quarter of it, or that of its second axis more than
  *     that from zero: QFOC_IDENT_ERR_NO_CURRENT (an open phase, no motor, a bus too low
@@ -88,11 +89,14 @@ extern "C" {
 #define QFOC_IDENT_RUNNING        ((uint8_t)1u)  /**< measuring: PWM on */
 #define QFOC_IDENT_DONE           ((uint8_t)2u)  /**< every step measured: the record is complete */
 #define QFOC_IDENT_ERR_CFG        ((uint8_t)3u)  /**< configuration refused: nothing ran */
-#define QFOC_IDENT_ERR_BUS        ((uint8_t)4u)  /**< DC bus below vdc_min */
+#define QFOC_IDENT_ERR_BUS        ((uint8_t)4u)  /**< DC bus below vdc_min or above vdc_max */
 #define QFOC_IDENT_ERR_OC         ((uint8_t)5u)  /**< a current above i_lim */
 #define QFOC_IDENT_ERR_NO_CURRENT ((uint8_t)6u)  /**< the step's current not reached */
 #define QFOC_IDENT_ERR_MOVED      ((uint8_t)7u)  /**< the rotor turned */
 #define QFOC_IDENT_ERR_ABORT      ((uint8_t)8u)  /**< ended by qfoc_ident_abort() */
+#define QFOC_IDENT_ERR_DRIVE      ((uint8_t)9u)  /**< not started: the drive is not stopped, or
+                                                      the bounds exceed its protections
+                                                      (commission.h) */
 
 /* Steps (qfoc_ident_step_now()); the record has one entry per step. */
 #define QFOC_IDENT_ALIGN  ((uint8_t)0u)  /**< aligning the rotor */
@@ -126,6 +130,7 @@ typedef struct {
     qfoc_q15_t i_inj;      /**< injected current amplitude aimed at, Q15 of I_base, > 0 */
     qfoc_q15_t v_move;     /**< mean beta voltage of a turning rotor, Q15 of V_base, > 0 */
     qfoc_q15_t vdc_min;    /**< lowest DC bus the test runs on, Q15 of V_base, > 0 */
+    qfoc_q15_t vdc_max;    /**< highest DC bus the test runs on, Q15 of V_base, > vdc_min */
     uint16_t n_align;      /**< periods of ALIGN before its window, > 0 */
     uint16_t n_settle;     /**< periods of the other steps before their window, > 0 */
     uint8_t win_shift;     /**< window of 2^win_shift periods, WIN_MIN .. WIN_MAX */
@@ -176,7 +181,7 @@ typedef struct {
     bool inj_hold;          /**< true: this injection period is not judged (the first one
                                  after an amplitude change or a step's start) */
     uint8_t step;           /**< QFOC_IDENT_ALIGN .. QFOC_IDENT_PSI */
-    uint8_t result;         /**< QFOC_IDENT_IDLE .. QFOC_IDENT_ERR_ABORT */
+    uint8_t result;         /**< QFOC_IDENT_IDLE .. QFOC_IDENT_ERR_DRIVE */
     uint8_t k;              /**< injection phase, 0 .. 15 */
     qfoc_ident_record_t rec;  /**< the record */
 } qfoc_ident_t;
@@ -191,7 +196,7 @@ typedef struct {
  * @brief Check a configuration (IDENT_CFG_VALID of specs/ident.acsl).
  * @param[in] c the configuration (any values)
  * @return true iff 0 < i_lo < i_hi < i_lim, i_ramp, v_inj, i_inj, v_move, vdc_min,
- *         n_align, n_settle and n_ramp are positive, v_inj <= v_inj_max,
+ *         n_align, n_settle and n_ramp are positive, v_inj <= v_inj_max, vdc_min < vdc_max,
  *         0 < w_psi <= QFOC_IDENT_W_MAX, QFOC_IDENT_WIN_MIN <= win_shift <=
  *         QFOC_IDENT_WIN_MAX, the PI parameters are valid with out_min < 0 < out_max, and
  *         the modulation is valid without dead-time compensation.
@@ -260,6 +265,22 @@ uint8_t qfoc_ident_start(qfoc_ident_t *id, const qfoc_ident_cfg_t *c);
 void qfoc_ident_abort(qfoc_ident_t *id);
 
 /**
+ * @brief The idle state of a start refused because the drive is not stopped
+ *        (qfoc_commission_start()): PWM off in every following period, an empty record,
+ *        result QFOC_IDENT_ERR_DRIVE.
+ * @param[out] id the state (any contents)
+ * Requirements: REQ-IDENT-007.
+ */
+/*@
+  requires valid: \valid(id);
+  assigns *id;
+  ensures inv: IDENT_VALID(id);
+  ensures refused: id->result == QFOC_IDENT_ERR_DRIVE && id->step == QFOC_IDENT_ALIGN &&
+                   id->n == 0 && id->ref == 0;
+*/
+void qfoc_ident_refuse(qfoc_ident_t *id);
+
+/**
  * @brief One PWM period of the mode (the file comment's steps and bounds).
  * @param[in,out] id  the state (valid)
  * @param[in]     i   this period's stator current, alpha and beta, Q15 of I_base
@@ -286,7 +307,8 @@ void qfoc_ident_abort(qfoc_ident_t *id);
                           !\result.enable && id->result == QFOC_IDENT_ERR_OC;
   ensures bus: \old(id->result) == QFOC_IDENT_RUNNING &&
                IdentAbs(i->alpha) <= \old(id->cfg.i_lim) &&
-               IdentAbs(i->beta) <= \old(id->cfg.i_lim) && vdc < \old(id->cfg.vdc_min) ==>
+               IdentAbs(i->beta) <= \old(id->cfg.i_lim) &&
+               (vdc < \old(id->cfg.vdc_min) || vdc > \old(id->cfg.vdc_max)) ==>
                  !\result.enable && id->result == QFOC_IDENT_ERR_BUS;
   ensures cmp: \result.enable ==> \result.cmp[0] <= id->cfg.pwm.period &&
                                   \result.cmp[1] <= id->cfg.pwm.period &&
@@ -299,7 +321,7 @@ void qfoc_ident_abort(qfoc_ident_t *id);
 qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc);
 
 /**
- * @brief The mode's result: QFOC_IDENT_IDLE .. QFOC_IDENT_ERR_ABORT.
+ * @brief The mode's result: QFOC_IDENT_IDLE .. QFOC_IDENT_ERR_DRIVE.
  * @param[in] id the state
  * @return the result
  * Requirements: REQ-IDENT-005.

@@ -31,8 +31,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "drive_sim.h"
 #include "scenario.h"
 #include "tables_registry.h"
+#include "qfoc/commission.h"
 #include "qfoc/ident.h"
 #include "qfoc/transforms.h"
 
@@ -83,6 +85,9 @@ static void ident_cfg_of(const qfoc_param_table_t *t, const sim_motor_t *m, cons
     c->v_move = q15_of(4.0 * m->vdc_nominal_v / (SQ3 * (double)t->svpwm.period) / b->v_base);
     (void)psi_guess;
     c->vdc_min = q15_of(0.5 * m->vdc_nominal_v / b->v_base);
+    /* the drive's own bounds (commission.h refuses wider ones) */
+    c->vdc_max = t->vdc_ov;
+    if (c->i_lim > t->i_trip) c->i_lim = t->i_trip;
     c->n_align = periods(2.5, b->t_s);
     c->n_settle = periods(0.05, b->t_s);
     c->i_ramp = q15_of(i_hi / b->i_base / (0.1 / b->t_s));
@@ -114,14 +119,13 @@ typedef struct {
 
 static int run_one(const scn_table_t *tab, const opts_t *o)
 {
+    static dsim_t ds;
     sim_motor_t m;
     sim_cfg_t cfg;
-    sim_t s;
-    sim_adc_t a;
+    sim_t *s = &ds.plant;
     qfoc_ident_cfg_t ic;
     qfoc_ident_t id;
-    double off_u = 0.0, off_v = 0.0;
-    long k, n_cal, n_run = 0, n_on = 0;
+    long k, n_run = 0, n_on = 0;
     uint16_t f;
     uint8_t res;
     bool surged = false;
@@ -140,68 +144,58 @@ static int run_one(const scn_table_t *tab, const opts_t *o)
     cfg.seed = o->seed;
     cfg.substeps = 20;
     cfg.load.knee_rpm = 50.0;
-    if (o->fault != NULL && strcmp(o->fault, "low_bus") == 0) {
-        cfg.vdc_v = 0.3 * m.vdc_nominal_v;
-    }
-    sim_init(&s, &cfg);
-    sim_set_state(&s, o->angle_deg * SIM_PI / 180.0, 0.0, 0.0, 0.0);
-    ident_cfg_of(tab->table, &m, &s.bases, &ic);
-    if (o->fault != NULL && strcmp(o->fault, "open") == 0) {
-        s.inj.open = 2u;  /* phase v open */
-    }
-    /* offsets with the PWM off: 64 ms of samples */
-    sim_set_enable(&s, false);
-    n_cal = (long)floor(0.064 / s.bases.t_s + 0.5);
-    for (k = 0; k < n_cal; k++) {
-        sim_step_period(&s);
-        sim_sample(&s, &a);
-        off_u += (double)a.iu;
-        off_v += (double)a.iv;
-    }
-    off_u /= (double)n_cal;
-    off_v /= (double)n_cal;
-    if (qfoc_ident_start(&id, &ic) != QFOC_IDENT_RUNNING) {
-        fprintf(stderr, "qfoc_identify: table %s: configuration refused\n", tab->name);
+    /* the drive on the table, stopped: PRECHARGE calibrates the offsets, then STOP; the
+       master keeps sending its command frame (power off) */
+    if (dsim_init(&ds, &cfg, tab->table) != QFOC_PARAMS_OK) {
+        fprintf(stderr, "qfoc_identify: table %s refused by the drive\n", tab->name);
         return 2;
     }
-    sim_sample(&s, &a);
+    sim_set_state(s, o->angle_deg * SIM_PI / 180.0, 0.0, 0.0, 0.0);
+    ds.power_on = false;
+    for (k = 0; k < 5000L * ds.periods_per_ms && qfoc_drive_state(&ds.drv) != QFOC_STATE_STOP; k++) {
+        dsim_period(&ds);
+    }
+    ident_cfg_of(tab->table, &m, &s->bases, &ic);
+    if (o->fault != NULL && strcmp(o->fault, "open") == 0) {
+        s->inj.open = 2u;  /* phase v open */
+    }
+    if (qfoc_commission_start(&id, &ds.drv, &ic) != QFOC_IDENT_RUNNING) {
+        fprintf(stderr, "qfoc_identify: table %s: start refused (result %u, drive state %u)\n",
+                tab->name, (unsigned)qfoc_ident_result(&id), (unsigned)qfoc_drive_state(&ds.drv));
+        return 2;
+    }
+    ds.ident = &id;
     while (qfoc_ident_result(&id) == QFOC_IDENT_RUNNING && n_run < 40L * 65536L) {
-        qfoc_ab_t i_ab;
-        qfoc_pwm_t out;
-        const int16_t iu = (int16_t)lround(((double)a.iu - off_u) * 16.0);
-        const int16_t iv = (int16_t)lround(((double)a.iv - off_v) * 16.0);
         if (o->fault != NULL && strcmp(o->fault, "move") == 0 &&
-            qfoc_ident_step_now(&id) == QFOC_IDENT_L_D && !s.held) {
+            qfoc_ident_step_now(&id) == QFOC_IDENT_L_D && !s->held) {
             /* an external torque turns the rotor (a fan or the compressor's pressure) */
-            s.cfg.load.t_mean = -1.1 * 1.5 * m.pole_pairs * m.psi_f_wb * 0.4 *
-                                m.rated_current_a;
+            s->cfg.load.t_mean = -1.1 * 1.5 * m.pole_pairs * m.psi_f_wb * 0.4 *
+                                 m.rated_current_a;
+        }
+        if (o->fault != NULL && strcmp(o->fault, "low_bus") == 0 &&
+            qfoc_ident_step_now(&id) == QFOC_IDENT_R_LO) {
+            s->cfg.vdc_v = 0.3 * m.vdc_nominal_v;  /* the bus collapses */
         }
         if (o->fault != NULL && strcmp(o->fault, "short") == 0 && !surged &&
             qfoc_ident_step_now(&id) == QFOC_IDENT_R_HI) {
             /* a short between phases u and v: the current a short draws from the bus */
             const double surge[2] = { 1.2 * m.rated_current_a, 0.0 };
-            sim_set_current_ab(&s, surge);
-            sim_sample(&s, &a);
+            sim_set_current_ab(s, surge);
             surged = true;
-            continue;
         }
-        qfoc_clarke(iu, iv, &i_ab);
-        out = qfoc_ident_step(&id, &i_ab, sim_adc_vdc_q15(a.vdc));
-        sim_set_compare(&s, out.cmp);
-        sim_set_enable(&s, out.enable);
-        sim_step_period(&s);
-        sim_sample(&s, &a);
+        dsim_period(&ds);
         n_run++;
-        n_on += out.enable ? 1 : 0;
+        n_on += ds.pwm.enable ? 1 : 0;
     }
+    ds.ident = NULL;
     res = qfoc_ident_result(&id);
     printf("motor %s rs_ohm=%.9g ld_h=%.9g lq_h=%.9g psi_f_wb=%.9g dead_time_s=%.9g "
            "t_s=%.9g period=%u v_base=%.9g i_base=%.9g pole_pairs=%g w_psi=%u result=%u step=%u "
            "periods=%ld enabled=%ld motor_time_s=%.6f theta_end_deg=%.3f w_end=%.4g\n",
-           tab->name, m.rs_ohm, m.ld_h, m.lq_h, m.psi_f_wb, m.dead_time_s, s.bases.t_s,
-           (unsigned)ic.pwm.period, s.bases.v_base, s.bases.i_base, m.pole_pairs,
+           tab->name, m.rs_ohm, m.ld_h, m.lq_h, m.psi_f_wb, m.dead_time_s, s->bases.t_s,
+           (unsigned)ic.pwm.period, s->bases.v_base, s->bases.i_base, m.pole_pairs,
            (unsigned)ic.w_psi, (unsigned)res, (unsigned)qfoc_ident_step_now(&id), n_run, n_on,
-           (double)n_run * s.bases.t_s, sim_wrap_pi(sim_theta_e(&s)) * 180.0 / SIM_PI, sim_w_e(&s));
+           (double)n_run * s->bases.t_s, sim_wrap_pi(sim_theta_e(s)) * 180.0 / SIM_PI, sim_w_e(s));
     for (f = 0u; f < QFOC_IDENT_FRAMES; f++) {
         uint8_t buf[8];
         (void)qfoc_ident_frame(&id, f, buf);
@@ -217,10 +211,10 @@ static int run_one(const scn_table_t *tab, const opts_t *o)
                              (strcmp(o->fault, "short") == 0) ? QFOC_IDENT_ERR_OC :
                              (strcmp(o->fault, "low_bus") == 0) ? QFOC_IDENT_ERR_BUS :
                              QFOC_IDENT_ERR_MOVED;
-        if (res != want || s.en_pending) {
+        if (res != want || s->en_pending) {
             fprintf(stderr, "qfoc_identify: table %s, fault %s: ended with result %u "
                     "(expected %u), PWM %s\n", tab->name, o->fault, (unsigned)res,
-                    (unsigned)want, s.en_pending ? "on" : "off");
+                    (unsigned)want, s->en_pending ? "on" : "off");
             return 1;
         }
         return 0;

@@ -58,7 +58,7 @@ FIELDS = ("n", "i_a", "i_b", "u_a", "u_b", "vdc", "vb_cmd",
           "u_c", "u_s", "v_c", "v_s", "i_c", "i_s", "j_c", "j_s")
 STEPS = ("align", "r_lo", "r_hi", "l_d", "l_q", "psi")
 RESULTS = ("IDLE", "RUNNING", "DONE", "ERR_CFG", "ERR_BUS", "ERR_OC", "ERR_NO_CURRENT",
-           "ERR_MOVED", "ERR_ABORT")
+           "ERR_MOVED", "ERR_ABORT", "ERR_DRIVE")
 N_FRAMES = 1 + len(STEPS) * 2 * len(FIELDS)
 TARGETS = {"rs_ohm": 5.0, "ld_h": 10.0, "lq_h": 10.0, "psi_f_wb": 5.0}
 

@@ -187,7 +187,7 @@ def test_req_ident_006_record_for_the_tool(tmp_path):
 # that is not hex, a line of another kind, a motor line without its bases
 def test_req_ident_006_malformed_input_refused(tmp_path, capsys):
     text = model_text()
-    for code in (0, 1, 3, 4, 5, 6, 7, 8):
+    for code in (0, 1, 3, 4, 5, 6, 7, 8, 9):
         m = dec.parse(text)[0]
         m["frames"][0][1] = code
         assert "rs_ohm" not in dec.decode(m)

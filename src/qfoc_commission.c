@@ -1,0 +1,66 @@
+/**
+ * @file qfoc_commission.c
+ * @brief The identification beside the drive: started only while the drive is stopped,
+ *        one writer of the PWM per period (commission.h).
+ *
+ * Requirements: REQ-IDENT-007 (specs/requirements/ident.md).
+ */
+#include "qfoc/commission.h"
+#include "qfoc/q15.h"
+#include "qfoc/transforms.h"
+
+/* Phase current of a sample as the drive reads it (REQ-DRV-004): the code and the
+   offset each taken as at most 4095, (code - offset) x 16, saturated. */
+/*@
+  assigns \nothing;
+  ensures range: -32767 <= \result <= 32767;
+*/
+static qfoc_q15_t comm_current(uint16_t code, uint16_t offset)
+{
+    const int32_t c = (code > QFOC_ADC_MAX) ? (int32_t)QFOC_ADC_MAX : (int32_t)code;
+    const int32_t o = (offset > QFOC_ADC_MAX) ? (int32_t)QFOC_ADC_MAX : (int32_t)offset;
+    return qfoc_q15_sat((c - o) * 16);
+}
+
+/* True while the drive is stopped: state STOP and no run request. */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result <==> (d->s.sm.state == QFOC_STATE_STOP && !d->s.cmd.power_on);
+*/
+static bool comm_stopped(const qfoc_drive_t *d)
+{
+    return (d->s.sm.state == QFOC_STATE_STOP) && !d->s.cmd.power_on;
+}
+
+uint8_t qfoc_commission_start(qfoc_ident_t *id, const qfoc_drive_t *d,
+                              const qfoc_ident_cfg_t *c)
+{
+    uint8_t r;
+    if (comm_stopped(d) && (c->i_lim <= d->p->i_trip) && (c->vdc_max <= d->p->vdc_ov)) {
+        r = qfoc_ident_start(id, c);
+    } else {
+        qfoc_ident_refuse(id);
+        r = QFOC_IDENT_ERR_DRIVE;
+    }
+    return r;
+}
+
+qfoc_pwm_t qfoc_commission_fast_step(qfoc_drive_t *d, qfoc_ident_t *id, const qfoc_adc_t *adc)
+{
+    qfoc_pwm_t out;
+    if ((qfoc_ident_result(id) == QFOC_IDENT_RUNNING) && comm_stopped(d)) {
+        qfoc_ab_t i;
+        const qfoc_q15_t iu = comm_current(adc->iu, d->s.offset_u);
+        const qfoc_q15_t iv = comm_current(adc->iv, d->s.offset_v);
+        const uint16_t vdc = (adc->vdc > QFOC_ADC_MAX) ? QFOC_ADC_MAX : adc->vdc;
+        qfoc_clarke(iu, iv, &i);
+        out = qfoc_ident_step(id, &i, (qfoc_q15_t)((int32_t)vdc * 8));
+    } else {
+        /* the drive first: a running identification ends as soon as the drive is no
+           longer stopped, and the drive's fast step has this period */
+        qfoc_ident_abort(id);
+        out = qfoc_drive_fast_step(d, adc);
+    }
+    return out;
+}
