@@ -9,17 +9,18 @@
 #include "qfoc/q15.h"
 #include "qfoc/transforms.h"
 
-/* Phase current of a sample as the drive reads it (REQ-DRV-004): the code and the
-   offset each taken as at most 4095, (code - offset) x 16, saturated. */
+/* Phase current of a sample as the drive reads it (REQ-DRV-004): the code taken as at
+   most 4095, less the calibrated offset (an ADC code: the drive's invariant), x 16,
+   saturated. */
 /*@
+  requires offset: offset <= 4095;
   assigns \nothing;
   ensures range: -32767 <= \result <= 32767;
 */
 static qfoc_q15_t comm_current(uint16_t code, uint16_t offset)
 {
     const int32_t c = (code > QFOC_ADC_MAX) ? (int32_t)QFOC_ADC_MAX : (int32_t)code;
-    const int32_t o = (offset > QFOC_ADC_MAX) ? (int32_t)QFOC_ADC_MAX : (int32_t)offset;
-    return qfoc_q15_sat((c - o) * 16);
+    return qfoc_q15_sat((c - (int32_t)offset) * 16);
 }
 
 /* True while the drive is stopped: state STOP and no run request. */

@@ -143,16 +143,17 @@ static void test_req_ident_007_start_only_when_stopped(void **state)
     c.vdc_max = (int16_t)(qfoc_params_reference.vdc_ov + 1);
     assert_int_equal(qfoc_commission_start(&id, &ds.drv, &c), QFOC_IDENT_ERR_DRIVE);
     c = cfg_of(&qfoc_params_reference);
-    /* STOP with a run request: refused */
+    /* STOP with a run request (a target below rpm_min keeps the drive in STOP): refused */
     ds.power_on = true;
+    ds.target_rpm = 0u;
     for (p = 0; (p < 20) && !ds.drv.s.cmd.power_on; p++) {
         dsim_run(&ds, 1e-3);
     }
     assert_true(ds.drv.s.cmd.power_on);
-    if (ds.drv.s.sm.state == QFOC_STATE_STOP) {
-        assert_int_equal(qfoc_commission_start(&id, &ds.drv, &c), QFOC_IDENT_ERR_DRIVE);
-    }
+    assert_int_equal(ds.drv.s.sm.state, QFOC_STATE_STOP);
+    assert_int_equal(qfoc_commission_start(&id, &ds.drv, &c), QFOC_IDENT_ERR_DRIVE);
     /* RUN: refused */
+    ds.target_rpm = 3000u;
     for (p = 0; (p < 200) && (ds.drv.s.sm.state != QFOC_STATE_RUN); p++) {
         dsim_run(&ds, 1e-3);
     }
@@ -244,6 +245,47 @@ static void test_req_ident_007_identification_has_the_pwm(void **state)
     }
 }
 
+/* REQ-IDENT-007: samples beyond 12 bits are read as the drive reads them (taken as
+   4095): a current sample of 65535 is the largest current above the offset (the mode's
+   ERR_OC), a bus sample of 65535 is 4095 x 8 (above vdc_max: ERR_BUS), each against the
+   twin identification fed the reading written here; 4095 itself is read as it is.
+   Methods: 1c the codes 4095, 4096 and 65535; 1l samples out of the ADC's range; 1n the
+   drive's reading written here */
+static void test_req_ident_007_samples_beyond_12_bits(void **state)
+{
+    static dsim_t ds;
+    static qfoc_ident_t id;
+    static qfoc_ident_t twin;
+    static const uint16_t iu[4] = { 4095u, 65535u, 0u, 0u };
+    static const uint16_t vdc[4] = { 2400u, 2400u, 4096u, 65535u };
+    static const uint8_t want_res[4] = { QFOC_IDENT_ERR_OC, QFOC_IDENT_ERR_OC, QFOC_IDENT_ERR_BUS,
+                                         QFOC_IDENT_ERR_BUS };
+    int j;
+    (void)state;
+    rig(&ds);
+    to_stop(&ds);
+    for (j = 0; j < 4; j++) {
+        const qfoc_ident_cfg_t c = cfg_of(&qfoc_params_reference);
+        qfoc_adc_t adc;
+        qfoc_ab_t i;
+        qfoc_pwm_t out;
+        qfoc_pwm_t want;
+        adc.iu = (j < 2) ? iu[j] : ds.drv.s.offset_u;
+        adc.iv = ds.drv.s.offset_v;
+        adc.vdc = vdc[j];
+        assert_int_equal(qfoc_commission_start(&id, &ds.drv, &c), QFOC_IDENT_RUNNING);
+        assert_int_equal(qfoc_ident_start(&twin, &c), QFOC_IDENT_RUNNING);
+        qfoc_clarke(ref_current(adc.iu, ds.drv.s.offset_u), ref_current(adc.iv, ds.drv.s.offset_v),
+                    &i);
+        want = qfoc_ident_step(&twin, &i, (int16_t)(((adc.vdc > 4095u) ? 4095 : adc.vdc) * 8));
+        out = qfoc_commission_fast_step(&ds.drv, &id, &adc);
+        assert_int_equal(out.enable, want.enable);
+        assert_memory_equal(out.cmp, want.cmp, sizeof out.cmp);
+        assert_int_equal(qfoc_ident_result(&id), want_res[j]);
+        assert_int_equal(qfoc_ident_result(&twin), want_res[j]);
+    }
+}
+
 /* REQ-IDENT-007: the drive first: a run request while the identification runs ends it
    (ERR_ABORT) in the first period the drive is no longer stopped, and from that period
    on the output is the drive's fast step's (equal to a twin drive's given the same
@@ -331,6 +373,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_req_ident_007_start_only_when_stopped),
         cmocka_unit_test(test_req_ident_007_identification_has_the_pwm),
+        cmocka_unit_test(test_req_ident_007_samples_beyond_12_bits),
         cmocka_unit_test(test_req_ident_007_drive_first),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
