@@ -2,7 +2,7 @@
  * @file qfoc_ident.c
  * @brief Standstill identification: the steps, bounds and window sums of ident.h.
  *
- * Requirements: REQ-IDENT-001 .. REQ-IDENT-006 (specs/requirements/ident.md).
+ * Requirements: REQ-IDENT-001 .. REQ-IDENT-007 (specs/requirements/ident.md).
  */
 #include "qfoc/ident.h"
 #include "qfoc/q15.h"

@@ -71,7 +71,7 @@
  * Every function is total: a configuration that fails qfoc_ident_cfg_is_valid() is
  * refused by qfoc_ident_start() (QFOC_IDENT_ERR_CFG, PWM off, nothing run).
  *
- * Requirements: REQ-IDENT-001 .. REQ-IDENT-006 (specs/requirements/ident.md).
+ * Requirements: REQ-IDENT-001 .. REQ-IDENT-007 (specs/requirements/ident.md).
  */
 #ifndef QFOC_IDENT_H
 #define QFOC_IDENT_H
