@@ -939,6 +939,12 @@ def write_report(md_path, r):
             "in place of the fast step while the drive is stopped; not on the drive's path)",
             None, None, None, "instructions", static=sb["qfoc_ident_step"]["instructions"],
             gated="static")
+    if "qfoc_commission_fast_step" in sb:
+        row("REQ-IDENT-007", "`qfoc_commission_fast_step`, static bound (the fast step of a "
+            "firmware that commissions: the drive's fast step or the identification's, one "
+            "of the two, every input, every state; the fast step's limit)", None, None,
+            STATIC_LIMIT_FAST_STEP, "instructions",
+            static=sb["qfoc_commission_fast_step"]["instructions"], gated="static")
     row("REQ-BENCH-008", "CPU load at 16 kHz and 80 MHz, fast step + tick, static bounds in "
         "estimated cycles", None, None, None, "% of the CPU", goal=GOAL_LOAD_PCT,
         static=cpu_load(fs["cycles"], tk["cycles"], 16000), gated="static")
@@ -1294,7 +1300,7 @@ def main():
         sz = sizes(o.size, o.obj_dir, o.drive_elf, t)
         syms = sorted({f["symbol"] for f in functions.values()} | set(SVPWM_CHAIN)
                       | {"qfoc_drive_fast_step", "qfoc_drive_tick", "qfoc_drive_init",
-                         "qfoc_ident_step"})
+                         "qfoc_ident_step", "qfoc_commission_fast_step"})
         sb = static_bounds(o.elf, syms)
         for f in functions.values():
             f["static"] = sb[f["symbol"]]["instructions"]
