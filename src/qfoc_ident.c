@@ -473,6 +473,26 @@ static void ident_ctrl_frame(bool psi, qfoc_angle_t theta, uint8_t k, const qfoc
     }
 }
 
+/* The stationary voltage command of the control frame's vc: turned back by the reference
+   angle in PSI, vc itself in the other steps. */
+/*@
+  requires valid: \valid_read(vc) && \valid_read(sc) && \valid(v);
+  requires sep: \separated(v, vc) && \separated(v, sc);
+  assigns *v;
+*/
+static void ident_voltage(bool psi, const qfoc_ab_t *vc, const qfoc_sincos_t *sc, qfoc_ab_t *v)
+{
+    if (psi) {
+        qfoc_dq_t vdq;
+        vdq.d = vc->alpha;
+        vdq.q = vc->beta;
+        qfoc_inv_park(&vdq, sc, v);
+    } else {
+        v->alpha = vc->alpha;
+        v->beta = vc->beta;
+    }
+}
+
 /* The periods before a step's window: ALIGN n_align, PSI its ramp and n_settle, the
    others n_settle. */
 /*@
@@ -540,6 +560,115 @@ static uint8_t ident_verdict(const qfoc_ident_t *id)
     return r;
 }
 
+/* This period's voltage command in the control frame (ic: the current in that frame):
+   the reference ramped towards the step's level, both current loops (the second axis
+   short-circuited in ALIGN), the injection of L_D on the first axis and of L_Q on the
+   second. */
+/*@
+  requires valid: \valid(id) && \valid_read(ic) && \valid(vc);
+  requires sep: \separated(id, ic) && \separated(id, vc) && \separated(ic, vc);
+  requires state: id->step < QFOC_IDENT_STEPS && id->k <= 15 && IDENT_CFG_VALID(&id->cfg) &&
+                  IDENT_PI(&id->pi_a) && IDENT_PI(&id->pi_b) &&
+                  0 <= id->ref && id->ref <= id->cfg.i_hi;
+  assigns id->ref, id->pi_a, id->pi_b, *vc;
+  ensures state: IDENT_PI(&id->pi_a) && IDENT_PI(&id->pi_b) &&
+                 0 <= id->ref && id->ref <= id->cfg.i_hi;
+*/
+static void ident_command(qfoc_ident_t *id, const qfoc_ab_t *ic, qfoc_ab_t *vc)
+{
+    const qfoc_q15_t level = ident_level(&id->cfg, id->step);
+    id->ref = ident_ramp(id->ref, level, id->cfg.i_ramp);
+    vc->alpha = qfoc_pi_step(&id->pi_a, qfoc_q15_sub(id->ref, ic->alpha));
+    if (id->step == QFOC_IDENT_ALIGN) {
+        /* the beta axis short-circuited through the inverter: the current a swinging
+           rotor's back-EMF drives there brakes it */
+        vc->beta = 0;
+    } else {
+        vc->beta = qfoc_pi_step(&id->pi_b, qfoc_q15_neg(ic->beta));
+    }
+    if (id->step == QFOC_IDENT_L_D) {
+        vc->alpha = qfoc_q15_add(vc->alpha, qfoc_q15_mul(id->inj, ident_cos16[id->k]));
+    } else if (id->step == QFOC_IDENT_L_Q) {
+        vc->beta = qfoc_q15_add(vc->beta, qfoc_q15_mul(id->inj, ident_cos16[id->k]));
+    } else {
+        /* no injection */
+    }
+}
+
+/* What this period adds: the window's sums from the settling's end on (half h by the
+   period's place in the window), or, in the first half of L_D's and L_Q's settling, the
+   injection amplitude's adaptation on the injected axis's current. */
+/*@
+  requires valid: \valid(id) && \valid_read(ic) && \valid_read(i) &&
+                  \valid_read(cmp + (0 .. 2));
+  requires sep: \separated(id, ic) && \separated(id, i) && \separated(id, cmp + (0 .. 2));
+  requires cmp_range: \forall integer j; 0 <= j < 3 ==> cmp[j] <= 32767;
+  requires ref: -32767 <= c <= 32767 && -32767 <= s <= 32767;
+  requires state: id->step < QFOC_IDENT_STEPS && id->k <= 15 && 0 < id->cfg.i_inj &&
+                  0 < id->inj && id->inj <= id->cfg.v_inj_max;
+  assigns id->rec, id->inj, id->pk_max, id->pk_min, id->inj_hold;
+  ensures inj: 0 < id->inj && id->inj <= id->cfg.v_inj_max;
+*/
+static void ident_observe(qfoc_ident_t *id, uint32_t settle, uint16_t half, const qfoc_ab_t *ic,
+                          const qfoc_ab_t *i, const uint16_t *cmp, qfoc_q15_t vdc,
+                          qfoc_q15_t vb, int16_t c, int16_t s)
+{
+    if (id->n >= settle) {
+        const uint8_t h = ((id->n - settle) >= (uint32_t)half) ? 1u : 0u;
+        ident_sum(id, h, ic, i, cmp, vdc, vb, c, s);
+    } else if ((id->step == QFOC_IDENT_L_D) && (id->n < (settle / 2u))) {
+        ident_adapt(id, ic->alpha);
+    } else if ((id->step == QFOC_IDENT_L_Q) && (id->n < (settle / 2u))) {
+        ident_adapt(id, ic->beta);
+    } else {
+        /* settling with the amplitude held */
+    }
+}
+
+/* The period's end: the injection phase and PSI's angle advanced, the period counted;
+   at a window's end the verdict, then the next step (its amplitude back to v_inj), DONE
+   after PSI, or the error. */
+/*@
+  requires valid: \valid(id);
+  requires state: id->step < QFOC_IDENT_STEPS && id->k <= 15 && IDENT_CFG_VALID(&id->cfg) &&
+                  0 < id->inj && id->inj <= id->cfg.v_inj_max &&
+                  id->result == QFOC_IDENT_RUNNING;
+  requires window: settle <= 65535 + 65535 && 16 <= half <= 8192 &&
+                   id->n <= 65535 + 65535 + 16384;
+  assigns id->k, id->theta, id->n, id->step, id->result, id->inj, id->pk_max, id->pk_min,
+          id->inj_hold;
+  ensures state: id->step < QFOC_IDENT_STEPS && id->k <= 15 &&
+                 0 < id->inj && id->inj <= id->cfg.v_inj_max;
+  ensures n: id->result == QFOC_IDENT_RUNNING ==> id->n <= 65535 + 65535 + 16384;
+  ensures result: id->result == QFOC_IDENT_RUNNING || id->result == QFOC_IDENT_DONE ||
+                  id->result == QFOC_IDENT_ERR_NO_CURRENT ||
+                  id->result == QFOC_IDENT_ERR_MOVED;
+*/
+static void ident_advance(qfoc_ident_t *id, uint32_t settle, uint16_t half)
+{
+    id->k = (id->k >= 15u) ? 0u : (uint8_t)(id->k + 1u);
+    if (id->step == QFOC_IDENT_PSI) {
+        const uint32_t th = (uint32_t)id->theta + (uint32_t)ident_speed(&id->cfg, id->n);
+        id->theta = (qfoc_angle_t)(th % 65536u);
+    }
+    id->n++;
+    if (id->n >= (settle + (2u * (uint32_t)half))) {
+        const uint8_t r = ident_verdict(id);
+        if (r != QFOC_IDENT_RUNNING) {
+            id->result = r;
+        } else if (id->step == QFOC_IDENT_PSI) {
+            id->result = QFOC_IDENT_DONE;
+        } else {
+            id->step = ident_next(id->step);
+            id->n = 0u;
+            id->inj = id->cfg.v_inj;
+            id->pk_max = QFOC_Q15_MIN;
+            id->pk_min = QFOC_Q15_MAX;
+            id->inj_hold = true;
+        }
+    }
+}
+
 qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
 {
     qfoc_pwm_t out;
@@ -558,84 +687,24 @@ qfoc_pwm_t qfoc_ident_step(qfoc_ident_t *id, const qfoc_ab_t *i, qfoc_q15_t vdc)
             const bool psi = (id->step == QFOC_IDENT_PSI);
             const uint32_t settle = ident_settle(&id->cfg, id->step);
             const uint16_t half = ident_half(id->cfg.win_shift);
-            const qfoc_q15_t level = ident_level(&id->cfg, id->step);
             qfoc_sincos_t sc;
             qfoc_ab_t ic;
             qfoc_ab_t vc;
             qfoc_ab_t v;
-            qfoc_q15_t inj;
             qfoc_svpwm_out_t so;
             ident_ctrl_frame(psi, id->theta, id->k, i, &sc, &ic);
-            id->ref = ident_ramp(id->ref, level, id->cfg.i_ramp);
-            vc.alpha = qfoc_pi_step(&id->pi_a, qfoc_q15_sub(id->ref, ic.alpha));
-            if (id->step == QFOC_IDENT_ALIGN) {
-                /* the beta axis short-circuited through the inverter: the current a
-                   swinging rotor's back-EMF drives there brakes it */
-                vc.beta = 0;
-            } else {
-                vc.beta = qfoc_pi_step(&id->pi_b, qfoc_q15_neg(ic.beta));
-            }
-            if (id->step == QFOC_IDENT_L_D) {
-                inj = qfoc_q15_mul(id->inj, ident_cos16[id->k]);
-                vc.alpha = qfoc_q15_add(vc.alpha, inj);
-            } else if (id->step == QFOC_IDENT_L_Q) {
-                inj = qfoc_q15_mul(id->inj, ident_cos16[id->k]);
-                vc.beta = qfoc_q15_add(vc.beta, inj);
-            } else {
-                /* no injection */
-            }
-            if (psi) {
-                qfoc_dq_t vdq;
-                vdq.d = vc.alpha;
-                vdq.q = vc.beta;
-                qfoc_inv_park(&vdq, &sc, &v);
-            } else {
-                v.alpha = vc.alpha;
-                v.beta = vc.beta;
-            }
+            ident_command(id, &ic, &vc);
+            ident_voltage(psi, &vc, &sc, &v);
             qfoc_svpwm_step(&id->cfg.pwm, &v, vdc, &no_dtc, &so);
-            out.cmp[0] = so.cmp[0];
-            out.cmp[1] = so.cmp[1];
-            out.cmp[2] = so.cmp[2];
-            out.enable = true;
-            if (id->n >= settle) {
-                const uint8_t h = ((id->n - settle) >= (uint32_t)half) ? 1u : 0u;
-                ident_sum(id, h, &ic, i, so.cmp, vdc, vc.beta, sc.cosine, sc.sine);
-            } else if ((id->step == QFOC_IDENT_L_D) && (id->n < (settle / 2u))) {
-                ident_adapt(id, ic.alpha);
-            } else if ((id->step == QFOC_IDENT_L_Q) && (id->n < (settle / 2u))) {
-                ident_adapt(id, ic.beta);
-            } else {
-                /* settling with the amplitude held */
-            }
-            id->k = (id->k >= 15u) ? 0u : (uint8_t)(id->k + 1u);
-            if (psi) {
-                const uint32_t th = (uint32_t)id->theta + (uint32_t)ident_speed(&id->cfg, id->n);
-                id->theta = (qfoc_angle_t)(th % 65536u);
-            }
-            id->n++;
-            if (id->n >= (settle + (2u * (uint32_t)half))) {
-                const uint8_t r = ident_verdict(id);
-                if (r != QFOC_IDENT_RUNNING) {
-                    id->result = r;
-                } else if (id->step == QFOC_IDENT_PSI) {
-                    id->result = QFOC_IDENT_DONE;
-                } else {
-                    id->step = ident_next(id->step);
-                    id->n = 0u;
-                    id->inj = id->cfg.v_inj;
-                    id->pk_max = QFOC_Q15_MIN;
-                    id->pk_min = QFOC_Q15_MAX;
-                    id->inj_hold = true;
-                }
-            }
-            if (id->result != QFOC_IDENT_RUNNING) {
-                /* the mode ended at this window's end: this period's compare values
-                   (already in the sums) are not applied */
-                out.cmp[0] = mid;
-                out.cmp[1] = mid;
-                out.cmp[2] = mid;
-                out.enable = false;
+            ident_observe(id, settle, half, &ic, i, so.cmp, vdc, vc.beta, sc.cosine, sc.sine);
+            ident_advance(id, settle, half);
+            if (id->result == QFOC_IDENT_RUNNING) {
+                /* a period that ends the mode at its window's end keeps the PWM off:
+                   its compare values (already in the sums) are not applied */
+                out.cmp[0] = so.cmp[0];
+                out.cmp[1] = so.cmp[1];
+                out.cmp[2] = so.cmp[2];
+                out.enable = true;
             }
         }
     }
