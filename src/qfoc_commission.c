@@ -47,16 +47,30 @@ uint8_t qfoc_commission_start(qfoc_ident_t *id, const qfoc_drive_t *d,
     return r;
 }
 
+/* The identification's period on the samples as the drive reads them. */
+/*@
+  requires valid: \valid_read(d) && \valid(id) && \valid_read(adc);
+  requires sep: \separated(d, id) && \separated(id, adc);
+  requires inv: IDENT_VALID(id) && d->s.offset_u <= 4095 && d->s.offset_v <= 4095;
+  assigns *id;
+  ensures inv: IDENT_VALID(id);
+*/
+static qfoc_pwm_t comm_ident_period(const qfoc_drive_t *d, qfoc_ident_t *id,
+                                    const qfoc_adc_t *adc)
+{
+    qfoc_ab_t i;
+    const qfoc_q15_t iu = comm_current(adc->iu, d->s.offset_u);
+    const qfoc_q15_t iv = comm_current(adc->iv, d->s.offset_v);
+    const uint16_t vdc = (adc->vdc > QFOC_ADC_MAX) ? QFOC_ADC_MAX : adc->vdc;
+    qfoc_clarke(iu, iv, &i);
+    return qfoc_ident_step(id, &i, (qfoc_q15_t)((int32_t)vdc * 8));
+}
+
 qfoc_pwm_t qfoc_commission_fast_step(qfoc_drive_t *d, qfoc_ident_t *id, const qfoc_adc_t *adc)
 {
     qfoc_pwm_t out;
     if ((qfoc_ident_result(id) == QFOC_IDENT_RUNNING) && comm_stopped(d)) {
-        qfoc_ab_t i;
-        const qfoc_q15_t iu = comm_current(adc->iu, d->s.offset_u);
-        const qfoc_q15_t iv = comm_current(adc->iv, d->s.offset_v);
-        const uint16_t vdc = (adc->vdc > QFOC_ADC_MAX) ? QFOC_ADC_MAX : adc->vdc;
-        qfoc_clarke(iu, iv, &i);
-        out = qfoc_ident_step(id, &i, (qfoc_q15_t)((int32_t)vdc * 8));
+        out = comm_ident_period(d, id, adc);
     } else {
         /* the drive first: a running identification ends as soon as the drive is no
            longer stopped, and the drive's fast step has this period */

@@ -52,7 +52,7 @@ extern "C" {
  */
 /*@
   requires valid: \valid(id) && \valid_read(d) && \valid_read(c);
-  requires sep: \separated(id, d) && \separated(id, c);
+  requires sep: \separated(id, d) && \separated(id, c) && \separated(id, d->p);
   requires inv: DRV_VALID(d);
   assigns *id;
   ensures inv: IDENT_VALID(id);
@@ -82,16 +82,25 @@ uint8_t qfoc_commission_start(qfoc_ident_t *id, const qfoc_drive_t *d,
  */
 /*@
   requires valid: \valid(d) && \valid(id) && \valid_read(adc);
-  requires sep: \separated(d, id) && \separated(d, adc) && \separated(id, adc);
+  requires sep: \separated(d, id) && \separated(d, adc) && \separated(id, adc) &&
+                \separated(id, d->p);
   requires inv: DRV_VALID(d) && IDENT_VALID(id);
   assigns d->f, *id;
-  ensures inv: DRV_VALID(d) && IDENT_VALID(id);
-  ensures one: \result.enable ==>
-                 (d->s.sm.state == QFOC_STATE_RUN && !d->f.trip) ||
-                 (\old(id->result) == QFOC_IDENT_RUNNING &&
-                  d->s.sm.state == QFOC_STATE_STOP && !d->s.cmd.power_on);
-  ensures drive_first: (d->s.sm.state != QFOC_STATE_STOP || d->s.cmd.power_on) ==>
-                         id->result != QFOC_IDENT_RUNNING;
+  behavior identification:
+    assumes id->result == QFOC_IDENT_RUNNING && d->s.sm.state == QFOC_STATE_STOP &&
+            !d->s.cmd.power_on;
+    ensures drv: DRV_VALID(d);
+    ensures ident: IDENT_VALID(id);
+    ensures one: \result.enable ==> d->s.sm.state == QFOC_STATE_STOP && !d->s.cmd.power_on;
+  behavior drive:
+    assumes id->result != QFOC_IDENT_RUNNING || d->s.sm.state != QFOC_STATE_STOP ||
+            d->s.cmd.power_on;
+    ensures drv: DRV_VALID(d);
+    ensures ident: IDENT_VALID(id);
+    ensures drive_first: id->result != QFOC_IDENT_RUNNING;
+    ensures one: \result.enable ==> d->s.sm.state == QFOC_STATE_RUN && !d->f.trip;
+  complete behaviors;
+  disjoint behaviors;
 */
 qfoc_pwm_t qfoc_commission_fast_step(qfoc_drive_t *d, qfoc_ident_t *id, const qfoc_adc_t *adc);
 
