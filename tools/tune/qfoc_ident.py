@@ -43,7 +43,8 @@ the ratings file, an existing output without --force, or the tuning tool's refus
 malformed input (the record is not JSON of this format, a field is missing or not a number,
 a text copied into the motor file holds a line break, the ratings file is unreadable).
 
-Requirement: REQ-TUNE-008 (specs/requirements/tune.md).
+Requirement: REQ-TUNE-008 (specs/requirements/tune.md).  tools/tune/ident_flow.py runs this
+tool on the record of each table of a manifest (REQ-TUNE-009).
 """
 import argparse
 import json
