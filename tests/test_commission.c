@@ -63,6 +63,33 @@ static void to_stop(dsim_t *ds)
     assert_int_equal(ds->drv.s.sm.state, QFOC_STATE_STOP);
 }
 
+/* this period's ADC samples of the plant, as the drive's interrupt receives them */
+static qfoc_adc_t plant_adc(dsim_t *ds)
+{
+    sim_adc_t a;
+    qfoc_adc_t adc;
+    sim_sample(&ds->plant, &a);
+    adc.iu = a.iu;
+    adc.iv = a.iv;
+    adc.vdc = a.vdc;
+    return adc;
+}
+
+/* the 1 ms tick with the master's command given through the interface */
+static void master_tick(dsim_t *ds, bool power_on, uint16_t target_rpm)
+{
+    qfoc_tick_in_t in;
+    qfoc_cmd_t cmd;
+    memset(&in, 0, sizeof in);
+    in.t_ipm = 250;
+    in.t_pcb = 250;
+    cmd.power_on = power_on;
+    cmd.fault_clear = false;
+    cmd.target_rpm = target_rpm;
+    (void)qfoc_drive_command(&ds->drv, &cmd);
+    (void)qfoc_drive_tick(&ds->drv, &in);
+}
+
 /* A valid configuration for the reference table: 2 and 4 A, bound 10 A (I_base 40 A),
    the table's current PI and modulation, short steps. */
 static qfoc_ident_cfg_t cfg_of(const qfoc_param_table_t *t)
@@ -196,15 +223,11 @@ static void test_req_ident_007_identification_has_the_pwm(void **state)
     assert_int_equal(qfoc_ident_start(&twin, &c), QFOC_IDENT_RUNNING);
     f0 = ds.drv.f;
     for (p = 0; (p < 200000L) && (qfoc_ident_result(&id) == QFOC_IDENT_RUNNING); p++) {
-        sim_adc_t a;
         qfoc_adc_t adc;
         qfoc_ab_t i;
         qfoc_pwm_t out;
         qfoc_pwm_t want;
-        sim_sample(&ds.plant, &a);
-        adc.iu = a.iu;
-        adc.iv = a.iv;
-        adc.vdc = a.vdc;
+        adc = plant_adc(&ds);
         qfoc_clarke(ref_current(adc.iu, ds.drv.s.offset_u), ref_current(adc.iv, ds.drv.s.offset_v),
                     &i);
         want = qfoc_ident_step(&twin, &i, (int16_t)(((adc.vdc > 4095u) ? 4095 : adc.vdc) * 8));
@@ -216,15 +239,7 @@ static void test_req_ident_007_identification_has_the_pwm(void **state)
         sim_set_enable(&ds.plant, out.enable);
         sim_step_period(&ds.plant);
         if (((p + 1) % ds.periods_per_ms) == 0) {
-            qfoc_tick_in_t in;
-            memset(&in, 0, sizeof in);
-            in.t_ipm = 250;
-            in.t_pcb = 250;
-            {
-                qfoc_cmd_t cmd = { false, false, 0u };
-                (void)qfoc_drive_command(&ds.drv, &cmd);
-            }
-            (void)qfoc_drive_tick(&ds.drv, &in);
+            master_tick(&ds, false, 0u);
             assert_int_equal(ds.drv.s.sm.state, QFOC_STATE_STOP);
         }
     }
@@ -232,13 +247,9 @@ static void test_req_ident_007_identification_has_the_pwm(void **state)
     assert_int_equal(qfoc_ident_result(&twin), QFOC_IDENT_DONE);
     /* after the mode, the drive's fast step again */
     {
-        sim_adc_t a;
         qfoc_adc_t adc;
         qfoc_pwm_t out;
-        sim_sample(&ds.plant, &a);
-        adc.iu = a.iu;
-        adc.iv = a.iv;
-        adc.vdc = a.vdc;
+        adc = plant_adc(&ds);
         out = qfoc_commission_fast_step(&ds.drv, &id, &adc);
         assert_false(out.enable);
         assert_true(ds.drv.f.n_fast != f0.n_fast);
@@ -326,15 +337,11 @@ static void test_req_ident_007_drive_first(void **state)
         assert_true((ds.drv.s.sm.state != QFOC_STATE_STOP) || ds.drv.s.cmd.power_on);
         /* from now on the drive's output: a twin drive given the same calls */
         for (p = 0; p < 200; p++) {
-            sim_adc_t a;
             qfoc_adc_t adc;
             qfoc_pwm_t out;
             qfoc_pwm_t want;
             twin = ds.drv;
-            sim_sample(&ds.plant, &a);
-            adc.iu = a.iu;
-            adc.iv = a.iv;
-            adc.vdc = a.vdc;
+            adc = plant_adc(&ds);
             want = qfoc_drive_fast_step(&twin, &adc);
             out = qfoc_commission_fast_step(&ds.drv, &id, &adc);
             assert_int_equal(out.enable, want.enable);
@@ -344,16 +351,7 @@ static void test_req_ident_007_drive_first(void **state)
             sim_set_enable(&ds.plant, out.enable);
             sim_step_period(&ds.plant);
             if (((p + 1) % ds.periods_per_ms) == 0) {
-                qfoc_tick_in_t in;
-                qfoc_cmd_t cmd;
-                memset(&in, 0, sizeof in);
-                in.t_ipm = 250;
-                in.t_pcb = 250;
-                cmd.power_on = ds.power_on;
-                cmd.fault_clear = false;
-                cmd.target_rpm = ds.target_rpm;
-                (void)qfoc_drive_command(&ds.drv, &cmd);
-                (void)qfoc_drive_tick(&ds.drv, &in);
+                master_tick(&ds, ds.power_on, ds.target_rpm);
             }
         }
         ds.ident = NULL;
