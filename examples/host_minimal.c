@@ -24,7 +24,7 @@ int main(void)
 {
     const qfoc_adc_t adc = { QFOC_ADC_MID, QFOC_ADC_MID, 2621u };  /* 0 A, 0 A, 320 V: no motor */
     const qfoc_tick_in_t in = { 400, 350, NULL, 0u };  /* 40.0 / 35.0 degC, no LIN frame */
-    const qfoc_cmd_t run = { true, false, 3000u };     /* run at 3000 rpm */
+    const qfoc_cmd_t run = { true, false, 3000u, false };     /* run at 3000 rpm */
     qfoc_status_t st;
     int ms;
     int k;

@@ -62,7 +62,7 @@ static double angle_err_deg(void)
 int main(void)
 {
     sim_cfg_t cfg;
-    qfoc_cmd_t cmd = { false, false, 0u };
+    qfoc_cmd_t cmd = { false, false, 0u, false };
     int periods_per_ms;
     long ms;
     int bad = 0;

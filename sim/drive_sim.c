@@ -88,7 +88,14 @@ static void dsim_tick(dsim_t *ds)
     in.t_pcb = ds->t_pcb;
     in.rx = frame;
     in.rx_len = 0u;
-    if (ds->link_alive && (ds->ms % ds->frame_every_ms) == 0) {
+    if (ds->link_alive && ds->identify && (ds->ms % ds->frame_every_ms) == 0) {
+        qfoc_cmd_t cmd;
+        cmd.power_on = ds->power_on;
+        cmd.fault_clear = ds->fault_clear;
+        cmd.target_rpm = ds->target_rpm;
+        cmd.identify = true;
+        (void)qfoc_drive_command(&ds->drv, &cmd);
+    } else if (ds->link_alive && (ds->ms % ds->frame_every_ms) == 0) {
         frame[0] = 0x55u;
         frame[1] = dsim_lin_pid(ds->table->drive.lin_id_cmd);
         frame[2] = (uint8_t)((ds->power_on ? 1u : 0u) | (ds->fault_clear ? 2u : 0u));

@@ -23,6 +23,9 @@ typedef struct {
     bool power_on;
     bool fault_clear;
     uint16_t target_rpm;
+    bool identify;           /**< true: a service tool instead of the LIN master gives the
+                                  command, with the identification request, through
+                                  qfoc_drive_command() on each frame period (commission.h) */
     bool link_alive;         /**< false: the master stops sending (link loss) */
     int frame_every_ms;      /**< command frame period, ms (10) */
     bool corrupt_next;       /**< send the next frame with a wrong checksum */

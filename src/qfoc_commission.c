@@ -1,7 +1,8 @@
 /**
  * @file qfoc_commission.c
- * @brief The identification beside the drive: started only while the drive is stopped,
- *        one writer of the PWM per period (commission.h).
+ * @brief The identification beside the drive: requested through the drive's command and
+ *        run only while the drive is stopped, one writer of the PWM per period
+ *        (commission.h).
  *
  * Requirements: REQ-IDENT-007 (specs/requirements/ident.md).
  */
@@ -23,15 +24,18 @@ static qfoc_q15_t comm_current(uint16_t code, uint16_t offset)
     return qfoc_q15_sat((c - (int32_t)offset) * 16);
 }
 
-/* True while the drive is stopped: state STOP and no run request. */
+/* True while the drive is stopped and requests the identification: state STOP, and the
+   effective command (the link's rules applied by the tick) with identify set and no run
+   request. */
 /*@
   requires valid: \valid_read(d);
   assigns \nothing;
-  ensures result: \result <==> (d->s.sm.state == QFOC_STATE_STOP && !d->s.cmd.power_on);
+  ensures result: \result <==> (d->s.sm.state == QFOC_STATE_STOP && d->s.cmd.identify &&
+                               !d->s.cmd.power_on);
 */
 static bool comm_stopped(const qfoc_drive_t *d)
 {
-    return (d->s.sm.state == QFOC_STATE_STOP) && !d->s.cmd.power_on;
+    return (d->s.sm.state == QFOC_STATE_STOP) && d->s.cmd.identify && !d->s.cmd.power_on;
 }
 
 uint8_t qfoc_commission_start(qfoc_ident_t *id, const qfoc_drive_t *d,
@@ -73,7 +77,8 @@ qfoc_pwm_t qfoc_commission_fast_step(qfoc_drive_t *d, qfoc_ident_t *id, const qf
         out = comm_ident_period(d, id, adc);
     } else {
         /* the drive first: a running identification ends as soon as the drive is no
-           longer stopped, and the drive's fast step has this period */
+           longer stopped or no longer requests it, and the drive's fast step has this
+           period */
         qfoc_ident_abort(id);
         out = qfoc_drive_fast_step(d, adc);
     }

@@ -1685,6 +1685,7 @@ static void drv_init_slow_io(qfoc_drive_slow_t *s, const qfoc_drive_cfg_t *c)
     s->cmd.power_on = false;
     s->cmd.fault_clear = false;
     s->cmd.target_rpm = 0u;
+    s->cmd.identify = false;
     s->sm_cfg.precharge_ms = c->precharge_ms;
     s->sm_cfg.align_ms = c->align_ms;
     s->sm_cfg.ol_timeout_ms = c->ol_timeout_ms;

@@ -54,6 +54,11 @@ bool qfoc_drive_run_requested(const qfoc_drive_t *d)
     return d->s.cmd.power_on;
 }
 
+bool qfoc_drive_identify_requested(const qfoc_drive_t *d)
+{
+    return d->s.cmd.identify;
+}
+
 bool qfoc_drive_derated(const qfoc_drive_t *d)
 {
     return d->s.derated;

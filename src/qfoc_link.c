@@ -140,7 +140,8 @@ bool qfoc_link_is_valid(const qfoc_link_t *l)
     } else if (l->cmd.target_rpm > l->cfg.rpm_max) {
         ok = false;
     } else if ((!l->seen)
-               && (l->cmd.power_on || l->cmd.fault_clear || (l->cmd.target_rpm != 0u))) {
+               && (l->cmd.power_on || l->cmd.fault_clear || (l->cmd.target_rpm != 0u)
+                   || l->cmd.identify)) {
         ok = false;
     } else {
         const bool timed_out = l->seen && (l->silent_ms > l->cfg.timeout_ms);
@@ -174,6 +175,7 @@ int32_t qfoc_link_init(qfoc_link_t *l, const qfoc_link_cfg_t *c)
     n.cmd.power_on = false;
     n.cmd.fault_clear = false;
     n.cmd.target_rpm = 0u;
+    n.cmd.identify = false;
     n.silent_ms = 0u;
     n.seen = false;
     n.can_b = false;
@@ -264,6 +266,7 @@ static int32_t qfoc_link_classify(const qfoc_link_cfg_t *c, const uint8_t *buf, 
     assumes LinCmdWellFormed(c, buf, len);
     ensures result: \result == 0;
     ensures fields: LinCmdFields(cmd, buf);
+    ensures no_identify: cmd->identify == \false;
     ensures in_range: cmd->target_rpm <= c->rpm_max;
   behavior rejected:
     assumes !LinCmdWellFormed(c, buf, len);
@@ -282,6 +285,7 @@ static int32_t qfoc_link_decode(const qfoc_link_cfg_t *c, const uint8_t *buf, ui
         cmd->power_on = ((buf[2] % 2u) == 1u);
         cmd->fault_clear = (buf[2] >= 2u);
         cmd->target_rpm = qfoc_link_le16(buf[3], buf[4]);
+        cmd->identify = false;   /* no frame requests the identification */
     } else {
         /* rejected: *cmd untouched */
     }
@@ -491,6 +495,7 @@ int32_t qfoc_link_accept(qfoc_link_t *l, const qfoc_cmd_t *cmd)
         l->cmd.power_on = cmd->power_on;
         l->cmd.fault_clear = cmd->fault_clear;
         l->cmd.target_rpm = cmd->target_rpm;
+        l->cmd.identify = cmd->identify;
         /* a valid command: restart the silent time */
         l->seen = true;
         l->silent_ms = 0u;
@@ -514,6 +519,9 @@ bool qfoc_link_service(qfoc_link_t *l, const uint8_t *rx, uint8_t rx_len)
         const int32_t status = qfoc_link_decode(&l->cfg, rx, rx_len, &cmd);
         if (status == QFOC_LINK_OK) {
             accepted = (qfoc_link_accept(l, &cmd) == QFOC_LINK_OK);
+            /*@ assert taken_power: l->cmd.power_on == \true <==> rx[2] % 2 == 1; */
+            /*@ assert taken_clear: l->cmd.fault_clear == \true <==> rx[2] >= 2; */
+            /*@ assert taken_target: l->cmd.target_rpm == LinLe16(rx[3], rx[4]); */
         } else {
             qfoc_link_count(l, status);
         }
@@ -533,10 +541,12 @@ void qfoc_link_command(const qfoc_link_t *l, qfoc_cmd_t *cmd)
     if (l->seen && (!l->lost)) {
         cmd->power_on = l->cmd.power_on;
         cmd->fault_clear = l->cmd.fault_clear;
+        cmd->identify = l->cmd.identify;
     } else {
         /* lost, or no valid command yet: the drive ramps down and stops */
         cmd->power_on = false;
         cmd->fault_clear = false;
+        cmd->identify = false;
     }
     cmd->target_rpm = l->cmd.target_rpm;
 }

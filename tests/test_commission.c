@@ -54,13 +54,18 @@ static void rig(dsim_t *ds)
     ds->target_rpm = 3000u;
 }
 
+/* STOP, with the identification requested through qfoc_drive_command() (the service
+   tool's command, sim/drive_sim.h) and in effect */
 static void to_stop(dsim_t *ds)
 {
     int ms;
-    for (ms = 0; (ms < 2000) && (ds->drv.s.sm.state != QFOC_STATE_STOP); ms++) {
+    ds->identify = true;
+    for (ms = 0; (ms < 2000) && ((ds->drv.s.sm.state != QFOC_STATE_STOP) ||
+                                 !qfoc_drive_identify_requested(&ds->drv)); ms++) {
         dsim_run(ds, 1e-3);
     }
     assert_int_equal(ds->drv.s.sm.state, QFOC_STATE_STOP);
+    assert_true(qfoc_drive_identify_requested(&ds->drv));
 }
 
 /* this period's ADC samples of the plant, as the drive's interrupt receives them */
@@ -75,7 +80,8 @@ static qfoc_adc_t plant_adc(dsim_t *ds)
     return adc;
 }
 
-/* the 1 ms tick with the master's command given through the interface */
+/* the 1 ms tick with the service tool's command given through the interface (identify
+   as ds->identify) */
 static void master_tick(dsim_t *ds, bool power_on, uint16_t target_rpm)
 {
     qfoc_tick_in_t in;
@@ -86,6 +92,7 @@ static void master_tick(dsim_t *ds, bool power_on, uint16_t target_rpm)
     cmd.power_on = power_on;
     cmd.fault_clear = false;
     cmd.target_rpm = target_rpm;
+    cmd.identify = ds->identify;
     (void)qfoc_drive_command(&ds->drv, &cmd);
     (void)qfoc_drive_tick(&ds->drv, &in);
 }
@@ -126,14 +133,16 @@ static int16_t ref_current(uint16_t code, uint16_t offset)
     return (int16_t)((v > 32767L) ? 32767L : ((v < -32767L) ? -32767L : v));
 }
 
-/* REQ-IDENT-007: the identification starts only while the drive is stopped: refused
-   (ERR_DRIVE, nothing runs, the PWM stays off) in PRECHARGE, with a run requested in
-   STOP, in RUN and in ERROR, and with bounds beyond the drive's protections (i_lim above
-   the table's i_trip, vdc_max above its vdc_ov); in STOP without a run request it starts
-   (RUNNING) or, with a configuration the unit refuses, ERR_CFG.
-   Methods: 1b every state of the drive, with and without a run request; 1c the run
-   request alone, i_lim at i_trip and one above, vdc_max one above vdc_ov; 1n the
-   header's rule written here */
+/* REQ-IDENT-007: the identification starts only while the drive is stopped and its
+   command requests it: refused (ERR_DRIVE, nothing runs, the PWM stays off) in PRECHARGE
+   (requested), in STOP without the request (the LIN master's frames), with a run
+   requested in STOP, in RUN and in ERROR, and with bounds beyond the drive's protections
+   (i_lim above the table's i_trip, vdc_max above its vdc_ov); in STOP with the request
+   and no run request it starts (RUNNING) or, with a configuration the unit refuses,
+   ERR_CFG.
+   Methods: 1b every state of the drive, with and without a run request, with and
+   without the identification request; 1c the run request alone, i_lim at i_trip and one
+   above, vdc_max one above vdc_ov; 1n the header's rule written here */
 static void test_req_ident_007_start_only_when_stopped(void **state)
 {
     static dsim_t ds;
@@ -143,7 +152,19 @@ static void test_req_ident_007_start_only_when_stopped(void **state)
     (void)state;
     rig(&ds);
     c = cfg_of(&qfoc_params_reference);
-    /* PRECHARGE */
+    /* STOP with the LIN master's frames: no identification request */
+    ds.identify = false;
+    for (p = 0; (p < 2000) && (ds.drv.s.sm.state != QFOC_STATE_STOP); p++) {
+        dsim_run(&ds, 1e-3);
+    }
+    assert_int_equal(ds.drv.s.sm.state, QFOC_STATE_STOP);
+    assert_false(qfoc_drive_identify_requested(&ds.drv));
+    assert_int_equal(qfoc_commission_start(&id, &ds.drv, &c), QFOC_IDENT_ERR_DRIVE);
+    /* PRECHARGE, requested */
+    rig(&ds);
+    ds.identify = true;
+    dsim_run(&ds, 20e-3);
+    assert_true(qfoc_drive_identify_requested(&ds.drv));
     assert_int_equal(ds.drv.s.sm.state, QFOC_STATE_PRECHARGE);
     memset(&id, 0x3C, sizeof id);
     assert_int_equal(qfoc_commission_start(&id, &ds.drv, &c), QFOC_IDENT_ERR_DRIVE);
@@ -301,8 +322,11 @@ static void test_req_ident_007_samples_beyond_12_bits(void **state)
    (ERR_ABORT) in the first period the drive is no longer stopped, and from that period
    on the output is the drive's fast step's (equal to a twin drive's given the same
    calls); the drive then starts the motor.  A fault of the tick that takes the drive to
-   ERROR (the power module over-temperature) ends it the same way.
-   Methods: 1b a run request, a fault; 1n the twin drive and the header's rule */
+   ERROR (the power module over-temperature) ends it the same way, and so does the
+   request's end: withdrawn (the LIN master's frame, which never carries it, replaces the
+   service tool's command) or the link lost (the command not repeated within timeout_ms).
+   Methods: 1b a run request, a fault, the request withdrawn, the link lost; 1n the twin
+   drive and the header's rule */
 static void test_req_ident_007_drive_first(void **state)
 {
     static dsim_t ds;
@@ -312,7 +336,7 @@ static void test_req_ident_007_drive_first(void **state)
     int p;
     int j;
     (void)state;
-    for (j = 0; j < 2; j++) {
+    for (j = 0; j < 4; j++) {
         rig(&ds);
         to_stop(&ds);
         c = cfg_of(&qfoc_params_reference);
@@ -322,11 +346,16 @@ static void test_req_ident_007_drive_first(void **state)
         assert_int_equal(qfoc_ident_result(&id), QFOC_IDENT_RUNNING);
         if (j == 0) {
             ds.power_on = true;     /* the master asks for a run */
-        } else {
+        } else if (j == 1) {
             ds.t_ipm = 1200;   /* the power module at 120 degC: the drive's OT_IPM fault */
+        } else if (j == 2) {
+            ds.identify = false;    /* the LIN master's frames again */
+        } else {
+            ds.link_alive = false;  /* the service tool stops sending */
         }
         for (p = 0; (p < 200000) && (qfoc_ident_result(&id) == QFOC_IDENT_RUNNING); p++) {
             const bool stopped = (ds.drv.s.sm.state == QFOC_STATE_STOP) &&
+                                 qfoc_drive_identify_requested(&ds.drv) &&
                                  !ds.drv.s.cmd.power_on;
             dsim_period(&ds);
             /* the fast step of this period ran the identification only on a stopped
@@ -334,7 +363,14 @@ static void test_req_ident_007_drive_first(void **state)
             assert_true(stopped || (qfoc_ident_result(&id) != QFOC_IDENT_RUNNING));
         }
         assert_int_equal(qfoc_ident_result(&id), QFOC_IDENT_ERR_ABORT);
-        assert_true((ds.drv.s.sm.state != QFOC_STATE_STOP) || ds.drv.s.cmd.power_on);
+        assert_true((ds.drv.s.sm.state != QFOC_STATE_STOP) || ds.drv.s.cmd.power_on ||
+                    !qfoc_drive_identify_requested(&ds.drv));
+        if (j >= 2) {
+            /* withdrawn within a frame period (10 ms); lost after timeout_ms */
+            assert_false(qfoc_drive_identify_requested(&ds.drv));
+            assert_true(p <= ((j == 2) ? 11 : (int)qfoc_params_reference.drive.link_timeout_ms + 2) *
+                             ds.periods_per_ms);
+        }
         /* from now on the drive's output: a twin drive given the same calls */
         for (p = 0; p < 200; p++) {
             qfoc_adc_t adc;
@@ -358,10 +394,16 @@ static void test_req_ident_007_drive_first(void **state)
         if (j == 0) {
             dsim_run(&ds, 0.5);
             assert_int_equal(ds.drv.s.sm.state, QFOC_STATE_RUN);
-        } else {
+        } else if (j == 1) {
             dsim_run(&ds, 0.05);
             assert_int_equal(ds.drv.s.sm.state, QFOC_STATE_ERROR);
             assert_true((ds.drv.s.status.faults & QFOC_FAULT_OT_IPM) != 0u);
+        } else {
+            /* the drive stays without PWM: stopped, or (link lost) reporting LINK */
+            dsim_run(&ds, 0.05);
+            assert_false(ds.pwm.enable);
+            assert_true((ds.drv.s.sm.state == QFOC_STATE_STOP) ||
+                        (ds.drv.s.sm.state == QFOC_STATE_ERROR));
         }
     }
 }

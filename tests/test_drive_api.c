@@ -28,6 +28,7 @@ static qfoc_cmd_t rig_cmd(const rig_t *r)
     c.power_on = r->power_on;
     c.fault_clear = r->fault_clear;
     c.target_rpm = r->rpm;
+    c.identify = false;
     return c;
 }
 
@@ -65,6 +66,8 @@ static void twin_same(const rig_t *fr, const rig_t *api)
     assert_int_equal(qfoc_drive_first_fault(&api->d), fr->d.s.sm.first_fault);
     assert_int_equal(qfoc_drive_run_requested(&api->d), fr->d.s.cmd.power_on);
     assert_int_equal(qfoc_drive_target_rpm(&api->d), fr->d.s.cmd.target_rpm);
+    assert_false(qfoc_drive_identify_requested(&api->d));
+    assert_false(fr->d.s.cmd.identify);
 }
 
 /* REQ-DRV-016: through start (ALIGN, OPEN_LOOP without a rotor: the open-loop timeout
@@ -164,6 +167,7 @@ static void test_drv_016_refused_command(void **state)
         qfoc_cmd_t c;
         const bool good = (k % 10) == 0;
         c.power_on = true;
+        c.identify = false;
         c.fault_clear = (lcg_next() & 1u) != 0u;
         c.target_rpm = (uint16_t)(r.table.drive.rpm_max + 1u + (lcg_next() % 3000u));
         assert_int_equal(qfoc_drive_command(&r.d, &c), QFOC_LINK_ERR_RANGE);
@@ -189,7 +193,7 @@ static void test_drv_016_refused_command(void **state)
     assert_true(qfoc_drive_run_requested(&r.d));
     /* the largest accepted target, and one above */
     {
-        qfoc_cmd_t c = { true, false, 0u };
+        qfoc_cmd_t c = { true, false, 0u, false };
         c.target_rpm = r.table.drive.rpm_max;
         assert_int_equal(qfoc_drive_command(&r.d, &c), QFOC_LINK_OK);
         c.target_rpm = (uint16_t)(r.table.drive.rpm_max + 1u);
@@ -223,7 +227,22 @@ static void test_drv_017_status_readers(void **state)
     assert_int_equal(qfoc_drive_faults(&r.d), 0u);
     assert_int_equal(qfoc_drive_first_fault(&r.d), 0u);
     assert_false(qfoc_drive_run_requested(&r.d));
+    assert_false(qfoc_drive_identify_requested(&r.d));
     assert_int_equal(qfoc_drive_target_rpm(&r.d), 0u);
+    /* the identification request: in effect from the tick after the command, the run
+       request off; withdrawn by the next command */
+    {
+        qfoc_cmd_t c = { false, false, 0u, true };
+        assert_int_equal(qfoc_drive_command(&r.d, &c), QFOC_LINK_OK);
+        rig_ms(&r, 1);
+        assert_true(qfoc_drive_identify_requested(&r.d));
+        assert_false(qfoc_drive_run_requested(&r.d));
+        assert_int_equal(qfoc_drive_state(&r.d), QFOC_STATE_STOP);
+        c.identify = false;
+        assert_int_equal(qfoc_drive_command(&r.d, &c), QFOC_LINK_OK);
+        rig_ms(&r, 1);
+        assert_false(qfoc_drive_identify_requested(&r.d));
+    }
     qfoc_drive_status(&r.d, &st);
     assert_int_equal(st.state, QFOC_STATE_STOP);
     /* the bus: the code of 300 V read back in 0.1 V, within the ADC step (0.12 V) and
@@ -242,7 +261,7 @@ static void test_drv_017_status_readers(void **state)
     assert_true(fabs(st.vdc_dv - 2800.0) <= 2.0);
     /* run: ALIGN holds angle 0, so d = i_alpha = i_u and q = i_beta = (i_u + 2 i_v)/sqrt 3 */
     {
-        const qfoc_cmd_t c = { true, false, 3000u };
+        const qfoc_cmd_t c = { true, false, 3000u, false };
         int k;
         assert_int_equal(qfoc_drive_command(&r.d, &c), QFOC_LINK_OK);
         for (k = 0; (k < 2) && (qfoc_drive_state(&r.d) != QFOC_STATE_RUN); k++) {

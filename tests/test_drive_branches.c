@@ -1359,7 +1359,7 @@ static void test_req_drv_019_object_check(void **state)
         assert_false(r.pwm.enable);
         /* latched: a second of clear requests and ticks leaves the PWM off */
         {
-            const qfoc_cmd_t clear = { false, true, 0u };
+            const qfoc_cmd_t clear = { false, true, 0u, false };
             for (ms = 0; ms < 1000; ms++) {
                 int j;
                 (void)qfoc_drive_command(&r.d, &clear);

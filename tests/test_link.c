@@ -119,10 +119,10 @@ static qfoc_link_cfg_t make_cfg(void)
 static int cmd_eq(const qfoc_cmd_t *a, const qfoc_cmd_t *b)
 {
     return (a->power_on == b->power_on) && (a->fault_clear == b->fault_clear)
-           && (a->target_rpm == b->target_rpm);
+           && (a->target_rpm == b->target_rpm) && (a->identify == b->identify);
 }
 
-static const qfoc_cmd_t sentinel = {true, true, 12345u};
+static const qfoc_cmd_t sentinel = {true, true, 12345u, true};
 
 /* ---- REQ-LINK-001 protected identifier ------------------------------------ */
 
@@ -218,6 +218,7 @@ static void test_link_003_004_roundtrip(void **state)
         assert_int_equal(cmd.power_on, power != 0);
         assert_int_equal(cmd.fault_clear, clear != 0);
         assert_int_equal(cmd.target_rpm, rpm);
+        assert_false(cmd.identify);   /* no frame requests the identification */
     }
 }
 
@@ -660,8 +661,13 @@ static void test_link_006_is_valid(void **state)
     assert_false(qfoc_link_is_valid(&b));
     b = l; b.cmd.target_rpm = 1u;
     assert_false(qfoc_link_is_valid(&b));
+    b = l; b.cmd.identify = true;   /* an identification request before any command */
+    assert_false(qfoc_link_is_valid(&b));
     b = l; b.seen = true; b.cmd.power_on = true; b.cmd.target_rpm = 1u;
     assert_true(qfoc_link_is_valid(&b));
+    b.cmd.identify = true;
+    assert_true(qfoc_link_is_valid(&b));
+    b.cmd.identify = false;
     b.silent_ms = (uint16_t)(c.timeout_ms + 1u);
     assert_false(qfoc_link_is_valid(&b));
     b.lost = true;
@@ -963,6 +969,7 @@ static void test_link_011_accept(void **state)
         cmd.power_on = (power != 0);
         cmd.fault_clear = (clear != 0);
         cmd.target_rpm = rpm;
+        cmd.identify = false;   /* as a frame's (test_req_ident_007_link_request) */
         /* a: the frame, then idle ticks; b: the command between the same ticks */
         make_cmd_frame(f, c.id_cmd, power, clear, rpm);
         before = b;
@@ -1012,6 +1019,7 @@ static void test_link_011_accept(void **state)
     cmd.power_on = true;
     cmd.fault_clear = false;
     cmd.target_rpm = 3000u;
+    cmd.identify = false;
     make_cmd_frame(f, c.id_cmd, 1, 0, 3000u);
     assert_true(qfoc_link_service(&a, f, QFOC_LIN_CMD_LEN));
     assert_int_equal(qfoc_link_accept(&b, &cmd), QFOC_LINK_OK);
@@ -1044,6 +1052,63 @@ static void test_link_011_accept(void **state)
     assert_int_equal(b.n_range, 65535u);
 }
 
+/* REQ-IDENT-007: the identification request lives only in commands given through the
+   function: a taken command with identify set makes it the effective command's; a refused
+   one (target above rpm_max) changes nothing; the next well-formed frame replaces it with
+   identify false (the frame cannot carry it); the link lost at timeout_ms + 1 silent calls
+   clears it in the effective command; a rejected configuration never gives it.
+   Methods: 1b each way the request ends; 1c the loss at timeout_ms and timeout_ms + 1;
+   1d a rejected configuration; 1n the link rules of link.h written here */
+static void test_req_ident_007_link_request(void **state)
+{
+    const qfoc_link_cfg_t c = make_cfg();
+    qfoc_link_t l;
+    qfoc_cmd_t cmd = { false, false, 0u, true };
+    qfoc_cmd_t eff = sentinel;
+    uint8_t f[QFOC_LIN_FRAME_MAX];
+    uint32_t k;
+    (void)state;
+    assert_int_equal(qfoc_link_init(&l, &c), QFOC_LINK_OK);
+    assert_false(l.cmd.identify);
+    qfoc_link_command(&l, &eff);
+    assert_false(eff.identify);     /* none before the first command */
+    assert_int_equal(qfoc_link_accept(&l, &cmd), QFOC_LINK_OK);
+    qfoc_link_command(&l, &eff);
+    assert_true(eff.identify);
+    assert_false(eff.power_on);
+    /* refused: the request stands */
+    cmd.identify = false;
+    cmd.target_rpm = (uint16_t)(c.rpm_max + 1u);
+    assert_int_equal(qfoc_link_accept(&l, &cmd), QFOC_LINK_ERR_RANGE);
+    qfoc_link_command(&l, &eff);
+    assert_true(eff.identify);
+    /* a well-formed frame replaces it */
+    make_cmd_frame(f, c.id_cmd, 0, 0, 0u);
+    assert_true(qfoc_link_service(&l, f, QFOC_LIN_CMD_LEN));
+    qfoc_link_command(&l, &eff);
+    assert_false(eff.identify);
+    assert_false(l.cmd.identify);
+    /* requested again, then silent: in effect through timeout_ms calls, cleared after */
+    cmd.identify = true;
+    cmd.target_rpm = 0u;
+    assert_int_equal(qfoc_link_accept(&l, &cmd), QFOC_LINK_OK);
+    for (k = 1u; k <= (uint32_t)c.timeout_ms + 1u; k++) {
+        (void)qfoc_link_service(&l, f, 0u);
+        qfoc_link_command(&l, &eff);
+        assert_int_equal(eff.identify, k <= c.timeout_ms);
+    }
+    assert_true(qfoc_link_lost(&l));
+    /* a rejected configuration: a taken command never gives it */
+    {
+        qfoc_link_cfg_t bad = c;
+        bad.id_status = bad.id_cmd;
+        assert_int_equal(qfoc_link_init(&l, &bad), QFOC_LINK_ERR_CFG);
+        assert_int_equal(qfoc_link_accept(&l, &cmd), QFOC_LINK_OK);
+        qfoc_link_command(&l, &eff);
+        assert_false(eff.identify);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1066,6 +1131,7 @@ int main(void)
         cmocka_unit_test(test_link_009_counters_saturate),
         cmocka_unit_test(test_link_010_can_alternation),
         cmocka_unit_test(test_link_011_accept),
+        cmocka_unit_test(test_req_ident_007_link_request),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

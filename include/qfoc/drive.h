@@ -451,7 +451,7 @@ qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
 
 /**
  * @brief Give the drive a decoded command: run (power_on), target speed in mechanical
- *        rpm, fault clear.
+ *        rpm, fault clear, and the identification request (identify).
  * @param[in,out] d   the motor object (valid)
  * @param[in]     cmd the command (any field values)
  * @return QFOC_LINK_OK: taken, it acts from the next tick on; QFOC_LINK_ERR_RANGE:
@@ -461,8 +461,12 @@ qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
  * it restarts the link timeout (the command must be repeated within timeout_ms ticks,
  * else the link is lost: the drive ramps down, then reports LINK), and it replaces the
  * last frame's command.  power_on starts the motor only with target_rpm >= rpm_min;
- * fault_clear acts as described for ERROR above.
- * Requirements: REQ-DRV-016.
+ * fault_clear acts as described for ERROR above.  identify is the one way to request
+ * the identification (commission.h): it runs only while this request stands (repeated
+ * within timeout_ms, power_on clear, the drive in STOP); a command frame received
+ * later replaces the command with identify false, and a lost link clears it, which
+ * ends a running identification.
+ * Requirements: REQ-DRV-016, REQ-IDENT-007.
  */
 /*@
   requires valid: \valid(d) && \valid_read(cmd);
@@ -476,7 +480,8 @@ qfoc_tick_out_t qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
     ensures result: \result == QFOC_LINK_OK;
     ensures cmd: d->s.link.cmd.power_on == cmd->power_on &&
                  d->s.link.cmd.fault_clear == cmd->fault_clear &&
-                 d->s.link.cmd.target_rpm == cmd->target_rpm;
+                 d->s.link.cmd.target_rpm == cmd->target_rpm &&
+                 d->s.link.cmd.identify == cmd->identify;
     ensures timer: d->s.link.seen == \true && d->s.link.silent_ms == 0;
   behavior refused:
     assumes cmd->target_rpm > d->s.link.cfg.rpm_max;
@@ -610,6 +615,22 @@ uint16_t qfoc_drive_target_rpm(const qfoc_drive_t *d);
   ensures result: \result == d->s.cmd.power_on;
 */
 bool qfoc_drive_run_requested(const qfoc_drive_t *d);
+
+/**
+ * @brief Identification request in effect: the identify of the last command taken while
+ *        the link is alive (false before the first command, while the link is lost, and
+ *        after a command frame, which never carries it); commission.h starts the
+ *        identification only while it is true.
+ * @param[in] d the motor object
+ * @return true when the identification is requested
+ * Requirements: REQ-DRV-017, REQ-IDENT-007.
+ */
+/*@
+  requires valid: \valid_read(d);
+  assigns \nothing;
+  ensures result: \result == d->s.cmd.identify;
+*/
+bool qfoc_drive_identify_requested(const qfoc_drive_t *d);
 
 /**
  * @brief Thermal derating in effect: after the last tick, the IPM or the PCB temperature

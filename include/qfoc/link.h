@@ -83,11 +83,15 @@ extern "C" {
 /** Saturation value of the counters and of the silent-time counter. */
 #define QFOC_LINK_COUNT_MAX ((uint16_t)65535u)
 
-/** Command of the master (power-on bit, fault-clearing bit, target speed). */
+/** Command of the master (power-on bit, fault-clearing bit, target speed) and the
+    commissioning request.  A command frame never carries identify (the decoder sets it
+    false): only a command given through qfoc_drive_command() can request the
+    identification (commission.h, REQ-IDENT-007). */
 typedef struct {
     bool power_on;        /**< run request */
     bool fault_clear;     /**< fault-clear request */
     uint16_t target_rpm;  /**< target speed, rpm mechanical, 0..rpm_max */
+    bool identify;        /**< identification request (commission.h); false from a frame */
 } qfoc_cmd_t;
 
 /** Link configuration. */
@@ -245,7 +249,7 @@ bool qfoc_link_is_valid(const qfoc_link_t *l);
   ensures valid: LinkValid(l);
   ensures cleared: l->seen == \false && l->silent_ms == 0 && l->can_b == \false &&
                    l->cmd.power_on == \false && l->cmd.fault_clear == \false &&
-                   l->cmd.target_rpm == 0;
+                   l->cmd.target_rpm == 0 && l->cmd.identify == \false;
   ensures counters: l->n_ok == 0 && l->n_len == 0 && l->n_sync == 0 && l->n_id == 0 &&
                     l->n_checksum == 0 && l->n_reserved == 0 && l->n_range == 0;
   behavior accepted:
@@ -278,7 +282,7 @@ int32_t qfoc_link_init(qfoc_link_t *l, const qfoc_link_cfg_t *c);
  *   5. buf[2] <= 3 (bits 2..7 clear), buf[5] == 0    else QFOC_LINK_ERR_RESERVED
  *   6. target = buf[3] + 256 buf[4] <= rpm_max       else QFOC_LINK_ERR_RANGE
  * On OK: power_on = bit 0 of buf[2], fault_clear = bit 1 of buf[2],
- * target_rpm = target.
+ * target_rpm = target, identify = false (no frame requests the identification).
  *
  * Bad input: any content and length is classified; a rejected frame leaves *cmd
  * untouched.  A length other than 7 (longer than a command frame included) is
@@ -299,6 +303,7 @@ int32_t qfoc_link_init(qfoc_link_t *l, const qfoc_link_cfg_t *c);
     assumes LinCmdWellFormed(c, buf, len);
     ensures result: \result == 0;
     ensures fields: LinCmdFields(cmd, buf);
+    ensures no_identify: cmd->identify == \false;
     ensures in_range: cmd->target_rpm <= c->rpm_max;
   behavior rejected:
     assumes !LinCmdWellFormed(c, buf, len);
@@ -382,6 +387,7 @@ uint8_t qfoc_lin_encode_status(const qfoc_link_cfg_t *c, const qfoc_status_t *st
     assumes rx_len > 0 && LinCmdWellFormed(&l->cfg, rx, rx_len);
     ensures result: \result == \true;
     ensures cmd: LinCmdFields(&l->cmd, rx);
+    ensures no_identify: l->cmd.identify == \false;
     ensures timer: l->seen == \true && l->silent_ms == 0 && (l->lost == \true <==> l->cfg_ok == \false);
     ensures count: l->n_ok == LinSatInc(\old(l->n_ok));
     ensures others: l->n_len == \old(l->n_len) && l->n_sync == \old(l->n_sync) &&
@@ -440,7 +446,7 @@ bool qfoc_link_service(qfoc_link_t *l, const uint8_t *rx, uint8_t rx_len);
     assumes cmd->target_rpm <= l->cfg.rpm_max;
     ensures result: \result == QFOC_LINK_OK;
     ensures cmd: l->cmd.power_on == cmd->power_on && l->cmd.fault_clear == cmd->fault_clear &&
-                 l->cmd.target_rpm == cmd->target_rpm;
+                 l->cmd.target_rpm == cmd->target_rpm && l->cmd.identify == cmd->identify;
     ensures timer: l->seen == \true && l->silent_ms == 0 && (l->lost == \true <==> l->cfg_ok == \false);
     ensures count: l->n_ok == LinSatInc(\old(l->n_ok)) && l->n_range == \old(l->n_range);
   behavior refused:
@@ -474,10 +480,12 @@ int32_t qfoc_link_accept(qfoc_link_t *l, const qfoc_cmd_t *cmd);
   ensures target: cmd->target_rpm == l->cmd.target_rpm;
   behavior active:
     assumes l->seen == \true && l->lost == \false;
-    ensures copy: cmd->power_on == l->cmd.power_on && cmd->fault_clear == l->cmd.fault_clear;
+    ensures copy: cmd->power_on == l->cmd.power_on && cmd->fault_clear == l->cmd.fault_clear &&
+                  cmd->identify == l->cmd.identify;
   behavior off:
     assumes l->seen == \false || l->lost == \true;
-    ensures off: cmd->power_on == \false && cmd->fault_clear == \false;
+    ensures off: cmd->power_on == \false && cmd->fault_clear == \false &&
+                 cmd->identify == \false;
   complete behaviors;
   disjoint behaviors;
 */

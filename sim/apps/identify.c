@@ -145,13 +145,15 @@ static int run_one(const scn_table_t *tab, const opts_t *o)
     cfg.substeps = 20;
     cfg.load.knee_rpm = 50.0;
     /* the drive on the table, stopped: PRECHARGE calibrates the offsets, then STOP; the
-       master keeps sending its command frame (power off) */
+       service tool gives the command through qfoc_drive_command() from the start (power
+       off, identify set), so the request is in effect when the drive reaches STOP */
     if (dsim_init(&ds, &cfg, tab->table) != QFOC_PARAMS_OK) {
         fprintf(stderr, "qfoc_identify: table %s refused by the drive\n", tab->name);
         return 2;
     }
     sim_set_state(s, o->angle_deg * SIM_PI / 180.0, 0.0, 0.0, 0.0);
     ds.power_on = false;
+    ds.identify = true;
     for (k = 0; k < 5000L * ds.periods_per_ms && qfoc_drive_state(&ds.drv) != QFOC_STATE_STOP; k++) {
         dsim_period(&ds);
     }

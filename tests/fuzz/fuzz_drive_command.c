@@ -68,6 +68,8 @@ static void readers(const qfoc_drive_t *d)
     FZ_CHECK(qfoc_drive_speed_rpm(d) == d->s.status.speed_rpm, "speed_rpm: the status speed");
     FZ_CHECK(qfoc_drive_target_rpm(d) == d->s.cmd.target_rpm, "target_rpm: the command's");
     FZ_CHECK(qfoc_drive_run_requested(d) == d->s.cmd.power_on, "run_requested: the command's");
+    FZ_CHECK(qfoc_drive_identify_requested(d) == d->s.cmd.identify,
+             "identify_requested: the command's");
     FZ_CHECK(qfoc_drive_angle_est(d) == d->f.theta_est, "angle_est: the estimate");
     memset(&i, 0x3C, sizeof i);
     qfoc_drive_currents_q15(d, &i);
@@ -87,6 +89,8 @@ static void after_tick(const qfoc_drive_t *d, const qfoc_tick_in_t *t)
              "run_requested: off before the first command and while the link is lost");
     FZ_CHECK(qfoc_drive_run_requested(d) == (l->seen && !l->lost && l->cmd.power_on),
              "run_requested: the last command's power-on while the link is alive");
+    FZ_CHECK(qfoc_drive_identify_requested(d) == (l->seen && !l->lost && l->cmd.identify),
+             "identify_requested: the last command's identify while the link is alive");
     FZ_CHECK(d->f.active || qfoc_drive_speed_rpm(d) == 0u, "speed_rpm: 0 while the PWM is off");
     {
         qfoc_status_t st;
@@ -113,6 +117,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             int32_t res;
             c.power_on = (bits & 1u) != 0u;
             c.fault_clear = (bits & 2u) != 0u;
+            c.identify = (bits & 8u) != 0u;
             c.target_rpm = fz_u16(&in);
             if ((bits & 4u) == 0u) {
                 c.target_rpm = (uint16_t)(c.target_rpm % ((uint32_t)r.d.s.link.cfg.rpm_max + 1u));
@@ -121,7 +126,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             res = qfoc_drive_command(&r.d, &c);
             if (c.target_rpm <= expect.s.link.cfg.rpm_max) {
                 FZ_CHECK(res == QFOC_LINK_OK, "command: a target <= rpm_max is taken");
-                expect.s.link.cmd = c;
+                fz_cmd_set(&expect.s.link.cmd, &c);
                 expect.s.link.seen = true;
                 expect.s.link.silent_ms = 0u;
                 expect.s.link.lost = !expect.s.link.cfg_ok;

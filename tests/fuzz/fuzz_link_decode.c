@@ -52,6 +52,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memset(&canary, 0xA5, sizeof canary);
     canary.power_on = true;
     canary.fault_clear = false;
+    canary.identify = true;
     memcpy(&cmd, &canary, sizeof cmd);
     memset(&ref_cmd, 0, sizeof ref_cmd);
     status = qfoc_lin_decode_cmd(&cfg, buf, (uint8_t)len, &cmd);
@@ -59,7 +60,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FZ_CHECK(status == ref, "decode: the status of the first failed check");
     if (status == QFOC_LINK_OK) {
         FZ_CHECK(cmd.power_on == ref_cmd.power_on && cmd.fault_clear == ref_cmd.fault_clear &&
-                 cmd.target_rpm == ref_cmd.target_rpm, "decode: the frame's fields");
+                 cmd.target_rpm == ref_cmd.target_rpm && !cmd.identify,
+                 "decode: the frame's fields, never the identification request");
         FZ_CHECK(cmd.target_rpm <= cfg.rpm_max, "decode: target <= rpm_max");
     } else {
         FZ_CHECK(memcmp(&cmd, &canary, sizeof cmd) == 0, "decode: a rejected frame leaves cmd");

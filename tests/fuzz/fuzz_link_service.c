@@ -31,7 +31,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 static void model_rx(qfoc_link_t *m, int32_t st, size_t len, const qfoc_cmd_t *c)
 {
     if (len > 0u && st == QFOC_LINK_OK) {
-        m->cmd = *c;
+        fz_cmd_set(&m->cmd, c);
         m->seen = true;
         m->silent_ms = 0u;
         m->lost = !m->cfg_ok;
@@ -111,9 +111,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         m.cfg.can_id_a = 0x7FFu;
         m.cfg.can_id_b = 0x7FFu;
     }
-    memset(&m.cmd, 0, sizeof m.cmd);
-    m.cmd.power_on = false;
+    m.cmd.power_on = false;       /* field by field: the padding byte as the library left it */
     m.cmd.fault_clear = false;
+    m.cmd.target_rpm = 0u;
+    m.cmd.identify = false;
     m.silent_ms = 0u;
     m.cfg_ok = cfg_valid;
     m.seen = false;
@@ -180,6 +181,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             int32_t r;
             c.power_on = (bits & 1u) != 0u;
             c.fault_clear = (bits & 2u) != 0u;
+            c.identify = (bits & 8u) != 0u;
             c.target_rpm = fz_u16(&in);
             if ((bits & 4u) == 0u) {
                 c.target_rpm = (uint16_t)(c.target_rpm % ((uint32_t)l.cfg.rpm_max + 1u));
@@ -187,7 +189,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             r = qfoc_link_accept(&l, &c);
             if (c.target_rpm <= m.cfg.rpm_max) {
                 FZ_CHECK(r == QFOC_LINK_OK, "accept: a target <= rpm_max is taken");
-                m.cmd = c;
+                fz_cmd_set(&m.cmd, &c);
                 m.seen = true;
                 m.silent_ms = 0u;
                 m.lost = !m.cfg_ok;
@@ -205,10 +207,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             qfoc_link_command(&l, &c);
             FZ_CHECK(c.target_rpm == l.cmd.target_rpm, "command: the last valid target");
             if (l.seen && !l.lost) {
-                FZ_CHECK(c.power_on == l.cmd.power_on && c.fault_clear == l.cmd.fault_clear,
+                FZ_CHECK(c.power_on == l.cmd.power_on && c.fault_clear == l.cmd.fault_clear &&
+                         c.identify == l.cmd.identify,
                          "command: the last valid command while the link is alive");
             } else {
-                FZ_CHECK(!c.power_on && !c.fault_clear, "command: off while lost or unseen");
+                FZ_CHECK(!c.power_on && !c.fault_clear && !c.identify,
+                         "command: off while lost or unseen");
             }
             FZ_CHECK(memcmp(&l, &m, sizeof l) == 0, "command: the link is not changed");
             break;

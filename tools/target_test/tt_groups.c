@@ -1016,6 +1016,7 @@ static void tt_d_cmd(tt_digest_t *d, const qfoc_cmd_t *cmd)
     tt_d_bool(d, cmd->power_on);
     tt_d_bool(d, cmd->fault_clear);
     tt_d_u16(d, cmd->target_rpm);
+    tt_d_bool(d, cmd->identify);
 }
 
 static void tt_d_can(tt_digest_t *d, const qfoc_can_frame_t *f)
@@ -1074,6 +1075,7 @@ static void tt_replay_lin_decode(tt_ctx_t *c)
         cmd.power_on = true;
         cmd.fault_clear = true;
         cmd.target_rpm = 0xA5A5u;
+        cmd.identify = true;
         tt_d_init(&d);
         tt_d_i32(&d, qfoc_lin_decode_cmd(&cfg, buf, (uint8_t)(tt_in(c, k, 6u) & 0xFFu), &cmd));
         tt_d_cmd(&d, &cmd);

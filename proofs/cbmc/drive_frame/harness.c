@@ -72,7 +72,8 @@ int main(void)
     qfoc_link_command(&d.s.link, &a);
     qfoc_link_command(&twin.s.link, &b);
     __CPROVER_assert(a.power_on == b.power_on && a.fault_clear == b.fault_clear &&
-                     a.target_rpm == b.target_rpm && qfoc_link_lost(&d.s.link) == qfoc_link_lost(&twin.s.link),
+                     a.target_rpm == b.target_rpm && a.identify == b.identify &&
+                     qfoc_link_lost(&d.s.link) == qfoc_link_lost(&twin.s.link),
                      "REQ-DRV-015 malformed frame: same effective command");
     __CPROVER_assert(out.tx_len == 0u, "REQ-DRV-015 malformed frame: not answered");
     return 0;

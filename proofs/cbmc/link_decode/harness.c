@@ -95,6 +95,7 @@ int main(void)
     cmd.power_on = nondet_bool();
     cmd.fault_clear = nondet_bool();
     cmd.target_rpm = nondet_uint16();
+    cmd.identify = nondet_bool();
     old = cmd;
 
     expect = h_status(&c, buf, len);
@@ -109,9 +110,11 @@ int main(void)
         __CPROVER_assert(cmd.target_rpm == (uint16_t)(((uint32_t)buf[4] << 8) | buf[3]),
                          "target = data 1..2 little-endian");
         __CPROVER_assert(cmd.target_rpm <= c.rpm_max, "target within rpm_max");
+        __CPROVER_assert(!cmd.identify, "no frame requests the identification");
     } else {
         __CPROVER_assert((cmd.power_on == old.power_on) && (cmd.fault_clear == old.fault_clear)
-                         && (cmd.target_rpm == old.target_rpm), "rejected: cmd untouched");
+                         && (cmd.target_rpm == old.target_rpm) && (cmd.identify == old.identify),
+                         "rejected: cmd untouched");
         __CPROVER_assert(st < 0, "rejected: negative status");
     }
     free(buf);

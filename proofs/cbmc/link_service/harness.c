@@ -164,6 +164,7 @@ int main(void)
             m_cmd.power_on = (buf[2] & 1u) != 0u;
             m_cmd.fault_clear = (buf[2] & 2u) != 0u;
             m_cmd.target_rpm = (uint16_t)(((uint32_t)buf[4] << 8) | buf[3]);
+            m_cmd.identify = false;
         } else {
             m_silent = (m_silent < 65535u) ? (m_silent + 1u) : 65535u;
         }
@@ -175,12 +176,15 @@ int main(void)
         qfoc_link_command(&b, &eb);
         __CPROVER_assert(ea.target_rpm == m_cmd.target_rpm, "target = last valid target");
         if (m_seen && !qfoc_link_lost(&a)) {
-            __CPROVER_assert((ea.power_on == m_cmd.power_on) && (ea.fault_clear == m_cmd.fault_clear),
+            __CPROVER_assert((ea.power_on == m_cmd.power_on) && (ea.fault_clear == m_cmd.fault_clear)
+                             && (ea.identify == m_cmd.identify),
                              "active: flags of the last valid command");
         } else {
-            __CPROVER_assert(!ea.power_on && !ea.fault_clear, "lost or none yet: drive off");
+            __CPROVER_assert(!ea.power_on && !ea.fault_clear && !ea.identify,
+                             "lost or none yet: drive off");
         }
         __CPROVER_assert((ea.power_on == eb.power_on) && (ea.fault_clear == eb.fault_clear)
+                         && (ea.identify == eb.identify)
                          && (ea.target_rpm == eb.target_rpm)
                          && (qfoc_link_lost(&a) == qfoc_link_lost(&b)),
                          "a malformed frame acts like no frame");
