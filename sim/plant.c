@@ -203,6 +203,34 @@ void sim_set_compare(sim_t *s, const uint16_t cmp[3])
     for (k = 0; k < 3; k++) {
         s->cmp_pending[k] = (cmp[k] > s->bases.period) ? s->bases.period : cmp[k];
     }
+    s->asym_pending = false;
+}
+
+void sim_set_compare2(sim_t *s, const uint16_t up[3], const uint16_t down[3])
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        s->up_pending[k] = (up[k] > s->bases.period) ? s->bases.period : up[k];
+        s->down_pending[k] = (down[k] > s->bases.period) ? s->bases.period : down[k];
+        s->cmp_pending[k] = (uint16_t)(((unsigned)s->up_pending[k] + s->down_pending[k]) / 2u);
+    }
+    s->asym_pending = true;
+}
+
+void sim_set_triggers(sim_t *s, const uint16_t trig[2], bool on)
+{
+    int j;
+    for (j = 0; j < 2; j++) {
+        s->trig_pending_v[j] = (trig[j] > s->bases.period) ? s->bases.period : trig[j];
+    }
+    s->trig_pending = on;
+}
+
+bool sim_sample_shunt(const sim_t *s, uint16_t code[2])
+{
+    code[0] = s->shunt_taken ? s->shunt_code[0] : 2048u;
+    code[1] = s->shunt_taken ? s->shunt_code[1] : 2048u;
+    return s->shunt_taken;
 }
 
 /*
@@ -234,6 +262,49 @@ static double sim_pole_avg(double a, double b, double T, double tx, double td, d
         on0 = 0.5 * (T - tx);
         on1 = fmin(T, 0.5 * (T + tx) + td);
     }
+    if (on1 > on0) {
+        const double lo = fmax(a, on0);
+        const double hi = fmin(b, on1);
+        if (hi > lo) {
+            overlap = hi - lo;
+        }
+    }
+    return vdc * (overlap / (b - a)) - 0.5 * vdc;
+}
+
+/*
+ * The interval [on0, on1) of the period [0, T] in which a pole is high, for the
+ * high-side gate on from T/2 - tu to T/2 + tdn (the up- and down-counting halves) and
+ * the current sign, with the dead time td as in sim_pole_avg() (a symmetric pair tu =
+ * tdn = Tx / 2 gives its interval).  on1 <= on0: never high.
+ */
+static void sim_pole_on(double T, double tu, double tdn, double td, double i, double *on0,
+                        double *on1)
+{
+    if (tu + tdn >= T) {
+        *on0 = 0.0;
+        *on1 = T;
+    } else if (tu + tdn <= 0.0) {
+        *on0 = 0.0;
+        *on1 = 0.0;
+    } else if (i > 0.0) {
+        *on0 = 0.5 * T - tu + td;
+        *on1 = 0.5 * T + tdn;
+    } else {
+        *on0 = 0.5 * T - tu;
+        *on1 = fmin(T, 0.5 * T + tdn + td);
+    }
+}
+
+/* sim_pole_avg() for asymmetric gate times (up-counting tu, down-counting tdn). */
+static double sim_pole_avg2(double a, double b, double T, double tu, double tdn, double td,
+                            double i, double vdc)
+{
+    double on0;
+    double on1;
+    double overlap = 0.0;
+
+    sim_pole_on(T, tu, tdn, td, i, &on0, &on1);
     if (on1 > on0) {
         const double lo = fmax(a, on0);
         const double hi = fmin(b, on1);
@@ -380,9 +451,10 @@ static void sim_step_open(sim_t *s, const double v_ab[2], double h)
 }
 
 /* Average phase-to-neutral voltages (alpha, beta) over the sub-step [a, a + h] of the
-   period T, for the high-side times tx and the present phase currents. */
+   period T, for the high-side times tx and the present phase currents; with tdn not
+   NULL, tx and tdn are the asymmetric gate times of the up- and down-counting halves. */
 static void sim_phase_v(const sim_t *s, double a, double h, double T, const double tx[3],
-                        double v_ab[2])
+                        const double tdn[3], double v_ab[2])
 {
     const double td = s->cfg.dead_time_s;
     const double vdc = s->cfg.vdc_v;
@@ -397,7 +469,9 @@ static void sim_phase_v(const sim_t *s, double a, double h, double T, const doub
     iph[1] = -0.5 * i_ab[0] + 0.5 * SIM_SQRT3 * i_ab[1];
     iph[2] = -0.5 * i_ab[0] - 0.5 * SIM_SQRT3 * i_ab[1];
     for (j = 0; j < 3; j++) {
-        if (s->en_active) {
+        if (s->en_active && tdn != NULL) {
+            vp[j] = sim_pole_avg2(a, a + h, T, tx[j], tdn[j], td, iph[j], vdc);
+        } else if (s->en_active) {
             vp[j] = sim_pole_avg(a, a + h, T, tx[j], td, iph[j], vdc);
         } else {
             /* switches off: the diode of the current's direction conducts */
@@ -432,6 +506,178 @@ static void sim_break_catch(sim_t *s, double w0)
     }
 }
 
+/* The phase currents u, v, w now, A. */
+static void sim_phase_i(const sim_t *s, double iph[3])
+{
+    double i_ab[2];
+    sim_i_ab(s, i_ab);
+    iph[0] = i_ab[0];
+    iph[1] = -0.5 * i_ab[0] + 0.5 * SIM_SQRT3 * i_ab[1];
+    iph[2] = -0.5 * i_ab[0] - 0.5 * SIM_SQRT3 * i_ab[1];
+}
+
+/* The DC-link current at instant t of the period, for the phase currents iph, with the
+   ringing of the period's pole transitions (ring false: without it). */
+static double sim_idc(const sim_t *s, double t, double T, const double tu[3],
+                      const double tdn[3], const double iph[3], bool ring)
+{
+    const sim_shunt_cfg_t *c = &s->cfg.shunt;
+    double idc = 0.0;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double on0;
+        double on1;
+        if (s->en_active) {
+            sim_pole_on(T, tu[k], tdn[k], s->cfg.dead_time_s, iph[k], &on0, &on1);
+        } else {
+            /* switches off: the high-side diode conducts a negative current */
+            on0 = 0.0;
+            on1 = (iph[k] < 0.0) ? T : 0.0;
+        }
+        if (on1 > on0 && t >= on0 && t < on1) {
+            idc += iph[k];
+        }
+        if (ring && c->t_ring_s > 0.0 && s->en_active && on1 > on0) {
+            /* the rising transition steps i_dc by +i, the falling one by -i */
+            const double e[2] = { on0, on1 };
+            const double d[2] = { iph[k], -iph[k] };
+            int m;
+            for (m = 0; m < 2; m++) {
+                const double x = t - e[m];
+                if (e[m] > 0.0 && e[m] < T && x >= 0.0 && x < c->t_ring_s) {
+                    idc += c->ring_gain * d[m] * exp(-3.0 * x / c->t_ring_s) *
+                           cos(2.0 * SIM_PI * c->f_ring_hz * x);
+                }
+            }
+        }
+    }
+    return idc;
+}
+
+/* One DC-link sample starting at t (the phase currents of now): the mean over the
+   sample-and-hold aperture, converted by the ADC. */
+static void sim_shunt_take(sim_t *s, int j, double t, double T, const double tu[3],
+                           const double tdn[3])
+{
+    const sim_shunt_cfg_t *c = &s->cfg.shunt;
+    const double cps = 2048.0 / s->cfg.motor.i_full_scale_a;
+    double iph[3];
+    double sum = 0.0;
+    double x;
+    int m;
+
+    sim_phase_i(s, iph);
+    s->shunt_iph[j][0] = iph[0];
+    s->shunt_iph[j][1] = iph[1];
+    s->shunt_iph[j][2] = iph[2];
+    s->shunt_true[j] = sim_idc(s, t, T, tu, tdn, iph, false);
+    if (c->t_sh_s > 0.0) {
+        for (m = 0; m < 16; m++) {
+            sum += sim_idc(s, t + ((double)m + 0.5) / 16.0 * c->t_sh_s, T, tu, tdn, iph, true);
+        }
+        x = sum / 16.0;
+    } else {
+        x = sim_idc(s, t, T, tu, tdn, iph, true);
+    }
+    if (s->inj.shunt_open) {
+        x = 0.0;
+    }
+    if (s->cfg.noise_i_rms_a > 0.0) {
+        x += s->cfg.noise_i_rms_a * sim_gauss(&s->rng);
+    }
+    s->shunt_code[j] = sim_adc(2048.0 + x * cps + s->cfg.adc_offset_counts + s->inj.shunt_offset);
+}
+
+/* One sub-step [a, a + hh] of the period: the state integrated under the voltage of the
+   gate times (tdn NULL: symmetric tx), the sums of the period's averages weighted by
+   hh / h. */
+static void sim_substep(sim_t *s, double a, double hh, double T, const double tx[3],
+                        const double tdn[3], double w, double vsum[2], double *tsum)
+{
+    double v_ab[2];
+    const double w0 = s->w_m;
+    sim_phase_v(s, a, hh, T, tx, tdn, v_ab);
+    sim_break_release(s);
+    if (s->inj.open == 0u) {
+        const sim_x_t x = { s->id, s->iq, s->w_m, s->theta_m };
+        sim_x_t y;
+        sim_rk4(s, sim_deriv, &x, v_ab, hh, &y);
+        s->id = y.id;
+        s->iq = y.iq;
+        s->w_m = y.w_m;
+        s->theta_m = y.th_m;
+    } else {
+        sim_step_open(s, v_ab, hh);
+    }
+    sim_break_catch(s, w0);
+    if (!s->en_active && (s->extinct || hypot(s->id, s->iq) < 0.3)) {
+        s->extinct = true;
+        s->id = 0.0;
+        s->iq = 0.0;
+        v_ab[0] = 0.0;
+        v_ab[1] = 0.0;
+    }
+    vsum[0] += w * v_ab[0];
+    vsum[1] += w * v_ab[1];
+    *tsum += w * sim_te(&s->cfg.motor, s->id, s->iq);
+}
+
+/* The period with asymmetric compare values or single-shunt samples: the uniform
+   sub-steps, split at the samples' start instants. */
+static void sim_step_asym(sim_t *s, double vsum[2], double *tsum)
+{
+    const double T = s->bases.t_s;
+    const int n = s->cfg.substeps;
+    const double h = T / (double)n;
+    const double P = (double)s->bases.period;
+    const bool take = s->cfg.shunt.active && s->trig_active;
+    double tu[3];
+    double tdn[3];
+    double ts[2] = { 2.0 * T, 2.0 * T };
+    bool done[2] = { !take, !take };
+    int j;
+    int k;
+
+    for (j = 0; j < 3; j++) {
+        const double up = s->asym_active ? (double)s->up_active[j] : (double)s->cmp_active[j];
+        const double dn = s->asym_active ? (double)s->down_active[j] : (double)s->cmp_active[j];
+        tu[j] = 0.5 * T * up / P;
+        tdn[j] = 0.5 * T * dn / P;
+    }
+    if (take) {
+        ts[0] = 0.5 * T * (double)s->trig_active_v[0] / P;
+        ts[1] = 0.5 * T * (double)s->trig_active_v[1] / P;
+    }
+    for (k = 0; k < n; k++) {
+        double a = (double)k * h;
+        const double b = (double)(k + 1) * h;
+        for (;;) {
+            /* the next sample start in [a, b), if any (the earlier one first) */
+            int nx = -1;
+            for (j = 0; j < 2; j++) {
+                if (!done[j] && ts[j] < b && (nx < 0 || ts[j] < ts[nx])) {
+                    nx = j;
+                }
+            }
+            if (nx < 0) {
+                break;
+            }
+            if (ts[nx] > a) {
+                sim_substep(s, a, ts[nx] - a, T, tu, tdn, (ts[nx] - a) / h, vsum, tsum);
+                a = ts[nx];
+            }
+            sim_shunt_take(s, nx, a, T, tu, tdn);
+            done[nx] = true;
+        }
+        if (b > a) {
+            sim_substep(s, a, b - a, T, tu, tdn, (b - a) / h, vsum, tsum);
+        }
+    }
+    s->shunt_taken = take;
+}
+
+static void sim_period_end(sim_t *s, const double vsum[2], double tsum);
+
 void sim_step_period(sim_t *s)
 {
     const double T = s->bases.t_s;
@@ -443,37 +689,27 @@ void sim_step_period(sim_t *s)
     int k;
     int j;
 
+    if (s->asym_active || (s->cfg.shunt.active && s->trig_active)) {
+        sim_step_asym(s, vsum, &tsum);
+        sim_period_end(s, vsum, tsum);
+        return;
+    }
+    s->shunt_taken = false;
     for (j = 0; j < 3; j++) {
         tx[j] = T * (double)s->cmp_active[j] / (double)s->bases.period;
     }
     for (k = 0; k < n; k++) {
-        double v_ab[2];
-        const double w0 = s->w_m;
-        sim_phase_v(s, (double)k * h, h, T, tx, v_ab);
-        sim_break_release(s);
-        if (s->inj.open == 0u) {
-            const sim_x_t x = { s->id, s->iq, s->w_m, s->theta_m };
-            sim_x_t y;
-            sim_rk4(s, sim_deriv, &x, v_ab, h, &y);
-            s->id = y.id;
-            s->iq = y.iq;
-            s->w_m = y.w_m;
-            s->theta_m = y.th_m;
-        } else {
-            sim_step_open(s, v_ab, h);
-        }
-        sim_break_catch(s, w0);
-        if (!s->en_active && (s->extinct || hypot(s->id, s->iq) < 0.3)) {
-            s->extinct = true;
-            s->id = 0.0;
-            s->iq = 0.0;
-            v_ab[0] = 0.0;
-            v_ab[1] = 0.0;
-        }
-        vsum[0] += v_ab[0];
-        vsum[1] += v_ab[1];
-        tsum += sim_te(&s->cfg.motor, s->id, s->iq);
+        /* the weight 1.0 leaves the sums exactly those of the uniform sub-steps */
+        sim_substep(s, (double)k * h, h, T, tx, NULL, 1.0, vsum, &tsum);
     }
+    sim_period_end(s, vsum, tsum);
+}
+
+/* The end of a period: the angle wrapped, the averages, the pending settings active. */
+static void sim_period_end(sim_t *s, const double vsum[2], double tsum)
+{
+    const int n = s->cfg.substeps;
+    const double T = s->bases.t_s;
     /* keep the mechanical angle in [0, 2 pi) without disturbing the electrical one
        (2 pi mechanical is n_p whole electrical turns) */
     s->theta_m = fmod(s->theta_m, 2.0 * SIM_PI);
@@ -485,6 +721,11 @@ void sim_step_period(sim_t *s)
     s->torque_avg = tsum / (double)n;
     s->t += T;
     memcpy(s->cmp_active, s->cmp_pending, sizeof s->cmp_active);
+    memcpy(s->up_active, s->up_pending, sizeof s->up_active);
+    memcpy(s->down_active, s->down_pending, sizeof s->down_active);
+    s->asym_active = s->asym_pending;
+    memcpy(s->trig_active_v, s->trig_pending_v, sizeof s->trig_active_v);
+    s->trig_active = s->trig_pending;
     if (s->en_pending && !s->en_active) {
         s->extinct = false;
     }

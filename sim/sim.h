@@ -20,7 +20,12 @@
  *  - sensing: phase currents u, v and the DC bus through 12-bit ADCs, sampled
  *    at the start of each PWM period (counter zero, zero vector on the low side),
  *    with optional Gaussian noise; compare values written during period k take
- *    effect at the start of period k + 1 (one period of computation delay).
+ *    effect at the start of period k + 1 (one period of computation delay);
+ *  - single-shunt sensing (optional): the DC-link current, the sum of the phase
+ *    currents of the poles that are high (through the switch or, in the dead time,
+ *    the diode), with a ringing after every pole transition, sampled by the ADC's
+ *    sample-and-hold at two counter values of the up-counting half that the drive
+ *    chose, with asymmetric compare values (an up- and a down-counting edge per phase).
  *
  * Requirements: REQ-SIM-001 .. REQ-SIM-006 (specs/requirements/sim.md), verified
  * against closed-form solutions by tests/test_sim_plant.c.
@@ -111,6 +116,28 @@ typedef struct {
                          then checked at the next sub-step) */
 } sim_load_t;
 
+/**
+ * Single-shunt sensing (REQ-SIM-007).  The DC-link current i_dc(t) = sum over the poles
+ * that are high of their phase current (a pole is high while its high-side switch is
+ * on, and in the dead time before a rising or after a falling gate edge while its
+ * current is negative: the high-side diode conducts).  Every pole transition within the
+ * period, at t_e with a step D of i_dc, adds the ringing
+ *     r(t) = ring_gain D exp(-3 (t - t_e) / t_ring) cos(2 pi f_ring (t - t_e))
+ * for t_e <= t < t_e + t_ring, and nothing after: a sample that overlaps [t_e, t_e +
+ * t_ring) is wrong, one after it is exact.  A sample is the mean of i_dc + r over the
+ * sample-and-hold aperture [t_j, t_j + t_sh] (16 points), the phase currents taken at
+ * t_j (the integration is split there), converted like a phase-current channel (2048 =
+ * 0 A, 2048 counts per full scale, the ADC offset error and the current noise of the
+ * configuration).
+ */
+typedef struct {
+    bool active;       /**< the two DC-link samples are taken (sim_set_triggers) */
+    double t_ring_s;   /**< length of the ringing after a pole transition, s (0: none) */
+    double ring_gain;  /**< its initial amplitude relative to the step of i_dc */
+    double f_ring_hz;  /**< its frequency, Hz */
+    double t_sh_s;     /**< the ADC's sample-and-hold aperture, s (0: a point sample) */
+} sim_shunt_cfg_t;
+
 /** Scenario settings of a plant instance. */
 typedef struct {
     sim_motor_t motor;        /**< the motor actually simulated (parameter errors are
@@ -125,6 +152,7 @@ typedef struct {
     double locked_speed_e;    /**< imposed electrical speed, rad/s (speed_locked) */
     sim_load_t load;
     int substeps;             /**< RK4 steps per PWM period (>= 1, e.g. 20) */
+    sim_shunt_cfg_t shunt;    /**< single-shunt sensing (inactive when all zero) */
 } sim_cfg_t;
 
 /** ADC samples of one PWM period. */
@@ -159,6 +187,9 @@ typedef struct {
     double vdc_gain;     /**< DC-bus channel: sensed = vdc_gain x true (1 = exact) */
     int stuck[3];        /**< iu, iv, vdc: the code returned, or -1 (not stuck) */
     unsigned open;       /**< open phases: bit 0 u, bit 1 v, bit 2 w (0 = none) */
+    bool shunt_open;     /**< single shunt: the amplifier's sense connection open, both
+                              samples read its zero (2048 plus the offsets below) */
+    double shunt_offset; /**< single shunt: offset added to both samples, counts */
 } sim_inj_t;
 
 /** Plant state (read the fields; change them only through the functions). */
@@ -171,6 +202,20 @@ typedef struct {
     double theta_m;    /**< mechanical angle, rad, in [0, 2 pi) */
     uint16_t cmp_active[3];   /**< compare values of the current period */
     uint16_t cmp_pending[3];  /**< written this period, active from the next */
+    bool asym_active;         /**< the period's compare values are asymmetric (up, down) */
+    bool asym_pending;
+    uint16_t up_active[3];    /**< asymmetric: up-counting-half compare values */
+    uint16_t down_active[3];  /**< asymmetric: down-counting-half compare values */
+    uint16_t up_pending[3];
+    uint16_t down_pending[3];
+    bool trig_active;         /**< single shunt: samples are taken this period */
+    bool trig_pending;
+    uint16_t trig_active_v[2];   /**< counter values of the up half of the two samples */
+    uint16_t trig_pending_v[2];
+    bool shunt_taken;         /**< the last period took the two samples below */
+    uint16_t shunt_code[2];   /**< DC-link ADC codes of the last period's two samples */
+    double shunt_true[2];     /**< i_dc at each sample's start without ringing or noise, A */
+    double shunt_iph[2][3];   /**< the phase currents u, v, w at each sample's start, A */
     double v_ab_avg[2];       /**< average alpha/beta phase voltage of the last period */
     double torque_avg;        /**< average electromagnetic torque of the last period */
     bool en_active;           /**< inverter switching in the current period */
@@ -196,6 +241,29 @@ void sim_sample(sim_t *s, sim_adc_t *adc);
 
 /** Write compare values (0..period); they take effect at the next period start. */
 void sim_set_compare(sim_t *s, const uint16_t cmp[3]);
+
+/**
+ * Write asymmetric compare values (each clamped to 0..period), effective at the next
+ * period start like sim_set_compare(), which makes them symmetric again: phase k's
+ * high side is on from counter value period - up[k] in the up-counting half (the first
+ * half of the period) to period - down[k] in the down-counting half, so its on-time is
+ * (up[k] + down[k]) / (2 period) of the period.
+ */
+void sim_set_compare2(sim_t *s, const uint16_t up[3], const uint16_t down[3]);
+
+/**
+ * Single shunt: the counter values of the up-counting half (each clamped to 0..period)
+ * at which the next period's two DC-link samples start, or none (on false).  Effective
+ * at the next period start; the samples are read after it with sim_sample_shunt().
+ */
+void sim_set_triggers(sim_t *s, const uint16_t trig[2], bool on);
+
+/**
+ * Single shunt: the two DC-link ADC codes the last sim_step_period() took.
+ * @return false (codes 2048) when that period took no samples (triggers off, or shunt
+ *         sensing inactive).
+ */
+bool sim_sample_shunt(const sim_t *s, uint16_t code[2]);
 
 /** Integrate one PWM period; then the pending compare values become active. */
 void sim_step_period(sim_t *s);

@@ -440,6 +440,247 @@ static void test_adc(void **state)
     }
 }
 
+/* ------------------------------------------------------------------ single shunt */
+
+/* The ADC code of a DC-link current, computed in the test (2048 = 0 A, 40 A full scale). */
+static uint16_t shunt_code_of(double i_a, double extra_counts)
+{
+    double c = floor(2048.0 + i_a * 2048.0 / 40.0 + extra_counts + 0.5);
+    c = (c < 0.0) ? 0.0 : ((c > 4095.0) ? 4095.0 : c);
+    return (uint16_t)c;
+}
+
+/* The DC-link current the test expects at counter value c of the up-counting half: the
+   phases whose high side is on (c >= period - up[k]), no dead time. */
+static double shunt_idc_ideal(uint16_t c, const uint16_t up[3], const double iph[3])
+{
+    double idc = 0.0;
+    int k;
+    for (k = 0; k < 3; k++) {
+        if ((unsigned)c >= 5000u - up[k]) {
+            idc += iph[k];
+        }
+    }
+    return idc;
+}
+
+/* A plant with single-shunt sensing, the asymmetric compare values and triggers set and
+   active from the second period; returns after the period that took the samples. */
+static void shunt_run(sim_t *s, sim_cfg_t *cfg, const uint16_t up[3], const uint16_t down[3],
+                      const uint16_t trig[2])
+{
+    cfg->shunt.active = true;
+    sim_init(s, cfg);
+    sim_set_state(s, 0.0, 0.0, -4.0, 8.0); /* i_u = -4 A, i_v = 8.93 A, i_w = -4.93 A */
+    sim_set_compare2(s, up, down);
+    sim_set_triggers(s, trig, true);
+    sim_step_period(s);
+    sim_step_period(s);
+}
+
+/* Single shunt: each sample is the sum of the currents of the phases that are high at
+   its instant, the period's volt-seconds are those of the symmetric compare values.
+   Methods: 1n the switching states computed in the test from the compare values, and the
+   period-average voltage against the symmetric PWM of the same on-times; 1b samples just
+   before and after a gate edge */
+static void test_shunt_samples(void **state)
+{
+    /* REQ-SIM-007 */
+    sim_cfg_t cfg;
+    sim_t s;
+    sim_t r;
+    const uint16_t up[3] = { 4000u, 2500u, 1000u };
+    const uint16_t down[3] = { 3000u, 2700u, 600u };
+    const uint16_t cmp[3] = { 3500u, 2600u, 800u };
+    const uint16_t trig[2] = { 1800u, 3200u };
+    const uint16_t edge[2] = { 2499u, 2500u };
+    uint16_t code[2];
+    int j;
+    (void)state;
+    base_cfg(&cfg, 30.0, 0.0, true, 0.0);
+    shunt_run(&s, &cfg, up, down, trig);
+    assert_true(sim_sample_shunt(&s, code));
+    for (j = 0; j < 2; j++) {
+        const double want = shunt_idc_ideal(trig[j], up, s.shunt_iph[j]);
+        assert_true(fabs(s.shunt_iph[j][0] + s.shunt_iph[j][1] + s.shunt_iph[j][2]) < 1e-9);
+        assert_int_equal(code[j], shunt_code_of(want, 0.0));
+        assert_true(fabs(s.shunt_true[j] - want) < 1e-12);
+    }
+    /* the first sample reads +i_u (u high alone), the second -i_w (u and v high) */
+    assert_true(fabs(s.shunt_true[0] - s.shunt_iph[0][0]) < 1e-12);
+    assert_true(fabs(s.shunt_true[1] + s.shunt_iph[1][2]) < 1e-12);
+    /* one tick either side of v's rising edge */
+    shunt_run(&s, &cfg, up, down, edge);
+    assert_true(fabs(s.shunt_true[0] - s.shunt_iph[0][0]) < 1e-12);
+    assert_true(fabs(s.shunt_true[1] - s.shunt_iph[1][0] - s.shunt_iph[1][1]) < 1e-12);
+    /* volt-seconds: the same state, one period asymmetric, one symmetric */
+    cfg.shunt.active = false;
+    sim_init(&s, &cfg);
+    sim_init(&r, &cfg);
+    sim_set_state(&s, 0.0, 0.0, -4.0, 8.0);
+    sim_set_state(&r, 0.0, 0.0, -4.0, 8.0);
+    sim_set_compare2(&s, up, down);
+    sim_set_compare(&r, cmp);
+    sim_step_period(&s);
+    sim_step_period(&r);
+    sim_step_period(&s);
+    sim_step_period(&r);
+    assert_true(s.asym_active || !s.asym_pending);
+    assert_true(fabs(s.v_ab_avg[0] - r.v_ab_avg[0]) < 1e-9);
+    assert_true(fabs(s.v_ab_avg[1] - r.v_ab_avg[1]) < 1e-9);
+    assert_true(fabs(s.v_ab_avg[0]) > 1.0);
+    /* back to symmetric compare values: the period is the uniform one again */
+    sim_set_compare(&s, cmp);
+    sim_step_period(&s);
+    assert_false(s.asym_active);
+    assert_false(sim_sample_shunt(&s, code));
+    assert_int_equal(code[0], 2048);
+    assert_int_equal(code[1], 2048);
+}
+
+/* Single shunt: the dead time, the ringing after a pole transition and the sample-and-hold
+   aperture.
+   Methods: 1n the pole states with the dead time, the ringing formula and the aperture's
+   mean computed in the test; 1b samples inside and just after the dead time, inside and
+   after the ringing, an aperture across an edge */
+static void test_shunt_ringing(void **state)
+{
+    /* REQ-SIM-007 */
+    sim_cfg_t cfg;
+    sim_t s;
+    const uint16_t up[3] = { 4000u, 2500u, 1000u };
+    const uint16_t down[3] = { 3000u, 2700u, 600u };
+    const uint16_t in_dt[2] = { 2540u, 2600u };
+    const uint16_t ring[2] = { 2520u, 2590u };
+    const uint16_t across[2] = { 1800u, 2480u };
+    uint16_t code[2];
+    double iu;
+    double iv;
+    double x;
+    double want;
+    int m;
+    (void)state;
+    /* dead time 1 us = 80 ticks: v (8.9 A > 0) goes high 80 ticks after its gate edge */
+    base_cfg(&cfg, 30.0, 1.0e-6, true, 0.0);
+    shunt_run(&s, &cfg, up, down, in_dt);
+    assert_true(s.shunt_iph[0][1] > 0.0 && s.shunt_iph[0][0] < 0.0);
+    assert_true(fabs(s.shunt_true[0] - s.shunt_iph[0][0]) < 1e-12);
+    assert_true(fabs(s.shunt_true[1] - s.shunt_iph[1][0] - s.shunt_iph[1][1]) < 1e-12);
+    /* ringing 1 us at 2 MHz, half the step: the first sample 0.25 us after v's transition
+       (cos = -1), the second 1.125 us after it (settled) */
+    base_cfg(&cfg, 30.0, 0.0, true, 0.0);
+    cfg.shunt.t_ring_s = 1.0e-6;
+    cfg.shunt.ring_gain = 0.5;
+    cfg.shunt.f_ring_hz = 2.0e6;
+    shunt_run(&s, &cfg, up, down, ring);
+    assert_true(sim_sample_shunt(&s, code));
+    iu = s.shunt_iph[0][0];
+    iv = s.shunt_iph[0][1];
+    want = iu + iv - 0.5 * iv * exp(-0.75);
+    assert_int_equal(code[0], shunt_code_of(want, 0.0));
+    assert_true(fabs(((double)code[0] - 2048.0) / 51.2 - (iu + iv)) > 0.15 * fabs(iv));
+    assert_int_equal(code[1], shunt_code_of(s.shunt_iph[1][0] + s.shunt_iph[1][1], 0.0));
+    /* aperture 0.5 us = 40 ticks across v's edge at 2500: half +i_u, half i_u + i_v */
+    cfg.shunt.t_ring_s = 0.0;
+    cfg.shunt.t_sh_s = 0.5e-6;
+    shunt_run(&s, &cfg, up, down, across);
+    assert_true(sim_sample_shunt(&s, code));
+    assert_int_equal(code[0], shunt_code_of(s.shunt_iph[0][0], 0.0));
+    x = 0.0;
+    for (m = 0; m < 16; m++) {
+        const double c = 2480.0 + ((double)m + 0.5) / 16.0 * 40.0;
+        x += s.shunt_iph[1][0] + ((c >= 2500.0) ? s.shunt_iph[1][1] : 0.0);
+    }
+    assert_int_equal(code[1], shunt_code_of(x / 16.0, 0.0));
+}
+
+/* Single shunt: the sense faults, the ADC offset and noise, the inverter off.
+   Methods: 1l an offset and an open sense connection injected; 1n the codes computed in
+   the test; 1b switches off (the diodes of the negative currents conduct) */
+static void test_shunt_faults(void **state)
+{
+    /* REQ-SIM-007 */
+    sim_cfg_t cfg;
+    sim_t s;
+    const uint16_t up[3] = { 4000u, 2500u, 1000u };
+    const uint16_t down[3] = { 3000u, 2700u, 600u };
+    const uint16_t trig[2] = { 1800u, 3200u };
+    uint16_t code[2];
+    uint16_t ok[2];
+    double sum = 0.0;
+    double sum2 = 0.0;
+    int k;
+    (void)state;
+    base_cfg(&cfg, 30.0, 0.0, true, 0.0);
+    cfg.adc_offset_counts = 5.0;
+    shunt_run(&s, &cfg, up, down, trig);
+    assert_true(sim_sample_shunt(&s, ok));
+    assert_int_equal(ok[0], shunt_code_of(s.shunt_true[0], 5.0));
+    assert_int_equal(ok[1], shunt_code_of(s.shunt_true[1], 5.0));
+    /* an offset of 30 counts on the shunt channel */
+    cfg.shunt.active = true;
+    sim_init(&s, &cfg);
+    s.inj.shunt_offset = 30.0;
+    sim_set_state(&s, 0.0, 0.0, -4.0, 8.0);
+    sim_set_compare2(&s, up, down);
+    sim_set_triggers(&s, trig, true);
+    sim_step_period(&s);
+    sim_step_period(&s);
+    assert_true(sim_sample_shunt(&s, code));
+    assert_int_equal(code[0], shunt_code_of(s.shunt_true[0], 35.0));
+    assert_int_equal(code[1], shunt_code_of(s.shunt_true[1], 35.0));
+    /* the sense connection open: the amplifier's zero */
+    s.inj.shunt_open = true;
+    sim_step_period(&s);
+    assert_true(sim_sample_shunt(&s, code));
+    assert_int_equal(code[0], 2048 + 35);
+    assert_int_equal(code[1], 2048 + 35);
+    /* the inverter off: only the negative currents (u and w) flow through the DC link */
+    s.inj.shunt_open = false;
+    sim_set_enable(&s, false);
+    sim_step_period(&s);
+    sim_step_period(&s);
+    assert_true(sim_sample_shunt(&s, code));
+    assert_false(s.extinct);
+    {
+        double neg = 0.0;
+        for (k = 0; k < 3; k++) {
+            neg += (s.shunt_iph[0][k] < 0.0) ? s.shunt_iph[0][k] : 0.0;
+        }
+        assert_true(neg < -1.0);
+        assert_int_equal(code[0], shunt_code_of(neg, 35.0));
+    }
+    /* triggers off: no samples */
+    sim_set_triggers(&s, trig, false);
+    sim_step_period(&s);
+    assert_true(sim_sample_shunt(&s, code)); /* set for the next period */
+    sim_step_period(&s);
+    assert_false(sim_sample_shunt(&s, code));
+    /* noise: 0.5 A rms on the samples as on the phase channels */
+    base_cfg(&cfg, 30.0, 0.0, true, 0.0);
+    cfg.noise_i_rms_a = 0.5;
+    cfg.seed = 11u;
+    cfg.shunt.active = true;
+    sim_init(&s, &cfg);
+    sim_set_compare2(&s, up, down);
+    sim_set_triggers(&s, trig, true);
+    sim_step_period(&s);
+    for (k = 0; k < 4000; k++) {
+        double e;
+        sim_step_period(&s);
+        (void)sim_sample_shunt(&s, code);
+        e = ((double)code[0] - 2048.0) / 51.2 - s.shunt_true[0];
+        sum += e;
+        sum2 += e * e;
+    }
+    {
+        const double mean = sum / 4000.0;
+        const double rms = sqrt(sum2 / 4000.0 - mean * mean);
+        assert_true(fabs(mean) < 0.05);
+        assert_true(fabs(rms - 0.5) < 0.04);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -452,6 +693,9 @@ int main(void)
         cmocka_unit_test(test_breakaway),
         cmocka_unit_test(test_load_profile),
         cmocka_unit_test(test_adc),
+        cmocka_unit_test(test_shunt_samples),
+        cmocka_unit_test(test_shunt_ringing),
+        cmocka_unit_test(test_shunt_faults),
     };
     return cmocka_run_group_tests_name("sim_plant", tests, setup, NULL);
 }
