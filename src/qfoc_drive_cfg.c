@@ -96,6 +96,17 @@ static bool qfoc_drive_cfg_derate_ok(const qfoc_drive_cfg_t *c)
     return window && model;
 }
 
+/* the current sensing mode, the single shunt's sample-and-hold and hold (REQ-DCFG-006) */
+/*@ requires valid_c: \valid_read(c);
+    assigns \nothing;
+    ensures result: \result <==> DriveCfgSenseOk(c); */
+static bool qfoc_drive_cfg_sense_ok(const qfoc_drive_cfg_t *c)
+{
+    const bool mode = (c->sensing == QFOC_SENSING_PHASES) || (c->sensing == QFOC_SENSING_SHUNT);
+    return mode && (c->shunt_sample >= 1u) && (c->shunt_hold >= 1u)
+           && (c->shunt_hold <= QFOC_DRIVE_SHUNT_HOLD_MAX);
+}
+
 /* public interface; qfoc_params_is_valid() (params.h) calls it for the table's drive field */
 bool qfoc_drive_cfg_is_valid(const qfoc_drive_cfg_t *c)
 {
@@ -104,5 +115,6 @@ bool qfoc_drive_cfg_is_valid(const qfoc_drive_cfg_t *c)
     const bool prot = qfoc_drive_cfg_prot_ok(c);
     const bool feat = qfoc_drive_cfg_feat_ok(c);
     const bool derate = qfoc_drive_cfg_derate_ok(c);
-    return speed && start && prot && feat && derate;
+    const bool sense = qfoc_drive_cfg_sense_ok(c);
+    return speed && start && prot && feat && derate && sense;
 }

@@ -221,7 +221,8 @@ static uint32_t qfoc_crc_drive_feat(uint32_t crc, const qfoc_drive_cfg_t *d)
     return qfoc_crc_2x16(c, d->can_id_a, d->can_id_b);
 }
 
-/* drive configuration, versions 3 and 4: mtpa_speed .. flux_r_err, psi_shift, ho_retries */
+/* drive configuration, versions 3 to 5: mtpa_speed .. flux_r_err, psi_shift, ho_retries,
+   sensing .. shunt_hold */
 /*@ requires valid_d: \valid_read(d);
     assigns \nothing; */
 static uint32_t qfoc_crc_drive_v3(uint32_t crc, const qfoc_drive_cfg_t *d)
@@ -231,7 +232,10 @@ static uint32_t qfoc_crc_drive_v3(uint32_t crc, const qfoc_drive_cfg_t *d)
     c = qfoc_crc_2x16(c, qfoc_bits16(d->flux_band), qfoc_bits16(d->flux_v_err));
     c = qfoc_crc_u16(c, qfoc_bits16(d->flux_r_err));
     c = qfoc_crc_u8(c, d->psi_shift);
-    return qfoc_crc_u8(c, d->ho_retries);
+    c = qfoc_crc_u8(c, d->ho_retries);
+    c = qfoc_crc_u8(c, d->sensing);
+    c = qfoc_crc_2x16(c, d->shunt_settle, d->shunt_sample);
+    return qfoc_crc_u16(c, d->shunt_hold);
 }
 
 /* public interface, also called by qfoc_params_check (DEV-002) */
@@ -303,7 +307,8 @@ static bool qfoc_params_limits_ok(const qfoc_param_table_t *t)
 /* the drive configuration within the table's limits: currents within i_max, speeds
    within speed_max; the largest target rpm_max converted to Q15 with k_rpm (Q12,
    rounded): at most (65535 x 65535 + 2048) / 4096 = 1048543, the sum below
-   4294838273 < 2^32 */
+   4294838273 < 2^32; the single shunt's window (settle + sample, at most 131070) within
+   a quarter of the PWM period: 4 x 131070 = 524280 */
 /*@ requires valid_t: \valid_read(t);
     assigns \nothing;
     ensures result: \result <==> ParamsDriveCrossOk(t); */
@@ -313,13 +318,15 @@ static bool qfoc_params_drive_cross_ok(const qfoc_param_table_t *t)
     const uint32_t k_rpm = (uint32_t)t->drive.k_rpm;
     uint32_t prod;
     uint32_t top;
+    const uint32_t window = (uint32_t)t->drive.shunt_settle + (uint32_t)t->drive.shunt_sample;
 
     /*@ assert prod_bound: rpm_max * k_rpm <= 65535 * 65535; */
     prod = rpm_max * k_rpm;
     top = (prod + 2048u) / 4096u;   /* (x + 2048) >> 12 of x >= 0: at most 1048543 */
     return (t->drive.i_align <= t->i_max) && (t->drive.i_start <= t->i_max)
            && (t->drive.tc_amp_max <= t->i_max) && (t->drive.of_speed <= t->speed_max)
-           && ((int32_t)top <= (int32_t)t->speed_max);
+           && ((int32_t)top <= (int32_t)t->speed_max)
+           && ((4u * window) <= (uint32_t)t->svpwm.period);
 }
 
 /* public interface, also called by qfoc_params_check (DEV-002) */

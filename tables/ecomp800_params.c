@@ -10,7 +10,7 @@
 
 const qfoc_param_table_t qfoc_params_ecomp800 = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 4u, /* QFOC_PARAMS_VERSION */
+    .version = 5u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 16000u, /* f_pwm = 16000 Hz, T_s = 62.5 us */
     .v_base_mv = 1100000u, /* V_base = 1100 V */
     .i_base_ma = 80000u, /* I_base = 80 A */
@@ -137,7 +137,11 @@ const qfoc_param_table_t qfoc_params_ecomp800 = {
         .flux_v_err = 819, /* 0.0250018 = 27.502 V / V_base 1100 V (drive.flux_v_err_v, default); stored 0.0249939, error -0.03 % */
         .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
         .psi_shift = 1u, /* flux base psi_base = 2^1 V_base / w_base = 0.466854 Wb, L_base = psi_base / I_base = 5.83568 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.258 Wb = 0.5526 pu) */
-        .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
+        .ho_retries = 2u, /* 2 start retries (drive.ho_retries, default) */
+        .sensing = 0u, /* phases (sensing.mode, default): QFOC_SENSING_PHASES */
+        .shunt_settle = 200u, /* 2500 ns x f_timer 8e+07 Hz / 1e9, rounded up: 200 ticks (sensing.shunt_settle_ns, default) */
+        .shunt_sample = 40u, /* 500 ns x f_timer 8e+07 Hz / 1e9, rounded up: 40 ticks (sensing.shunt_sample_ns, default) */
+        .shunt_hold = 4u /* 4 periods (sensing.shunt_hold, default) */
     },
-    .crc = 0x86F1C21Fu /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x87514421u /* CRC-32/ISO-HDLC of every field above */
 };

@@ -10,7 +10,7 @@
 
 #include "qfoc/params.h"
 
-/** Parameter table of 800 V e-compressor IPM, 12 kW (assumed) (CRC 0x86F1C21F). */
+/** Parameter table of 800 V e-compressor IPM, 12 kW (assumed) (CRC 0x87514421). */
 extern const qfoc_param_table_t qfoc_params_ecomp800;
 
 #endif /* QFOC_PARAMS_ECOMP800_H */

@@ -10,7 +10,7 @@
 
 const qfoc_param_table_t qfoc_params_lowflux = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 4u, /* QFOC_PARAMS_VERSION */
+    .version = 5u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 10000u, /* f_pwm = 10000 Hz, T_s = 100 us */
     .v_base_mv = 500000u, /* V_base = 500 V */
     .i_base_ma = 25000u, /* I_base = 25 A */
@@ -137,7 +137,11 @@ const qfoc_param_table_t qfoc_params_lowflux = {
         .flux_v_err = 701, /* 0.0213904 = 10.6952 V / V_base 500 V (drive.flux_v_err_v, default); stored 0.0213928, error +0.01 % */
         .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
         .psi_shift = 0u, /* flux base psi_base = 2^0 V_base / w_base = 0.132629 Wb, L_base = psi_base / I_base = 5.30516 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.063 Wb = 0.475 pu) */
-        .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
+        .ho_retries = 2u, /* 2 start retries (drive.ho_retries, default) */
+        .sensing = 0u, /* phases (sensing.mode, default): QFOC_SENSING_PHASES */
+        .shunt_settle = 240u, /* 3000 ns x f_timer 8e+07 Hz / 1e9, rounded up: 240 ticks (sensing.shunt_settle_ns, default) */
+        .shunt_sample = 40u, /* 500 ns x f_timer 8e+07 Hz / 1e9, rounded up: 40 ticks (sensing.shunt_sample_ns, default) */
+        .shunt_hold = 4u /* 4 periods (sensing.shunt_hold, default) */
     },
-    .crc = 0x4567D20Bu /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0xC581E8FFu /* CRC-32/ISO-HDLC of every field above */
 };

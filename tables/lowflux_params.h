@@ -10,7 +10,7 @@
 
 #include "qfoc/params.h"
 
-/** Parameter table of low-flux 8-pole compressor IPM (assumed) (CRC 0x4567D20B). */
+/** Parameter table of low-flux 8-pole compressor IPM (assumed) (CRC 0xC581E8FF). */
 extern const qfoc_param_table_t qfoc_params_lowflux;
 
 #endif /* QFOC_PARAMS_LOWFLUX_H */

@@ -11,7 +11,7 @@
 
 const qfoc_param_table_t qfoc_params_reference16k = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 4u, /* QFOC_PARAMS_VERSION */
+    .version = 5u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 16000u, /* f_pwm = 16000 Hz, T_s = 62.5 us */
     .v_base_mv = 500000u, /* V_base = 500 V */
     .i_base_ma = 40000u, /* I_base = 40 A */
@@ -138,7 +138,11 @@ const qfoc_param_table_t qfoc_params_reference16k = {
         .flux_v_err = 561, /* 0.0171123 = 8.55617 V / V_base 500 V (drive.flux_v_err_v, default); stored 0.0171204, error +0.05 % */
         .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
         .psi_shift = 0u, /* flux base psi_base = 2^0 V_base / w_base = 0.159155 Wb, L_base = psi_base / I_base = 3.97887 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.097 Wb = 0.6095 pu) */
-        .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
+        .ho_retries = 2u, /* 2 start retries (drive.ho_retries, default) */
+        .sensing = 0u, /* phases (sensing.mode, default): QFOC_SENSING_PHASES */
+        .shunt_settle = 160u, /* 2000 ns x f_timer 8e+07 Hz / 1e9, rounded up: 160 ticks (sensing.shunt_settle_ns, default) */
+        .shunt_sample = 40u, /* 500 ns x f_timer 8e+07 Hz / 1e9, rounded up: 40 ticks (sensing.shunt_sample_ns, default) */
+        .shunt_hold = 4u /* 4 periods (sensing.shunt_hold, default) */
     },
-    .crc = 0xD66874BBu /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x0B9A84C0u /* CRC-32/ISO-HDLC of every field above */
 };

@@ -11,7 +11,7 @@
 
 #include "qfoc/params.h"
 
-/** Parameter table of qfoc reference compressor IPM (CRC 0xD66874BB). */
+/** Parameter table of qfoc reference compressor IPM (CRC 0x0B9A84C0). */
 extern const qfoc_param_table_t qfoc_params_reference16k;
 
 #endif /* QFOC_PARAMS_REFERENCE16K_H */

@@ -10,7 +10,7 @@
 
 #include "qfoc/params.h"
 
-/** Parameter table of qfoc reference compressor IPM (CRC 0x7354E38F). */
+/** Parameter table of qfoc reference compressor IPM (CRC 0x49B19FCA). */
 extern const qfoc_param_table_t qfoc_params_reference;
 
 #endif /* QFOC_PARAMS_REFERENCE_H */

@@ -10,7 +10,7 @@
 
 const qfoc_param_table_t qfoc_params_traction350 = {
     .magic = 0x434F4651u, /* QFOC_PARAMS_MAGIC, ASCII "QFOC" little-endian */
-    .version = 4u, /* QFOC_PARAMS_VERSION */
+    .version = 5u, /* QFOC_PARAMS_VERSION */
     .f_pwm_hz = 16000u, /* f_pwm = 16000 Hz, T_s = 62.5 us */
     .v_base_mv = 1000000u, /* V_base = 1000 V */
     .i_base_ma = 600000u, /* I_base = 600 A */
@@ -137,7 +137,11 @@ const qfoc_param_table_t qfoc_params_traction350 = {
         .flux_v_err = 501, /* 0.0152789 = 15.2789 V / V_base 1000 V (drive.flux_v_err_v, default); stored 0.0152893, error +0.07 % */
         .flux_r_err = 9830, /* 0.3 = 0.3 of R (drive.flux_r_err, default); stored 0.299988, error -0.00 % */
         .psi_shift = 3u, /* flux base psi_base = 2^3 V_base / w_base = 1.27324 Wb, L_base = psi_base / I_base = 2.12207 mH (derived: the smallest shift 0 .. 4 that holds every flux-unit bound: active flux 0.735 Wb = 0.5773 pu) */
-        .ho_retries = 2u /* 2 start retries (drive.ho_retries, default) */
+        .ho_retries = 2u, /* 2 start retries (drive.ho_retries, default) */
+        .sensing = 0u, /* phases (sensing.mode, default): QFOC_SENSING_PHASES */
+        .shunt_settle = 160u, /* 2000 ns x f_timer 8e+07 Hz / 1e9, rounded up: 160 ticks (sensing.shunt_settle_ns, default) */
+        .shunt_sample = 40u, /* 500 ns x f_timer 8e+07 Hz / 1e9, rounded up: 40 ticks (sensing.shunt_sample_ns, default) */
+        .shunt_hold = 4u /* 4 periods (sensing.shunt_hold, default) */
     },
-    .crc = 0xDD04153Au /* CRC-32/ISO-HDLC of every field above */
+    .crc = 0x6D90A434u /* CRC-32/ISO-HDLC of every field above */
 };

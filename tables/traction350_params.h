@@ -10,7 +10,7 @@
 
 #include "qfoc/params.h"
 
-/** Parameter table of 350 kW PM-assisted SynRel traction machine (Zou 2023) (CRC 0xDD04153A). */
+/** Parameter table of 350 kW PM-assisted SynRel traction machine (Zou 2023) (CRC 0x6D90A434). */
 extern const qfoc_param_table_t qfoc_params_traction350;
 
 #endif /* QFOC_PARAMS_TRACTION350_H */

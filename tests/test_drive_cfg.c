@@ -88,6 +88,10 @@ static const fdesc_t fields[] = {
     FD(flux_r_err, T_I16, 0, 32767),
     FD(psi_shift, T_U8, 0, 4),
     FD(ho_retries, T_U8, 0, 3),
+    FD(sensing, T_U8, 0, 1),
+    FD(shunt_settle, T_U16, 0, 65535),   /* its fit in the period is a table check */
+    FD(shunt_sample, T_U16, 1, 65535),
+    FD(shunt_hold, T_U16, 1, 16),
 };
 #define NFIELDS (sizeof fields / sizeof fields[0])
 
@@ -209,6 +213,10 @@ static void base_cfg(qfoc_drive_cfg_t *c)
     c->flux_band = 9830;
     c->flux_v_err = 394;
     c->flux_r_err = 9830;
+    c->sensing = QFOC_SENSING_SHUNT;
+    c->shunt_settle = 160u;
+    c->shunt_sample = 40u;
+    c->shunt_hold = 4u;
 }
 
 /* the partner fields set so that field f's own bound is the only one that matters */
@@ -256,9 +264,9 @@ static void check_value(const fdesc_t *f, int32_t v, bool expect)
     assert_int_equal(ref_valid(&c), expect);
 }
 
-/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005: the base configuration is
-   valid.
-   Methods: 1a the base configuration valid by the rules of REQ-DCFG-001 .. REQ-DCFG-005; 1n
+/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005, REQ-DCFG-006: the base
+   configuration is valid.
+   Methods: 1a the base configuration valid by the rules of REQ-DCFG-001 .. REQ-DCFG-006; 1n
    the reference check written in the test */
 static void test_dcfg_base_valid(void **state)
 {
@@ -269,8 +277,8 @@ static void test_dcfg_base_valid(void **state)
     assert_true(ref_valid(&c));
 }
 
-/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005: every field: its lowest and
-   highest value accepted, one below the lowest and one above the highest refused (where
+/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005, REQ-DCFG-006: every field:
+   its lowest and highest value accepted, one below the lowest and one above the highest refused (where
    the type holds them), and the type's extremes refused when outside the range.
    Methods: 1c every field at its lowest and highest value, one below and one above, and the
    extremes of its C type where they lie outside the range */
@@ -364,8 +372,8 @@ static void test_dcfg_relations(void **state)
     assert_false(qfoc_drive_cfg_is_valid(&c));
 }
 
-/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005: random configurations against
-   the reference check: each field inside its range with probability 0.98, else any bit
+/* REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005, REQ-DCFG-006: random
+   configurations against the reference check: each field inside its range with probability 0.98, else any bit
    pattern (about half of the configurations are valid), and wholly random bit patterns.
    Methods: 1b 200000 random configurations, each field inside its range with probability
    0.98 (about half of them valid), every tenth a random bit pattern; 1d configurations with

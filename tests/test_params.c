@@ -131,6 +131,10 @@ static void put_drive(ser_t *s, const qfoc_drive_cfg_t *d)
     put(s, (uint16_t)d->flux_r_err, 2);
     put(s, d->psi_shift, 1);
     put(s, d->ho_retries, 1);
+    put(s, d->sensing, 1);
+    put(s, d->shunt_settle, 2);
+    put(s, d->shunt_sample, 2);
+    put(s, d->shunt_hold, 2);
 }
 
 /* params.h: every field before crc, declaration order, little-endian, own width */
@@ -173,7 +177,7 @@ static uint32_t table_crc_ref(const qfoc_param_table_t *t)
     put(&s, (uint16_t)t->vdc_ov, 2);
     put(&s, (uint16_t)t->v_max, 2);
     put_drive(&s, &t->drive);
-    assert_int_equal(s.n, 215u);   /* params.h: 115 bytes up to v_max, 100 of drive */
+    assert_int_equal(s.n, 222u);   /* params.h: 115 bytes up to v_max, 107 of drive */
     return crc_ref(s.b, s.n);
 }
 
@@ -288,6 +292,7 @@ static const tfield_t tfields[] = {
     TF(drive.lin_id_cmd), TF(drive.lin_id_status), TF(drive.can_id_a), TF(drive.can_id_b),
     TF(drive.mtpa_speed), TF(drive.t_ipm_derate), TF(drive.t_pcb_derate), TF(drive.rpm_derate),
     TF(drive.flux_band), TF(drive.flux_v_err), TF(drive.flux_r_err), TF(drive.psi_shift), TF(drive.ho_retries),
+    TF(drive.sensing), TF(drive.shunt_settle), TF(drive.shunt_sample), TF(drive.shunt_hold),
     TF(crc),
 };
 #define NTFIELDS (sizeof tfields / sizeof tfields[0])
@@ -330,7 +335,7 @@ static void test_par_002_bit_flips_refused(void **state)
             flips++;
         }
     }
-    assert_int_equal(bytes, 215u);   /* the list covers the whole serialisation */
+    assert_int_equal(bytes, 222u);   /* the list covers the whole serialisation */
     print_message("params: %u single-bit flips over %u fields refused\n", (unsigned)flips,
                   (unsigned)NTFIELDS);
 }
@@ -492,8 +497,9 @@ static int64_t rpm_to_q15(uint32_t rpm, uint32_t k_rpm)
    correct CRC), also with the limit itself moved.
    Methods: 1b 20000 random (rpm_max, k_rpm, speed_max) triples; 1c each cross-field
    condition at its limit and one past it, also with the limit moved, the largest product
-   65535 x 65535, the rpm whose speed converts to exactly speed_max; 1n the 64-bit conversion
-   of the rpm in the test */
+   65535 x 65535, the rpm whose speed converts to exactly speed_max, the single shunt's
+   window at a quarter of the period and one tick past it in both modes; 1n the 64-bit
+   conversion of the rpm in the test */
 static void test_par_007_cross_field(void **state)
 {
     qfoc_param_table_t t;
@@ -526,6 +532,21 @@ static void test_par_007_cross_field(void **state)
     EXPECT_RANGE((t.speed_max = 1, t.drive.of_speed = 1, t.drive.rpm_min = 1u,
                   t.drive.rpm_max = 1u, t.drive.rpm_derate = 1u, t.drive.k_rpm = 6144u),
                  false);  /* = 2 */
+    /* the single shunt's window: 4 (settle + sample) <= period, in both modes; the
+       largest settle and sample (65535 each: 4 x 131070 in 32 bits) */
+    EXPECT_RANGE((t.svpwm.period = 4000u, t.drive.shunt_settle = 900u,
+                  t.drive.shunt_sample = 100u), true);
+    EXPECT_RANGE((t.svpwm.period = 4000u, t.drive.shunt_settle = 900u,
+                  t.drive.shunt_sample = 101u), false);
+    EXPECT_RANGE((t.svpwm.period = 4000u, t.drive.shunt_settle = 900u,
+                  t.drive.shunt_sample = 101u, t.drive.sensing = QFOC_SENSING_SHUNT), false);
+    EXPECT_RANGE((t.svpwm.period = 4000u, t.drive.shunt_settle = 900u,
+                  t.drive.shunt_sample = 100u, t.drive.sensing = QFOC_SENSING_SHUNT), true);
+    EXPECT_RANGE((t.drive.shunt_settle = 65535u, t.drive.shunt_sample = 65535u), false);
+    EXPECT_RANGE((t.svpwm.period = 32767u, t.drive.shunt_settle = 0u,
+                  t.drive.shunt_sample = 8191u), true);
+    EXPECT_RANGE((t.svpwm.period = 32767u, t.drive.shunt_settle = 1u,
+                  t.drive.shunt_sample = 8191u), false);
     /* REQ-PAR-003: an over-voltage threshold the bus reading can reach (at most 4095 codes
        x 8 = 32760), and one it cannot (OV disabled) */
     EXPECT_RANGE(t.vdc_ov = (int16_t)(QFOC_PARAMS_VDC_READ_MAX - 1), true);
@@ -669,7 +690,11 @@ static void test_par_001_identity(void **state)
     t.version = 3u;   /* the layout before drive.psi_shift */
     reseal(&t);
     assert_int_equal(qfoc_params_check(&t), QFOC_PARAMS_ERR_ID);
-    assert_int_equal(QFOC_PARAMS_VERSION, 4u);
+    t = qfoc_params_reference;
+    t.version = 4u;   /* the layout before drive.sensing */
+    reseal(&t);
+    assert_int_equal(qfoc_params_check(&t), QFOC_PARAMS_ERR_ID);
+    assert_int_equal(QFOC_PARAMS_VERSION, 5u);
 }
 
 /* REQ-PAR-004, REQ-TUNE-003: the generated reference table carries the estimator

@@ -55,6 +55,12 @@ extern "C" {
 #define QFOC_DRIVE_PSI_SHIFT_MAX ((uint8_t)4u)
 /** Largest number of start retries after an open loop without a handover. */
 #define QFOC_DRIVE_HO_RETRIES_MAX ((uint8_t)3u)
+/** Current sensing (version 5): two phase-current sensors, qfoc_drive_fast_step() */
+#define QFOC_SENSING_PHASES ((uint8_t)0u)
+/** Current sensing (version 5): one DC-link shunt, qfoc_drive_shunt_fast_step() (shunt.h) */
+#define QFOC_SENSING_SHUNT ((uint8_t)1u)
+/** Largest shunt_hold: periods the last reconstructed currents may stand in */
+#define QFOC_DRIVE_SHUNT_HOLD_MAX ((uint16_t)16u)
 
 /** The drive configuration (params.h field `drive`). */
 typedef struct {
@@ -197,6 +203,20 @@ typedef struct {
         current raised by a quarter of i_start per retry (at most i_max), this many times
         before STALL (sm.h, REQ-SM-011), 0 .. QFOC_DRIVE_HO_RETRIES_MAX. */
     uint8_t ho_retries;
+    /** Current sensing (version 5): QFOC_SENSING_PHASES (two phase-current sensors) or
+        QFOC_SENSING_SHUNT (one shunt in the DC link, two samples per period inside the
+        active vectors, specs/equations.md section 13). */
+    uint8_t sensing;
+    /** Single shunt: PWM-timer ticks from a gate edge to a settled DC-link current (the
+        dead time plus the ringing), 0 .. ; with shunt_sample at most a quarter of the
+        PWM counter's period (4 (shunt_settle + shunt_sample) <= svpwm.period, checked in
+        both modes so that switching a table's mode keeps it valid). */
+    uint16_t shunt_settle;
+    /** Single shunt: ticks of the ADC's sample-and-hold, >= 1. */
+    uint16_t shunt_sample;
+    /** Single shunt: periods the last reconstructed currents may stand in for a missed
+        measurement before the sensing is lost, 1 .. QFOC_DRIVE_SHUNT_HOLD_MAX. */
+    uint16_t shunt_hold;
 } qfoc_drive_cfg_t;
 
 #ifdef __FRAMAC__
@@ -224,14 +244,18 @@ typedef struct {
  *         derating and estimator group: mtpa_speed, flux_v_err, flux_r_err >= 0;
  *         flux_band >= 1; t_ipm_derate, t_pcb_derate in -400 .. 2000 and below t_ipm_max,
  *         t_pcb_max (a derating window ending above its trip is refused);
- *         rpm_min <= rpm_derate <= rpm_max.
+ *         rpm_min <= rpm_derate <= rpm_max;
+ *         sensing group: sensing QFOC_SENSING_PHASES or QFOC_SENSING_SHUNT;
+ *         shunt_sample >= 1; shunt_hold in 1 .. QFOC_DRIVE_SHUNT_HOLD_MAX (the window's
+ *         fit in the PWM period is a table check, params.h).
  *         A field of type qfoc_q15_t / int16_t "<= 32767" and uint16_t "<= 65535" bound
  *         only by the type is not compared.
  *
  * Scaling and overflow: comparisons of each field, widened to its own essential type;
  * no arithmetic.
  *
- * Requirements: REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005.
+ * Requirements: REQ-DCFG-001, REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005,
+ * REQ-DCFG-006.
  */
 /*@
   requires valid_c: \valid_read(c);

@@ -8,17 +8,19 @@
  * application checks it with qfoc_params_check() and copies it to RAM
  * (formerly ParaRam) only when it is intact and every field is in range.
  *
- * Layout (version QFOC_PARAMS_VERSION = 4): the fields below, in this order:
+ * Layout (version QFOC_PARAMS_VERSION = 5): the fields below, in this order:
  * identity (magic, version), the PWM frequency and the record of the bases, the
  * parameter blocks of the control modules (svpwm, four PI controllers, flux observer,
  * PLL), the motor data and limits (alpha_vdc .. v_max), the drive configuration
  * `drive` (drive_cfg.h: start-up sequence, protection, command link, features; new
  * in version 2; MTPA speed, derating and the flux check's error model appended in
  * version 3; the flux base drive.psi_shift and the start retries drive.ho_retries
- * appended in version 4), and the CRC last.
+ * appended in version 4; the current sensing mode and the single shunt's sampling,
+ * drive.sensing .. drive.shunt_hold, appended in version 5), and the CRC last.
  * Version 1 had no `drive` field, version 2 not the seven fields from drive.mtpa_speed
- * on and version 3 not drive.psi_shift and drive.ho_retries; a table of another version is refused as
- * foreign (QFOC_PARAMS_ERR_ID), never read with this layout.
+ * on, version 3 not drive.psi_shift and drive.ho_retries, version 4 not drive.sensing
+ * .. drive.shunt_hold; a table of another version is refused as foreign
+ * (QFOC_PARAMS_ERR_ID), never read with this layout.
  * Scalings are those of specs/scaling.md: voltages Q15 of V_base, currents Q15 of
  * I_base, speeds Q15 of w_base = 2 pi f_base (electrical), fluxes Q15 of
  * psi_base = 2^s V_base / w_base and inductances Q12 of L_base = psi_base / I_base,
@@ -30,9 +32,9 @@
  * field before `crc`, in declaration order, sub-structures field by field, each
  * integer little-endian in its own width (uint8_t 1 byte, int16_t / uint16_t 2
  * bytes, uint32_t 4 bytes).  The serialisation does not depend on the compiler's
- * structure padding, so the tool computes the same CRC in any language.  Version 4:
- * 115 bytes up to v_max, then the 53 fields of `drive` in their declaration order
- * (drive_cfg.h: 6 one-byte and 47 two-byte fields, 100 bytes): 215 bytes in all.
+ * structure padding, so the tool computes the same CRC in any language.  Version 5:
+ * 115 bytes up to v_max, then the 57 fields of `drive` in their declaration order
+ * (drive_cfg.h: 7 one-byte and 50 two-byte fields, 107 bytes): 222 bytes in all.
  *
  * Start-up (qfoc_params_load()): the table is checked in this order, and the
  * first failure is the status returned:
@@ -65,7 +67,7 @@ extern "C" {
 /** Table identifier: the ASCII bytes "QFOC" read as a little-endian uint32_t. */
 #define QFOC_PARAMS_MAGIC ((uint32_t)0x434F4651u)
 /** Layout version of qfoc_param_table_t. */
-#define QFOC_PARAMS_VERSION ((uint16_t)4u)
+#define QFOC_PARAMS_VERSION ((uint16_t)5u)
 
 /** qfoc_params_check() / qfoc_params_load(): the table is intact and in range. */
 #define QFOC_PARAMS_OK ((int32_t)0)

@@ -111,6 +111,10 @@ static void eva_drive_cfg(qfoc_drive_cfg_t *c)
     c->flux_r_err = eva_i16;
     c->psi_shift = eva_u8;
     c->ho_retries = eva_u8;
+    c->sensing = eva_u8;
+    c->shunt_settle = eva_u16;
+    c->shunt_sample = eva_u16;
+    c->shunt_hold = eva_u16;
 }
 
 /* the whole table, every field any value of its type */
@@ -319,6 +323,18 @@ static bool eva_cfg_derate_ok(const qfoc_drive_cfg_t *c)
 }
 
 /*@
+  requires valid_c: \valid_read(c);
+  assigns \nothing;
+  ensures ok: \result != 0 <==> DriveCfgSenseOk(c);
+*/
+static bool eva_cfg_sense_ok(const qfoc_drive_cfg_t *c)
+{
+    return ((c->sensing == QFOC_SENSING_PHASES) || (c->sensing == QFOC_SENSING_SHUNT))
+           && (c->shunt_sample >= 1u) && (c->shunt_hold >= 1u)
+           && (c->shunt_hold <= QFOC_DRIVE_SHUNT_HOLD_MAX);
+}
+
+/*@
   requires valid_t: \valid_read(t);
   assigns \nothing;
   ensures ok: \result != 0 <==> ParamsDriveCrossOk(t);
@@ -334,7 +350,9 @@ static bool eva_cross_ok(const qfoc_param_table_t *t)
     prod = rpm_max * k_rpm;
     return (c->i_align <= t->i_max) && (c->i_start <= t->i_max)
            && (c->tc_amp_max <= t->i_max) && (c->of_speed <= t->speed_max)
-           && ((int32_t)((prod + 2048u) / 4096u) <= (int32_t)t->speed_max);
+           && ((int32_t)((prod + 2048u) / 4096u) <= (int32_t)t->speed_max)
+           && ((4u * ((uint32_t)c->shunt_settle + (uint32_t)c->shunt_sample))
+               <= (uint32_t)t->svpwm.period);
 }
 
 /*@
@@ -350,7 +368,8 @@ static bool eva_table_ok(const qfoc_param_table_t *t)
            && eva_pi_ok(&t->pi_fw) && eva_flux_ok(&t->flux) && eva_pi_ok(&t->pll.pi)
            && eva_pll_ok(&t->pll) && eva_limits_ok(t) && eva_cfg_speed_ok(&t->drive)
            && eva_cfg_start_ok(&t->drive) && eva_cfg_prot_ok(&t->drive)
-           && eva_cfg_feat_ok(&t->drive) && eva_cfg_derate_ok(&t->drive) && eva_cross_ok(t);
+           && eva_cfg_feat_ok(&t->drive) && eva_cfg_derate_ok(&t->drive)
+           && eva_cfg_sense_ok(&t->drive) && eva_cross_ok(t);
 }
 
 int main(void)

@@ -80,9 +80,12 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 TOOL_PATH = "tools/tune/qfoc_tune.py"
 Q15_MAX = 32767
 PARAMS_MAGIC = 0x434F4651          # "QFOC" little-endian (params.h QFOC_PARAMS_MAGIC)
-PARAMS_VERSION = 4                 # params.h QFOC_PARAMS_VERSION (3: MTPA speed, derating,
+PARAMS_VERSION = 5                 # params.h QFOC_PARAMS_VERSION (3: MTPA speed, derating,
                                    # the flux check's error model; 4: the flux base
-                                   # drive.psi_shift)
+                                   # drive.psi_shift; 5: the current sensing mode and the
+                                   # single shunt's sampling)
+SENSING_MODES = {"phases": 0, "shunt": 1}  # drive_cfg.h QFOC_SENSING_PHASES, _SHUNT
+SHUNT_HOLD_MAX = 16                # drive_cfg.h QFOC_DRIVE_SHUNT_HOLD_MAX
 PSI_SHIFT_MAX = 4                  # drive_cfg.h QFOC_DRIVE_PSI_SHIFT_MAX: psi_base at most
                                    # 2^4 V_base / w_base
 FLUX_STATE_MAX_Q15 = 524287        # (2^31 - 1) / 4096: flux state Q4.27 range in Q15 counts
@@ -179,6 +182,11 @@ RULE_VDC_OPERATING = ("the DC-bus protection thresholds lie outside the operatin
                       "limits.vdc_uv_v <= inverter.vdc_min_v and limits.vdc_ov_v >= "
                       "inverter.vdc_max_v, else the drive trips in normal operation")
 RULE_CURRENT = "params.h: drive.i_align, i_start, tc_amp_max <= i_max"
+RULE_SHUNT = ("'shunt window': a single-shunt measurement window, sensing.shunt_settle_ns + "
+              "sensing.shunt_sample_ns in PWM-timer ticks (each rounded up: ceil(ns f_timer / "
+              "1e9)), fits four times in the PWM counter's period (params.h 4 (shunt_settle + "
+              "shunt_sample) <= svpwm.period, checked in both modes), and shunt_settle_ns is at "
+              "least inverter.dead_time_s (a sample in the dead time reads the wrong phase)")
 RULE_PSI = (f"the flux base psi_base = 2^s V_base / w_base (s = scaling.psi_shift, an integer "
             f"0 .. {PSI_SHIFT_MAX}, drive_cfg.h QFOC_DRIVE_PSI_SHIFT_MAX; L_base = psi_base / "
             "I_base) holds every flux and inductance of the table: the flux-estimate bounds "
@@ -247,6 +255,21 @@ SCHEMA: tuple = (
        f"the library reads {ADC_BITS}-bit codes (include/qfoc/drive.h, src/qfoc_drive.c "
        f"drv_adc12): only {ADC_BITS} is accepted; a wider converter's result is shifted to "
        f"{ADC_BITS} bits by the port"),
+    _k("sensing", "mode", "str", "", ANY, "phases",
+       "current sensing: \"phases\" (two phase-current sensors) or \"shunt\" (one shunt in "
+       "the DC link, two samples per period, specs/equations.md section 13)",
+       "drive.sensing; the drive's fast step for the mode (drive.h, drive_shunt.h)"),
+    _k("sensing", "shunt_settle_ns", "num", "ns", NONNEG,
+       "inverter.dead_time_s + 1000 ns (a ringing allowance)",
+       "single shunt: from a gate edge to a settled DC-link current (dead time plus ringing)",
+       "drive.shunt_settle in PWM-timer ticks, rounded up; rule 'shunt window'"),
+    _k("sensing", "shunt_sample_ns", "num", "ns", POS, 500.0,
+       "single shunt: the ADC's sample-and-hold time",
+       "drive.shunt_sample in PWM-timer ticks, rounded up; rule 'shunt window'"),
+    _k("sensing", "shunt_hold", "int", "periods", (1, SHUNT_HOLD_MAX, "[]"), 4,
+       "single shunt: periods the last reconstructed currents may stand in for a missed "
+       "measurement before the sensing is declared lost (the drive trips)",
+       "drive.shunt_hold"),
     # [scaling]
     _k("scaling", "f_base_hz", "num", "Hz", POS, REQUIRED, "electrical frequency of speed 1.0",
        "specs/scaling.md section 2 (f_base); rule 'f_base'"),
@@ -843,6 +866,16 @@ def resolve_defaults(cfg: dict) -> None:
     dr = cfg["drive"]
     cfg["defaulted"] |= {f"drive.{k}" for k, (dflt, _c, _s) in DRIVE_KEYS.items()
                          if dr[k] is None or dr[k] == dflt}
+    sen = cfg["sensing"]
+    if sen["shunt_settle_ns"] is None:
+        sen["shunt_settle_ns"] = inv["dead_time_s"] * 1e9 + 1000.0
+        cfg["defaulted"].add("sensing.shunt_settle_ns")
+    if sen["mode"] is None:
+        sen["mode"] = "phases"
+    cfg["defaulted"] |= {k.name for k in SCHEMA if k.section == "sensing" and k.key != "mode"
+                         and k.value_default is not None and sen[k.key] == k.value_default}
+    if sen["mode"] == "phases":
+        cfg["defaulted"].add("sensing.mode")
     t_sigma, t_ssigma = loop_lags(cfg)
     if d["speed_crossover_hz"] is None:
         d["speed_crossover_hz"] = min(d["speed_crossover_ratio"] / (2.0 * t_sigma),
@@ -907,6 +940,9 @@ def typed(cfg: dict, name: str) -> str:
     section, key = name.split(".")
     if cfg[section][key] is None:
         return f"{name} (not set: {k.default})"
+    if isinstance(cfg[section][key], str):
+        text = f"{name} = {cfg[section][key]!r}"
+        return text + (" (default)" if name in cfg["defaulted"] else "")
     text = f"{name} = {fmt(cfg[section][key])}{unit_text(k)}"
     if name in cfg["defaulted"]:
         text += " (default" + (f" {k.default}" if isinstance(k.default, str) else "") + ")"
@@ -948,6 +984,10 @@ FIELD_KEYS = {
     "drive.lq_hs": ("motor.lq_hs_h", "motor.lq_h", "scaling.f_base_hz", "scaling.psi_shift"),
     "drive.psi_shift": ("scaling.psi_shift", "motor.psi_f_wb", "sensing.vdc_full_scale_v",
                         "scaling.f_base_hz"),
+    "drive.sensing": ("sensing.mode",),
+    "drive.shunt_settle": ("sensing.shunt_settle_ns", "inverter.f_timer_hz"),
+    "drive.shunt_sample": ("sensing.shunt_sample_ns", "inverter.f_timer_hz"),
+    "drive.shunt_hold": ("sensing.shunt_hold",),
 }
 for _k_ in SCHEMA:
     if _k_.section == "drive" and _k_.key != "rpm_max":
@@ -1097,6 +1137,30 @@ def check_rules(cfg: dict) -> list[str]:
     if not dr["rpm_min"] <= dr["derate_rpm"] <= rpm_max:
         out.append(f"{typed(cfg, 'drive.derate_rpm')}: outside drive.rpm_min .. drive.rpm_max "
                    f"{fmt(dr['rpm_min'])} .. {fmt(rpm_max)} rpm (rule: {RULE_DERATE})")
+    out += shunt_rules(cfg)
+    return out
+
+
+def shunt_rules(cfg: dict) -> list[str]:
+    """[sensing]: the mode's name, and rule 'shunt window' (checked in both modes)."""
+    sen, inv = cfg["sensing"], cfg["inverter"]
+    out: list[str] = []
+    if sen["mode"] not in SENSING_MODES:
+        out.append(f"{typed(cfg, 'sensing.mode')}: not a sensing mode; use "
+                   + " or ".join(f'"{m}"' for m in SENSING_MODES)
+                   + suggest(str(sen["mode"]), SENSING_MODES))
+    period = int(round(inv["f_timer_hz"] / (2.0 * inv["f_pwm_hz"])))
+    settle = shunt_ticks(sen["shunt_settle_ns"], inv["f_timer_hz"])
+    sample = shunt_ticks(sen["shunt_sample_ns"], inv["f_timer_hz"])
+    if 4 * (settle + sample) > period:
+        out.append(f"{typed(cfg, 'sensing.shunt_settle_ns')} and "
+                   f"{typed(cfg, 'sensing.shunt_sample_ns')}: the window {settle} + {sample} "
+                   f"ticks does not fit four times in the PWM counter's period {period} ticks "
+                   f"(rule: {RULE_SHUNT})")
+    if sen["shunt_settle_ns"] < inv["dead_time_s"] * 1e9 * (1.0 - 1e-12):
+        out.append(f"{typed(cfg, 'sensing.shunt_settle_ns')} is below "
+                   f"{typed(cfg, 'inverter.dead_time_s')} = {fmt(inv['dead_time_s'] * 1e9)} ns "
+                   f"(rule: {RULE_SHUNT})")
     return out
 
 
@@ -1967,6 +2031,8 @@ DRIVE_RANGES = {
     "can_id_b": (0, 0x7FF), "mtpa_speed": (0, Q15_MAX), "t_ipm_derate": (-400, 2000),
     "t_pcb_derate": (-400, 2000), "flux_band": (1, Q15_MAX), "flux_v_err": (0, Q15_MAX),
     "flux_r_err": (0, Q15_MAX), "psi_shift": (0, PSI_SHIFT_MAX), "ho_retries": (0, 3),
+    "sensing": (0, 1), "shunt_settle": (0, 65535), "shunt_sample": (1, 65535),
+    "shunt_hold": (1, SHUNT_HOLD_MAX),
 }
 
 
@@ -2055,6 +2121,14 @@ def range_checks(table: list, ranges: dict | None = None) -> list[Bound]:
     for key in ("drive.i_align", "drive.i_start", "drive.tc_amp_max"):
         need(key, 0, flat["i_max"], "params.h drive current <= i_max")
     need("drive.of_speed", 0, flat["speed_max"], "params.h drive.of_speed <= speed_max")
+    window = flat["drive.shunt_settle"] + flat["drive.shunt_sample"]
+    if 4 * window > flat["svpwm.period"]:
+        out.append(Bound("table field drive.shunt_settle", "params.h 4 (shunt_settle + "
+                         "shunt_sample) <= svpwm.period", float(4 * window),
+                         float(flat["svpwm.period"]),
+                         f"shunt_settle = {flat['drive.shunt_settle']}, shunt_sample = "
+                         f"{flat['drive.shunt_sample']} ticks: 4 x {window} > period = "
+                         f"{flat['svpwm.period']}", "representation", violated=True))
     top = rpm_to_q15(flat["drive.rpm_max"], flat["drive.k_rpm"])
     if top > flat["speed_max"]:
         out.append(Bound("table field drive.rpm_max", "params.h (rpm_max k_rpm + 2048) >> 12 "
@@ -2303,8 +2377,43 @@ def drive_fields(cfg: dict, ds: Design) -> tuple[list[Field], list[str]]:
         Field("ho_retries", "u8", int(dr["ho_retries"]),
               f"{int(dr['ho_retries'])} start retries ({src('ho_retries')})",
               int_phys(dr["ho_retries"], "-", "drive.ho_retries")),
-    ]
+    ] + sensing_fields(cfg)
     return fields, notes
+
+
+def shunt_ticks(ns: float, f_timer: float) -> int:
+    """A single-shunt time in PWM-timer ticks, rounded up (E13-7): never shorter than the
+    motor file's time."""
+    return int(math.ceil(ns * f_timer / 1e9 - 1e-9))
+
+
+def sensing_fields(cfg: dict) -> list[Field]:
+    """drive.sensing .. drive.shunt_hold (layout version 5), from [sensing]."""
+    sen, f_timer = cfg["sensing"], cfg["inverter"]["f_timer_hz"]
+    ns_tick = 1e9 / f_timer
+
+    def src(key: str) -> str:
+        return f"sensing.{key}" + (", default" if f"sensing.{key}" in cfg["defaulted"] else "")
+
+    def ticks(name: str, key: str) -> Field:
+        raw = shunt_ticks(sen[key], f_timer)
+        return Field(name, "u16", raw,
+                     f"{fmt(sen[key])} ns x f_timer {fmt(f_timer)} Hz / 1e9, rounded up: {raw} "
+                     f"ticks ({src(key)})",
+                     int_phys(sen[key], "ns", f"sensing.{key}", "PWM-timer ticks",
+                              factor=ns_tick, lsb=1.0))
+    mode = SENSING_MODES[sen["mode"]]
+    return [
+        Field("sensing", "u8", mode, f"{sen['mode']} ({src('mode')}): "
+              + ("QFOC_SENSING_SHUNT" if mode else "QFOC_SENSING_PHASES"),
+              int_phys(mode, "-", None, "0 two phase-current sensors, 1 one DC-link shunt",
+                       fixed=True)),
+        ticks("shunt_settle", "shunt_settle_ns"),
+        ticks("shunt_sample", "shunt_sample_ns"),
+        Field("shunt_hold", "u16", int(sen["shunt_hold"]),
+              f"{int(sen['shunt_hold'])} periods ({src('shunt_hold')})",
+              int_phys(sen["shunt_hold"], "periods", "sensing.shunt_hold")),
+    ]
 
 
 def gain_fields(prefix: str, kp: Gain, ki: Gain, out_min: int, out_max: int,

@@ -1,6 +1,6 @@
 /*
  * CBMC harness: qfoc_drive_cfg_is_valid() on any configuration (REQ-DCFG-001,
- * REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005).
+ * REQ-DCFG-002, REQ-DCFG-003, REQ-DCFG-004, REQ-DCFG-005, REQ-DCFG-006).
  *
  * Every byte of the configuration is nondet (any bit pattern, padding included).
  * Properties:
@@ -58,7 +58,9 @@ static bool ref_valid(const qfoc_drive_cfg_t *c)
         && (c->flux_band >= 1) && (c->flux_v_err >= 0) && (c->flux_r_err >= 0)
         && (c->psi_shift <= QFOC_DRIVE_PSI_SHIFT_MAX)
         && (c->ho_retries <= QFOC_DRIVE_HO_RETRIES_MAX);
-    return speed && start && prot && feat && derate;
+    const bool sense = (c->sensing <= 1u) && (c->shunt_sample >= 1u)
+        && (c->shunt_hold >= 1u) && (c->shunt_hold <= 16u);
+    return speed && start && prot && feat && derate && sense;
 }
 
 int main(void)

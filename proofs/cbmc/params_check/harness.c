@@ -76,7 +76,9 @@ static bool drive_ok(const qfoc_drive_cfg_t *c)
         && (c->rpm_derate >= c->rpm_min) && (c->rpm_derate <= c->rpm_max)
         && (c->flux_band >= 1) && (c->flux_v_err >= 0) && (c->flux_r_err >= 0)
         && (c->psi_shift <= QFOC_DRIVE_PSI_SHIFT_MAX)
-        && (c->ho_retries <= QFOC_DRIVE_HO_RETRIES_MAX);
+        && (c->ho_retries <= QFOC_DRIVE_HO_RETRIES_MAX)
+        && (c->sensing <= 1u) && (c->shunt_sample >= 1u)
+        && (c->shunt_hold >= 1u) && (c->shunt_hold <= 16u);
 }
 
 /* params.h's cross-field conditions of layout 2.  The rpm condition
@@ -90,9 +92,12 @@ static bool cross_ok(const qfoc_param_table_t *t)
     const uint32_t prod = (uint32_t)t->drive.rpm_max * (uint32_t)t->drive.k_rpm;
     const bool rpm_ok = (t->speed_max >= 0)
         && (((uint64_t)prod + 2048u) < (((uint64_t)(uint16_t)t->speed_max + 1u) * 4096u));
+    /* the single shunt's window (layout 5), in 64 bits */
+    const bool shunt_ok = (4u * ((uint64_t)t->drive.shunt_settle + t->drive.shunt_sample))
+                          <= (uint64_t)t->svpwm.period;
     return (t->drive.i_align <= t->i_max) && (t->drive.i_start <= t->i_max)
         && (t->drive.tc_amp_max <= t->i_max) && (t->drive.of_speed <= t->speed_max)
-        && rpm_ok;
+        && rpm_ok && shunt_ok;
 }
 
 /* params.h's ranges, written out from the header's documentation */

@@ -164,7 +164,7 @@ def test_a2l_structure(firmware, fw_table, table_images):
     elf = ew.Elf(elf_path)
     chars = {c.name for c in doc.module.blocks("CHARACTERISTIC")}
     assert chars == {f"{sym}.{p}" for p in ew.scalars(elf, sym)}
-    assert len(chars) == 113
+    assert len(chars) == 117
     assert all(c.params[2] == "VALUE" for c in doc.module.blocks("CHARACTERISTIC"))
     segs = {s.name: s for s in doc.module.blocks("MOD_PAR")[0].blocks("MEMORY_SEGMENT")}
     addr, size = elf.symbols[sym]
@@ -178,7 +178,7 @@ def test_a2l_structure(firmware, fw_table, table_images):
     assert consts["QFOC_TABLE"] == table
     for name, (_elf, tdoc) in table_images.items():
         assert ar.check(tdoc) == [], name
-        assert len(tdoc.module.blocks("CHARACTERISTIC")) == 113, name
+        assert len(tdoc.module.blocks("CHARACTERISTIC")) == 117, name
         assert tdoc.module.blocks("MEASUREMENT") == [], name
 
 

@@ -177,14 +177,14 @@ def test_simple_motor_gains_by_hand(tmp_path):
 
 
 # REQ-TUNE-006: the serialisation length of params.h and the generated initialiser.
-# Methods: 1a the serialisation length of params.h (115 + 100 bytes) counted by hand, the
+# Methods: 1a the serialisation length of params.h (115 + 107 bytes) counted by hand, the
 # generated initialiser
 def test_simple_motor_passes_and_table_compiles_layout(tmp_path):
     ds, path = simple_design(tmp_path)
     items = qt.build_table(ds.cfg, ds)
     # params.h serialisation: 4+2+2+4+4+4 + svpwm 8 + 4 PI x 10 + flux 9 + pll 18 + 10 x 2
-    # = 115, then the drive configuration (layout 4): 6 x 1 + 47 x 2 = 100 bytes
-    assert len(qt.serialise(items)) == 115 + 100
+    # = 115, then the drive configuration (layout 5): 7 x 1 + 50 x 2 = 107 bytes
+    assert len(qt.serialise(items)) == 115 + 107
     assert run(tmp_path, path) == 0
     text = (tmp_path / "tables" / "simple_params.c").read_text()
     assert "const qfoc_param_table_t qfoc_params_simple = {" in text
@@ -284,6 +284,7 @@ DRIVE_LAYOUT = [
     ("lin_id_cmd", "B"), ("lin_id_status", "B"), ("can_id_a", "H"), ("can_id_b", "H"),
     ("mtpa_speed", "h"), ("t_ipm_derate", "h"), ("t_pcb_derate", "h"), ("rpm_derate", "H"),
     ("flux_band", "h"), ("flux_v_err", "h"), ("flux_r_err", "h"), ("psi_shift", "B"), ("ho_retries", "B"),
+    ("sensing", "B"), ("shunt_settle", "H"), ("shunt_sample", "H"), ("shunt_hold", "H"),
 ]
 
 
@@ -320,9 +321,9 @@ def test_committed_crc_independent_with_drive(name):
             "f_pwm_hz": "H", "period": "H", "dt_comp": "H", "k_theta": "H"}
     data = b"".join(struct.pack("<" + fmts.get(n, "h"), v) for n, v in head)
     assert len(data) == 115
-    assert head[1] == ("version", 4)
+    assert head[1] == ("version", 5)
     data += b"".join(struct.pack("<" + f, v) for (_n, f), (_m, v) in zip(DRIVE_LAYOUT, drive))
-    assert len(data) == 215
+    assert len(data) == 222
     assert zlib.crc32(data) == crc
 
 
@@ -395,6 +396,41 @@ def test_ho_retries_range(tmp_path):
     assert drive_of(tmp_path / "r3", REFERENCE, "--set", "drive.ho_retries=3")["ho_retries"] == 3
     for bad in ("4", "-1"):
         assert run(tmp_path, REFERENCE, "--set", f"drive.ho_retries={bad}") != 0
+
+
+# REQ-TUNE-001, REQ-PAR-007, REQ-DCFG-006: [sensing] as typed: the mode's name, the shunt's
+# times converted to PWM-timer ticks rounding up (80 MHz: 12.5 ns a tick), the hold 1 .. 16;
+# a bad mode, a window beyond a quarter of the period, a settle time below the dead time
+# refused naming the key and the value typed.
+# Methods: 1a the defaults (phases; the dead time 1 us + 1000 ns = 160 ticks, 500 ns = 40
+# ticks, hold 4); 1c 12.5 ns exactly one tick and 12.6 ns two, hold 1 and 16 accepted, 0
+# and 17 refused, the window at a quarter of the 5000-tick period (1250 ticks) accepted and
+# one tick more refused; 1d a misspelt mode
+def test_sensing_keys(tmp_path, capsys):
+    d = drive_of(tmp_path / "d", REFERENCE)
+    assert (d["sensing"], d["shunt_settle"], d["shunt_sample"], d["shunt_hold"]) == (0, 160, 40, 4)
+    d = drive_of(tmp_path / "s", REFERENCE, "--set", 'sensing.mode="shunt"', "--set",
+                 "sensing.shunt_settle_ns=1012.5", "--set", "sensing.shunt_sample_ns=12.6",
+                 "--set", "sensing.shunt_hold=16")
+    assert (d["sensing"], d["shunt_settle"], d["shunt_sample"], d["shunt_hold"]) == (1, 81, 2, 16)
+    d = drive_of(tmp_path / "q", REFERENCE, "--set", "sensing.shunt_settle_ns=14000",
+                 "--set", "sensing.shunt_sample_ns=1625", "--set", "sensing.shunt_hold=1")
+    assert (d["shunt_settle"], d["shunt_sample"], d["shunt_hold"]) == (1120, 130, 1)
+    capsys.readouterr()
+    assert run(tmp_path / "w", REFERENCE, "--set", "sensing.shunt_settle_ns=14000",
+               "--set", "sensing.shunt_sample_ns=1637.5") == 1
+    err = capsys.readouterr().err
+    assert "sensing.shunt_settle_ns = 14000 ns" in err and "rule: 'shunt window'" in err
+    assert run(tmp_path / "m", REFERENCE, "--set", 'sensing.mode="shutn"') == 1
+    err = capsys.readouterr().err
+    assert "sensing.mode = 'shutn': not a sensing mode" in err and "did you mean shunt" in err
+    assert run(tmp_path / "t", REFERENCE, "--set", "sensing.shunt_settle_ns=999") == 1
+    err = capsys.readouterr().err
+    assert "sensing.shunt_settle_ns = 999 ns is below inverter.dead_time_s" in err
+    for bad in ("0", "17"):
+        assert run(tmp_path / ("h" + bad), REFERENCE, "--set", f"sensing.shunt_hold={bad}") == 1
+        assert f"sensing.shunt_hold = {bad}" in capsys.readouterr().err
+    assert not (tmp_path / "w" / "tables").exists()
 
 
 # REQ-TUNE-001, REQ-TUNE-006, REQ-PAR-006: the defaults round-trip: a motor file that
