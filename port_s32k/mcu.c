@@ -7,7 +7,7 @@
  * Every register is reached through s32k_read/s32k_write/s32k_modify (one accessor).
  * Waits on hardware status bits are bounded (QFOC_S32K_WAIT_POLLS) and report a timeout.
  *
- * Requirements: REQ-PORT-001 .. REQ-PORT-015 (specs/requirements/port.md).
+ * Requirements: REQ-PORT-001 .. REQ-PORT-015, REQ-PORT-020 (specs/requirements/port.md).
  */
 #include "s32k144_port.h"
 #include "s32k144_regs.h"

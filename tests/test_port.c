@@ -21,9 +21,14 @@
  *     LIN-style frames in and out, CAN frames, supervision of the ADC chain;
  *   - the interrupts call the library's entry points in order: a drive run through the
  *     port's interrupts and a twin drive called directly with the same inputs give the
- *     same compare values, enables, status frames and CAN frames, from PRECHARGE to RUN.
+ *     same compare values, enables, status frames and CAN frames, from PRECHARGE to RUN;
+ *   - single-shunt sensing: the up counter and combined pairs, PDB0's pre-triggers and
+ *     ADC0's channels; a plan's compare values and instants, checked by rebuilding the
+ *     outputs and the sampling instants from the registers (a model of the combined pairs
+ *     and of the PDB's clock) against the plan's windows; the fallback to the symmetric
+ *     values; the DC-link samples in Q15 with the offset.
  *
- * Requirements: REQ-PORT-001 .. REQ-PORT-019 (specs/requirements/port.md); each test
+ * Requirements: REQ-PORT-001 .. REQ-PORT-021 (specs/requirements/port.md); each test
  * names its requirement.  The start-up code and the image (REQ-PORT-019) are also
  * checked by make firmware (port_s32k/check_image.py on the binary).
  */
