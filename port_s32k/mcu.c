@@ -414,7 +414,11 @@ static void s32k_ftm_setup(const qfoc_s32k_pwm_cfg_t *cfg, bool shunt)
     for (ch = 0u; ch < 6u; ch++) {
         uint32_t v = half;
         if (shunt) {
-            v = ((ch % 2u) == 0u) ? (p - half) : (p + half);
+            if ((ch % 2u) == 0u) {
+                v = p - half;   /* C(2k)V: set */
+            } else {
+                v = p + half;   /* C(2k+1)V: clear */
+            }
         } else {
             /* every channel at MOD / 2 */
         }
