@@ -1817,8 +1817,9 @@ static void test_port_020_shunt_fallback(void **state)
 
 /* REQ-PORT-020 (with REQ-PORT-008, REQ-PORT-007, REQ-PORT-018): the output enable of the
    single-shunt write: disabled -> six outputs masked at once, whatever the plan; a latched
-   fault output keeps them masked; a reported hardware trip is cleared only with the
-   outputs off and its input inactive.  A port set up for two sensors ignores the plan.
+   fault output keeps them masked; a hardware trip, reported by the single-shunt read
+   (REQ-PORT-021), is cleared only with the outputs off and its input inactive.  A port set
+   up for two sensors ignores the plan.
    Methods: 1d the enable false with a valid plan, a latched fault output with the enable
    true, a hardware trip reported by the shunt read; 1l the comparator's fault flag set in
    the fake register file */
