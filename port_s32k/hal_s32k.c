@@ -11,11 +11,21 @@
  *     UART interrupt, never the reverse);
  *   - the frame to send: filled by the tick while tx_busy is false, then tx_busy set
  *     last; the UART interrupt sends it and clears tx_busy after the last stop bit;
- *   - the millisecond counter and the PWM-period counter: one writer each.
+ *   - the millisecond counter and the PWM-period counter: one writer each;
+ *   - the sensing (two sensors or single shunt) and the DC-link offset: written at set-up
+ *     (qfoc_s32k_hal_init*, qfoc_s32k_shunt_offset_set before the interrupts run or from
+ *     the ADC interrupt's own context), read by the ADC interrupt.
  *
- * Requirements: REQ-PORT-007, -008, -010 .. -014, -018 (specs/requirements/port.md).
+ * Single-shunt sensing (qfoc_s32k_hal_init_shunt, after qfoc_s32k_ftm_init_shunt and
+ * qfoc_s32k_pdb_init_shunt): FTM3 counts up from 0 to 2 period - 1 with the pairs combined,
+ * phase k high for C(2k)V <= counter < C(2k+1)V (s32k144_port.h); PDB0's CH0DLY0 and
+ * CH0DLY1 are the two sampling instants (counter values); ADC0 R[A], R[B] the two DC-link
+ * samples and R[C] T_IPM.
+ *
+ * Requirements: REQ-PORT-007, -008, -010 .. -014, -018, -020, -021 (specs/requirements/port.md).
  */
 #include "qfoc/hal.h"
+#include "qfoc/q15.h"
 #include "s32k144_port.h"
 #include "s32k144_regs.h"
 
@@ -29,6 +39,9 @@ typedef struct {
     volatile uint32_t ms;             /* millisecond counter (tick) */
     volatile bool ms_flag;            /* set by the tick, taken by the background */
     volatile uint32_t periods;        /* PWM periods (FTM interrupt) */
+    bool shunt;                       /* single-shunt sensing: pairs combined, PDB0 instants */
+    uint16_t shunt_offset;            /* ADC code of zero DC-link current */
+    uint32_t t_ipm_result;            /* ADC0 result register of T_IPM: R[B], R[C] with the shunt */
     /* receive, UART interrupt */
     uint8_t rx_buf[QFOC_LIN_FRAME_MAX];
     uint8_t rx_len;
@@ -58,6 +71,9 @@ void qfoc_s32k_hal_init(uint16_t period)
     s_hal.ms = 0u;
     s_hal.ms_flag = false;
     s_hal.periods = 0u;
+    s_hal.shunt = false;
+    s_hal.shunt_offset = QFOC_ADC_MID;
+    s_hal.t_ipm_result = S32K_ADC0_BASE + S32K_ADC_RA + 4u;
     s_hal.rx_len = 0u;
     s_hal.rx_bad = false;
     s_hal.rx_dropped = 0u;
@@ -73,23 +89,49 @@ void qfoc_s32k_hal_init(uint16_t period)
     }
 }
 
+void qfoc_s32k_hal_init_shunt(uint16_t period)
+{
+    qfoc_s32k_hal_init(period);
+    s_hal.shunt = true;
+    s_hal.t_ipm_result = S32K_ADC0_BASE + S32K_ADC_RA + 8u;
+}
+
+void qfoc_s32k_shunt_offset_set(uint16_t code)
+{
+    s_hal.shunt_offset = (code > QFOC_ADC_MAX) ? QFOC_ADC_MAX : code;
+}
+
 /* ------------------------------------------------------------------ PWM and ADC */
 
-void qfoc_hal_pwm_write(const qfoc_pwm_t *pwm)
+/* A compare value as the PWM applies it: at most the period. */
+static uint32_t s32k_cmp(uint16_t v)
 {
+    uint32_t c = (uint32_t)v;
+    if (c > (uint32_t)s_hal.period) {
+        c = (uint32_t)s_hal.period;
+    } else {
+        /* within the period */
+    }
+    return c;
+}
+
+/* Combined pairs (single shunt): phase k high from period - up[k] to period + down[k]
+   (up, down <= period), loaded at the next reload point. */
+static void s32k_pwm_combined(const uint32_t up[3], const uint32_t down[3])
+{
+    const uint32_t p = (uint32_t)s_hal.period;
     uint32_t k;
     for (k = 0u; k < 3u; k++) {
-        uint32_t c = (uint32_t)pwm->cmp[k];
-        if (c > (uint32_t)s_hal.period) {
-            c = (uint32_t)s_hal.period;
-        } else {
-            /* within the period */
-        }
-        /* Phase k drives the pair (2k, 2k+1); the even channel's CnV sets both. */
-        s32k_write(S32K_FTM3_C0V + (16u * k), c);
+        s32k_write(S32K_FTM3_C0V + (16u * k), p - up[k]);
+        s32k_write(S32K_FTM3_C0V + (16u * k) + 8u, p + down[k]);
     }
     s32k_write(S32K_FTM3_PWMLOAD, S32K_FTM_PWMLOAD_LDOK);
-    if (pwm->enable && (!s_hal.fault)) {
+}
+
+/* The output enable (at once) and the clearing of a reported hardware trip. */
+static void s32k_pwm_outputs(bool enable)
+{
+    if (enable && (!s_hal.fault)) {
         s32k_write(S32K_FTM3_OUTMASK, 0u);
     } else {
         const uint32_t fms = s32k_read(S32K_FTM3_FMS);
@@ -108,15 +150,138 @@ void qfoc_hal_pwm_write(const qfoc_pwm_t *pwm)
     }
 }
 
+void qfoc_hal_pwm_write(const qfoc_pwm_t *pwm)
+{
+    uint32_t k;
+    if (s_hal.shunt) {
+        /* combined pairs: the symmetric pulse, up = down = cmp; the sampling instants stay */
+        uint32_t c[3];
+        for (k = 0u; k < 3u; k++) {
+            c[k] = s32k_cmp(pwm->cmp[k]);
+        }
+        s32k_pwm_combined(c, c);
+    } else {
+        for (k = 0u; k < 3u; k++) {
+            /* Phase k drives the pair (2k, 2k+1); the even channel's CnV sets both. */
+            s32k_write(S32K_FTM3_C0V + (16u * k), s32k_cmp(pwm->cmp[k]));
+        }
+        s32k_write(S32K_FTM3_PWMLOAD, S32K_FTM_PWMLOAD_LDOK);
+    }
+    s32k_pwm_outputs(pwm->enable);
+}
+
+/* A plan the combined pairs and PDB0 can apply as it stands: ok, every compare value
+   within the period, the instants in order within the up-counting half (as
+   qfoc_shunt_plan() gives them for a configuration of this period). */
+static bool s32k_plan_usable(const qfoc_shunt_plan_t *plan)
+{
+    const uint16_t p = s_hal.period;
+    bool in_range = true;
+    uint32_t k;
+    for (k = 0u; k < 3u; k++) {
+        if ((plan->up[k] > p) || (plan->down[k] > p)) {
+            in_range = false;
+        } else {
+            /* applicable */
+        }
+    }
+    return plan->ok && in_range && (plan->trig[0] < plan->trig[1]) && (plan->trig[1] < p);
+}
+
+void qfoc_hal_pwm_write_shunt(const qfoc_pwm_t *pwm, const qfoc_shunt_plan_t *plan)
+{
+    if (s_hal.shunt) {
+        const uint32_t p = (uint32_t)s_hal.period;
+        uint32_t up[3];
+        uint32_t down[3];
+        uint32_t dly0;
+        uint32_t dly1;
+        uint32_t k;
+        if (s32k_plan_usable(plan)) {
+            for (k = 0u; k < 3u; k++) {
+                up[k] = (uint32_t)plan->up[k];
+                down[k] = (uint32_t)plan->down[k];
+            }
+            /* PDB0 counts from CNTIN on the FTM3 clock: an instant is its delay. */
+            dly0 = (uint32_t)plan->trig[0];
+            dly1 = (uint32_t)plan->trig[1];
+        } else {
+            for (k = 0u; k < 3u; k++) {
+                up[k] = s32k_cmp(pwm->cmp[k]);
+                down[k] = up[k];
+            }
+            dly0 = p / QFOC_S32K_SHUNT_IDLE_DIV0;
+            dly1 = p / QFOC_S32K_SHUNT_IDLE_DIV1;
+        }
+        s32k_pwm_combined(up, down);
+        /* The instants of the next period: loaded when PDB0's counter reaches its MOD, at
+           the end of this period (LDMOD = 01, qfoc_s32k_pdb_init_shunt). */
+        s32k_write(S32K_PDB0_BASE + S32K_PDB_CH0DLY0, dly0);
+        s32k_write(S32K_PDB0_BASE + S32K_PDB_CH0DLY0 + 4u, dly1);
+        s32k_write(S32K_PDB0_BASE + S32K_PDB_SC, S32K_PDB_SC_PDBEN | S32K_PDB_SC_LDOK |
+                   s32k_fld(S32K_PDB_LDMOD_AT_MOD, S32K_PDB_SC_LDMOD_SHIFT, S32K_PDB_SC_LDMOD_MASK));
+        s32k_pwm_outputs(pwm->enable);
+    } else {
+        /* two phase-current sensors: no asymmetric PWM, no instants to set */
+        qfoc_hal_pwm_write(pwm);
+    }
+}
+
 void qfoc_hal_adc_read(qfoc_adc_t *adc)
 {
     const uint32_t fms = s32k_read(S32K_FTM3_FMS);
     adc->iu = (uint16_t)(s32k_read(S32K_ADC0_BASE + S32K_ADC_RA) & S32K_ADC_R_MASK);
-    s_hal.t_ipm_code = (uint16_t)(s32k_read(S32K_ADC0_BASE + S32K_ADC_RA + 4u) & S32K_ADC_R_MASK);
+    if (s_hal.shunt) {
+        /* the second DC-link sample: read (which acknowledges it), not used */
+        (void)s32k_read(S32K_ADC0_BASE + S32K_ADC_RA + 4u);
+    } else {
+        /* R[B] is T_IPM */
+    }
+    s_hal.t_ipm_code = (uint16_t)(s32k_read(s_hal.t_ipm_result) & S32K_ADC_R_MASK);
     adc->iv = (uint16_t)(s32k_read(S32K_ADC1_BASE + S32K_ADC_RA) & S32K_ADC_R_MASK);
     s_hal.t_pcb_code = (uint16_t)(s32k_read(S32K_ADC1_BASE + S32K_ADC_RA + 4u) & S32K_ADC_R_MASK);
     adc->vdc = (uint16_t)(s32k_read(S32K_ADC1_BASE + S32K_ADC_RA + 8u) & S32K_ADC_R_MASK);
     if (((fms & S32K_FTM_FMS_FAULTF) != 0u) && (!s_hal.trip_reported)) {
+        adc->iu = QFOC_ADC_MAX;
+        adc->iv = QFOC_ADC_MAX;
+        s_hal.trip_reported = true;
+    } else {
+        /* no new hardware trip */
+    }
+}
+
+/* A DC-link sample in Q15 of the current base, as the drive scales its phase currents:
+   (code - offset) x 16, saturated. */
+static qfoc_q15_t s32k_shunt_sample(uint32_t result)
+{
+    const uint16_t code = (uint16_t)(s32k_read(result) & S32K_ADC_R_MASK);
+    const int32_t d = (int32_t)code - (int32_t)s_hal.shunt_offset;
+    return qfoc_q15_sat(d * QFOC_S32K_I_PER_CODE);
+}
+
+void qfoc_hal_adc_read_shunt(qfoc_adc_t *adc, qfoc_q15_t sample[2])
+{
+    const uint32_t fms = s32k_read(S32K_FTM3_FMS);
+    /* Every result is read, which acknowledges its conversion (COCO). */
+    const qfoc_q15_t s1 = s32k_shunt_sample(S32K_ADC0_BASE + S32K_ADC_RA);
+    const qfoc_q15_t s2 = s32k_shunt_sample(S32K_ADC0_BASE + S32K_ADC_RA + 4u);
+    if (s_hal.shunt) {
+        sample[0] = s1;
+        sample[1] = s2;
+    } else {
+        sample[0] = 0;   /* two phase-current sensors: no DC-link channel converted */
+        sample[1] = 0;
+    }
+    s_hal.t_ipm_code = (uint16_t)(s32k_read(s_hal.t_ipm_result) & S32K_ADC_R_MASK);
+    (void)s32k_read(S32K_ADC1_BASE + S32K_ADC_RA);   /* i_v: not used */
+    s_hal.t_pcb_code = (uint16_t)(s32k_read(S32K_ADC1_BASE + S32K_ADC_RA + 4u) & S32K_ADC_R_MASK);
+    adc->vdc = (uint16_t)(s32k_read(S32K_ADC1_BASE + S32K_ADC_RA + 8u) & S32K_ADC_R_MASK);
+    adc->iu = 0u;
+    adc->iv = 0u;
+    if (((fms & S32K_FTM_FMS_FAULTF) != 0u) && (!s_hal.trip_reported)) {
+        /* reported once, as full scale: both samples and both phase currents */
+        sample[0] = QFOC_Q15_MAX;
+        sample[1] = QFOC_Q15_MAX;
         adc->iu = QFOC_ADC_MAX;
         adc->iv = QFOC_ADC_MAX;
         s_hal.trip_reported = true;

@@ -7,7 +7,7 @@
  * Every register is reached through s32k_read/s32k_write/s32k_modify (one accessor).
  * Waits on hardware status bits are bounded (QFOC_S32K_WAIT_POLLS) and report a timeout.
  *
- * Requirements: REQ-PORT-001 .. REQ-PORT-015 (specs/requirements/port.md).
+ * Requirements: REQ-PORT-001 .. REQ-PORT-015, REQ-PORT-020 (specs/requirements/port.md).
  */
 #include "s32k144_port.h"
 #include "s32k144_regs.h"
@@ -153,6 +153,12 @@ void qfoc_s32k_pins_init(void)
     s32k_pin_mux(S32K_PORTB_BASE, 13u, 0u, 0u);  /* ADC1_SE8  V_dc */
 }
 
+void qfoc_s32k_pins_init_shunt(void)
+{
+    qfoc_s32k_pins_init();
+    s32k_pin_mux(S32K_PORTC_BASE, 15u, 0u, 0u);  /* ADC0_SE13 i_dc (DC-link shunt amplifier) */
+}
+
 void qfoc_s32k_gate_enable(bool on)
 {
     const uint32_t bit = (uint32_t)1u << QFOC_S32K_GATE_EN_PIN;
@@ -196,6 +202,39 @@ void qfoc_s32k_pdb_init(uint16_t period)
 {
     s32k_pdb_setup(S32K_PDB0_BASE, 2u, period);   /* ADC0: i_u, T_IPM */
     s32k_pdb_setup(S32K_PDB1_BASE, 3u, period);   /* ADC1: i_v, T_PCB, V_dc */
+}
+
+/* Single-shunt sensing.  FTM3 counts up from 0 (CNTIN, the initialization trigger) to
+   2 period - 1, so the PDB counter (SYS_CLK / 1, the FTM3 clock) equals the FTM3 counter
+   and a sampling instant of qfoc_shunt_plan_t (a counter value of the up-counting half,
+   0 .. period - 1) is its PDB delay as it stands.  PDB0 channel 0 (ADC0): pre-trigger 0
+   after CH0DLY0 (first DC-link sample, ADC0 SC1A), pre-trigger 1 after CH0DLY1 (second
+   sample, SC1B), pre-trigger 2 back to back after the second conversion (T_IPM, SC1C).
+   The delays are loaded at once here, then (LDMOD = 01) each time the counter reaches MOD =
+   2 period - 1 after an LDOK: the delays qfoc_hal_pwm_write_shunt() writes in period k
+   load at the end of period k, with the compare values (the FTM's reload point is the
+   counter at its MOD, the same clock), and are used in period k + 1.  PDB1 (ADC1: i_v,
+   T_PCB, V_dc after `period` clocks, the centre) as in qfoc_s32k_pdb_init(): its last
+   conversion raises the ADC1 interrupt after the three ADC1 conversions from the centre,
+   later than the end of ADC0's two conversions that follow the second sample (before
+   the centre). */
+void qfoc_s32k_pdb_init_shunt(uint16_t period)
+{
+    const uint32_t p = (uint32_t)period;
+    const uint32_t ldmod = s32k_fld(S32K_PDB_LDMOD_AT_MOD, S32K_PDB_SC_LDMOD_SHIFT, S32K_PDB_SC_LDMOD_MASK);
+    s32k_pcc_enable(S32K_PCC_PDB0, 0u);
+    s32k_write(S32K_PDB0_BASE + S32K_PDB_SC, S32K_PDB_SC_PDBEN);
+    s32k_write(S32K_PDB0_BASE + S32K_PDB_MOD, (2u * p) - 1u);
+    s32k_write(S32K_PDB0_BASE + S32K_PDB_IDLY, 0u);
+    s32k_write(S32K_PDB0_BASE + S32K_PDB_CH0C1, ((uint32_t)0x07u << S32K_PDB_C1_EN_SHIFT) |
+                                                ((uint32_t)0x03u << S32K_PDB_C1_TOS_SHIFT) |
+                                                ((uint32_t)0x04u << S32K_PDB_C1_BB_SHIFT));
+    s32k_write(S32K_PDB0_BASE + S32K_PDB_CH0DLY0, p / QFOC_S32K_SHUNT_IDLE_DIV0);
+    s32k_write(S32K_PDB0_BASE + S32K_PDB_CH0DLY0 + 4u, p / QFOC_S32K_SHUNT_IDLE_DIV1);
+    s32k_write(S32K_PDB0_BASE + S32K_PDB_CH0S, 0u);   /* no stale sequence-error flag */
+    s32k_write(S32K_PDB0_BASE + S32K_PDB_SC, S32K_PDB_SC_PDBEN | S32K_PDB_SC_LDOK);
+    s32k_write(S32K_PDB0_BASE + S32K_PDB_SC, S32K_PDB_SC_PDBEN | ldmod);
+    s32k_pdb_setup(S32K_PDB1_BASE, 3u, period);       /* ADC1: i_v (not used), T_PCB, V_dc */
 }
 
 /* One ADC: functional clock SPLLDIV2 40 MHz, ADICLK = ALTCLK1, /1, 12 bit; calibration
@@ -243,6 +282,17 @@ int32_t qfoc_s32k_adc_init(void)
     } else {
         /* status of ADC0 */
     }
+    return status;
+}
+
+int32_t qfoc_s32k_adc_init_shunt(void)
+{
+    const int32_t status = qfoc_s32k_adc_init();
+    /* ADC0: the DC-link shunt amplifier (ADC0_SE13, PTC15) for pre-triggers 0 and 1, then
+       T_IPM; ADC1 keeps i_v (not read), T_PCB and V_dc with the interrupt. */
+    s32k_write(S32K_ADC0_BASE + S32K_ADC_SC1A, QFOC_S32K_ADC0_CH_IDC & S32K_ADC_SC1_ADCH_MASK);
+    s32k_write(S32K_ADC0_BASE + S32K_ADC_SC1A + 4u, QFOC_S32K_ADC0_CH_IDC & S32K_ADC_SC1_ADCH_MASK);
+    s32k_write(S32K_ADC0_BASE + S32K_ADC_SC1A + 8u, QFOC_S32K_ADC0_CH_TIPM & S32K_ADC_SC1_ADCH_MASK);
     return status;
 }
 
@@ -332,11 +382,18 @@ int32_t qfoc_s32k_pwm_cfg(const qfoc_param_table_t *table, qfoc_s32k_ftm_int_t i
     return status;
 }
 
-void qfoc_s32k_ftm_init(const qfoc_s32k_pwm_cfg_t *cfg)
+/* FTM3 set-up of either sensing: two phase-current sensors (shunt false: up-down
+   counting, MOD = period) or the single shunt (shunt true: up counting, MOD = 2 period - 1,
+   the three pairs combined). */
+static void s32k_ftm_setup(const qfoc_s32k_pwm_cfg_t *cfg, bool shunt)
 {
-    const uint32_t pair = S32K_FTM_COMB_COMP | S32K_FTM_COMB_DTEN | S32K_FTM_COMB_SYNCEN |
+    const uint32_t comb = shunt ? S32K_FTM_COMB_COMBINE : 0u;
+    const uint32_t pair = comb | S32K_FTM_COMB_COMP | S32K_FTM_COMB_DTEN | S32K_FTM_COMB_SYNCEN |
                           S32K_FTM_COMB_FAULTEN;
-    const uint32_t half = (uint32_t)cfg->period / 2u;
+    const uint32_t p = (uint32_t)cfg->period;
+    const uint32_t half = p / 2u;
+    const uint32_t modulo = shunt ? ((2u * p) - 1u) : p;
+    const uint32_t cpwms = shunt ? 0u : S32K_FTM_SC_CPWMS;
     const uint32_t irq = (cfg->int_option == QFOC_S32K_FTM_INT_RELOAD) ? S32K_FTM_SC_RIE : S32K_FTM_SC_TOIE;
     uint32_t ch;
 
@@ -345,14 +402,28 @@ void qfoc_s32k_ftm_init(const qfoc_s32k_pwm_cfg_t *cfg)
     s32k_write(S32K_FTM3_SC, 0u);                         /* counter stopped */
     s32k_write(S32K_FTM3_OUTMASK, QFOC_S32K_PWM_CH_MASK); /* all six outputs off */
     s32k_write(S32K_FTM3_CNTIN, 0u);
-    s32k_write(S32K_FTM3_MOD, (uint32_t)cfg->period);
+    s32k_write(S32K_FTM3_MOD, modulo);
     s32k_write(S32K_FTM3_CNT, 0u);                        /* loads CNTIN */
     /* CPWM, high-true (ELSB:ELSA = 10): channel n is high while the counter is below
        CnV, i.e. the high side conducts for 2 CnV of 2 MOD ticks: duty = cmp / period,
-       as svpwm.h defines; the odd channel is its complement (COMP) with dead time. */
+       as svpwm.h defines; the odd channel is its complement (COMP) with dead time.
+       Combined (shunt): the even channel of pair k is high from the C(2k)V match to the
+       C(2k+1)V match (MSnB:MSnA ignored), high for C(2k+1)V - C(2k)V = 2 cmp of 2 period
+       ticks: the same duty; 50 % at C(2k)V = period - period / 2, C(2k+1)V = period +
+       period / 2. */
     for (ch = 0u; ch < 6u; ch++) {
+        uint32_t v = half;
+        if (shunt) {
+            if ((ch % 2u) == 0u) {
+                v = p - half;   /* C(2k)V: set */
+            } else {
+                v = p + half;   /* C(2k+1)V: clear */
+            }
+        } else {
+            /* every channel at MOD / 2 */
+        }
         s32k_write(S32K_FTM3_C0SC + (8u * ch), S32K_FTM_CNSC_MSB | S32K_FTM_CNSC_ELSB);
-        s32k_write(S32K_FTM3_C0V + (8u * ch), half);
+        s32k_write(S32K_FTM3_C0V + (8u * ch), v);
     }
     s32k_write(S32K_FTM3_COMBINE, pair | (pair << 8u) | (pair << 16u));
     s32k_write(S32K_FTM3_DEADTIME, s32k_deadtime_reg(cfg->deadtime_ticks));
@@ -365,7 +436,8 @@ void qfoc_s32k_ftm_init(const qfoc_s32k_pwm_cfg_t *cfg)
     s32k_write(S32K_FTM3_FLTPOL, S32K_FTM_FLTPOL_FLT0POL);
     s32k_write(S32K_FTM3_FLTCTRL, S32K_FTM_FLT_FAULT0EN | S32K_FTM_FLT_FFLTR0EN |
                s32k_fld(QFOC_S32K_FAULT_FFVAL, S32K_FTM_FLT_FFVAL_SHIFT, S32K_FTM_FLT_FFVAL_MASK));
-    /* Compare values load at the reload point at MOD (sampling instant) after LDOK. */
+    /* Compare values load at the reload point at MOD after LDOK (the sampling instant of
+       the two sensors; the end of the period when combined). */
     s32k_write(S32K_FTM3_SYNCONF, S32K_FTM_SYNCONF_SYNCMODE | S32K_FTM_SYNCONF_SWWRBUF);
     s32k_write(S32K_FTM3_SYNC, S32K_FTM_SYNC_CNTMAX);
     s32k_write(S32K_FTM3_PWMLOAD, S32K_FTM_PWMLOAD_LDOK);
@@ -373,12 +445,22 @@ void qfoc_s32k_ftm_init(const qfoc_s32k_pwm_cfg_t *cfg)
                s32k_fld(2u, S32K_FTM_MODE_FAULTM_SHIFT, S32K_FTM_MODE_FAULTM_MASK));
     (void)s32k_read(S32K_FTM3_FMS);
     s32k_write(S32K_FTM3_FMS, 0u);                        /* no stale fault flag */
-    /* Start: FTM input clock (SYS_CLK 80 MHz), /1, up-down, six outputs, period interrupt. */
+    /* Start: FTM input clock (SYS_CLK 80 MHz), /1, up-down (up when combined), six
+       outputs, period interrupt. */
     s32k_write(S32K_FTM3_SC, (QFOC_S32K_PWM_CH_MASK << S32K_FTM_SC_PWMEN_SHIFT) |
-               S32K_FTM_SC_CPWMS | irq |
-               s32k_fld(1u, S32K_FTM_SC_CLKS_SHIFT, S32K_FTM_SC_CLKS_MASK));
+               cpwms | irq | s32k_fld(1u, S32K_FTM_SC_CLKS_SHIFT, S32K_FTM_SC_CLKS_MASK));
     /* Write protection of the mode, dead time, combine and fault set-up. */
     s32k_write(S32K_FTM3_FMS, S32K_FTM_FMS_WPEN);
+}
+
+void qfoc_s32k_ftm_init(const qfoc_s32k_pwm_cfg_t *cfg)
+{
+    s32k_ftm_setup(cfg, false);
+}
+
+void qfoc_s32k_ftm_init_shunt(const qfoc_s32k_pwm_cfg_t *cfg)
+{
+    s32k_ftm_setup(cfg, true);
 }
 
 /* ------------------------------------------------------------------ CAN */

@@ -29,7 +29,13 @@
  * start, a peripheral that does not acknowledge) returns QFOC_S32K_ERR_TIMEOUT and the
  * caller (main.c) keeps the outputs off.
  *
- * Requirements: REQ-PORT-001 .. REQ-PORT-019 (specs/requirements/port.md).
+ * Single-shunt current sensing (include/qfoc/shunt.h) replaces qfoc_s32k_pins_init,
+ * qfoc_s32k_pdb_init, qfoc_s32k_adc_init, qfoc_s32k_ftm_init and qfoc_s32k_hal_init with
+ * their *_shunt twins, in the same order; the samples are then read with
+ * qfoc_hal_adc_read_shunt() and the PWM written with qfoc_hal_pwm_write_shunt() (main.c and
+ * isr.c run the two-sensor set-up).
+ *
+ * Requirements: REQ-PORT-001 .. REQ-PORT-021 (specs/requirements/port.md).
  */
 #ifndef QFOC_S32K144_PORT_H
 #define QFOC_S32K144_PORT_H
@@ -100,15 +106,35 @@ typedef struct {
    ADC0_SE3  PTA7  ALT0: phase current u     ADC1_SE2 PTD2  ALT0: phase current v
    ADC0_SE12 PTC14 ALT0: IPM NTC             ADC1_SE7 PTB12 ALT0: PCB NTC
    ADC1_SE8  PTB13 ALT0: DC-bus voltage
+   ADC0_SE13 PTC15 ALT0: DC-link shunt amplifier (single-shunt set-up only)
    PTD5 ALT1 GPIO output: gate-driver enable (high = enabled) */
 #define QFOC_S32K_ADC0_CH_IU    (3u)
 #define QFOC_S32K_ADC0_CH_TIPM  (12u)
 #define QFOC_S32K_ADC1_CH_IV    (2u)
 #define QFOC_S32K_ADC1_CH_TPCB  (7u)
 #define QFOC_S32K_ADC1_CH_VDC   (8u)
+#define QFOC_S32K_ADC0_CH_IDC   (13u)
 #define QFOC_S32K_GATE_EN_PIN   (5u)   /* PTD5 */
 /** ADC sample time: CFG2[SMPLTS] + 1 = 13 ADC clocks = 325 ns at 40 MHz. */
 #define QFOC_S32K_ADC_SMPLTS    (12u)
+
+/* ------------------------------------------------------------------ single-shunt sensing (the *_shunt set-up) */
+/* FTM3 counts up (CPWMS = 0, combine mode) from CNTIN = 0 to MOD = 2 period - 1: one PWM
+   period of 2 period clocks, the frequency of the up-down counter with MOD = period.  A
+   counter value n of shunt.h's up-counting half is the FTM counter c = n (0 .. period), one
+   of its down-counting half c = 2 period - n; phase k is high for period - up[k] <= c <
+   period + down[k]: C(2k)V = period - up[k], C(2k+1)V = period + down[k].  The period starts
+   at CNTIN, where the initialization trigger starts PDB0 on the same 80 MHz clock
+   (QFOC_S32K_FTM_HZ): a sampling instant trig (a counter value of the up-counting half) is
+   the PDB delay trig, in PDB clocks. */
+/** Q15 counts of the current base per ADC code of the DC-link samples: (code - offset) x
+    I_base / 2048, the scaling of the drive's phase currents (drive.h). */
+#define QFOC_S32K_I_PER_CODE    ((int32_t)16)
+/** Sampling instants after set-up and in a period without a usable plan, counter values:
+    period / QFOC_S32K_SHUNT_IDLE_DIV0 and period / QFOC_S32K_SHUNT_IDLE_DIV1 (apart by
+    more than a conversion, both before the centre, where ADC1 starts). */
+#define QFOC_S32K_SHUNT_IDLE_DIV0 (4u)
+#define QFOC_S32K_SHUNT_IDLE_DIV1 (2u)
 
 /* ------------------------------------------------------------------ NTC (both temperature channels) */
 /** NTC 10 kOhm at 25 degC, B25/85 = 3435 K, to ground; 10 kOhm pull-up to VREFH:
@@ -159,20 +185,39 @@ int32_t qfoc_s32k_clock_init(void);
 int32_t qfoc_s32k_power_init(void);
 /** McuPinsConfig: port clocks and pin functions, gate driver disabled; REQ-PORT-004. */
 void qfoc_s32k_pins_init(void);
+/** McuPinsConfig for single-shunt sensing: qfoc_s32k_pins_init() and the DC-link shunt
+    amplifier's input PTC15 (ADC0_SE13) analog; REQ-PORT-020. */
+void qfoc_s32k_pins_init_shunt(void);
 /** McuTrigmuxConfig: FTM3 initialization trigger to PDB0 and PDB1, locked; REQ-PORT-009. */
 void qfoc_s32k_trgmux_init(void);
 /** McuPdbConfig: one-shot PDBs, pre-trigger 0 at the centre, the rest back to back;
     @param period FTM_MOD of the PWM; REQ-PORT-009. */
 void qfoc_s32k_pdb_init(uint16_t period);
+/** McuPdbConfig for single-shunt sensing: PDB0 pre-triggers 0 and 1 after their delays
+    CH0DLY0, CH0DLY1 (the two DC-link samples, set each period by
+    qfoc_hal_pwm_write_shunt(), loaded when the counter reaches MOD), pre-trigger 2 back to
+    back (T_IPM); PDB1 as qfoc_s32k_pdb_init();
+    @param period the PWM period (FTM3 counts 2 period clocks); REQ-PORT-020. */
+void qfoc_s32k_pdb_init_shunt(uint16_t period);
 /** McuAdcConfig: ADC0/ADC1 clocks, calibration, 12 bit, hardware trigger, channels;
     REQ-PORT-009. */
 int32_t qfoc_s32k_adc_init(void);
+/** McuAdcConfig for single-shunt sensing: qfoc_s32k_adc_init(), then ADC0 converts
+    ADC0_SE13 (SC1A, SC1B: the two DC-link samples) and T_IPM (SC1C); ADC1 unchanged;
+    REQ-PORT-020. */
+int32_t qfoc_s32k_adc_init_shunt(void);
 /** McuUartConfig: LPUART1 19200 8N1, LIN break and idle detection, interrupts;
     REQ-PORT-011. */
 void qfoc_s32k_uart_init(void);
 /** McuFtmConfig: FTM3 six-channel complementary centre-aligned PWM, hardware dead time,
     fault control, outputs masked; REQ-PORT-005, -006, -007. */
 void qfoc_s32k_ftm_init(const qfoc_s32k_pwm_cfg_t *cfg);
+/** McuFtmConfig for single-shunt sensing: as qfoc_s32k_ftm_init() (dead time, fault
+    control, synchronized loading at the reload point at MOD, outputs masked) but counting
+    up from 0 to MOD = 2 cfg->period - 1 with the three pairs combined, so that the edges
+    of the two halves of the period are set apart (C(2k)V, C(2k+1)V); 50 % at start;
+    REQ-PORT-020. */
+void qfoc_s32k_ftm_init_shunt(const qfoc_s32k_pwm_cfg_t *cfg);
 /** The PWM set-up a parameter table asks for: period, dead time (floored to
     QFOC_S32K_DEADTIME_MIN, capped to QFOC_S32K_DEADTIME_MAX);
     @return QFOC_S32K_ERR_PARAM when the table's period and PWM frequency do not match
@@ -211,6 +256,13 @@ void qfoc_s32k_instruction_sync_barrier(void);
 
 /** Reset the HAL's run-time state for a PWM period (called once after qfoc_s32k_ftm_init). */
 void qfoc_s32k_hal_init(uint16_t period);
+/** Reset the HAL's run-time state for single-shunt sensing (called once after
+    qfoc_s32k_ftm_init_shunt): compare values written to the combined pairs, sampling
+    instants to PDB0, DC-link offset QFOC_ADC_MID; REQ-PORT-020, REQ-PORT-021. */
+void qfoc_s32k_hal_init_shunt(uint16_t period);
+/** The ADC code of zero DC-link current (codes above 4095 are taken as 4095), used by
+    qfoc_hal_adc_read_shunt() from the next call on; REQ-PORT-021. */
+void qfoc_s32k_shunt_offset_set(uint16_t code);
 /** NTC code (12 bit) to 0.1 degC, REQ-PORT-010. */
 int16_t qfoc_s32k_ntc_to_dc(uint16_t code);
 /** FTM3 period interrupt flags (TOF, RF) cleared, PWM period counted; REQ-PORT-018. */

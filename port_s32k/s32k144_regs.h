@@ -200,6 +200,9 @@ static inline uint32_t s32k_fld(uint32_t value, uint32_t shift, uint32_t mask)
 /* FTM_SYNC fields */
 #define S32K_FTM_SYNC_CNTMAX  ((uint32_t)0x00000002u)  /* CNTMAX, bit 1: reload point at MOD */
 /* FTM_COMBINE fields of pair m (shifted by 8 m) */
+#define S32K_FTM_COMB_COMBINE ((uint32_t)0x00000001u)  /* COMBINEm, bit 0: combine mode (CPWMS = 0 only):
+                                                          channel n high-true is set at the C(n)V match,
+                                                          cleared at the C(n+1)V match */
 #define S32K_FTM_COMB_COMP    ((uint32_t)0x00000002u)  /* COMPm, bit 1: channel n+1 = complement of n */
 #define S32K_FTM_COMB_DTEN    ((uint32_t)0x00000010u)  /* DTENm, bit 4: dead-time insertion */
 #define S32K_FTM_COMB_SYNCEN  ((uint32_t)0x00000020u)  /* SYNCENm, bit 5: synchronized CnV update */
@@ -242,6 +245,11 @@ static inline uint32_t s32k_fld(uint32_t value, uint32_t shift, uint32_t mask)
 #define S32K_PDB_CH0DLY0      (0x018u)                 /* PDBx_CH0DLY0; CH0DLYm = +4 m */
 #define S32K_PDB_SC_LDOK      ((uint32_t)0x00000001u)  /* LDOK, bit 0: load MOD and delays */
 #define S32K_PDB_SC_PDBEN     ((uint32_t)0x00000080u)  /* PDBEN, bit 7 */
+#define S32K_PDB_SC_LDMOD_SHIFT (18u)                  /* LDMOD[19:18]: when LDOK's values load */
+#define S32K_PDB_SC_LDMOD_MASK ((uint32_t)0x000C0000u)
+#define S32K_PDB_LDMOD_AT_MOD (1u)                     /* 01: when the counter reaches MOD after LDOK
+                                                          (00, the value left in the two-sensor set-up:
+                                                          at once) */
 /* PDBx_SC fields left 0: CONT (bit 1, one shot per trigger), MULT[3:2] (x1), TRGSEL[11:8]
    (trigger input 0, from TRGMUX), PRESCALER[14:12] (/1): the PDB counts SYS_CLK. */
 #define S32K_PDB_C1_EN_SHIFT  (0u)                     /* EN[7:0]: pre-trigger enable */

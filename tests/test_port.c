@@ -21,9 +21,14 @@
  *     LIN-style frames in and out, CAN frames, supervision of the ADC chain;
  *   - the interrupts call the library's entry points in order: a drive run through the
  *     port's interrupts and a twin drive called directly with the same inputs give the
- *     same compare values, enables, status frames and CAN frames, from PRECHARGE to RUN.
+ *     same compare values, enables, status frames and CAN frames, from PRECHARGE to RUN;
+ *   - single-shunt sensing: the up counter and combined pairs, PDB0's pre-triggers and
+ *     ADC0's channels; a plan's compare values and instants, checked by rebuilding the
+ *     outputs and the sampling instants from the registers (a model of the combined pairs
+ *     and of the PDB's clock) against the plan's windows; the fallback to the symmetric
+ *     values; the DC-link samples in Q15 with the offset.
  *
- * Requirements: REQ-PORT-001 .. REQ-PORT-019 (specs/requirements/port.md); each test
+ * Requirements: REQ-PORT-001 .. REQ-PORT-021 (specs/requirements/port.md); each test
  * names its requirement.  The start-up code and the image (REQ-PORT-019) are also
  * checked by make firmware (port_s32k/check_image.py on the binary).
  */
@@ -1453,6 +1458,503 @@ static void test_port_019_flash_config_field(void **state)
     assert_memory_equal(qfoc_s32k_flash_config, expected, sizeof expected);
 }
 
+/* ------------------------------------------------------------------ REQ-PORT-020/021 */
+
+/* The single-shunt set-up of the port (s32k144_port.h), in main.c's order. */
+static int32_t port_init_shunt_all(const qfoc_param_table_t *table, qfoc_s32k_ftm_int_t option)
+{
+    int32_t st = QFOC_S32K_OK;
+    int32_t s;
+    qfoc_s32k_pwm_cfg_t pwm;
+    qfoc_s32k_pins_init_shunt();
+    s = qfoc_s32k_clock_init();
+    st = (st != QFOC_S32K_OK) ? st : s;
+    s = qfoc_s32k_power_init();
+    st = (st != QFOC_S32K_OK) ? st : s;
+    s = qfoc_s32k_pwm_cfg(table, option, &pwm);
+    st = (st != QFOC_S32K_OK) ? st : s;
+    qfoc_s32k_trgmux_init();
+    qfoc_s32k_pdb_init_shunt(pwm.period);
+    s = qfoc_s32k_adc_init_shunt();
+    st = (st != QFOC_S32K_OK) ? st : s;
+    qfoc_s32k_uart_init();
+    s = qfoc_s32k_can_init();
+    st = (st != QFOC_S32K_OK) ? st : s;
+    qfoc_s32k_tick_init();
+    qfoc_s32k_ftm_init_shunt(&pwm);
+    qfoc_s32k_hal_init_shunt(pwm.period);
+    s = qfoc_s32k_wdog_init();
+    st = (st != QFOC_S32K_OK) ? st : s;
+    qfoc_s32k_irq_init();
+    qfoc_s32k_irq_global_enable();
+    return st;
+}
+
+/* Register facts of the single-shunt path used by the tests only (S32K1xx RM Rev. 13). */
+#define T_PCR_PTC15 (S32K_PORTC_BASE + (4u * 15u))   /* PORTC_PCR15 */
+#define T_PDB0_DLY1 (S32K_PDB0_BASE + 0x01Cu)       /* PDB0_CH0DLY1 */
+
+/* The FTM3 counter value at which a PDB0 pre-trigger with delay `dly` fires: the PDB is
+   started by the FTM3 initialization trigger (counter at CNTIN) and counts its own clock
+   (SYS_CLK / (PRESCALER x MULT), SC fields), the FTM its (SYS_CLK / 2^PS). */
+static double pdb_instant_ftm_counts(uint32_t dly)
+{
+    static const double mult[4] = { 1.0, 10.0, 20.0, 40.0 };   /* MULT 00, 01, 10, 11 */
+    const uint32_t sc = qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_SC);
+    const double pdb_clk = 80.0e6 / (pow(2.0, (double)field(sc, 12u, 3u)) * mult[field(sc, 2u, 2u)]);
+    const double ftm_clk = 80.0e6 / pow(2.0, (double)field(qfoc_fake_peek(S32K_FTM3_SC), 0u, 3u));
+    return (double)qfoc_fake_peek(S32K_FTM3_CNTIN) + ((double)dly * ftm_clk / pdb_clk);
+}
+
+/* Whether phase k's high side conducts at FTM3 counter value c, from the registers: a
+   combined pair (COMBINEm) of an up counter (CPWMS 0), high-true (ELSB:ELSA = 10), is set at
+   the C(2k)V match and cleared at the C(2k+1)V match. */
+static bool combined_high(uint32_t k, uint32_t c)
+{
+    const uint32_t set = qfoc_fake_peek(S32K_FTM3_C0V + (16u * k));
+    const uint32_t clr = qfoc_fake_peek(S32K_FTM3_C0V + (16u * k) + 8u);
+    return (c >= set) && (c < clr);
+}
+
+/* The switching state (bit k: phase k high) at counter value c. */
+static uint32_t combined_state(uint32_t c)
+{
+    return (combined_high(0u, c) ? 1u : 0u) | (combined_high(1u, c) ? 2u : 0u) |
+           (combined_high(2u, c) ? 4u : 0u);
+}
+
+/* REQ-PORT-020: the single-shunt set-up: FTM3 counts up from 0 to MOD = 2 period - 1 (the
+   table's PWM frequency), the three complementary pairs combined with dead time,
+   synchronized loading and fault control, 50 % and masked at start; PDB0 pre-triggers 0
+   and 1 after their own delays, 2 back to back, delays loaded at the counter's MOD; ADC0
+   converts ADC0_SE13 (PTC15, analog) twice, then T_IPM; PDB1 and ADC1 as with two sensors.
+   Methods: 1a the timer, PDB and ADC fields of the single-shunt set-up from the reference
+   manual: the PWM frequency of the up counter, the combined pairs, the pre-trigger modes,
+   the load mode, the channels and the pin */
+static void test_port_020_shunt_setup(void **state)
+{
+    const qfoc_param_table_t *t = &qfoc_params_reference;
+    const uint32_t period = t->svpwm.period;
+    uint32_t sc;
+    uint32_t comb;
+    uint32_t ch;
+    uint32_t c1;
+    double f_pwm;
+    (void)state;
+    qfoc_fake_poke(T_PCR_PTC15, 0x700u);   /* not analog before the set-up */
+    assert_int_equal(port_init_shunt_all(t, QFOC_S32K_FTM_INT_RELOAD), QFOC_S32K_OK);
+    assert_int_equal(field(qfoc_fake_peek(T_PCR_PTC15), 8u, 3u), 0u);   /* ALT0: ADC0_SE13 */
+    /* FTM3: up counter, one period = MOD - CNTIN + 1 clocks. */
+    sc = qfoc_fake_peek(S32K_FTM3_SC);
+    assert_int_equal(field(sc, 5u, 1u), 0u);       /* CPWMS 0: up counting */
+    assert_int_equal(field(sc, 3u, 2u), 1u);       /* CLKS: SYS_CLK */
+    assert_int_equal(field(sc, 0u, 3u), 0u);       /* PS /1 */
+    assert_int_equal(field(sc, 16u, 8u), 0x3Fu);   /* PWMEN0..5 */
+    assert_int_equal(field(sc, 6u, 1u), 1u);       /* RIE */
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_CNTIN), 0u);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_MOD), (2u * period) - 1u);
+    f_pwm = 80.0e6 / ((double)(qfoc_fake_peek(S32K_FTM3_MOD) - qfoc_fake_peek(S32K_FTM3_CNTIN) + 1u));
+    print_message("shunt FTM3 MOD %lu (up) -> PWM %.1f Hz (table %u Hz)\n",
+                  (unsigned long)qfoc_fake_peek(S32K_FTM3_MOD), f_pwm, t->f_pwm_hz);
+    assert_true(fabs(f_pwm - (double)t->f_pwm_hz) < 1e-6);
+    /* Pairs: COMBINE, COMP, DTEN, SYNCEN, FAULTEN; DECAPEN, DECAP, MCOMBINE off. */
+    comb = qfoc_fake_peek(S32K_FTM3_COMBINE);
+    for (ch = 0u; ch < 3u; ch++) {
+        assert_int_equal(field(comb, 8u * ch, 8u), 0x73u);
+    }
+    assert_int_equal(field(comb, 24u, 8u), 0u);
+    for (ch = 0u; ch < 6u; ch++) {
+        assert_int_equal(field(qfoc_fake_peek(S32K_FTM3_C0SC + (8u * ch)), 2u, 2u), 2u);   /* high-true */
+    }
+    for (ch = 0u; ch < 3u; ch++) {
+        uint32_t c;
+        uint32_t on = 0u;
+        for (c = 0u; c <= qfoc_fake_peek(S32K_FTM3_MOD); c++) {
+            on += combined_high(ch, c) ? 1u : 0u;
+        }
+        assert_int_equal(on, period);                                          /* 50 % */
+        assert_true(combined_high(ch, period) && !combined_high(ch, 0u));      /* centred */
+    }
+    assert_int_equal(deadtime_ticks(qfoc_fake_peek(S32K_FTM3_DEADTIME)), 80u);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_OUTMASK), 0x3Fu);
+    assert_true((qfoc_fake_peek(S32K_FTM3_EXTTRIG) & (1u << 6)) != 0u);    /* INITTRIGEN */
+    assert_true((qfoc_fake_peek(S32K_FTM3_SYNC) & (1u << 1)) != 0u);       /* CNTMAX */
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_FLTCTRL) & 0x11u, 0x11u);    /* FAULT0EN, filter */
+    assert_int_equal(field(qfoc_fake_peek(S32K_FTM3_MODE), 5u, 2u), 2u);   /* FAULTM 10 */
+    /* PDB0: one shot, SYS_CLK / 1, trigger input 0 (TRGMUX: FTM3 init trigger), delays
+       loaded when the counter reaches MOD; pre-triggers 0, 1 after their delays, 2 back to
+       back; the idle instants period / 4, period / 2; done before the next trigger. */
+    assert_int_equal(qfoc_fake_peek(S32K_TRGMUX_PDB0), 28u | 0x80000000u);
+    sc = qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_SC);
+    assert_true((sc & (1u << 7)) != 0u);              /* PDBEN */
+    assert_int_equal(field(sc, 18u, 2u), 1u);         /* LDMOD 01 */
+    assert_int_equal(field(sc, 8u, 4u), 0u);          /* TRGSEL */
+    assert_int_equal(field(sc, 12u, 3u), 0u);         /* PRESCALER */
+    assert_int_equal(field(sc, 2u, 2u), 0u);          /* MULT */
+    assert_int_equal(field(sc, 1u, 1u), 0u);          /* CONT 0 */
+    c1 = qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_CH0C1);
+    assert_int_equal(field(c1, 0u, 8u), 0x07u);       /* EN: pre-triggers 0, 1, 2 */
+    assert_int_equal(field(c1, 8u, 8u), 0x03u);       /* TOS: 0 and 1 after their delays */
+    assert_int_equal(field(c1, 16u, 8u), 0x04u);      /* BB: 2 after the conversion of 1 */
+    assert_int_equal(qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_CH0DLY0), period / 4u);
+    assert_int_equal(qfoc_fake_peek(T_PDB0_DLY1), period / 2u);
+    assert_true(fabs(pdb_instant_ftm_counts(qfoc_fake_peek(T_PDB0_DLY1)) - (double)(period / 2u)) < 1e-9);
+    assert_int_equal(qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_MOD), (2u * period) - 1u);
+    /* PDB1 as with two sensors: pre-trigger 0 at the centre, then back to back. */
+    c1 = qfoc_fake_peek(S32K_PDB1_BASE + S32K_PDB_CH0C1);
+    assert_int_equal(c1, 0x060107u);
+    assert_int_equal(qfoc_fake_peek(S32K_PDB1_BASE + S32K_PDB_CH0DLY0), period);
+    /* ADC0: SE13, SE13, SE12, no interrupt; ADC1: SE2, SE7, SE8 with the interrupt. */
+    assert_int_equal(qfoc_fake_peek(S32K_ADC0_BASE + S32K_ADC_SC1A), 13u);
+    assert_int_equal(qfoc_fake_peek(S32K_ADC0_BASE + S32K_ADC_SC1A + 4u), 13u);
+    assert_int_equal(qfoc_fake_peek(S32K_ADC0_BASE + S32K_ADC_SC1A + 8u), 12u);
+    assert_int_equal(qfoc_fake_peek(S32K_ADC1_BASE + S32K_ADC_SC1A), 2u);
+    assert_int_equal(qfoc_fake_peek(S32K_ADC1_BASE + S32K_ADC_SC1A + 4u), 7u);
+    assert_int_equal(qfoc_fake_peek(S32K_ADC1_BASE + S32K_ADC_SC1A + 8u), 8u | (1u << 6));
+    assert_true((qfoc_fake_peek(S32K_ADC0_BASE + S32K_ADC_SC2) & (1u << 6)) != 0u);   /* ADTRG */
+}
+
+/* The compare values the fallback writes for pwm: the symmetric pulse of each clamped
+   value x, high from period - x to period + x. */
+static void check_symmetric(const qfoc_pwm_t *pwm, uint32_t period)
+{
+    uint32_t k;
+    for (k = 0u; k < 3u; k++) {
+        const uint32_t x = (pwm->cmp[k] > period) ? period : pwm->cmp[k];
+        assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + (16u * k)), period - x);
+        assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + (16u * k) + 8u), period + x);
+    }
+}
+
+/* REQ-PORT-020: a plan with shifted edges is written as it stands: C(2k)V = period - up[k],
+   C(2k+1)V = period + down[k], PDB0 delays trig[0], trig[1], both loaded with LDOK; from the
+   registers alone, each phase conducts for 2 cmp clocks of the period and the switching
+   state over each sample's settling and sampling time is the one the plan reads (only the
+   largest phase high: +i_hi; only the smallest low: -i_lo).
+   Methods: 1b 3000 random voltage vectors at 0 .. 0.15 of the period around 50 %, at any
+   angle (most of them shifted); 1n the outputs rebuilt from the compare registers (a model
+   of the combined pairs) and the sampling instants from the PDB's delays and clocks,
+   against the plan's windows */
+static void test_port_020_shunt_pwm_shifted(void **state)
+{
+    const qfoc_param_table_t *t = &qfoc_params_reference;
+    const uint32_t period = t->svpwm.period;
+    const qfoc_shunt_cfg_t cfg = { (uint16_t)period, 120u, 40u, 10u };
+    qfoc_pwm_t pwm = { { 2530u, 2500u, 2480u }, true };
+    qfoc_shunt_plan_t plan;
+    uint32_t lcg = 0x5EEDu;
+    uint32_t n;
+    uint32_t shifted = 0u;
+    uint32_t k;
+    (void)state;
+    assert_int_equal(port_init_shunt_all(t, QFOC_S32K_FTM_INT_RELOAD), QFOC_S32K_OK);
+    /* One plan, field by field. */
+    qfoc_shunt_plan(&cfg, pwm.cmp, &plan);
+    assert_true(plan.ok && plan.shifted);
+    qfoc_fake_poke(S32K_FTM3_PWMLOAD, 0u);
+    qfoc_fake_poke(S32K_PDB0_BASE + S32K_PDB_SC, 0u);
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    for (k = 0u; k < 3u; k++) {
+        assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + (16u * k)), period - plan.up[k]);
+        assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + (16u * k) + 8u), period + plan.down[k]);
+    }
+    assert_int_equal(qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_CH0DLY0), plan.trig[0]);
+    assert_int_equal(qfoc_fake_peek(T_PDB0_DLY1), plan.trig[1]);
+    assert_true((qfoc_fake_peek(S32K_FTM3_PWMLOAD) & (1u << 9)) != 0u);    /* LDOK */
+    assert_int_equal(qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_SC), 0x00040081u);   /* LDMOD 01, PDBEN, LDOK */
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_OUTMASK), 0u);
+    print_message("shunt plan: cmp %u %u %u -> up %u %u %u, down %u %u %u, trig %u %u; "
+                  "C0V..C5V %lu %lu %lu %lu %lu %lu, PDB0 DLY0 %lu DLY1 %lu\n",
+                  pwm.cmp[0], pwm.cmp[1], pwm.cmp[2], plan.up[0], plan.up[1], plan.up[2],
+                  plan.down[0], plan.down[1], plan.down[2], plan.trig[0], plan.trig[1],
+                  (unsigned long)qfoc_fake_peek(S32K_FTM3_C0V),
+                  (unsigned long)qfoc_fake_peek(S32K_FTM3_C0V + 8u),
+                  (unsigned long)qfoc_fake_peek(S32K_FTM3_C0V + 16u),
+                  (unsigned long)qfoc_fake_peek(S32K_FTM3_C0V + 24u),
+                  (unsigned long)qfoc_fake_peek(S32K_FTM3_C0V + 32u),
+                  (unsigned long)qfoc_fake_peek(S32K_FTM3_C0V + 40u),
+                  (unsigned long)qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_CH0DLY0),
+                  (unsigned long)qfoc_fake_peek(T_PDB0_DLY1));
+    /* Random vectors: the registers give the plan's windows. */
+    for (n = 0u; n < 3000u; n++) {
+        double r;
+        double th;
+        uint32_t top = 0u;
+        uint32_t bottom = 0xFFFFFFFFu;
+        uint32_t j;
+        lcg = (lcg * 1664525u) + 1013904223u;
+        r = 0.15 * (double)period * (double)(lcg >> 16) / 65536.0;
+        lcg = (lcg * 1664525u) + 1013904223u;
+        th = 6.283185307179586 * (double)(lcg >> 16) / 65536.0;
+        for (k = 0u; k < 3u; k++) {
+            const double v = (0.5 * (double)period) + (r * cos(th - (2.0943951023931953 * (double)k)));
+            pwm.cmp[k] = (uint16_t)floor(v + 0.5);
+            top = (pwm.cmp[k] > top) ? pwm.cmp[k] : top;
+            bottom = (pwm.cmp[k] < bottom) ? pwm.cmp[k] : bottom;
+        }
+        qfoc_shunt_plan(&cfg, pwm.cmp, &plan);
+        assert_true(plan.ok);
+        shifted += plan.shifted ? 1u : 0u;
+        qfoc_hal_pwm_write_shunt(&pwm, &plan);
+        /* volt-seconds: phase k high for 2 cmp[k] of the 2 period clocks */
+        for (k = 0u; k < 3u; k++) {
+            uint32_t c;
+            uint32_t on = 0u;
+            for (c = 0u; c < (2u * period); c++) {
+                on += combined_high(k, c) ? 1u : 0u;
+            }
+            assert_int_equal(on, 2u * pwm.cmp[k]);
+        }
+        /* each sample: the same state from t_settle before its start to its end, in the
+           first half; sample 0 with one phase high (the largest), sample 1 with one low (the
+           smallest) */
+        for (j = 0u; j < 2u; j++) {
+            const uint32_t dly = qfoc_fake_peek((j == 0u) ? (S32K_PDB0_BASE + S32K_PDB_CH0DLY0) : T_PDB0_DLY1);
+            const double at = pdb_instant_ftm_counts(dly);
+            const uint32_t c0 = (uint32_t)at;
+            const uint32_t st = combined_state(c0);
+            uint32_t c;
+            assert_true(fabs(at - (double)c0) < 1e-9);
+            assert_true(c0 >= cfg.t_settle);
+            assert_true((c0 + cfg.t_sample) <= period);
+            for (c = c0 - cfg.t_settle; c < (c0 + cfg.t_sample); c++) {
+                assert_int_equal(combined_state(c), st);
+            }
+            if (j == 0u) {
+                assert_true((st == 1u) || (st == 2u) || (st == 4u));
+                for (k = 0u; k < 3u; k++) {
+                    if (st == (1u << k)) {
+                        assert_int_equal(pwm.cmp[k], top);
+                    }
+                }
+            } else {
+                assert_true((st == 6u) || (st == 5u) || (st == 3u));
+                for (k = 0u; k < 3u; k++) {
+                    if (st == (7u & ~(1u << k))) {
+                        assert_int_equal(pwm.cmp[k], bottom);
+                    }
+                }
+            }
+        }
+    }
+    print_message("shunt: 3000 random vectors, %lu with shifted edges, every window from the registers\n",
+                  (unsigned long)shifted);
+    assert_true(shifted > 1000u);
+}
+
+/* REQ-PORT-020: a plan that is not ok, or does not fit the port's period, is not applied:
+   the symmetric compare values of pwm (clamped to the period, as qfoc_hal_pwm_write()) and
+   the idle instants period / 4, period / 2; qfoc_hal_pwm_write() writes the same compare
+   values and leaves the instants.
+   Methods: 1c compare values at the period and beyond it (65535), a plan value at period +
+   1, the instants equal, reversed and at the period; 1d a plan that is not ok (refused
+   configuration), plans of another period */
+static void test_port_020_shunt_fallback(void **state)
+{
+    const uint32_t period = qfoc_params_reference.svpwm.period;
+    const qfoc_shunt_cfg_t cfg = { (uint16_t)period, 120u, 40u, 10u };
+    const qfoc_shunt_cfg_t refused = { (uint16_t)period, 2000u, 40u, 10u };
+    qfoc_pwm_t pwm = { { 2530u, 2500u, 2480u }, true };
+    qfoc_shunt_plan_t good;
+    qfoc_shunt_plan_t plan;
+    uint32_t v;
+    (void)state;
+    assert_int_equal(port_init_shunt_all(&qfoc_params_reference, QFOC_S32K_FTM_INT_RELOAD), QFOC_S32K_OK);
+    qfoc_shunt_plan(&cfg, pwm.cmp, &good);
+    assert_true(good.ok && good.shifted);
+    /* not ok (a refused configuration) */
+    qfoc_shunt_plan(&refused, pwm.cmp, &plan);
+    assert_false(plan.ok);
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    check_symmetric(&pwm, period);
+    assert_int_equal(qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_CH0DLY0), period / 4u);
+    assert_int_equal(qfoc_fake_peek(T_PDB0_DLY1), period / 2u);
+    /* ok, but the shifted plan flagged not ok by hand: still the symmetric values */
+    plan = good;
+    plan.ok = false;
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    check_symmetric(&pwm, period);
+    /* ok plans the port cannot apply as they stand */
+    for (v = 0u; v < 7u; v++) {
+        plan = good;
+        if (v < 3u) {
+            plan.up[v] = (uint16_t)(period + 1u);
+        } else if (v == 3u) {
+            plan.down[2] = (uint16_t)(period + 1u);
+        } else if (v == 4u) {
+            plan.trig[1] = plan.trig[0];
+        } else if (v == 5u) {
+            plan.trig[0] = good.trig[1];
+            plan.trig[1] = good.trig[0];
+        } else {
+            plan.trig[1] = (uint16_t)period;
+        }
+        qfoc_fake_poke(S32K_PDB0_BASE + S32K_PDB_CH0DLY0, 0u);
+        qfoc_hal_pwm_write_shunt(&pwm, &plan);
+        check_symmetric(&pwm, period);
+        assert_int_equal(qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_CH0DLY0), period / 4u);
+        assert_int_equal(qfoc_fake_peek(T_PDB0_DLY1), period / 2u);
+    }
+    /* compare values at and beyond the period: 100 % (set at CNTIN, never cleared) */
+    pwm.cmp[0] = (uint16_t)period;
+    pwm.cmp[1] = 65535u;
+    pwm.cmp[2] = 0u;
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    check_symmetric(&pwm, period);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + 16u), 0u);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + 24u), 2u * period);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + 32u), qfoc_fake_peek(S32K_FTM3_C0V + 40u));   /* 0 % */
+    /* the two-sensor write on the combined pairs: the same values, the instants left */
+    qfoc_hal_pwm_write_shunt(&pwm, &good);
+    qfoc_fake_poke(S32K_PDB0_BASE + S32K_PDB_CH0DLY0, 1234u);
+    pwm.cmp[0] = 1000u;
+    pwm.cmp[1] = 4000u;
+    pwm.cmp[2] = 6000u;
+    qfoc_hal_pwm_write(&pwm);
+    check_symmetric(&pwm, period);
+    assert_int_equal(qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_CH0DLY0), 1234u);
+}
+
+/* REQ-PORT-020 (with REQ-PORT-008, REQ-PORT-007, REQ-PORT-018): the output enable of the
+   single-shunt write: disabled -> six outputs masked at once, whatever the plan; a latched
+   fault output keeps them masked; a hardware trip, reported by the single-shunt read
+   (REQ-PORT-021), is cleared only with the outputs off and its input inactive.  A port set
+   up for two sensors ignores the plan.
+   Methods: 1d the enable false with a valid plan, a latched fault output with the enable
+   true, a hardware trip reported by the shunt read; 1l the comparator's fault flag set in
+   the fake register file */
+static void test_port_020_shunt_outputs_off(void **state)
+{
+    const uint32_t period = qfoc_params_reference.svpwm.period;
+    const uint32_t wpen = S32K_FTM_FMS_WPEN;
+    const qfoc_shunt_cfg_t cfg = { (uint16_t)period, 120u, 40u, 10u };
+    qfoc_pwm_t pwm = { { 2530u, 2500u, 2480u }, false };
+    qfoc_shunt_plan_t plan;
+    qfoc_adc_t a;
+    qfoc_q15_t smp[2];
+    (void)state;
+    assert_int_equal(port_init_shunt_all(&qfoc_params_reference, QFOC_S32K_FTM_INT_RELOAD), QFOC_S32K_OK);
+    qfoc_shunt_plan(&cfg, pwm.cmp, &plan);
+    assert_true(plan.ok);
+    qfoc_fake_poke(S32K_FTM3_OUTMASK, 0u);
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_OUTMASK), 0x3Fu);
+    assert_int_equal(qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_CH0DLY0), plan.trig[0]);   /* plan kept */
+    pwm.enable = true;
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_OUTMASK), 0u);
+    /* a hardware trip: reported once by the shunt read, kept until then, cleared with the
+       outputs off and the input inactive */
+    qfoc_fake_poke(S32K_FTM3_FMS, S32K_FTM_FMS_FAULTF | T_FTM_FMS_FAULTF0 | wpen);
+    pwm.enable = false;
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_FMS), S32K_FTM_FMS_FAULTF | T_FTM_FMS_FAULTF0 | wpen);
+    qfoc_hal_adc_read_shunt(&a, smp);
+    assert_int_equal(smp[0], 32767);
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_FMS), wpen);
+    /* latched fault output: masked whatever the enable */
+    pwm.enable = true;
+    qfoc_hal_fault_output();
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_OUTMASK), 0x3Fu);
+    /* two sensors: the plan ignored, the compare values as qfoc_hal_pwm_write() */
+    qfoc_fake_reset();
+    qfoc_fake_set_hook(hw_model);
+    qfoc_s32k_hal_init((uint16_t)period);
+    qfoc_hal_pwm_write_shunt(&pwm, &plan);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V), pwm.cmp[0]);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + 8u), 0u);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + 16u), pwm.cmp[1]);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_C0V + 32u), pwm.cmp[2]);
+    assert_int_equal(qfoc_fake_peek(S32K_PDB0_BASE + S32K_PDB_CH0DLY0), 0u);
+    assert_int_equal(qfoc_fake_peek(S32K_FTM3_OUTMASK), 0u);
+}
+
+/* The DC-link sample of a code: (code - offset) A per 2048 codes of I_base, in Q15 of
+   I_base, saturated to +-32767 (drive.h's phase-current scaling). */
+static int32_t t_sample_q15(uint32_t code, uint32_t offset)
+{
+    const double q = ((double)code - (double)offset) * 32768.0 / 2048.0;
+    return (int32_t)((q > 32767.0) ? 32767.0 : ((q < -32767.0) ? -32767.0 : q));
+}
+
+/* REQ-PORT-021: the single-shunt read returns the two DC-link samples of ADC0 R[A], R[B]
+   in Q15 ((code - offset) x 16, saturated; offset 2048 until set, codes above 4095 taken as
+   4095), the DC bus, phase currents 0, and stores the temperatures (T_IPM from R[C]) for
+   the tick; a hardware trip is reported once as full scale; with two sensors the samples
+   are 0.
+   Methods: 1c codes 0, 1, 2047, 2048, 4095 and bits above the 12-bit result, offsets 0, 2010,
+   4095 and 65535; 1d a hardware trip, the read of a port set up for two sensors; 1n the
+   scaling of drive.h in double precision */
+static void test_port_021_shunt_samples(void **state)
+{
+    static const uint32_t codes[] = { 0u, 1u, 2047u, 2048u, 2049u, 3000u, 4095u };
+    static const uint16_t offsets[] = { 0u, 2010u, 4095u, 65535u };
+    const uint32_t wpen = S32K_FTM_FMS_WPEN;
+    qfoc_adc_t a;
+    qfoc_q15_t smp[2];
+    int16_t t1;
+    int16_t t2;
+    size_t i;
+    size_t j;
+    (void)state;
+    qfoc_s32k_hal_init_shunt(5000u);
+    set_samples(0u, 0u, 0u, 0u, 0u);
+    qfoc_fake_poke(S32K_ADC0_BASE + S32K_ADC_RA, 2048u + 100u);
+    qfoc_fake_poke(S32K_ADC0_BASE + S32K_ADC_RA + 4u, 2048u - 37u);
+    qfoc_fake_poke(S32K_ADC0_BASE + S32K_ADC_RA + 8u, 1000u);           /* T_IPM */
+    qfoc_fake_poke(S32K_ADC1_BASE + S32K_ADC_RA + 4u, 2048u);           /* T_PCB */
+    qfoc_fake_poke(S32K_ADC1_BASE + S32K_ADC_RA + 8u, 0xF345u);         /* V_dc, bits above 12 */
+    a.iu = 1u;
+    a.iv = 1u;
+    qfoc_hal_adc_read_shunt(&a, smp);
+    assert_int_equal(smp[0], 1600);
+    assert_int_equal(smp[1], -592);
+    assert_int_equal(a.iu, 0u);
+    assert_int_equal(a.iv, 0u);
+    assert_int_equal(a.vdc, 0x345u);
+    qfoc_hal_temps_read(&t1, &t2);
+    assert_int_equal(t1, qfoc_s32k_ntc_to_dc(1000u));
+    assert_int_equal(t2, 250);
+    /* the two-sensor read on the shunt set-up: the same temperatures */
+    qfoc_hal_adc_read(&a);
+    qfoc_hal_temps_read(&t1, &t2);
+    assert_int_equal(t1, qfoc_s32k_ntc_to_dc(1000u));
+    for (i = 0u; i < (sizeof offsets / sizeof offsets[0]); i++) {
+        const uint32_t off = (offsets[i] > 4095u) ? 4095u : offsets[i];
+        qfoc_s32k_shunt_offset_set(offsets[i]);
+        for (j = 0u; j < (sizeof codes / sizeof codes[0]); j++) {
+            qfoc_fake_poke(S32K_ADC0_BASE + S32K_ADC_RA, codes[j] | 0xF000u);
+            qfoc_fake_poke(S32K_ADC0_BASE + S32K_ADC_RA + 4u, 4095u - codes[j]);
+            qfoc_hal_adc_read_shunt(&a, smp);
+            assert_int_equal(smp[0], t_sample_q15(codes[j], off));
+            assert_int_equal(smp[1], t_sample_q15(4095u - codes[j], off));
+        }
+    }
+    /* a hardware trip: once full scale, then the samples again */
+    qfoc_s32k_shunt_offset_set(2048u);
+    qfoc_fake_poke(S32K_ADC0_BASE + S32K_ADC_RA, 2048u);
+    qfoc_fake_poke(S32K_ADC0_BASE + S32K_ADC_RA + 4u, 2048u);
+    qfoc_fake_poke(S32K_FTM3_FMS, S32K_FTM_FMS_FAULTF | T_FTM_FMS_FAULTF0 | S32K_FTM_FMS_FAULTIN | wpen);
+    qfoc_hal_adc_read_shunt(&a, smp);
+    assert_int_equal(smp[0], 32767);
+    assert_int_equal(smp[1], 32767);
+    assert_int_equal(a.iu, 4095u);
+    assert_int_equal(a.iv, 4095u);
+    qfoc_hal_adc_read_shunt(&a, smp);
+    assert_int_equal(smp[0], 0);
+    assert_int_equal(smp[1], 0);
+    assert_int_equal(a.iu, 0u);
+    /* two sensors: no DC-link channel, samples 0 */
+    qfoc_fake_poke(S32K_FTM3_FMS, wpen);
+    qfoc_s32k_hal_init(5000u);
+    qfoc_fake_poke(S32K_ADC0_BASE + S32K_ADC_RA, 3000u);
+    qfoc_hal_adc_read_shunt(&a, smp);
+    assert_int_equal(smp[0], 0);
+    assert_int_equal(smp[1], 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1488,6 +1990,11 @@ int main(void)
         cmocka_unit_test_setup(test_port_018_supervision, setup),
         cmocka_unit_test_setup(test_port_002_012_014_wait_timeouts, setup),
         cmocka_unit_test_setup(test_port_019_flash_config_field, setup),
+        cmocka_unit_test_setup(test_port_020_shunt_setup, setup),
+        cmocka_unit_test_setup(test_port_020_shunt_pwm_shifted, setup),
+        cmocka_unit_test_setup(test_port_020_shunt_fallback, setup),
+        cmocka_unit_test_setup(test_port_020_shunt_outputs_off, setup),
+        cmocka_unit_test_setup(test_port_021_shunt_samples, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

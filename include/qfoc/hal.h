@@ -13,6 +13,12 @@
  *         ->  qfoc_drive_tick()  ->  qfoc_hal_lin_transmit(), qfoc_hal_can_send(),
  *       qfoc_hal_watchdog_refresh()
  *
+ * With single-shunt current sensing (shunt.h) the ADC-complete interrupt reads with
+ * qfoc_hal_adc_read_shunt() (the two DC-link samples) and writes with
+ * qfoc_hal_pwm_write_shunt() (the period's plan: asymmetric compare values and the two
+ * sampling instants); the port is set up for it (port_s32k: the *_shunt set-up functions
+ * of s32k144_port.h).
+ *
  * Contexts and priorities: the ADC-complete interrupt pre-empts the 1 ms interrupt,
  * which pre-empts the communication interrupts (UART).  Each function says which
  * context calls it; a function is only called from the context it names (the port's
@@ -36,8 +42,9 @@
  * samples and temperatures, REQ-PORT-011 LIN-style UART link, REQ-PORT-012 CAN frame,
  * REQ-PORT-013 millisecond time base, REQ-PORT-014 watchdog, REQ-PORT-015 interrupt
  * priorities, REQ-PORT-016 ADC-complete interrupt, REQ-PORT-017 millisecond interrupt,
- * REQ-PORT-018 supervision and fault output, REQ-PORT-019 start-up and image.  The set-up
- * functions of the S32K144 port are declared in port_s32k/s32k144_port.h.
+ * REQ-PORT-018 supervision and fault output, REQ-PORT-019 start-up and image,
+ * REQ-PORT-020 single-shunt PWM and sampling instants, REQ-PORT-021 single-shunt samples.
+ * The set-up functions of the S32K144 port are declared in port_s32k/s32k144_port.h.
  */
 #ifndef QFOC_HAL_H
 #define QFOC_HAL_H
@@ -45,6 +52,7 @@
 #include "qfoc/types.h"
 #include "qfoc/drive.h"
 #include "qfoc/link.h"
+#include "qfoc/shunt.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -89,6 +97,65 @@ void qfoc_hal_pwm_write(const qfoc_pwm_t *pwm);
   assigns *adc;
 */
 void qfoc_hal_adc_read(qfoc_adc_t *adc);
+
+/**
+ * @brief Write the PWM of the next period for single-shunt sensing: the plan's asymmetric
+ *        compare values and its two sampling instants.
+ * @param[in] pwm  symmetric compare values u, v, w in timer ticks (0..period; larger values
+ *                 are clamped to the period) and the enable (false: all six switches off)
+ * @param[in] plan the plan of the next period (qfoc_shunt_plan() on pwm's compare values):
+ *                 up[k], down[k] the compare values of the up- and down-counting halves,
+ *                 trig[0], trig[1] the counter values of the up-counting half at which the
+ *                 two DC-link samples start
+ *
+ * Context: the ADC-complete interrupt, right after qfoc_drive_fast_step() (in place of
+ * qfoc_hal_pwm_write()).  The plan is used when it is ok, every compare value is within
+ * the period and trig[0] < trig[1] < period, as qfoc_shunt_plan() gives it for a
+ * configuration of the port's period; otherwise the symmetric compare values of pwm are
+ * written, exactly as qfoc_hal_pwm_write() does, and the samples are taken at instants of
+ * the port's choosing (their values then mean nothing: the caller's plan was not ok).
+ * Written in period k, the compare values and the instants take effect together at the
+ * next reload point of the timer (the end of period k): period k + 1 is switched with them
+ * and samples at them, and its samples are read in period k + 1 by
+ * qfoc_hal_adc_read_shunt() (the plan written in period k - 1 is the one in force for the
+ * samples read in period k).  The enable, the latched fault output and the clearing of a
+ * reported hardware trip act exactly as in qfoc_hal_pwm_write().  A port set up for two
+ * phase-current sensors writes pwm as qfoc_hal_pwm_write() does and ignores the plan.
+ *
+ * Requirements: REQ-PORT-020, REQ-PORT-008, REQ-PORT-007.
+ */
+/*@
+  requires valid_pwm: \valid_read(pwm) && \valid_read(plan);
+*/
+void qfoc_hal_pwm_write_shunt(const qfoc_pwm_t *pwm, const qfoc_shunt_plan_t *plan);
+
+/**
+ * @brief Fetch the samples of this PWM period for single-shunt sensing.
+ * @param[out] adc    DC-bus voltage, 12-bit code 0..4095; phase currents u and v 0 (no
+ *                    phase sensor), except on a hardware trip (below)
+ * @param[out] sample the two DC-link current samples of this period, Q15 of the current
+ *                    base: sample[0] at trig[0] (+i_hi), sample[1] at trig[1] (-i_lo) of
+ *                    the plan in force, each (code - offset) x 16, saturated to
+ *                    [-32767, 32767], the scaling of the drive's phase currents (drive.h)
+ *
+ * Context: the ADC-complete interrupt, before qfoc_drive_fast_step() (in place of
+ * qfoc_hal_adc_read()).  The samples were taken in this period at the instants written in
+ * the previous one (qfoc_hal_pwm_write_shunt()); the offset is the port's (port_s32k:
+ * qfoc_s32k_shunt_offset_set(), 2048 until set).  Reading them also stores the slow
+ * channels' latest codes for qfoc_hal_temps_read(), as qfoc_hal_adc_read() does.  A
+ * hardware over-current trip latched by the timer since the last call (of either read
+ * function) is reported once as full-scale samples (both 32767) and full-scale phase
+ * currents (u and v at 4095).  A port set up for two phase-current sensors reports both
+ * samples as 0.
+ *
+ * Requirements: REQ-PORT-021, REQ-PORT-010, REQ-PORT-007.
+ */
+/*@
+  requires valid_adc: \valid(adc) && \valid(sample + (0 .. 1));
+  requires sep: \separated(adc, sample + (0 .. 1));
+  assigns *adc, sample[0 .. 1];
+*/
+void qfoc_hal_adc_read_shunt(qfoc_adc_t *adc, qfoc_q15_t sample[2]);
 
 /**
  * @brief The two temperatures, converted from their NTC channels.
