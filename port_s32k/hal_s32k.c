@@ -276,8 +276,8 @@ void qfoc_hal_adc_read_shunt(qfoc_adc_t *adc, qfoc_q15_t sample[2])
     (void)s32k_read(S32K_ADC1_BASE + S32K_ADC_RA);   /* i_v: not used */
     s_hal.t_pcb_code = (uint16_t)(s32k_read(S32K_ADC1_BASE + S32K_ADC_RA + 4u) & S32K_ADC_R_MASK);
     adc->vdc = (uint16_t)(s32k_read(S32K_ADC1_BASE + S32K_ADC_RA + 8u) & S32K_ADC_R_MASK);
-    adc->iu = 0u;
-    adc->iv = 0u;
+    adc->iu = QFOC_ADC_MID;   /* the code of 0 A: no phase sensor */
+    adc->iv = QFOC_ADC_MID;
     if (((fms & S32K_FTM_FMS_FAULTF) != 0u) && (!s_hal.trip_reported)) {
         /* reported once, as full scale: both samples and both phase currents */
         sample[0] = QFOC_Q15_MAX;

@@ -1911,8 +1911,8 @@ static void test_port_021_shunt_samples(void **state)
     qfoc_hal_adc_read_shunt(&a, smp);
     assert_int_equal(smp[0], 1600);
     assert_int_equal(smp[1], -592);
-    assert_int_equal(a.iu, 0u);
-    assert_int_equal(a.iv, 0u);
+    assert_int_equal(a.iu, 2048u);
+    assert_int_equal(a.iv, 2048u);
     assert_int_equal(a.vdc, 0x345u);
     qfoc_hal_temps_read(&t1, &t2);
     assert_int_equal(t1, qfoc_s32k_ntc_to_dc(1000u));
@@ -1945,7 +1945,7 @@ static void test_port_021_shunt_samples(void **state)
     qfoc_hal_adc_read_shunt(&a, smp);
     assert_int_equal(smp[0], 0);
     assert_int_equal(smp[1], 0);
-    assert_int_equal(a.iu, 0u);
+    assert_int_equal(a.iu, 2048u);
     /* two sensors: no DC-link channel, samples 0 */
     qfoc_fake_poke(S32K_FTM3_FMS, wpen);
     qfoc_s32k_hal_init(5000u);

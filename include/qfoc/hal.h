@@ -131,8 +131,8 @@ void qfoc_hal_pwm_write_shunt(const qfoc_pwm_t *pwm, const qfoc_shunt_plan_t *pl
 
 /**
  * @brief Fetch the samples of this PWM period for single-shunt sensing.
- * @param[out] adc    DC-bus voltage, 12-bit code 0..4095; phase currents u and v 0 (no
- *                    phase sensor), except on a hardware trip (below)
+ * @param[out] adc    DC-bus voltage, 12-bit code 0..4095; phase currents u and v 2048
+ *                    (the code of 0 A: no phase sensor), except on a hardware trip (below)
  * @param[out] sample the two DC-link current samples of this period, Q15 of the current
  *                    base: sample[0] at trig[0] (+i_hi), sample[1] at trig[1] (-i_lo) of
  *                    the plan in force, each (code - offset) x 16, saturated to

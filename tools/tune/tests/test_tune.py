@@ -402,10 +402,10 @@ def test_ho_retries_range(tmp_path):
 # times converted to PWM-timer ticks rounding up (80 MHz: 12.5 ns a tick), the hold 1 .. 16;
 # a bad mode, a window beyond a quarter of the period, a settle time below the dead time
 # refused naming the key and the value typed.
-# Methods: 1a the defaults (phases; the dead time 1 us + 1000 ns = 160 ticks, 500 ns = 40
-# ticks, hold 4); 1c 12.5 ns exactly one tick and 12.6 ns two, hold 1 and 16 accepted, 0
-# and 17 refused, the window at a quarter of the 5000-tick period (1250 ticks) accepted and
-# one tick more refused; 1d a misspelt mode
+# Methods: 1a the defaults: phases, dead time 1 us + 1000 ns = 160 ticks, 500 ns = 40 ticks,
+# hold 4; 1c 12.5 ns exactly one tick and 12.6 ns two, hold 1 and 16 accepted, 0 and 17
+# refused, the window at a quarter of the 5000-tick period (1250 ticks) accepted and one
+# tick more refused; 1d a misspelt mode
 def test_sensing_keys(tmp_path, capsys):
     d = drive_of(tmp_path / "d", REFERENCE)
     assert (d["sensing"], d["shunt_settle"], d["shunt_sample"], d["shunt_hold"]) == (0, 160, 40, 4)
