@@ -140,9 +140,19 @@ void dsim_period(dsim_t *ds)
     ds->fast_ran = (ds->skip_fast <= 0);
     if (ds->fast_ran) {
         ds->fast_state = ds->drv.s.sm.state;
-        ds->pwm = (ds->ident != NULL) ? qfoc_commission_fast_step(&ds->drv, ds->ident, &adc)
-                                      : qfoc_drive_fast_step(&ds->drv, &adc);
-        sim_set_compare(&ds->plant, ds->pwm.cmp);
+        if (ds->shunt != NULL) {
+            uint16_t code[2];
+            (void)sim_sample_shunt(&ds->plant, code);
+            ds->pwm = qfoc_drive_shunt_fast_step(ds->shunt, &ds->drv, &adc,
+                                                 sim_adc_current_q15(code[0]),
+                                                 sim_adc_current_q15(code[1]), &ds->plan);
+            sim_set_compare2(&ds->plant, ds->plan.up, ds->plan.down);
+            sim_set_triggers(&ds->plant, ds->plan.trig, ds->plan.ok);
+        } else {
+            ds->pwm = (ds->ident != NULL) ? qfoc_commission_fast_step(&ds->drv, ds->ident, &adc)
+                                          : qfoc_drive_fast_step(&ds->drv, &adc);
+            sim_set_compare(&ds->plant, ds->pwm.cmp);
+        }
         sim_set_enable(&ds->plant, ds->pwm.enable);
     } else {
         ds->skip_fast--;   /* a missed interrupt: the PWM unit goes on with its last values */

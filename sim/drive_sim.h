@@ -11,6 +11,7 @@
 #include "sim.h"
 #include "qfoc/drive.h"
 #include "qfoc/commission.h"
+#include "qfoc/drive_shunt.h"
 
 typedef struct {
     sim_t plant;
@@ -41,6 +42,11 @@ typedef struct {
                                   on every tick without a command frame (xorshift state) */
     qfoc_ident_t *ident;     /**< NULL: the drive's fast step; else the identification
                                   beside it: qfoc_commission_fast_step() (commission.h) */
+    qfoc_drive_shunt_t *shunt; /**< NULL: two phase-current sensors; else the single-shunt
+                                  front end (drive_shunt.h, initialised with latency 2: the
+                                  fast step runs at the start of a period with the samples
+                                  of the one before), the plant's shunt sensing active */
+    qfoc_shunt_plan_t plan;  /**< single shunt: the plan the last fast step returned */
     uint8_t fast_state;      /**< the drive state the last fast step ran in */
     bool fast_ran;           /**< the fast step ran in the last period */
     /* last outputs */

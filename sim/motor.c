@@ -196,6 +196,19 @@ int sim_motor_set(sim_motor_t *m, const char *assignment)
             }
         }
     }
+    /* the table's single-shunt keys ([sensing] of the tuning tool): the plant's sensing
+       follows the table (sim/scenario.c), nothing to set here */
+    if (rc != 0 && eq != NULL) {
+        static const char *const table_only[] = { "sensing.mode", "sensing.shunt_settle_ns",
+                                                  "sensing.shunt_sample_ns",
+                                                  "sensing.shunt_hold" };
+        for (k = 0; k < sizeof table_only / sizeof table_only[0]; k++) {
+            const size_t n = strlen(table_only[k]);
+            if ((size_t)(eq - assignment) == n && strncmp(assignment, table_only[k], n) == 0) {
+                rc = 0;
+            }
+        }
+    }
     if (rc != 0) {
         fprintf(stderr, "override '%s': expected SECTION.KEY=NUMBER with a known key\n", assignment);
     }

@@ -113,6 +113,7 @@ typedef struct {
     long p_off;                /* first period from p_inj on whose fast step disabled the PWM */
     double t_watch;            /* a fault condition became true at (NAN: none) */
     double t_off;              /* from then, the first period start with the PWM off */
+    qfoc_drive_shunt_t shunt;  /* the single-shunt front end of a shunt table */
 } scn_ctx_t;
 
 static double scn_time(const scn_ctx_t *c)
@@ -422,9 +423,27 @@ static int scn_rig(scn_ctx_t *c, const scn_table_t *tab, const qfoc_param_table_
     cfg.load.t_mean = load_nm;
     cfg.load.t_1x = pulse_1x * load_nm;
     cfg.load.knee_rpm = 30.0;
+    if (table->drive.sensing == QFOC_SENSING_SHUNT) {
+        /* one shunt in the DC link: the plant rings for as long as the table's settle time
+           allows after the dead time, at half the step, and samples over the table's
+           sample time (specs/reference-motor.md section 2) */
+        const double tick = 1.0 / m->f_timer_hz;
+        cfg.shunt.active = true;
+        cfg.shunt.t_ring_s = fmax(0.0, (double)table->drive.shunt_settle * tick - m->dead_time_s);
+        cfg.shunt.ring_gain = 0.5;
+        cfg.shunt.f_ring_hz = 2.0e6;
+        cfg.shunt.t_sh_s = (double)table->drive.shunt_sample * tick;
+    }
     if (dsim_init(c->ds, &cfg, table) != QFOC_PARAMS_OK) {
         fprintf(stderr, "%s: the table is refused by qfoc_drive_init\n", tab->name);
         return -1;
+    }
+    if (table->drive.sensing == QFOC_SENSING_SHUNT) {
+        if (qfoc_drive_shunt_init(&c->shunt, &c->ds->drv, 2u) != QFOC_SHUNT_OK) {
+            fprintf(stderr, "%s: the single-shunt set-up is refused\n", tab->name);
+            return -1;
+        }
+        c->ds->shunt = &c->shunt;
     }
     c->i_trip_a = scn_q15_a(c->ds, (double)table->i_trip);
     c->i_max_a = scn_q15_a(c->ds, (double)table->i_max);

@@ -20,6 +20,7 @@
 #include "reference16k_params.h"
 #include "traction350_params.h"
 #include "ecomp800_params.h"
+#include "reference_shunt_params.h"
 
 #define TARGETS "specs/scenarios.toml"
 
@@ -35,6 +36,10 @@ static const scn_table_t tab_traction = {
 };
 static const scn_table_t tab_ecomp800 = {
     "ecomp800", &qfoc_params_ecomp800, "specs/motors/ecomp800.toml", ""
+};
+static const scn_table_t tab_shunt = {
+    "reference_shunt", &qfoc_params_reference_shunt, "specs/motors/reference.toml",
+    "sensing.mode=shunt"
 };
 
 static scn_result_t res;
@@ -237,6 +242,51 @@ static void test_scn_011_robust_corners(void **state)
     }
 }
 
+/* The value of a metric of the last run. */
+static double metric(const char *key)
+{
+    double v = NAN;
+    int k;
+    for (k = 0; k < res.n_metrics; k++) {
+        if (strcmp(res.m[k].key, key) == 0) {
+            v = res.m[k].value;
+        }
+    }
+    assert_false(isnan(v));
+    return v;
+}
+
+/* REQ-SCN-016: the cold start on a single-shunt inverter (the reference motor's table with
+   sensing.mode = "shunt"; the plant's DC-link current with the dead time, a ringing for the
+   table's settle time and the table's sample time): every target of [cold_start], the
+   loop closed at the same time as with two sensors (within 10 ms), the largest angle error
+   within 1.5 times the two-sensor start's.
+   Methods: 1a the cold start of REQ-SCN-001 with single-shunt sensing; 1n the same start
+   with two phase-current sensors */
+static void test_scn_016_cold_start_shunt(void **state)
+{
+    double t_cl;
+    double ang_max;
+    double ang_rms;
+    double ripple;
+    (void)state;
+    run("cold_start", &tab_reference, NULL);
+    t_cl = metric("t_closed_loop_s");
+    ang_max = metric("angle_err_max_deg");
+    ang_rms = metric("angle_err_rms_deg");
+    ripple = metric("ss_err_max_pct");
+    run("cold_start", &tab_shunt, "cold_start_reference_shunt");
+    assert_true(res.pass);
+    judged("angle_err_max_deg");
+    assert_true(fabs(metric("t_closed_loop_s") - t_cl) <= 0.010);
+    assert_true(metric("angle_err_max_deg") <= 1.5 * ang_max);
+    print_message("single shunt / two sensors: angle error max %.2f / %.2f deg (x %.2f), rms "
+                  "%.3f / %.3f deg (x %.2f), speed held within %.3f / %.3f %% (x %.2f)\n",
+                  metric("angle_err_max_deg"), ang_max, metric("angle_err_max_deg") / ang_max,
+                  metric("angle_err_rms_deg"), ang_rms, metric("angle_err_rms_deg") / ang_rms,
+                  metric("ss_err_max_pct"), ripple, metric("ss_err_max_pct") / ripple);
+}
+
 /* REQ-SCN-012: the 16 kHz table, the traction motor and the 800 V e-compressor start with
    no code change.
    Methods: 1b the other tables: 16 kHz, the traction motor, the 800 V e-compressor in a flux
@@ -307,6 +357,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_scn_001_cold_start),
+        cmocka_unit_test(test_scn_016_cold_start_shunt),
         cmocka_unit_test(test_scn_002_speed_steps),
         cmocka_unit_test(test_scn_003_pulsating_load),
         cmocka_unit_test(test_scn_004_load_step),

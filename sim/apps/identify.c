@@ -261,6 +261,12 @@ int main(int argc, char **argv)
         if (only != NULL && strcmp(only, scn_tables[i].name) != 0) {
             continue;
         }
+        if (scn_tables[i].table->drive.sensing == QFOC_SENSING_SHUNT) {
+            /* the identification measures with two phase-current sensors (ident.h) */
+            fprintf(stderr, "qfoc_identify: %s: a single-shunt table, not identified (the "
+                    "identification needs two phase-current sensors)\n", scn_tables[i].name);
+            continue;
+        }
         r = run_one(&scn_tables[i], &o);
         ran++;
         if (r > rc) {

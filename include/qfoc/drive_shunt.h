@@ -1,0 +1,131 @@
+/**
+ * @file drive_shunt.h
+ * @brief The drive on a single-shunt inverter: the fast step with the phase currents
+ *        rebuilt from two DC-link samples per period (shunt.h).
+ *
+ * With a table whose drive.sensing is QFOC_SENSING_SHUNT, the port calls
+ * qfoc_drive_shunt_fast_step() in place of qfoc_drive_fast_step(): it rebuilds the phase
+ * currents of the period from the two DC-link samples (qfoc_shunt_currents() with the plan
+ * that was in force when they were taken), hands them to the drive's fast step as the
+ * phase-current codes it expects, and returns the drive's output together with the plan
+ * of the next period (the shifted compare values and the two sampling instants), which
+ * the port applies (hal.h qfoc_hal_pwm_write_shunt()).  The tick is the drive's own
+ * (qfoc_drive_tick()).
+ *
+ * Offsets: the DC-link amplifier's zero is learnt by the drive's own offset calibration.
+ * While the plan in force was made for a disabled output (no switching: the samples read
+ * the amplifier's zero), the two samples are handed over as the u and v codes
+ * (2048 + s / 16), so the calibration learns offset_u, offset_v = 2048 + e / 16, e the
+ * zero in Q15.  While switching, e (from offset_u) is taken off both samples before the
+ * currents are rebuilt, and each rebuilt current i_k is handed over as offset_k + i_k / 16,
+ * which the drive turns back into i_k (to 16 LSB).
+ *
+ * Quality: a period without a measurement (a plan that could not open both windows) holds
+ * the last currents for at most drive.shunt_hold periods (QFOC_SHUNT_HELD); beyond it the
+ * sensing is lost (QFOC_SHUNT_LOST): the output is held off from that call on (latched
+ * until qfoc_drive_shunt_init()), and the drive is handed full-scale currents (u 4095,
+ * v 0) so that its over-current trip stops it in the same call (PWM off, ERROR with OC at
+ * the next tick) for every table whose i_trip the sensor can read (the tool's rule
+ * 'over-current trip').
+ *
+ * Latency: the samples read in a call were taken in a period whose plan was written
+ * `latency` calls before (1 on the S32K144 port: the ADC-complete interrupt of period k
+ * runs after both samples of period k, whose plan the interrupt of period k - 1 wrote;
+ * 2 where the fast step runs at the start of a period with the samples of the one before,
+ * as the simulator does).
+ *
+ * Requirements: REQ-SHUNT-006, REQ-SHUNT-007 (specs/requirements/shunt.md).
+ */
+#ifndef QFOC_DRIVE_SHUNT_H
+#define QFOC_DRIVE_SHUNT_H
+
+#include "qfoc/drive.h"
+#include "qfoc/shunt.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest latency: samples taken with the plan written two calls before. */
+#define QFOC_DRIVE_SHUNT_LATENCY_MAX ((uint8_t)2u)
+
+/** The single-shunt front end of one motor (beside its qfoc_drive_t). */
+typedef struct {
+    qfoc_shunt_cfg_t cfg;       /**< from the table: period, settle, sample, hold */
+    qfoc_shunt_t rec;           /**< the rebuilt currents and the count of missed periods */
+    qfoc_shunt_plan_t plan[2];  /**< [0] the plan the last call returned, [1] the one before */
+    bool plan_on[2];            /**< the output each of those plans was made for was enabled */
+    uint8_t latency;            /**< 1 .. QFOC_DRIVE_SHUNT_LATENCY_MAX */
+    uint8_t status;             /**< the last call's measurement: QFOC_SHUNT_OK, _HELD, _LOST;
+                                     QFOC_SHUNT_ERR_CFG after a refused initialisation */
+    bool lost;                  /**< the sensing was lost or never configured: output off */
+} qfoc_drive_shunt_t;
+
+#ifdef __FRAMAC__
+/* ACSL predicates over the type above, read by Frama-C only (DEV-001). */
+/* cppcheck-suppress misra-c2012-20.1 ; DEV-001 */
+#include "drive_shunt.acsl"
+#endif
+
+/**
+ * @brief Set up the front end of a drive from its table.
+ * @param[out] sd      the front end
+ * @param[in]  d       the drive (its table d->p is read: any contents)
+ * @param[in]  latency 1 or 2 (see above); any other value refused
+ * @return QFOC_SHUNT_OK; QFOC_SHUNT_ERR_CFG when the table's sensing is not
+ *         QFOC_SENSING_SHUNT, its single-shunt configuration is not usable (shunt.h) or
+ *         the latency is out of range: the front end is then lost from the start (its
+ *         output always off).
+ * Requirements: REQ-SHUNT-006.
+ */
+/*@
+  requires valid: \valid(sd) && \valid_read(d) && \valid_read(d->p);
+  requires sep: \separated(sd, d) && \separated(sd, d->p);
+  assigns *sd;
+  ensures inv: DshValid(sd);
+  ensures result: \result == QFOC_SHUNT_OK || \result == QFOC_SHUNT_ERR_CFG;
+  ensures refused: \result != QFOC_SHUNT_OK ==> sd->lost;
+  ensures accepted: \result == QFOC_SHUNT_OK ==> !sd->lost && sd->latency == latency &&
+                    d->p->drive.sensing == QFOC_SENSING_SHUNT;
+*/
+uint8_t qfoc_drive_shunt_init(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d, uint8_t latency);
+
+/**
+ * @brief One PWM period of a drive on a single-shunt inverter.
+ * @param[in,out] sd   the front end (as qfoc_drive_shunt_init() left it)
+ * @param[in,out] d    the drive (valid)
+ * @param[in]     adc  this period's DC-bus code (its phase-current codes are not read)
+ * @param[in]     s1   the first DC-link sample of this period, Q15 (hal.h), any value
+ * @param[in]     s2   the second, any value
+ * @param[out]    plan the plan of the next period for the port
+ * @return the drive's output (qfoc_drive_fast_step()), its enable false once the sensing
+ *         is lost
+ * Requirements: REQ-SHUNT-006, REQ-SHUNT-007.
+ */
+/*@
+  requires valid: \valid(sd) && \valid(d) && \valid_read(adc) && \valid(plan);
+  requires sep: \separated(sd, d, adc, plan) && \separated(sd, d->p) &&
+                \separated(plan, d->p) && \separated(adc, d->p);
+  requires inv: DRV_VALID(d) && DshValid(sd);
+  assigns d->f, *sd, *plan;
+  ensures inv: DRV_VALID(d) && DshValid(sd);
+  ensures table: d->p == \old(d->p);
+  ensures latched: \old(sd->lost) ==> sd->lost;
+  ensures off_when_lost: sd->lost ==> !\result.enable;
+  ensures pwm_only_in_run: \result.enable ==> d->s.sm.state == QFOC_STATE_RUN && !d->f.trip;
+  ensures cmp: \result.cmp[0] <= d->p->svpwm.period && \result.cmp[1] <= d->p->svpwm.period &&
+               \result.cmp[2] <= d->p->svpwm.period;
+  ensures plan_range: plan->up[0] <= sd->cfg.period && plan->up[1] <= sd->cfg.period &&
+                      plan->up[2] <= sd->cfg.period && plan->down[0] <= sd->cfg.period &&
+                      plan->down[1] <= sd->cfg.period && plan->down[2] <= sd->cfg.period;
+  ensures kept: *plan == sd->plan[0];
+*/
+qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
+                                      const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2,
+                                      qfoc_shunt_plan_t *plan);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* QFOC_DRIVE_SHUNT_H */

@@ -1,0 +1,160 @@
+/**
+ * @file qfoc_drive_shunt.c
+ * @brief The drive on a single-shunt inverter (drive_shunt.h): the phase currents rebuilt
+ *        from two DC-link samples handed to the drive's fast step, and the plan of the next
+ *        period.
+ *
+ * Requirements: REQ-SHUNT-006, REQ-SHUNT-007 (specs/requirements/shunt.md).
+ */
+#include "qfoc/drive_shunt.h"
+#include "qfoc/q15.h"
+
+/* The ADC code of zero current. */
+#define DSH_MID ((int32_t)2048)
+
+/* A plan before any period: nothing shifted, nothing measured (ok false). */
+/*@
+  requires valid: \valid(p);
+  assigns *p;
+  ensures not_ok: !p->ok;
+  ensures idx: ShuntPlanIdx(p);
+*/
+static void dsh_plan_none(qfoc_shunt_plan_t *p)
+{
+    uint32_t k;
+    /*@ loop invariant 0 <= k <= 3;
+        loop assigns k, p->up[0 .. 2], p->down[0 .. 2];
+        loop variant 3 - k; */
+    for (k = 0u; k < 3u; k++) {
+        p->up[k] = 0u;
+        p->down[k] = 0u;
+    }
+    p->trig[0] = 0u;
+    p->trig[1] = 0u;
+    p->hi = 0u;
+    p->lo = 1u;
+    p->ok = false;
+    p->shifted = false;
+}
+
+/* The state of a front end after its set-up: no plan yet (the first samples are read as
+   the amplifier's zero), the latency, lost when refused. */
+/*@
+  requires valid: \valid(sd);
+  requires latency: ok ==> 1 <= latency <= QFOC_DRIVE_SHUNT_LATENCY_MAX;
+  assigns sd->plan[0 .. 1], sd->plan_on[0 .. 1], sd->latency, sd->lost, sd->status;
+  ensures latency: 1 <= sd->latency <= QFOC_DRIVE_SHUNT_LATENCY_MAX;
+  ensures status: sd->status <= QFOC_SHUNT_ERR_CFG;
+  ensures lost: sd->lost <==> !ok;
+  ensures kept: ok ==> sd->latency == latency;
+*/
+static void dsh_reset(qfoc_drive_shunt_t *sd, bool ok, uint8_t latency)
+{
+    dsh_plan_none(&sd->plan[0]);
+    dsh_plan_none(&sd->plan[1]);
+    sd->plan_on[0] = false;
+    sd->plan_on[1] = false;
+    sd->latency = ok ? latency : 1u;
+    sd->lost = !ok;
+    sd->status = ok ? QFOC_SHUNT_HELD : QFOC_SHUNT_ERR_CFG;
+}
+
+uint8_t qfoc_drive_shunt_init(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d, uint8_t latency)
+{
+    const qfoc_param_table_t *const t = d->p;
+    const bool mode = (t->drive.sensing == QFOC_SENSING_SHUNT) && (latency >= 1u)
+                      && (latency <= QFOC_DRIVE_SHUNT_LATENCY_MAX);
+    qfoc_shunt_cfg_t c;
+    bool ok;
+
+    c.period = t->svpwm.period;
+    c.t_settle = t->drive.shunt_settle;
+    c.t_sample = t->drive.shunt_sample;
+    c.hold_max = t->drive.shunt_hold;
+    sd->cfg = c;
+    ok = (qfoc_shunt_init(&sd->rec, &c) == QFOC_SHUNT_OK) && mode;
+    dsh_reset(sd, ok, latency);
+    return ok ? QFOC_SHUNT_OK : QFOC_SHUNT_ERR_CFG;
+}
+
+/* A current as the code the drive reads with the offset off: off + i / 16 (truncated),
+   within the ADC's range. */
+/*@
+  requires off: off <= 4095;
+  assigns \nothing;
+  ensures range: \result <= 4095;
+*/
+static uint16_t dsh_code(qfoc_q15_t i, uint16_t off)
+{
+    int32_t c = (int32_t)off + ((int32_t)i / 16);
+    if (c < 0) {
+        c = 0;
+    } else if (c > 4095) {
+        c = 4095;
+    } else {
+        /* within range */
+    }
+    return (uint16_t)c;
+}
+
+/* The codes the drive is handed for this period's samples (the header's rules), and the
+   measurement's status (QFOC_SHUNT_OK also for a period with the output off). */
+/*@
+  requires valid: \valid(sd) && \valid(a) && \valid_read(d);
+  requires sep: \separated(sd, a, d) && \separated(a, d->p) && \separated(sd, d->p);
+  requires inv: DshValid(sd) && d->s.offset_u <= 4095 && d->s.offset_v <= 4095;
+  assigns sd->rec, sd->lost, a->iu, a->iv;
+  ensures inv: DshValid(sd);
+  ensures latched: \old(sd->lost) ==> sd->lost;
+  ensures status: \result <= QFOC_SHUNT_ERR_CFG;
+*/
+static uint8_t dsh_measure(qfoc_drive_shunt_t *sd, qfoc_adc_t *a, const qfoc_drive_t *d,
+                           qfoc_q15_t s1, qfoc_q15_t s2)
+{
+    const uint32_t j = (sd->latency >= 2u) ? 1u : 0u;
+    uint8_t st = QFOC_SHUNT_OK;
+    if (!sd->plan_on[j]) {
+        /* no switching: the samples read the amplifier's zero (the offset calibration) */
+        a->iu = (uint16_t)(DSH_MID + ((int32_t)s1 / 16));
+        a->iv = (uint16_t)(DSH_MID + ((int32_t)s2 / 16));
+    } else {
+        const int32_t e = ((int32_t)d->s.offset_u - DSH_MID) * 16;
+        qfoc_q15_t i[3];
+        st = qfoc_shunt_currents(&sd->rec, &sd->plan[j], qfoc_q15_sat((int32_t)s1 - e),
+                                 qfoc_q15_sat((int32_t)s2 - e), i);
+        a->iu = dsh_code(i[0], d->s.offset_u);
+        a->iv = dsh_code(i[1], d->s.offset_v);
+    }
+    if (st == QFOC_SHUNT_LOST) {
+        sd->lost = true;
+    }
+    if (sd->lost) {
+        /* full scale: the drive's over-current trip */
+        a->iu = 4095u;
+        a->iv = 0u;
+    }
+    return st;
+}
+
+qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
+                                      const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2,
+                                      qfoc_shunt_plan_t *plan)
+{
+    qfoc_adc_t a;
+    qfoc_pwm_t out;
+    qfoc_shunt_plan_t next;
+
+    a.vdc = adc->vdc;
+    sd->status = dsh_measure(sd, &a, d, s1, s2);
+    out = qfoc_drive_fast_step(d, &a);
+    if (sd->lost) {
+        out.enable = false;
+    }
+    qfoc_shunt_plan(&sd->cfg, out.cmp, &next);
+    sd->plan[1] = sd->plan[0];
+    sd->plan_on[1] = sd->plan_on[0];
+    sd->plan[0] = next;
+    sd->plan_on[0] = out.enable;
+    *plan = next;
+    return out;
+}
