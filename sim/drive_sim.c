@@ -143,11 +143,13 @@ void dsim_period(dsim_t *ds)
         if (ds->shunt != NULL) {
             uint16_t code[2];
             (void)sim_sample_shunt(&ds->plant, code);
+            const qfoc_shunt_plan_t *plan;
             ds->pwm = qfoc_drive_shunt_fast_step(ds->shunt, &ds->drv, &adc,
                                                  sim_adc_current_q15(code[0]),
-                                                 sim_adc_current_q15(code[1]), &ds->plan);
-            sim_set_compare2(&ds->plant, ds->plan.up, ds->plan.down);
-            sim_set_triggers(&ds->plant, ds->plan.trig, ds->plan.ok);
+                                                 sim_adc_current_q15(code[1]));
+            plan = qfoc_drive_shunt_plan(ds->shunt);
+            sim_set_compare2(&ds->plant, plan->up, plan->down);
+            sim_set_triggers(&ds->plant, plan->trig, plan->ok);
         } else {
             ds->pwm = (ds->ident != NULL) ? qfoc_commission_fast_step(&ds->drv, ds->ident, &adc)
                                           : qfoc_drive_fast_step(&ds->drv, &adc);

@@ -46,7 +46,6 @@ typedef struct {
                                   front end (drive_shunt.h, initialised with latency 2: the
                                   fast step runs at the start of a period with the samples
                                   of the one before), the plant's shunt sensing active */
-    qfoc_shunt_plan_t plan;  /**< single shunt: the plan the last fast step returned */
     uint8_t fast_state;      /**< the drive state the last fast step ran in */
     bool fast_ran;           /**< the fast step ran in the last period */
     /* last outputs */

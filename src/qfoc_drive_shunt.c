@@ -42,7 +42,8 @@ static void dsh_plan_none(qfoc_shunt_plan_t *p)
 /*@
   requires valid: \valid(sd);
   requires latency: ok ==> 1 <= latency <= QFOC_DRIVE_SHUNT_LATENCY_MAX;
-  assigns sd->plan[0 .. 1], sd->plan_on[0 .. 1], sd->latency, sd->lost, sd->status;
+  assigns sd->plan[0 .. 1], sd->plan_on[0 .. 1], sd->head, sd->latency, sd->lost, sd->status;
+  ensures head: sd->head == 0;
   ensures latency: 1 <= sd->latency <= QFOC_DRIVE_SHUNT_LATENCY_MAX;
   ensures status: sd->status <= QFOC_SHUNT_ERR_CFG;
   ensures lost: sd->lost <==> !ok;
@@ -54,6 +55,7 @@ static void dsh_reset(qfoc_drive_shunt_t *sd, bool ok, uint8_t latency)
     dsh_plan_none(&sd->plan[1]);
     sd->plan_on[0] = false;
     sd->plan_on[1] = false;
+    sd->head = 0u;
     sd->latency = ok ? latency : 1u;
     sd->lost = !ok;
     sd->status = ok ? QFOC_SHUNT_HELD : QFOC_SHUNT_ERR_CFG;
@@ -111,7 +113,8 @@ static uint16_t dsh_code(qfoc_q15_t i, uint16_t off)
 static uint8_t dsh_measure(qfoc_drive_shunt_t *sd, qfoc_adc_t *a, const qfoc_drive_t *d,
                            qfoc_q15_t s1, qfoc_q15_t s2)
 {
-    const uint32_t j = (sd->latency >= 2u) ? 1u : 0u;
+    /* the plan in force: the last call's (latency 1) or the one before (latency 2) */
+    const uint32_t j = (sd->latency >= 2u) ? (1u - (uint32_t)sd->head) : (uint32_t)sd->head;
     uint8_t st = QFOC_SHUNT_OK;
     if (!sd->plan_on[j]) {
         /* no switching: the samples read the amplifier's zero (the offset calibration) */
@@ -137,12 +140,11 @@ static uint8_t dsh_measure(qfoc_drive_shunt_t *sd, qfoc_adc_t *a, const qfoc_dri
 }
 
 qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
-                                      const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2,
-                                      qfoc_shunt_plan_t *plan)
+                                      const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2)
 {
     qfoc_adc_t a;
     qfoc_pwm_t out;
-    qfoc_shunt_plan_t next;
+    const uint8_t next = (sd->head != 0u) ? (uint8_t)0u : (uint8_t)1u;
 
     a.vdc = adc->vdc;
     sd->status = dsh_measure(sd, &a, d, s1, s2);
@@ -150,11 +152,13 @@ qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
     if (sd->lost) {
         out.enable = false;
     }
-    qfoc_shunt_plan(&sd->cfg, out.cmp, &next);
-    sd->plan[1] = sd->plan[0];
-    sd->plan_on[1] = sd->plan_on[0];
-    sd->plan[0] = next;
-    sd->plan_on[0] = out.enable;
-    *plan = next;
+    qfoc_shunt_plan(&sd->cfg, out.cmp, &sd->plan[next]);
+    sd->plan_on[next] = out.enable;
+    sd->head = next;
     return out;
+}
+
+const qfoc_shunt_plan_t *qfoc_drive_shunt_plan(const qfoc_drive_shunt_t *sd)
+{
+    return (sd->head != 0u) ? &sd->plan[1] : &sd->plan[0];
 }

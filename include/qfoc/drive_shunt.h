@@ -9,7 +9,7 @@
  * that was in force when they were taken), hands them to the drive's fast step as the
  * phase-current codes it expects, and returns the drive's output together with the plan
  * of the next period (the shifted compare values and the two sampling instants), which
- * the port applies (hal.h qfoc_hal_pwm_write_shunt()).  The tick is the drive's own
+ * the port applies (qfoc_drive_shunt_plan(), hal.h qfoc_hal_pwm_write_shunt()).  The tick is the drive's own
  * (qfoc_drive_tick()).
  *
  * Offsets: the DC-link amplifier's zero is learnt by the drive's own offset calibration.
@@ -53,8 +53,9 @@ extern "C" {
 typedef struct {
     qfoc_shunt_cfg_t cfg;       /**< from the table: period, settle, sample, hold */
     qfoc_shunt_t rec;           /**< the rebuilt currents and the count of missed periods */
-    qfoc_shunt_plan_t plan[2];  /**< [0] the plan the last call returned, [1] the one before */
+    qfoc_shunt_plan_t plan[2];  /**< the plans of the last two calls: plan[head] the last */
     bool plan_on[2];            /**< the output each of those plans was made for was enabled */
+    uint8_t head;               /**< 0 .. 1: the index of the last call's plan */
     uint8_t latency;            /**< 1 .. QFOC_DRIVE_SHUNT_LATENCY_MAX */
     uint8_t status;             /**< the last call's measurement: QFOC_SHUNT_OK, _HELD, _LOST;
                                      QFOC_SHUNT_ERR_CFG after a refused initialisation */
@@ -97,32 +98,42 @@ uint8_t qfoc_drive_shunt_init(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d, uin
  * @param[in]     adc  this period's DC-bus code (its phase-current codes are not read)
  * @param[in]     s1   the first DC-link sample of this period, Q15 (hal.h), any value
  * @param[in]     s2   the second, any value
- * @param[out]    plan the plan of the next period for the port
  * @return the drive's output (qfoc_drive_fast_step()), its enable false once the sensing
- *         is lost
+ *         is lost; the plan of the next period for the port is qfoc_drive_shunt_plan()
  * Requirements: REQ-SHUNT-006, REQ-SHUNT-007.
  */
 /*@
-  requires valid: \valid(sd) && \valid(d) && \valid_read(adc) && \valid(plan);
-  requires sep: \separated(sd, d, adc, plan) && \separated(sd, d->p) &&
-                \separated(plan, d->p) && \separated(adc, d->p);
+  requires valid: \valid(sd) && \valid(d) && \valid_read(adc);
+  requires sep: \separated(sd, d, adc) && \separated(sd, d->p) && \separated(adc, d->p);
   requires inv: DRV_VALID(d) && DshValid(sd);
-  assigns d->f, *sd, *plan;
-  ensures inv: DRV_VALID(d) && DshValid(sd);
+  assigns d->f, *sd;
+  ensures inv: DRV_VALID(d);
+  ensures inv_sd: DshValid(sd);
   ensures table: d->p == \old(d->p);
   ensures latched: \old(sd->lost) ==> sd->lost;
   ensures off_when_lost: sd->lost ==> !\result.enable;
   ensures pwm_only_in_run: \result.enable ==> d->s.sm.state == QFOC_STATE_RUN && !d->f.trip;
   ensures cmp: \result.cmp[0] <= d->p->svpwm.period && \result.cmp[1] <= d->p->svpwm.period &&
                \result.cmp[2] <= d->p->svpwm.period;
-  ensures plan_range: plan->up[0] <= sd->cfg.period && plan->up[1] <= sd->cfg.period &&
-                      plan->up[2] <= sd->cfg.period && plan->down[0] <= sd->cfg.period &&
-                      plan->down[1] <= sd->cfg.period && plan->down[2] <= sd->cfg.period;
-  ensures kept: *plan == sd->plan[0];
+  ensures plan_range: DshPlanRange(&sd->plan[sd->head], sd->cfg.period);
 */
 qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
-                                      const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2,
-                                      qfoc_shunt_plan_t *plan);
+                                      const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2);
+
+/**
+ * @brief The plan the last qfoc_drive_shunt_fast_step() made: the port's compare values and
+ *        sampling instants of the next period (hal.h qfoc_hal_pwm_write_shunt()).
+ * @param[in] sd the front end (any contents)
+ * @return a pointer into sd (plan[head], plan[0] before the first call)
+ * Requirements: REQ-SHUNT-006.
+ */
+/*@
+  requires valid: \valid_read(sd);
+  assigns \nothing;
+  ensures in_sd: \result == &sd->plan[0] || \result == &sd->plan[1];
+  ensures last: 0 <= sd->head <= 1 ==> \result == &sd->plan[sd->head];
+*/
+const qfoc_shunt_plan_t *qfoc_drive_shunt_plan(const qfoc_drive_shunt_t *sd);
 
 #ifdef __cplusplus
 }
