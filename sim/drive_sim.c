@@ -147,7 +147,7 @@ void dsim_period(dsim_t *ds)
             ds->pwm = qfoc_drive_shunt_fast_step(ds->shunt, &ds->drv, &adc,
                                                  sim_adc_current_q15(code[0]),
                                                  sim_adc_current_q15(code[1]));
-            plan = qfoc_drive_shunt_plan(ds->shunt);
+            plan = qfoc_drive_shunt_plan(ds->shunt, &ds->drv);
             sim_set_compare2(&ds->plant, plan->up, plan->down);
             sim_set_triggers(&ds->plant, plan->trig, plan->ok);
         } else {

@@ -144,7 +144,6 @@ qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
 {
     qfoc_adc_t a;
     qfoc_pwm_t out;
-    const uint8_t next = (sd->head != 0u) ? (uint8_t)0u : (uint8_t)1u;
 
     a.vdc = adc->vdc;
     sd->status = dsh_measure(sd, &a, d, s1, s2);
@@ -152,13 +151,14 @@ qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
     if (sd->lost) {
         out.enable = false;
     }
-    qfoc_shunt_plan(&sd->cfg, out.cmp, &sd->plan[next]);
-    sd->plan_on[next] = out.enable;
-    sd->head = next;
     return out;
 }
 
-const qfoc_shunt_plan_t *qfoc_drive_shunt_plan(const qfoc_drive_shunt_t *sd)
+const qfoc_shunt_plan_t *qfoc_drive_shunt_plan(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d)
 {
-    return (sd->head != 0u) ? &sd->plan[1] : &sd->plan[0];
+    const uint8_t next = (sd->head != 0u) ? (uint8_t)0u : (uint8_t)1u;
+    qfoc_shunt_plan(&sd->cfg, d->f.out.cmp, &sd->plan[next]);
+    sd->plan_on[next] = d->f.out.enable && (!sd->lost);
+    sd->head = next;
+    return &sd->plan[next];
 }

@@ -132,7 +132,7 @@ static void test_req_shunt_006_init(void **state)
     /* lost from the start: the output stays off whatever the samples */
     for (k = 0; k < 100; k++) {
         out = qfoc_drive_shunt_fast_step(&sd, &d, &a, 0, 0);
-        p = qfoc_drive_shunt_plan(&sd);
+        p = qfoc_drive_shunt_plan(&sd, &d);
         assert_false(out.enable);
         assert_true(p == &sd.plan[sd.head]);
         assert_true(p->up[0] <= sd.cfg.period && p->down[2] <= sd.cfg.period);

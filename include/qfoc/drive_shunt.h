@@ -9,7 +9,10 @@
  * that was in force when they were taken), hands them to the drive's fast step as the
  * phase-current codes it expects, and returns the drive's output together with the plan
  * of the next period (the shifted compare values and the two sampling instants), which
- * the port applies (qfoc_drive_shunt_plan(), hal.h qfoc_hal_pwm_write_shunt()).  The tick is the drive's own
+ * the port applies: qfoc_drive_shunt_plan(), called once after each fast step, makes it
+ * from the drive's output (hal.h qfoc_hal_pwm_write_shunt() writes it).  A period in which
+ * the port does not call it leaves the plan before in force (the timer keeps its compare
+ * values and instants), which is what the measurement assumes with a latency of 1.  The tick is the drive's own
  * (qfoc_drive_tick()).
  *
  * Offsets: the DC-link amplifier's zero is learnt by the drive's own offset calibration.
@@ -99,14 +102,14 @@ uint8_t qfoc_drive_shunt_init(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d, uin
  * @param[in]     s1   the first DC-link sample of this period, Q15 (hal.h), any value
  * @param[in]     s2   the second, any value
  * @return the drive's output (qfoc_drive_fast_step()), its enable false once the sensing
- *         is lost; the plan of the next period for the port is qfoc_drive_shunt_plan()
+ *         is lost; then qfoc_drive_shunt_plan() gives the plan of the next period
  * Requirements: REQ-SHUNT-006, REQ-SHUNT-007.
  */
 /*@
   requires valid: \valid(sd) && \valid(d) && \valid_read(adc);
   requires sep: \separated(sd, d, adc) && \separated(sd, d->p) && \separated(adc, d->p);
   requires inv: DRV_VALID(d) && DshValid(sd);
-  assigns d->f, *sd;
+  assigns d->f, sd->rec, sd->lost, sd->status;
   ensures inv: DRV_VALID(d);
   ensures inv_sd: DshValid(sd);
   ensures table: d->p == \old(d->p);
@@ -115,25 +118,30 @@ uint8_t qfoc_drive_shunt_init(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d, uin
   ensures pwm_only_in_run: \result.enable ==> d->s.sm.state == QFOC_STATE_RUN && !d->f.trip;
   ensures cmp: \result.cmp[0] <= d->p->svpwm.period && \result.cmp[1] <= d->p->svpwm.period &&
                \result.cmp[2] <= d->p->svpwm.period;
-  ensures plan_range: DshPlanRange(&sd->plan[sd->head], sd->cfg.period);
 */
 qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
                                       const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2);
 
 /**
- * @brief The plan the last qfoc_drive_shunt_fast_step() made: the port's compare values and
- *        sampling instants of the next period (hal.h qfoc_hal_pwm_write_shunt()).
- * @param[in] sd the front end (any contents)
- * @return a pointer into sd (plan[head], plan[0] before the first call)
+ * @brief The plan of the next period, from the drive's output of the fast step just run:
+ *        the port's compare values and sampling instants (hal.h qfoc_hal_pwm_write_shunt()).
+ * @param[in,out] sd the front end (valid)
+ * @param[in]     d  the drive, after its fast step (d->f.out is read)
+ * @return a pointer into sd: the plan, every compare value within the table's period
+ *         (the edges shifted apart where an active vector is too short, shunt.h)
  * Requirements: REQ-SHUNT-006.
  */
 /*@
-  requires valid: \valid_read(sd);
-  assigns \nothing;
-  ensures in_sd: \result == &sd->plan[0] || \result == &sd->plan[1];
-  ensures last: 0 <= sd->head <= 1 ==> \result == &sd->plan[sd->head];
+  requires valid: \valid(sd) && \valid_read(d);
+  requires sep: \separated(sd, d);
+  requires inv: DshValid(sd);
+  assigns sd->plan[0 .. 1], sd->plan_on[0 .. 1], sd->head;
+  ensures inv: DshValid(sd);
+  ensures last: \result == &sd->plan[sd->head];
+  ensures range: DshPlanRange(&sd->plan[sd->head], sd->cfg.period);
+  ensures on: sd->plan_on[sd->head] <==> (d->f.out.enable && !sd->lost);
 */
-const qfoc_shunt_plan_t *qfoc_drive_shunt_plan(const qfoc_drive_shunt_t *sd);
+const qfoc_shunt_plan_t *qfoc_drive_shunt_plan(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d);
 
 #ifdef __cplusplus
 }

@@ -945,6 +945,12 @@ def write_report(md_path, r):
             "of the two, every input, every state; the fast step's limit)", None, None,
             STATIC_LIMIT_FAST_STEP, "instructions",
             static=sb["qfoc_commission_fast_step"]["instructions"], gated="static")
+    if "qfoc_drive_shunt_fast_step" in sb:
+        row("REQ-SHUNT-006", "`qfoc_drive_shunt_fast_step`, static bound (the fast step of a "
+            "single-shunt inverter: the currents rebuilt, the drive's fast step, the next "
+            "plan; every input, every state; reported beside the fast step's limit, not gated)",
+            None, None, None, "instructions",
+            static=sb["qfoc_drive_shunt_fast_step"]["instructions"], gated="static")
     row("REQ-BENCH-008", "CPU load at 16 kHz and 80 MHz, fast step + tick, static bounds in "
         "estimated cycles", None, None, None, "% of the CPU", goal=GOAL_LOAD_PCT,
         static=cpu_load(fs["cycles"], tk["cycles"], 16000), gated="static")
@@ -1300,7 +1306,8 @@ def main():
         sz = sizes(o.size, o.obj_dir, o.drive_elf, t)
         syms = sorted({f["symbol"] for f in functions.values()} | set(SVPWM_CHAIN)
                       | {"qfoc_drive_fast_step", "qfoc_drive_tick", "qfoc_drive_init",
-                         "qfoc_ident_step", "qfoc_commission_fast_step"})
+                         "qfoc_ident_step", "qfoc_commission_fast_step",
+                         "qfoc_drive_shunt_fast_step"})
         sb = static_bounds(o.elf, syms)
         for f in functions.values():
             f["static"] = sb[f["symbol"]]["instructions"]
