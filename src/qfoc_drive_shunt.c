@@ -117,9 +117,12 @@ static uint8_t dsh_measure(qfoc_drive_shunt_t *sd, qfoc_adc_t *a, const qfoc_dri
     const uint32_t j = (sd->latency >= 2u) ? (1u - (uint32_t)sd->head) : (uint32_t)sd->head;
     uint8_t st = QFOC_SHUNT_OK;
     if (!sd->plan_on[j]) {
-        /* no switching: the samples read the amplifier's zero (the offset calibration) */
-        a->iu = (uint16_t)(DSH_MID + ((int32_t)s1 / 16));
-        a->iv = (uint16_t)(DSH_MID + ((int32_t)s2 / 16));
+        /* no switching: the samples read the amplifier's zero (the offset calibration);
+           s / 16 lies in [-2048, 2047], the code in [0, 4095] */
+        const int32_t c1 = DSH_MID + ((int32_t)s1 / 16);
+        const int32_t c2 = DSH_MID + ((int32_t)s2 / 16);
+        a->iu = (uint16_t)c1;
+        a->iv = (uint16_t)c2;
     } else {
         const int32_t e = ((int32_t)d->s.offset_u - DSH_MID) * 16;
         qfoc_q15_t i[3];
