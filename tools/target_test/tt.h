@@ -85,7 +85,7 @@ typedef struct {
 } tt_suite_t;
 
 /** Number of suites (tt_groups.c). */
-#define TT_N_SUITES (47u)
+#define TT_N_SUITES (48u)
 /** Every suite, in the order of the groups in vectors.c (tt_groups.c). */
 extern const tt_suite_t tt_suites[TT_N_SUITES];
 

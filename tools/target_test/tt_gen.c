@@ -1207,6 +1207,46 @@ static void gen_table_mutants(rows_t *r, int extra)
     }
 }
 
+/* shunt: [period, t_settle, t_sample, hold_max, cmp u, v, w, s1, s2]: configurations the
+   check accepts (periods of 8 and 16 kHz, the smallest and largest, the window at a
+   quarter period) and refuses, compare values in every order, at 0, at the period and
+   beyond it, close together (the edge shift), any samples. */
+static void gen_shunt(rows_t *r)
+{
+    static const int32_t per[] = { 5000, 2500, 100, 32767, 1000 };
+    int k;
+    for (k = 0; k < 4096; k++) {
+        uint16_t *p = row(r);
+        int j;
+        if (chance(10)) {
+            for (j = 0; j < 4; j++) {
+                p[j] = (uint16_t)rnd();
+            }
+        } else {
+            const int32_t pp = chance(70) ? per[rr(0, 4)] : rr(100, 32767);
+            const int32_t q = pp / 4;
+            const int32_t settle = rr(0, q / 2);
+            const int32_t sample = chance(5) ? (q - settle + 1) : rr(1, q - settle);
+            p[0] = (uint16_t)pp;
+            p[1] = (uint16_t)settle;
+            p[2] = (uint16_t)sample;
+            p[3] = (uint16_t)(chance(5) ? rr(0, 2000) : rr(1, 16));
+        }
+        for (j = 0; j < 3; j++) {
+            const int32_t pp = (int32_t)p[0];
+            if (chance(30)) {
+                p[4 + j] = (uint16_t)(pp / 2 + rr(-40, 40));      /* low modulation */
+            } else if (chance(10)) {
+                p[4 + j] = (uint16_t)(chance(50) ? rr(0, 3) : pp + rr(-3, 3)); /* rails */
+            } else {
+                p[4 + j] = (uint16_t)rr(0, pp + 100);
+            }
+        }
+        p[7] = (uint16_t)rq15();
+        p[8] = (uint16_t)rq15();
+    }
+}
+
 static void gen_params(rows_t *r) { gen_table_mutants(r, 768); }
 static void gen_drive_init(rows_t *r) { gen_table_mutants(r, 256); }
 
@@ -1486,6 +1526,7 @@ static const gen_entry_t GEN[] = {
     { "params", 3u, 0u, gen_params },
     { "sm", 6u, 0u, gen_sm },
     { "drive_init", 3u, 0u, gen_drive_init },
+    { "shunt", 9u, 0u, gen_shunt },
 };
 #define N_GEN ((int)(sizeof GEN / sizeof GEN[0]))
 

@@ -23,6 +23,7 @@
 #include "qfoc/transforms.h"
 #include "qfoc/svpwm.h"
 #include "qfoc/ramp.h"
+#include "qfoc/shunt.h"
 #include "qfoc/fault.h"
 #include "qfoc/filter.h"
 #include "qfoc/pi.h"
@@ -1440,6 +1441,58 @@ static void tt_replay_drive(tt_ctx_t *c)
     }
 }
 
+/* ------------------------------------------------------------------ shunt.h */
+
+/* shunt: [period, t_settle, t_sample, hold_max, cmp u, v, w, s1, s2] -> the check, the
+   init's status, the plan, the currents of the plan and of a period without a measurement
+   (held or lost), the count. */
+static void tt_replay_shunt(tt_ctx_t *c)
+{
+    uint32_t k;
+    for (k = 0u; k < c->data->n; k++) {
+        tt_digest_t d;
+        qfoc_shunt_cfg_t cfg;
+        qfoc_shunt_t s;
+        qfoc_shunt_plan_t pl;
+        qfoc_q15_t out[3];
+        uint16_t cmp[3];
+        uint16_t j;
+        cfg.period = (uint16_t)tt_in_i16(c, k, 0u);
+        cfg.t_settle = (uint16_t)tt_in_i16(c, k, 1u);
+        cfg.t_sample = (uint16_t)tt_in_i16(c, k, 2u);
+        cfg.hold_max = (uint16_t)tt_in_i16(c, k, 3u);
+        for (j = 0u; j < 3u; j++) {
+            cmp[j] = (uint16_t)tt_in_i16(c, k, (uint16_t)(4u + j));
+        }
+        tt_d_init(&d);
+        tt_d_bool(&d, qfoc_shunt_cfg_is_valid(&cfg));
+        tt_d_u8(&d, qfoc_shunt_init(&s, &cfg));
+        (void)memset(&pl, 0, sizeof pl);
+        qfoc_shunt_plan(&cfg, cmp, &pl);
+        for (j = 0u; j < 3u; j++) {
+            tt_d_u16(&d, pl.up[j]);
+            tt_d_u16(&d, pl.down[j]);
+        }
+        tt_d_u16(&d, pl.trig[0]);
+        tt_d_u16(&d, pl.trig[1]);
+        tt_d_u8(&d, pl.hi);
+        tt_d_u8(&d, pl.lo);
+        tt_d_bool(&d, pl.ok);
+        tt_d_bool(&d, pl.shifted);
+        tt_d_u8(&d, qfoc_shunt_currents(&s, &pl, tt_in_i16(c, k, 7u), tt_in_i16(c, k, 8u), out));
+        tt_d_i16(&d, out[0]);
+        tt_d_i16(&d, out[1]);
+        tt_d_i16(&d, out[2]);
+        pl.ok = false;
+        tt_d_u8(&d, qfoc_shunt_currents(&s, &pl, tt_in_i16(c, k, 8u), tt_in_i16(c, k, 7u), out));
+        tt_d_i16(&d, out[0]);
+        tt_d_i16(&d, out[1]);
+        tt_d_i16(&d, out[2]);
+        tt_d_u16(&d, s.n_hold);
+        tt_emit(c, &d);
+    }
+}
+
 /* ------------------------------------------------------------------ the suites */
 
 /* TT_N_SUITES entries (tt.h); a missing one would be all zero, which the runner and the
@@ -1641,4 +1694,10 @@ const tt_suite_t tt_suites[TT_N_SUITES] = {
        both entry points against the host build's, recorded in the closed loop and replayed open
        loop */
     { { "drive_fast", "drive_tick" }, 2u, tt_replay_drive },
+    /* Methods: 1b 4096 rows: configurations of 8 and 16 kHz, the smallest and largest
+       period, random ones, random bit patterns; compare values near half the period (both
+       vectors short), in any order, random; 1c the window at a quarter period and one tick
+       beyond, hold 1 .. 16 and out of range, compare values at 0, at the period and beyond;
+       1n the Cortex-M4F build's digests against the host build's */
+    { { "shunt", NULL }, 1u, tt_replay_shunt },
 };
