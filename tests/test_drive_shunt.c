@@ -139,6 +139,89 @@ static void test_req_shunt_006_init(void **state)
     }
 }
 
+/* The drive of the shunt table, initialised, its front end with the given latency, and a
+   plan in force made for an enabled output (white box: a plan of the SVPWM's centred
+   compare values, both windows opened). */
+static void measured_rig(qfoc_drive_t *d, qfoc_drive_shunt_t *sd, uint8_t latency,
+                         const uint16_t cmp[3])
+{
+    assert_int_equal(qfoc_drive_init(d, &shunt_table), QFOC_PARAMS_OK);
+    assert_int_equal(qfoc_drive_shunt_init(sd, d, latency), QFOC_SHUNT_OK);
+    qfoc_shunt_plan(&sd->cfg, cmp, &sd->plan[0]);
+    qfoc_shunt_plan(&sd->cfg, cmp, &sd->plan[1]);
+    assert_true(sd->plan[0].ok);
+    sd->plan_on[0] = true;
+    sd->plan_on[1] = true;
+}
+
+/* REQ-SHUNT-006, REQ-SHUNT-007: the codes handed to the drive, observed through its
+   over-current trip: with the offsets at the edges of the table's window (2048 +- 100),
+   rebuilt currents near full scale go beyond the ADC's range and are clamped to its rails
+   (u at 4095, v at 0), which the drive still reads above i_trip (the tool's rule
+   'over-current trip': i_trip below (2047 - offset_window) x 16): over-current in that
+   call; small currents give no trip; a configuration the shunt refuses with a
+   single-shunt table is refused; a lost front end keeps its plans' output off even when
+   the drive's output is enabled.
+   Methods: 1c the offsets at the window's edges, the samples at +-32767, u as the first
+   and as the last phase of the plan, the hold 0 (refused); 1d a lost front end beside an
+   enabled drive output (white box); 1n the codes' clamp observed through the drive's
+   over-current condition (DriveOverCurrent, drive.h) */
+static void test_req_shunt_006_codes(void **state)
+{
+    qfoc_drive_t d;
+    qfoc_drive_shunt_t sd;
+    qfoc_param_table_t tab = shunt_table;
+    const qfoc_adc_t a = { 0u, 0u, 2621u };
+    static const uint16_t u_hi[3] = { 2700u, 2500u, 2300u };
+    static const uint16_t u_lo[3] = { 2300u, 2500u, 2700u };
+    const qfoc_shunt_plan_t *p;
+    qfoc_pwm_t out;
+    (void)state;
+    /* a single-shunt table whose hold is 0: the shunt's configuration refused (only the
+       front end reads the table here) */
+    tab.drive.shunt_hold = 0u;
+    d.p = &tab;
+    assert_int_equal(qfoc_drive_shunt_init(&sd, &d, 1u), QFOC_SHUNT_ERR_CFG);
+    assert_true(sd.lost);
+    /* small samples, centred offsets: no trip, the measurement OK (latency 1 and 2) */
+    measured_rig(&d, &sd, 1u, u_hi);
+    out = qfoc_drive_shunt_fast_step(&sd, &d, &a, 1000, -400);
+    assert_int_equal(sd.status, QFOC_SHUNT_OK);
+    assert_false(d.f.trip);
+    assert_false(out.enable);   /* STOP */
+    measured_rig(&d, &sd, 2u, u_hi);
+    (void)qfoc_drive_shunt_fast_step(&sd, &d, &a, -1000, 400);
+    assert_int_equal(sd.status, QFOC_SHUNT_OK);
+    assert_false(d.f.trip);
+    /* u first (hi): i_v = sat(s2' - s1') = -32767, its code 1948 - 2047 clamped to 0 */
+    assert_true(qfoc_params_reference.i_trip < (2047 - 100) * 16);
+    assert_int_equal(shunt_table.drive.offset_window, 100u);
+    measured_rig(&d, &sd, 1u, u_hi);
+    d.s.offset_u = 2148u;
+    d.s.offset_v = 1948u;
+    (void)qfoc_drive_shunt_fast_step(&sd, &d, &a, 32767, -32767);
+    assert_int_equal(sd.status, QFOC_SHUNT_OK);
+    assert_true(d.f.trip);
+    /* u last (lo): i_u = sat(e - s2) = 32767, its code 2148 + 2047 clamped to 4095 */
+    measured_rig(&d, &sd, 1u, u_lo);
+    assert_int_equal(sd.plan[0].lo, 0u);
+    d.s.offset_u = 2148u;
+    d.s.offset_v = 1948u;
+    (void)qfoc_drive_shunt_fast_step(&sd, &d, &a, 32767, -32767);
+    assert_true(d.f.trip);
+    /* lost beside an enabled drive output: the plan's output stays off */
+    measured_rig(&d, &sd, 1u, u_hi);
+    sd.lost = true;
+    d.f.out.enable = true;
+    p = qfoc_drive_shunt_plan(&sd, &d);
+    assert_false(sd.plan_on[sd.head]);
+    assert_true(p == &sd.plan[sd.head]);
+    sd.lost = false;
+    p = qfoc_drive_shunt_plan(&sd, &d);
+    assert_true(sd.plan_on[sd.head]);
+    assert_true(p->up[0] <= sd.cfg.period);
+}
+
 /* REQ-SHUNT-006, REQ-SHUNT-007: a cold start from standstill to 3000 rpm at the nominal
    4.5 N m with the currents rebuilt from the DC-link samples: closed loop reached, the
    speed within 1 % and the angle error within 1.5 times the two-sensor start's (and at
@@ -237,6 +320,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_req_shunt_006_init),
+        cmocka_unit_test(test_req_shunt_006_codes),
         cmocka_unit_test(test_req_shunt_006_cold_start),
         cmocka_unit_test(test_req_shunt_007_sensing_lost),
     };
