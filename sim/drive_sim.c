@@ -144,9 +144,10 @@ void dsim_period(dsim_t *ds)
             uint16_t code[2];
             (void)sim_sample_shunt(&ds->plant, code);
             const qfoc_shunt_plan_t *plan;
-            ds->pwm = qfoc_drive_shunt_fast_step(ds->shunt, &ds->drv, &adc,
-                                                 sim_adc_current_q15(code[0]),
-                                                 sim_adc_current_q15(code[1]));
+            const qfoc_adc_t codes = qfoc_drive_shunt_measure(ds->shunt, &ds->drv, &adc,
+                                                              sim_adc_current_q15(code[0]),
+                                                              sim_adc_current_q15(code[1]));
+            ds->pwm = qfoc_drive_shunt_output(ds->shunt, qfoc_drive_fast_step(&ds->drv, &codes));
             plan = qfoc_drive_shunt_plan(ds->shunt, &ds->drv);
             sim_set_compare2(&ds->plant, plan->up, plan->down);
             sim_set_triggers(&ds->plant, plan->trig, plan->ok);

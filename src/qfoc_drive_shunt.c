@@ -99,62 +99,62 @@ static uint16_t dsh_code(qfoc_q15_t i, uint16_t off)
     return (uint16_t)c;
 }
 
-/* The codes the drive is handed for this period's samples (the header's rules), and the
-   measurement's status (QFOC_SHUNT_OK also for a period with the output off). */
+/* A calibrated offset as an ADC code (at most 4095). */
 /*@
-  requires valid: \valid(sd) && \valid(a) && \valid_read(d);
-  requires sep: \separated(sd, a, d) && \separated(a, d->p) && \separated(sd, d->p);
-  requires inv: DshValid(sd) && d->s.offset_u <= 4095 && d->s.offset_v <= 4095;
-  assigns sd->rec, sd->lost, a->iu, a->iv;
-  ensures inv: DshValid(sd);
-  ensures latched: \old(sd->lost) ==> sd->lost;
-  ensures status: \result <= QFOC_SHUNT_ERR_CFG;
+  assigns \nothing;
+  ensures range: \result <= 4095;
+  ensures kept: off <= 4095 ==> \result == off;
 */
-static uint8_t dsh_measure(qfoc_drive_shunt_t *sd, qfoc_adc_t *a, const qfoc_drive_t *d,
-                           qfoc_q15_t s1, qfoc_q15_t s2)
+static uint16_t dsh_offset(uint16_t off)
+{
+    return (off > QFOC_ADC_MAX) ? QFOC_ADC_MAX : off;
+}
+
+qfoc_adc_t qfoc_drive_shunt_measure(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d,
+                                    const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2)
 {
     /* the plan in force: the last call's (latency 1) or the one before (latency 2) */
     const uint32_t j = (sd->latency >= 2u) ? (1u - (uint32_t)sd->head) : (uint32_t)sd->head;
-    uint8_t st = QFOC_SHUNT_OK;
+    const uint16_t off_u = dsh_offset(d->s.offset_u);
+    const uint16_t off_v = dsh_offset(d->s.offset_v);
+    qfoc_adc_t a;
+    uint8_t m = QFOC_SHUNT_OK;
+
+    a.vdc = adc->vdc;
     if (!sd->plan_on[j]) {
         /* no switching: the samples read the amplifier's zero (the offset calibration);
            s / 16 lies in [-2048, 2047], the code in [0, 4095] */
         const int32_t c1 = DSH_MID + ((int32_t)s1 / 16);
         const int32_t c2 = DSH_MID + ((int32_t)s2 / 16);
-        a->iu = (uint16_t)c1;
-        a->iv = (uint16_t)c2;
+        a.iu = (uint16_t)c1;
+        a.iv = (uint16_t)c2;
     } else {
-        const int32_t e = ((int32_t)d->s.offset_u - DSH_MID) * 16;
+        const int32_t e = ((int32_t)off_u - DSH_MID) * 16;
         qfoc_q15_t i[3];
-        st = qfoc_shunt_currents(&sd->rec, &sd->plan[j], qfoc_q15_sat((int32_t)s1 - e),
-                                 qfoc_q15_sat((int32_t)s2 - e), i);
-        a->iu = dsh_code(i[0], d->s.offset_u);
-        a->iv = dsh_code(i[1], d->s.offset_v);
+        m = qfoc_shunt_currents(&sd->rec, &sd->plan[j], qfoc_q15_sat((int32_t)s1 - e),
+                                qfoc_q15_sat((int32_t)s2 - e), i);
+        a.iu = dsh_code(i[0], off_u);
+        a.iv = dsh_code(i[1], off_v);
     }
-    if (st == QFOC_SHUNT_LOST) {
+    if (m == QFOC_SHUNT_LOST) {
         sd->lost = true;
     }
     if (sd->lost) {
         /* full scale: the drive's over-current trip */
-        a->iu = 4095u;
-        a->iv = 0u;
+        a.iu = QFOC_ADC_MAX;
+        a.iv = 0u;
     }
-    return st;
+    sd->status = m;
+    return a;
 }
 
-qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
-                                      const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2)
+qfoc_pwm_t qfoc_drive_shunt_output(const qfoc_drive_shunt_t *sd, qfoc_pwm_t out)
 {
-    qfoc_adc_t a;
-    qfoc_pwm_t out;
-
-    a.vdc = adc->vdc;
-    sd->status = dsh_measure(sd, &a, d, s1, s2);
-    out = qfoc_drive_fast_step(d, &a);
+    qfoc_pwm_t r = out;
     if (sd->lost) {
-        out.enable = false;
+        r.enable = false;
     }
-    return out;
+    return r;
 }
 
 const qfoc_shunt_plan_t *qfoc_drive_shunt_plan(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d)

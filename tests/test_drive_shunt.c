@@ -35,6 +35,16 @@ static int setup(void **state)
     return (sim_motor_load(MOTOR_FILE, &motor) == 0) ? 0 : -1;
 }
 
+/* One period as the port runs it: the codes, the drive's fast step, the output. */
+static qfoc_pwm_t step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d, const qfoc_adc_t *a,
+                       qfoc_q15_t s1, qfoc_q15_t s2)
+{
+    const qfoc_adc_t codes = qfoc_drive_shunt_measure(sd, d, a, s1, s2);
+    assert_true(codes.iu <= 4095u && codes.iv <= 4095u);
+    assert_int_equal(codes.vdc, a->vdc);
+    return qfoc_drive_shunt_output(sd, qfoc_drive_fast_step(d, &codes));
+}
+
 /* The reference motor's plant; with the shunt, its DC-link sensing and the front end. */
 static void rig(dsim_t *ds, qfoc_drive_shunt_t *sd, double load_nm)
 {
@@ -131,7 +141,7 @@ static void test_req_shunt_006_init(void **state)
     assert_true(sd.lost);
     /* lost from the start: the output stays off whatever the samples */
     for (k = 0; k < 100; k++) {
-        out = qfoc_drive_shunt_fast_step(&sd, &d, &a, 0, 0);
+        out = step(&sd, &d, &a, 0, 0);
         p = qfoc_drive_shunt_plan(&sd, &d);
         assert_false(out.enable);
         assert_true(p == &sd.plan[sd.head]);
@@ -185,12 +195,12 @@ static void test_req_shunt_006_codes(void **state)
     assert_true(sd.lost);
     /* small samples, centred offsets: no trip, the measurement OK (latency 1 and 2) */
     measured_rig(&d, &sd, 1u, u_hi);
-    out = qfoc_drive_shunt_fast_step(&sd, &d, &a, 1000, -400);
+    out = step(&sd, &d, &a, 1000, -400);
     assert_int_equal(sd.status, QFOC_SHUNT_OK);
     assert_false(d.f.trip);
     assert_false(out.enable);   /* STOP */
     measured_rig(&d, &sd, 2u, u_hi);
-    (void)qfoc_drive_shunt_fast_step(&sd, &d, &a, -1000, 400);
+    (void)step(&sd, &d, &a, -1000, 400);
     assert_int_equal(sd.status, QFOC_SHUNT_OK);
     assert_false(d.f.trip);
     /* u first (hi): i_v = sat(s2' - s1') = -32767, its code 1948 - 2047 clamped to 0 */
@@ -199,7 +209,7 @@ static void test_req_shunt_006_codes(void **state)
     measured_rig(&d, &sd, 1u, u_hi);
     d.s.offset_u = 2148u;
     d.s.offset_v = 1948u;
-    (void)qfoc_drive_shunt_fast_step(&sd, &d, &a, 32767, -32767);
+    (void)step(&sd, &d, &a, 32767, -32767);
     assert_int_equal(sd.status, QFOC_SHUNT_OK);
     assert_true(d.f.trip);
     /* u last (lo): i_u = sat(e - s2) = 32767, its code 2148 + 2047 clamped to 4095 */
@@ -207,7 +217,7 @@ static void test_req_shunt_006_codes(void **state)
     assert_int_equal(sd.plan[0].lo, 0u);
     d.s.offset_u = 2148u;
     d.s.offset_v = 1948u;
-    (void)qfoc_drive_shunt_fast_step(&sd, &d, &a, 32767, -32767);
+    (void)step(&sd, &d, &a, 32767, -32767);
     assert_true(d.f.trip);
     /* lost beside an enabled drive output: the plan's output stays off */
     measured_rig(&d, &sd, 1u, u_hi);

@@ -57,7 +57,7 @@ extern "C" {
 #define QFOC_DRIVE_HO_RETRIES_MAX ((uint8_t)3u)
 /** Current sensing (version 5): two phase-current sensors, qfoc_drive_fast_step() */
 #define QFOC_SENSING_PHASES ((uint8_t)0u)
-/** Current sensing (version 5): one DC-link shunt, qfoc_drive_shunt_fast_step() (shunt.h) */
+/** Current sensing (version 5): one DC-link shunt, qfoc_drive_shunt_measure() (drive_shunt.h) */
 #define QFOC_SENSING_SHUNT ((uint8_t)1u)
 /** Largest shunt_hold: periods the last reconstructed currents may stand in */
 #define QFOC_DRIVE_SHUNT_HOLD_MAX ((uint16_t)16u)

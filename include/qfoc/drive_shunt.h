@@ -3,12 +3,18 @@
  * @brief The drive on a single-shunt inverter: the fast step with the phase currents
  *        rebuilt from two DC-link samples per period (shunt.h).
  *
- * With a table whose drive.sensing is QFOC_SENSING_SHUNT, the port calls
- * qfoc_drive_shunt_fast_step() in place of qfoc_drive_fast_step(): it rebuilds the phase
- * currents of the period from the two DC-link samples (qfoc_shunt_currents() with the plan
- * that was in force when they were taken), hands them to the drive's fast step as the
- * phase-current codes it expects, and returns the drive's output together with the plan
- * of the next period (the shifted compare values and the two sampling instants), which
+ * With a table whose drive.sensing is QFOC_SENSING_SHUNT, the port's ADC-complete
+ * interrupt runs, each period:
+ *
+ *     codes = qfoc_drive_shunt_measure(&sd, &motor, &adc, s[0], s[1]);
+ *     out   = qfoc_drive_shunt_output(&sd, qfoc_drive_fast_step(&motor, &codes));
+ *     qfoc_hal_pwm_write_shunt(&out, qfoc_drive_shunt_plan(&sd, &motor));
+ *
+ * The measurement rebuilds the phase currents of the period from the two DC-link samples
+ * (qfoc_shunt_currents() with the plan that was in force when they were taken) and hands
+ * them to the drive's fast step as the phase-current codes it expects; the drive's output
+ * goes to the port with the plan of the next period (the shifted compare values and the
+ * two sampling instants), which
  * the port applies: qfoc_drive_shunt_plan(), called once after each fast step, makes it
  * from the drive's output (hal.h qfoc_hal_pwm_write_shunt() writes it).  A period in which
  * the port does not call it leaves the plan before in force (the timer keeps its compare
@@ -95,32 +101,47 @@ typedef struct {
 uint8_t qfoc_drive_shunt_init(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d, uint8_t latency);
 
 /**
- * @brief One PWM period of a drive on a single-shunt inverter.
- * @param[in,out] sd   the front end (as qfoc_drive_shunt_init() left it)
- * @param[in,out] d    the drive (valid)
- * @param[in]     adc  this period's DC-bus code (its phase-current codes are not read)
- * @param[in]     s1   the first DC-link sample of this period, Q15 (hal.h), any value
- * @param[in]     s2   the second, any value
- * @return the drive's output (qfoc_drive_fast_step()), its enable false once the sensing
- *         is lost; then qfoc_drive_shunt_plan() gives the plan of the next period
+ * @brief Before the drive's fast step: the phase-current codes of this period from its two
+ *        DC-link samples, for qfoc_drive_fast_step() (see above).
+ * @param[in,out] sd  the front end (valid)
+ * @param[in]     d   the drive (its calibrated offsets are read; above 4095 read as 4095)
+ * @param[in]     adc this period's DC-bus code (its phase-current codes are not read)
+ * @param[in]     s1  the first DC-link sample of this period, Q15 (hal.h), any value
+ * @param[in]     s2  the second, any value
+ * @return the codes the drive's fast step takes: the DC-bus code as read, the phase
+ *         codes within 0 .. 4095; u 4095, v 0 once the sensing is lost
  * Requirements: REQ-SHUNT-006, REQ-SHUNT-007.
  */
 /*@
-  requires valid: \valid(sd) && \valid(d) && \valid_read(adc);
-  requires sep: \separated(sd, d, adc) && \separated(sd, d->p) && \separated(adc, d->p);
-  requires inv: DRV_VALID(d) && DshValid(sd);
-  assigns d->f, sd->rec, sd->lost, sd->status;
-  ensures inv: DRV_VALID(d);
-  ensures inv_sd: DshValid(sd);
-  ensures table: d->p == \old(d->p);
+  requires valid: \valid(sd) && \valid_read(d) && \valid_read(adc);
+  requires sep: \separated(sd, d) && \separated(sd, adc);
+  requires inv: DshValid(sd);
+  assigns sd->rec, sd->lost, sd->status;
+  ensures inv: DshValid(sd);
   ensures latched: \old(sd->lost) ==> sd->lost;
-  ensures off_when_lost: sd->lost ==> !\result.enable;
-  ensures pwm_only_in_run: \result.enable ==> d->s.sm.state == QFOC_STATE_RUN && !d->f.trip;
-  ensures cmp: \result.cmp[0] <= d->p->svpwm.period && \result.cmp[1] <= d->p->svpwm.period &&
-               \result.cmp[2] <= d->p->svpwm.period;
+  ensures vdc: \result.vdc == \old(adc->vdc);
+  ensures codes: \result.iu <= 4095 && \result.iv <= 4095;
+  ensures tripped: sd->lost ==> \result.iu == 4095 && \result.iv == 0;
 */
-qfoc_pwm_t qfoc_drive_shunt_fast_step(qfoc_drive_shunt_t *sd, qfoc_drive_t *d,
-                                      const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2);
+qfoc_adc_t qfoc_drive_shunt_measure(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d,
+                                    const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2);
+
+/**
+ * @brief After the drive's fast step: its output, the enable false once the sensing is
+ *        lost.
+ * @param[in] sd  the front end (any contents)
+ * @param[in] out the drive's output (qfoc_drive_fast_step())
+ * @return out, its enable false when sd->lost
+ * Requirements: REQ-SHUNT-007.
+ */
+/*@
+  requires valid: \valid_read(sd);
+  assigns \nothing;
+  ensures off_when_lost: \result.enable <==> (out.enable && !sd->lost);
+  ensures cmp: \result.cmp[0] == out.cmp[0] && \result.cmp[1] == out.cmp[1] &&
+               \result.cmp[2] == out.cmp[2];
+*/
+qfoc_pwm_t qfoc_drive_shunt_output(const qfoc_drive_shunt_t *sd, qfoc_pwm_t out);
 
 /**
  * @brief The plan of the next period, from the drive's output of the fast step just run:
