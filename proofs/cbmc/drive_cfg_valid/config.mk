@@ -1,2 +1,2 @@
 SRCS = src/qfoc_drive_cfg.c
-UNWIND = 110
+UNWIND = 120
