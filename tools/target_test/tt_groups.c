@@ -1695,7 +1695,7 @@ const tt_suite_t tt_suites[TT_N_SUITES] = {
        loop */
     { { "drive_fast", "drive_tick" }, 2u, tt_replay_drive },
     /* Methods: 1b 4096 rows: configurations of 8 and 16 kHz, the smallest and largest
-       period, random ones, random bit patterns; compare values near half the period (both
+       period, random ones, random bit patterns, compare values near half the period (both
        vectors short), in any order, random; 1c the window at a quarter period and one tick
        beyond, hold 1 .. 16 and out of range, compare values at 0, at the period and beyond;
        1n the Cortex-M4F build's digests against the host build's */
