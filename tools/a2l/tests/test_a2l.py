@@ -100,7 +100,11 @@ def motor_value(motor: str, overrides: list, key: str, cfg: dict):
     for o in overrides:
         k, v = o.split("=", 1)
         sec, name = k.split(".")
-        raw.setdefault(sec, {})[name] = tomllib.loads(f"v = {v}")["v"]
+        try:
+            val = tomllib.loads(f"v = {v}")["v"]
+        except tomllib.TOMLDecodeError:
+            val = v.strip()   # a bare word, as the tool's --set takes it (sensing.mode=shunt)
+        raw.setdefault(sec, {})[name] = val
     section, name = key.split(".")
     if name in raw.get(section, {}):
         return raw[section][name]

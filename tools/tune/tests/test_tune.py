@@ -607,7 +607,10 @@ def motor_data(motor, overrides=()):
     for o in overrides:
         lhs, rhs = o.split("=")
         sec, key = lhs.split(".")
-        raw.setdefault(sec, {})[key] = tomllib.loads(f"v = {rhs}")["v"]
+        try:
+            raw.setdefault(sec, {})[key] = tomllib.loads(f"v = {rhs}")["v"]
+        except tomllib.TOMLDecodeError:
+            raw.setdefault(sec, {})[key] = rhs.strip()   # a bare word (sensing.mode=shunt)
     m, sen, sc = raw["motor"], raw["sensing"], raw["scaling"]
     lim, des = raw.get("limits", {}), raw.get("design", {})
     return {
