@@ -117,7 +117,8 @@ typedef struct {
 } sim_load_t;
 
 /**
- * Single-shunt sensing (REQ-SIM-007).  The DC-link current i_dc(t) = sum over the poles
+ * Single-shunt sensing (REQ-SIM-007; the measurement on it: REQ-SHUNT-005, the cold start on
+ * it: REQ-SCN-016).  The DC-link current i_dc(t) = sum over the poles
  * that are high of their phase current (a pole is high while its high-side switch is
  * on, and in the dead time before a rising or after a falling gate edge while its
  * current is negative: the high-side diode conducts).  Every pole transition within the
