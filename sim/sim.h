@@ -118,10 +118,10 @@ typedef struct {
 
 /**
  * Single-shunt sensing (REQ-SIM-007; the measurement on it: REQ-SHUNT-005, the cold start on
- * it: REQ-SCN-016).  The DC-link current i_dc(t) = sum over the poles
- * that are high of their phase current (a pole is high while its high-side switch is
- * on, and in the dead time before a rising or after a falling gate edge while its
- * current is negative: the high-side diode conducts).  Every pole transition within the
+ * it: REQ-SCN-016, the pulsating load and the stop: REQ-SCN-017).  The DC-link current
+ * i_dc(t) = sum over the poles that are high of their phase current (a pole is high while
+ * its high-side switch is on, and in the dead time before a rising or after a falling gate
+ * edge while its current is negative: the high-side diode conducts).  Every pole transition within the
  * period, at t_e with a step D of i_dc, adds the ringing
  *     r(t) = ring_gain D exp(-3 (t - t_e) / t_ring) cos(2 pi f_ring (t - t_e))
  * for t_e <= t < t_e + t_ring, and nothing after: a sample that overlaps [t_e, t_e +

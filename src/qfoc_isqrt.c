@@ -28,12 +28,13 @@ static uint32_t isqrt_newton_up(uint32_t v, uint32_t r)
 
     //@ assert q_bound: q <= 2147483647;
     //@ assert q_hi: v < (q + 1) * r;
-    //@ assert amgm_id: (r + q + 1) * (r + q + 1) == (4 * r * (q + 1)) + ((r - (q + 1)) * (r - (q + 1)));
-    //@ assert amgm_sq: 0 <= (r - (q + 1)) * (r - (q + 1));
-    //@ assert amgm: 4 * r * (q + 1) <= (r + q + 1) * (r + q + 1);
+    //@ assert amgm_id: QfocSq(r + (q + 1)) == (4 * (r * (q + 1))) + QfocSq(r - (q + 1));
+    //@ assert amgm_sq: 0 <= QfocSq(r - (q + 1));
+    //@ assert amgm: 4 * (r * (q + 1)) <= QfocSq(r + (q + 1));
     n = (r + q) / 2u;
-    //@ assert twice: 0 <= r + q + 1 <= 2 * (n + 1);
-    //@ assert sq_twice: (r + q + 1) * (r + q + 1) <= (2 * (n + 1)) * (2 * (n + 1));
+    //@ assert twice: 0 <= r + (q + 1) <= 2 * (n + 1);
+    //@ assert sq_twice: QfocSq(r + (q + 1)) <= QfocSq(2 * (n + 1));
+    //@ assert sq_n: QfocSq(2 * (n + 1)) == 4 * ((n + 1) * (n + 1));
     return n;
 }
 

@@ -8,9 +8,11 @@
  *        intervals (FTTI) and the verdict rule.
  *
  * Method: the drive runs on a RAM copy of the reference table that this program owns
- * (qfoc_drive_init(&drv, &ram_table)).  Three states are made once and saved whole (the
+ * (qfoc_drive_init(&drv, &ram_table)).  Five states are made once and saved whole (the
  * dsim_t with plant, drive, master and noise generator, and the RAM table): power-up (COLD),
- * calibrated in STOP (STOP) and 3000 rpm at the nominal load in CLOSED_LOOP, steady (RUN).
+ * calibrated in STOP (STOP) and 3000 rpm at the nominal load in CLOSED_LOOP, steady (RUN);
+ * and STOP and RUN again on the single-shunt table of the reference motor, behind the
+ * drive's single-shunt front end (drive_shunt.h).
  * Every injection restores its state, injects at t0 and runs its window, period by period,
  * watching the true plant and the drive:
  *   detected   the fault word is not 0; detection time: the first tick with it, from t0;
@@ -88,13 +90,14 @@ static const char *const mech_name[M_N] = {
     "PARAM (object check)", "OFFSET (running: stuck sample)", "TIMING"
 };
 
-/* Where an injection starts. */
-enum { S_RUN, S_STOP, S_COLD, S_N };
+/* Where an injection starts; S_RUN_SH, S_STOP_SH: S_RUN and S_STOP on the single-shunt
+   inverter. */
+enum { S_RUN, S_STOP, S_COLD, S_RUN_SH, S_STOP_SH, S_N };
 
 /* What is injected. */
 enum { K_NONE, K_SPEEDS, K_GARBAGE, K_SURGE, K_BUS, K_T_IPM, K_T_PCB, K_SEIZE, K_LOCK, K_STUCK,
        K_OPEN, K_OFFSET, K_GAIN, K_VDC_GAIN, K_LINK_STOP, K_LINK_BAD, K_SKIP_FAST, K_SKIP_TICK, K_FLIP_TABLE,
-       K_FLIP_DRIVE };
+       K_FLIP_DRIVE, K_RING, K_SHUNT_OPEN, K_SHUNT_OFFSET };
 
 typedef struct {
     const char *id;
@@ -106,7 +109,8 @@ typedef struct {
 
 enum { C_CONTROL, C_GARBAGE, C_OC, C_OV, C_UV, C_BUS_IN, C_OT_IPM, C_OT_PCB, C_TEMP_IN, C_STALL,
        C_LOCKED, C_NO_CURRENT, C_OPEN_RUN, C_OPEN_START, C_OFFSET, C_OFFSET_IN, C_LINK, C_STUCK,
-       C_DRIFT, C_GAIN, C_VDC_GAIN, C_SKIP_FAST, C_SKIP_TICK, C_FLIP_TABLE, C_FLIP_DRIVE, C_N };
+       C_DRIFT, C_GAIN, C_VDC_GAIN, C_SKIP_FAST, C_SKIP_TICK, C_SH_CONTROL, C_SH_RING, C_SH_OPEN,
+       C_SH_OFFSET, C_FLIP_TABLE, C_FLIP_DRIVE, C_N };
 
 static const cls_t cls[C_N] = {
     { "control", "fault-free runs: the cold start to 3000 rpm, 2 s steady at 3000 rpm, speed "
@@ -161,6 +165,15 @@ static const cls_t cls[C_N] = {
       M_FIRST, 0u, false },
     { "stalled_tick", "no tick for 2, 10, 50, 200 and 1000 ms while the fast step runs (the "
       "master's frames of that time are lost), at 3000 rpm", M_FIRST, 0u, false },
+    { "shunt_control", "single-shunt inverter, fault-free: 2 s steady at 3000 rpm, speed "
+      "changes 3000 -> 6000 -> 8000 -> 1500 rpm", M_NONE, 0u, false },
+    { "shunt_ringing", "single-shunt inverter: the DC-link current rings for 1.5, 2 and 3 times "
+      "the table's settle time after each edge (samples taken in the ringing), at half and full "
+      "step amplitude, at 3000 rpm", M_FIRST, 0u, false },
+    { "shunt_open", "single-shunt inverter: the amplifier's sense connection open (both samples "
+      "read zero current), at 3000 rpm and from the run command", M_FIRST, 0u, false },
+    { "shunt_offset", "single-shunt inverter: an offset of +-50, +-200, +-600 counts on the "
+      "shunt amplifier after the calibration, at 3000 rpm", M_FIRST, 0u, false },
     { "table_flip", "single-bit flip of the RAM copy of the parameter table at 3000 rpm, "
       "0 .. 99 ms after the RUN state (every phase of the 100 ms re-check)", M_PARAM_TABLE,
       QFOC_FAULT_PARAM, true },
@@ -303,6 +316,9 @@ typedef struct {
 } res_t;
 
 static const scn_table_t *tabr;        /* the reference table of the registry */
+static const scn_table_t *tabs;        /* its single-shunt table (sensing.mode = shunt) */
+static qfoc_drive_shunt_t shunt_run;   /* the single-shunt front end of snap[S_RUN_SH] */
+static qfoc_drive_shunt_t shunt_stop;  /* ... and of snap[S_STOP_SH] */
 static qfoc_param_table_t ram_table;   /* the RAM copy the drive runs on */
 static qfoc_param_table_t ram_intact;
 static sim_motor_t motor;
@@ -532,6 +548,48 @@ static double nominal_nm(void)
     return motor.nominal_torque_nm;
 }
 
+/* The RUN state on the single-shunt inverter: the same plant and operating point, the drive
+   on the ROM single-shunt table behind its front end (latency 2, as the port's interrupt),
+   the plant's DC-link current ringing for as long as the table's settle time allows after
+   the dead time, at half the step, and sampled over the table's sample time (as the
+   scenarios rig it, sim/scenario.c). */
+static int make_shunt_state(const sim_cfg_t *base)
+{
+    const double tick = 1.0 / motor.f_timer_hz;
+    const qfoc_param_table_t *p = tabs->table;
+    sim_cfg_t cfg = *base;
+    dsim_t *ds = &snap[S_RUN_SH];
+    long k;
+    cfg.shunt.active = true;
+    cfg.shunt.t_ring_s = fmax(0.0, (double)p->drive.shunt_settle * tick - motor.dead_time_s);
+    cfg.shunt.ring_gain = 0.5;
+    cfg.shunt.f_ring_hz = 2.0e6;
+    cfg.shunt.t_sh_s = (double)p->drive.shunt_sample * tick;
+    if (dsim_init(ds, &cfg, p) != QFOC_PARAMS_OK ||
+        qfoc_drive_shunt_init(&shunt_run, &ds->drv, 2u) != QFOC_SHUNT_OK) {
+        fprintf(stderr, "qfoc_faults: %s: the single-shunt drive is refused\n", tabs->name);
+        return -1;
+    }
+    ds->shunt = &shunt_run;
+    ds->target_rpm = RPM_OP;
+    ds->t_pcb = 350;
+    for (k = 0; k < 8000 && ds->drv.s.sm.state != QFOC_STATE_STOP; k++) {
+        dsim_period(ds);
+    }
+    snap[S_STOP_SH] = *ds;
+    shunt_stop = shunt_run;
+    ds->power_on = true;
+    dsim_run(ds, T_RUN_S);
+    if (snap[S_STOP_SH].drv.s.sm.state != QFOC_STATE_STOP ||
+        ds->drv.s.sm.sub != QFOC_SUB_CLOSED_LOOP || ds->drv.s.sm.faults != 0u ||
+        fabs(dsim_rpm(ds) - (double)RPM_OP) > 0.02 * RPM_OP) {
+        fprintf(stderr, "qfoc_faults: %s: the operating point was not reached\n", tabs->name);
+        return -1;
+    }
+    /* shunt_run is now the front end of this state: run() starts from a copy of it */
+    return 0;
+}
+
 static int make_states(void)
 {
     sim_cfg_t cfg;
@@ -570,7 +628,7 @@ static int make_states(void)
         fprintf(stderr, "qfoc_faults: the operating points were not reached\n");
         return -1;
     }
-    return 0;
+    return make_shunt_state(&cfg);
 }
 
 /* ------------------------------------------------------------------ model checks */
@@ -703,6 +761,14 @@ static void inject(dsim_t *ds, const inj_t *in)
     case K_SKIP_TICK: ds->skip_tick = (int)in->a; break;
     case K_FLIP_TABLE: flip(&ram_table, in->ch); break;
     case K_FLIP_DRIVE: flip(&ds->drv, in->ch); break;
+    case K_RING:
+        /* ringing over a times the table's settle time, at half (ch 0) or full (ch 1) step */
+        ds->plant.cfg.shunt.t_ring_s = in->a * (double)tabs->table->drive.shunt_settle /
+                                       motor.f_timer_hz;
+        ds->plant.cfg.shunt.ring_gain = (in->ch == 0) ? 0.5 : 1.0;
+        break;
+    case K_SHUNT_OPEN: f->shunt_open = true; break;
+    case K_SHUNT_OFFSET: f->shunt_offset = in->a; break;
     default: break;
     }
 }
@@ -752,6 +818,7 @@ static long rejected(const qfoc_link_t *l)
 static void run(const inj_t *in, res_t *r)
 {
     dsim_t *ds = malloc(sizeof *ds);
+    qfoc_drive_shunt_t sh;   /* the front end of an injection on the single-shunt inverter */
     const double t = snap[S_RUN].plant.bases.t_s;
     long off_from = 0;   /* the inverter is off from this period of the window on */
     long k;
@@ -762,6 +829,10 @@ static void run(const inj_t *in, res_t *r)
         return;
     }
     *ds = snap[in->start];
+    if (in->start == S_RUN_SH || in->start == S_STOP_SH) {
+        sh = (in->start == S_RUN_SH) ? shunt_run : shunt_stop;
+        ds->shunt = &sh;
+    }
     ram_table = ram_intact;
     ds->power_on = true;
     r->rejected = -rejected(&ds->drv.s.link);
@@ -943,6 +1014,22 @@ static int build(list_t *l, long n_flips, int table_step, uint64_t seed)
         return -1;
     }
     in->delay = lround(l->per_s);   /* 1 s after the run command */
+    add(l, C_SH_CONTROL, S_RUN_SH, K_NONE, 0, 0.0, 2.0, "2 s steady at 3000 rpm");
+    add(l, C_SH_CONTROL, S_RUN_SH, K_SPEEDS, 0, 0.0, 7.0, "3000 -> 6000 -> 8000 -> 1500 rpm");
+    for (j = 0; j < 6; j++) {
+        static const double ring[3] = { 1.5, 2.0, 3.0 };
+        snprintf(w, sizeof w, "ringing %.1f x the settle time, %s step", ring[j % 3],
+                 (j < 3) ? "half" : "full");
+        add(l, C_SH_RING, S_RUN_SH, K_RING, j / 3, ring[j % 3], 1.0, w);
+    }
+    add(l, C_SH_OPEN, S_RUN_SH, K_SHUNT_OPEN, 0, 0.0, 0.5, "sense connection open at 3000 rpm");
+    add(l, C_SH_OPEN, S_STOP_SH, K_SHUNT_OPEN, 0, 0.0, 0.6,
+        "sense connection open from the run command");
+    for (j = 0; j < 6; j++) {
+        static const double offs[6] = { 50.0, -50.0, 200.0, -200.0, 600.0, -600.0 };
+        snprintf(w, sizeof w, "shunt offset drift %+.0f counts", offs[j]);
+        add(l, C_SH_OFFSET, S_RUN_SH, K_SHUNT_OFFSET, 0, offs[j], 1.0, w);
+    }
     for (j = 0; j < (int)(sizeof sweeps / sizeof sweeps[0]); j++) {
         if (add_sweep(l, &sweeps[j]) != 0) {
             return -1;
@@ -1415,6 +1502,18 @@ int main(int argc, char **argv)
     n_flips = (n_flips >= 0) ? n_flips : ((strcmp(mode, "full") == 0) ? 10000 : 400);
     table_step = (table_step >= 1) ? table_step : ((strcmp(mode, "full") == 0) ? 1 : 8);
     tabr = &scn_tables[0];
+    tabs = NULL;
+    for (k = 0; k < scn_n_tables; k++) {
+        if (tabs == NULL && scn_tables[k].table->drive.sensing == QFOC_SENSING_SHUNT &&
+            strcmp(scn_tables[k].motor_file, tabr->motor_file) == 0) {
+            tabs = &scn_tables[k];
+        }
+    }
+    if (tabs == NULL) {
+        fprintf(stderr, "qfoc_faults: tables/manifest.txt has no single-shunt table of the "
+                        "reference motor (%s)\n", tabr->motor_file);
+        return 2;
+    }
     if (jobs < 1 || jobs > 16 || sim_motor_load(tabr->motor_file, &motor) != 0) {
         fprintf(stderr, "qfoc_faults: bad arguments or motor file\n");
         return 2;
