@@ -39,7 +39,8 @@ $(TT_OUT)/tt_gen: $(TT_DIR)/tt_gen.c $(TT_OUT)/host/tt_groups.o $(TT_OUT)/host/t
 	@mkdir -p $(@D)
 	$(CC) $(TEST_CFLAGS) -O2 -I$(TT_DIR) -Isim -Itables $< $(TT_OUT)/host/tt_groups.o \
 	    $(TT_OUT)/host/tt_core.o $(SIM_SRCS) $(TABLE_SRCS) $(BUILD)/host/libqfoc.a -lm \
-	    -Wl,--wrap=qfoc_drive_fast_step,--wrap=qfoc_drive_tick -o $@
+	    -Wl,--wrap=qfoc_drive_fast_step,--wrap=qfoc_drive_tick,--wrap=qfoc_drive_shunt_measure \
+	    -Wl,--wrap=qfoc_drive_shunt_output,--wrap=qfoc_drive_shunt_plan -o $@
 
 $(TT_OUT)/vectors.c: $(TT_OUT)/tt_gen specs/motors/reference.toml
 	$(TT_OUT)/tt_gen --motor specs/motors/reference.toml --out $(TT_OUT) --table > $(TT_OUT)/vectors.txt
@@ -56,7 +57,7 @@ $(TT_OUT)/tt_runner_host: $(TT_DIR)/tt_host.c $(TT_DIR)/tt_runner.c $(TT_OUT)/ho
                           $(BUILD)/host/libqfoc.a $(TABLE_SRCS) $(TT_HDRS)
 	$(CC) $(CFLAGS) -I$(TT_DIR) -I$(TT_OUT) -Itables $(TT_DIR)/tt_host.c $(TT_DIR)/tt_runner.c \
 	    $(TT_OUT)/vectors.c $(TT_OUT)/host/tt_groups.o $(TT_OUT)/host/tt_core.o \
-	    tables/reference_params.c $(BUILD)/host/libqfoc.a -o $@
+	    tables/reference_params.c tables/reference_shunt_params.c $(BUILD)/host/libqfoc.a -o $@
 
 # The same runner with the library compiled from source under UndefinedBehaviorSanitizer:
 # undefined behaviour is where a host and a target may part without either compiler
@@ -65,7 +66,7 @@ $(TT_OUT)/tt_runner_ubsan: $(TT_DIR)/tt_host.c $(TT_DIR)/tt_runner.c $(TT_COMMON
                            $(TT_OUT)/vectors.h $(SRCS) $(HDRS) $(TABLE_SRCS) $(TT_HDRS)
 	$(CC) $(WARN) -O1 -g -fsanitize=undefined -fno-sanitize-recover=all -Iinclude -I$(TT_DIR) \
 	    -I$(TT_OUT) -Itables $(TT_DIR)/tt_host.c $(TT_DIR)/tt_runner.c $(TT_COMMON) \
-	    $(TT_OUT)/vectors.c tables/reference_params.c $(SRCS) -o $@
+	    $(TT_OUT)/vectors.c tables/reference_params.c tables/reference_shunt_params.c $(SRCS) -o $@
 
 # ---------------------------------------------------------------- Cortex-M4F runner
 $(TT_OUT)/arm/vectors.o: $(TT_OUT)/vectors.c $(TT_OUT)/vectors.h $(TT_HDRS)
@@ -79,9 +80,11 @@ $(TT_OUT)/arm/%.o: $(TT_DIR)/%.c $(TT_HDRS) $(HDRS) $(TABLE_HDRS)
 $(TT_OUT)/arm/tt_runner.o: $(TT_OUT)/vectors.h
 
 $(TT_OUT)/tt_runner.elf: $(TT_ARM_OBJS) $(TT_DIR)/tt_mps2_an386.ld $(BUILD)/target/libqfoc.a \
-                         $(BUILD)/target/tables/reference_params.o
+                         $(BUILD)/target/tables/reference_params.o \
+                         $(BUILD)/target/tables/reference_shunt_params.o
 	$(ARM_CC) $(TT_ARM_LDFLAGS) -Wl,-Map=$(TT_OUT)/tt_runner.map $(TT_ARM_OBJS) \
-	    $(BUILD)/target/tables/reference_params.o $(BUILD)/target/libqfoc.a -o $@
+	    $(BUILD)/target/tables/reference_params.o $(BUILD)/target/tables/reference_shunt_params.o \
+	    $(BUILD)/target/libqfoc.a -o $@
 	@arm-none-eabi-size $@ | tail -n 1 | awk '{printf "tt_runner.elf: %d B of code and vectors (of 4 MiB), %d B of RAM\n", $$1 + $$2, $$2 + $$3}'
 
 # ---------------------------------------------------------------- the test

@@ -34,6 +34,7 @@
 #include <stdbool.h>
 
 #include "qfoc/drive.h"
+#include "qfoc/drive_shunt.h"
 
 /** Operation codes of the stateful groups (word 0 of a vector). */
 #define TT_OP_INIT  ((uint16_t)0u)  /**< init from the parameters in the vector */
@@ -85,7 +86,7 @@ typedef struct {
 } tt_suite_t;
 
 /** Number of suites (tt_groups.c). */
-#define TT_N_SUITES (48u)
+#define TT_N_SUITES (49u)
 /** Every suite, in the order of the groups in vectors.c (tt_groups.c). */
 extern const tt_suite_t tt_suites[TT_N_SUITES];
 
@@ -126,5 +127,10 @@ void tt_emit(tt_ctx_t *c, const tt_digest_t *d);
 uint32_t tt_drive_fast_digest(const qfoc_drive_t *d, const qfoc_pwm_t *out);
 /** Digest of one tick: its output and the tick half's main observables. */
 uint32_t tt_drive_tick_digest(const qfoc_drive_t *d, const qfoc_tick_out_t *out);
+/** Digest of one single-shunt period: the fast step's digest, the codes handed to it, the
+    next plan and the front end's state. */
+uint32_t tt_drive_shunt_digest(const qfoc_drive_t *d, const qfoc_drive_shunt_t *sd,
+                               const qfoc_adc_t *codes, const qfoc_pwm_t *out,
+                               const qfoc_shunt_plan_t *plan);
 
 #endif /* QFOC_TT_H */

@@ -38,6 +38,7 @@
 #include "tt.h"
 #include "drive_sim.h"
 #include "reference_params.h"
+#include "reference_shunt_params.h"
 #include "qfoc/trig.h"
 
 /* ------------------------------------------------------------------ random inputs */
@@ -1312,6 +1313,10 @@ typedef struct {
     uint8_t end_state;
     uint16_t end_first_fault;
     long frames_ok;
+    bool shunt;          /* the single-shunt run: the periods are recorded at the measurement */
+    qfoc_adc_t sh_codes; /* the single-shunt run: this period's codes and output so far */
+    qfoc_pwm_t sh_pwm;
+    long shifted;        /* the single-shunt run: periods with an edge shifted (PWM on) */
 } rec_t;
 
 static rec_t g_rec;
@@ -1320,6 +1325,14 @@ qfoc_pwm_t __real_qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
 qfoc_tick_out_t __real_qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
 qfoc_pwm_t __wrap_qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc);
 qfoc_tick_out_t __wrap_qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in);
+qfoc_adc_t __real_qfoc_drive_shunt_measure(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d,
+                                           const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2);
+qfoc_pwm_t __real_qfoc_drive_shunt_output(const qfoc_drive_shunt_t *sd, qfoc_pwm_t out);
+const qfoc_shunt_plan_t *__real_qfoc_drive_shunt_plan(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d);
+qfoc_adc_t __wrap_qfoc_drive_shunt_measure(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d,
+                                           const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2);
+qfoc_pwm_t __wrap_qfoc_drive_shunt_output(const qfoc_drive_shunt_t *sd, qfoc_pwm_t out);
+const qfoc_shunt_plan_t *__wrap_qfoc_drive_shunt_plan(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d);
 
 static uint32_t *grow(uint32_t *a, uint32_t *cap, uint32_t n)
 {
@@ -1338,6 +1351,9 @@ qfoc_pwm_t __wrap_qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc)
 {
     uint16_t *p = NULL;
     qfoc_pwm_t out;
+    if (g_rec.shunt) {
+        return __real_qfoc_drive_fast_step(d, adc);   /* recorded at the measurement */
+    }
     if (g_rec.on) {
         p = row(&g_rec.fast);
         p[0] = adc->iu;
@@ -1357,6 +1373,43 @@ qfoc_pwm_t __wrap_qfoc_drive_fast_step(qfoc_drive_t *d, const qfoc_adc_t *adc)
         }
     }
     return out;
+}
+
+/* The single-shunt run: the measurement's inputs are the period's vector; its digest is
+   taken at the plan, the last of the period's calls. */
+qfoc_adc_t __wrap_qfoc_drive_shunt_measure(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d,
+                                           const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2)
+{
+    if (g_rec.on && g_rec.shunt) {
+        uint16_t *p = row(&g_rec.fast);
+        p[0] = adc->iu;
+        p[1] = adc->iv;
+        p[2] = adc->vdc;
+        p[3] = (uint16_t)s1;
+        p[4] = (uint16_t)s2;
+    }
+    g_rec.sh_codes = __real_qfoc_drive_shunt_measure(sd, d, adc, s1, s2);
+    return g_rec.sh_codes;
+}
+
+qfoc_pwm_t __wrap_qfoc_drive_shunt_output(const qfoc_drive_shunt_t *sd, qfoc_pwm_t out)
+{
+    g_rec.sh_pwm = __real_qfoc_drive_shunt_output(sd, out);
+    return g_rec.sh_pwm;
+}
+
+const qfoc_shunt_plan_t *__wrap_qfoc_drive_shunt_plan(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d)
+{
+    const qfoc_shunt_plan_t *plan = __real_qfoc_drive_shunt_plan(sd, d);
+    if (g_rec.on && g_rec.shunt) {
+        const uint32_t k = g_rec.fast.n - 1u;
+        g_rec.fast_exp = grow(g_rec.fast_exp, &g_rec.fast_cap, k);
+        g_rec.fast_exp[k] = tt_drive_shunt_digest(d, sd, &g_rec.sh_codes, &g_rec.sh_pwm, plan);
+        if (g_rec.sh_pwm.enable && plan->shifted) {
+            g_rec.shifted++;
+        }
+    }
+    return plan;
 }
 
 qfoc_tick_out_t __wrap_qfoc_drive_tick(qfoc_drive_t *d, const qfoc_tick_in_t *in)
@@ -1464,6 +1517,81 @@ static int record_drive(const char *motor, double *rpm_oc)
         }
     }
     g_rec.on = false;
+    g_rec.frames_ok = (long)ds.drv.s.link.n_ok;
+    g_rec.end_state = ds.drv.s.sm.state;
+    g_rec.end_first_fault = ds.drv.s.sm.first_fault;
+    return 0;
+}
+
+/* The single-shunt run: the reference motor on its single-shunt table (reference_shunt),
+   320 V, the plant's DC-link current sampled where the drive asked (ringing for the
+   table's settle time less the dead time, at half the step; the table's sample time), the
+   front end of latency 2 as sim/scenario.c rigs it; 3000 rpm, 5000 rpm from STEP2_MS, two
+   command frames with a wrong checksum, then a current surge of 36 A along phase u at
+   OC_MS (the over-current trip). */
+#define SH_RPM2 5000u
+
+static int record_drive_shunt(const char *motor, double *rpm_oc)
+{
+    static dsim_t ds;
+    static qfoc_drive_shunt_t sd;
+    const qfoc_param_table_t *p = &qfoc_params_reference_shunt;
+    sim_cfg_t cfg;
+    double tick;
+    long ms_end;
+    memset(&cfg, 0, sizeof cfg);
+    if (sim_motor_load(motor, &cfg.motor) != 0) {
+        return -1;
+    }
+    tick = 1.0 / cfg.motor.f_timer_hz;
+    cfg.vdc_v = 320.0;
+    cfg.dead_time_s = cfg.motor.dead_time_s;
+    cfg.substeps = 20;
+    cfg.noise_i_rms_a = 0.05;
+    cfg.seed = 11u;
+    cfg.load.t_mean = 3.0;
+    cfg.load.t_1x = 1.5;
+    cfg.load.knee_rpm = 30.0;
+    cfg.shunt.active = true;
+    cfg.shunt.t_ring_s = fmax(0.0, (double)p->drive.shunt_settle * tick - cfg.motor.dead_time_s);
+    cfg.shunt.ring_gain = 0.5;
+    cfg.shunt.f_ring_hz = 2.0e6;
+    cfg.shunt.t_sh_s = (double)p->drive.shunt_sample * tick;
+    g_rec.fast.width = 5u;
+    g_rec.tick.width = TT_TICK_WIDTH;
+    g_rec.order_ok = true;
+    g_rec.ppm = (uint32_t)((p->f_pwm_hz + 500u) / 1000u);
+    g_rec.shunt = true;
+    if (dsim_init(&ds, &cfg, p) != QFOC_PARAMS_OK ||
+        qfoc_drive_shunt_init(&sd, &ds.drv, 2u) != QFOC_SHUNT_OK) {
+        fprintf(stderr, "tt_gen: the single-shunt table is refused\n");
+        return -1;
+    }
+    ds.shunt = &sd;
+    g_rec.on = true;
+    ds.power_on = true;
+    ds.target_rpm = 3000u;
+    ms_end = (long)(RUN_S * 1000.0 + 0.5);
+    while (ds.ms < ms_end) {
+        const long ms = ds.ms;
+        if (ms == STEP2_MS) {
+            ds.target_rpm = SH_RPM2;
+        }
+        if ((ms == 1000L) || (ms == 3500L)) {
+            ds.corrupt_next = true;
+        }
+        if (ms == OC_MS) {
+            const double i_ab[2] = { 36.0, 0.0 };
+            g_rec.faults_before_oc = g_rec.faults;
+            *rpm_oc = dsim_rpm(&ds);
+            sim_set_current_ab(&ds.plant, i_ab);
+        }
+        ds.t_ipm = (int16_t)(400 + ms / 10);
+        ds.t_pcb = (int16_t)(350 + ms / 20);
+        dsim_run(&ds, 1e-3);
+    }
+    g_rec.on = false;
+    g_rec.shunt = false;
     g_rec.frames_ok = (long)ds.drv.s.link.n_ok;
     g_rec.end_state = ds.drv.s.sm.state;
     g_rec.end_first_fault = ds.drv.s.sm.first_fault;
@@ -1663,7 +1791,9 @@ int main(int argc, char **argv)
         }
         if (s->groups == 2u) {
             /* the drive: record the closed loop, then check the replay against it */
-            if (record_drive(motor, &rpm_end) != 0) {
+            const bool shunt = (strcmp(s->name[0], "drive_shunt_fast") == 0);
+            memset(&g_rec, 0, sizeof g_rec);
+            if ((shunt ? record_drive_shunt(motor, &rpm_end) : record_drive(motor, &rpm_end)) != 0) {
                 return 1;
             }
             if (!g_rec.order_ok || g_rec.tick.n * g_rec.ppm > g_rec.fast.n ||
@@ -1683,24 +1813,43 @@ int main(int argc, char **argv)
             if (replay(s, g, NULL) != 0) {
                 return 1;
             }
-            printf("tt_gen: closed loop %.1f s: %u periods, %u ticks; %ld ticks in closed loop, "
-                   "%.0f rpm at %.1f s; field weakening in %ld periods, high-speed inductances "
-                   "in %ld (PWM on), torque compensation learning in %ld ticks; %ld frames accepted; "
-                   "over-current at %.1f s: PWM off in the same period %s, state %u, first "
-                   "fault 0x%04X\n", RUN_S, (unsigned)g[0].n, (unsigned)g[1].n, g_rec.cl_ticks,
-                   rpm_end, (double)OC_MS / 1000.0, g_rec.fw_periods, g_rec.hs_periods,
-                   g_rec.tc_ticks, g_rec.frames_ok, (double)OC_MS / 1000.0,
-                   g_rec.oc_same_period ? "yes" : "NO", (unsigned)g_rec.end_state,
-                   (unsigned)g_rec.end_first_fault);
-            if (g_rec.cl_ticks < 1000 || g_rec.fw_periods < 1000 || g_rec.tc_ticks < 1000 ||
-                g_rec.hs_periods < 1000 || g_rec.faults_before_oc != 0u ||
-                fabs(rpm_end - 5800.0) > 300.0 || !g_rec.oc_same_period ||
-                g_rec.end_state != QFOC_STATE_ERROR || g_rec.end_first_fault != QFOC_FAULT_OC) {
-                fprintf(stderr, "tt_gen: the closed-loop run does not exercise what it should "
-                                "(closed loop, field weakening, high-speed inductances, torque "
-                                "compensation, 5800 rpm without a fault, then an over-current "
-                                "trip)\n");
-                return 1;
+            if (shunt) {
+                printf("tt_gen: single-shunt closed loop %.1f s: %u periods, %u ticks; %ld ticks "
+                       "in closed loop, %.0f rpm at %.1f s; edges shifted in %ld periods (PWM on), "
+                       "torque compensation learning in %ld ticks; %ld frames accepted; current "
+                       "surge at %.1f s: state %u, first fault 0x%04X\n", RUN_S,
+                       (unsigned)g[0].n, (unsigned)g[1].n, g_rec.cl_ticks, rpm_end,
+                       (double)OC_MS / 1000.0, g_rec.shifted, g_rec.tc_ticks, g_rec.frames_ok,
+                       (double)OC_MS / 1000.0, (unsigned)g_rec.end_state,
+                       (unsigned)g_rec.end_first_fault);
+                if (g_rec.cl_ticks < 1000 || g_rec.shifted < 1000 || g_rec.tc_ticks < 1000 ||
+                    g_rec.faults_before_oc != 0u || fabs(rpm_end - (double)SH_RPM2) > 300.0 ||
+                    g_rec.end_state != QFOC_STATE_ERROR || g_rec.end_first_fault != QFOC_FAULT_OC) {
+                    fprintf(stderr, "tt_gen: the single-shunt run does not exercise what it "
+                                    "should (closed loop, shifted edges, torque compensation, "
+                                    "5000 rpm without a fault, then an over-current trip)\n");
+                    return 1;
+                }
+            } else {
+                printf("tt_gen: closed loop %.1f s: %u periods, %u ticks; %ld ticks in closed loop, "
+                       "%.0f rpm at %.1f s; field weakening in %ld periods, high-speed inductances "
+                       "in %ld (PWM on), torque compensation learning in %ld ticks; %ld frames accepted; "
+                       "over-current at %.1f s: PWM off in the same period %s, state %u, first "
+                       "fault 0x%04X\n", RUN_S, (unsigned)g[0].n, (unsigned)g[1].n, g_rec.cl_ticks,
+                       rpm_end, (double)OC_MS / 1000.0, g_rec.fw_periods, g_rec.hs_periods,
+                       g_rec.tc_ticks, g_rec.frames_ok, (double)OC_MS / 1000.0,
+                       g_rec.oc_same_period ? "yes" : "NO", (unsigned)g_rec.end_state,
+                       (unsigned)g_rec.end_first_fault);
+                if (g_rec.cl_ticks < 1000 || g_rec.fw_periods < 1000 || g_rec.tc_ticks < 1000 ||
+                    g_rec.hs_periods < 1000 || g_rec.faults_before_oc != 0u ||
+                    fabs(rpm_end - 5800.0) > 300.0 || !g_rec.oc_same_period ||
+                    g_rec.end_state != QFOC_STATE_ERROR || g_rec.end_first_fault != QFOC_FAULT_OC) {
+                    fprintf(stderr, "tt_gen: the closed-loop run does not exercise what it should "
+                                    "(closed loop, field weakening, high-speed inductances, torque "
+                                    "compensation, 5800 rpm without a fault, then an over-current "
+                                    "trip)\n");
+                    return 1;
+                }
             }
         } else {
             const gen_entry_t *e = NULL;

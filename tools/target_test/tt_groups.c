@@ -36,7 +36,9 @@
 #include "qfoc/params.h"
 #include "qfoc/sm.h"
 #include "qfoc/drive.h"
+#include "qfoc/drive_shunt.h"
 #include "reference_params.h"
+#include "reference_shunt_params.h"
 
 /* ------------------------------------------------------------------ digest helpers */
 
@@ -1441,6 +1443,93 @@ static void tt_replay_drive(tt_ctx_t *c)
     }
 }
 
+/* ------------------------------------------------------------------ drive_shunt.h */
+
+uint32_t tt_drive_shunt_digest(const qfoc_drive_t *d, const qfoc_drive_shunt_t *sd,
+                               const qfoc_adc_t *codes, const qfoc_pwm_t *out,
+                               const qfoc_shunt_plan_t *plan)
+{
+    tt_digest_t g;
+    tt_d_init(&g);
+    tt_d_u32(&g, tt_drive_fast_digest(d, out));
+    tt_d_u16(&g, codes->iu);
+    tt_d_u16(&g, codes->iv);
+    tt_d_u16(&g, codes->vdc);
+    tt_d_u16(&g, plan->up[0]);
+    tt_d_u16(&g, plan->up[1]);
+    tt_d_u16(&g, plan->up[2]);
+    tt_d_u16(&g, plan->down[0]);
+    tt_d_u16(&g, plan->down[1]);
+    tt_d_u16(&g, plan->down[2]);
+    tt_d_u16(&g, plan->trig[0]);
+    tt_d_u16(&g, plan->trig[1]);
+    tt_d_u8(&g, plan->hi);
+    tt_d_u8(&g, plan->lo);
+    tt_d_bool(&g, plan->ok);
+    tt_d_bool(&g, plan->shifted);
+    tt_d_u8(&g, sd->status);
+    tt_d_bool(&g, sd->lost);
+    tt_d_u8(&g, sd->head);
+    tt_d_u16(&g, sd->rec.n_hold);
+    tt_d_i16(&g, sd->rec.i[0]);
+    tt_d_i16(&g, sd->rec.i[1]);
+    tt_d_i16(&g, sd->rec.i[2]);
+    return tt_d_final(&g);
+}
+
+static qfoc_drive_shunt_t tt_sd;
+
+/* drive_shunt_fast [iu, iv, vdc, s1, s2] and drive_shunt_tick (as drive_tick): the
+   closed-loop run on the single-shunt table, replayed in its order: each period the three
+   calls of the port's interrupt (measure, fast step, output) and the plan, after every
+   (f_pwm / 1 kHz)-th period one tick.  REQ-TGT-003 as for the two-sensor drive. */
+static void tt_replay_drive_shunt(tt_ctx_t *c)
+{
+    static uint8_t rx[TT_TICK_RX_MAX];
+    const uint32_t ppm = ((uint32_t)qfoc_params_reference_shunt.f_pwm_hz + 500u) / 1000u;
+    uint32_t k;
+    uint32_t t = 0u;
+    (void)memset(&tt_drv, 0, sizeof tt_drv);
+    (void)memset(&tt_sd, 0, sizeof tt_sd);
+    (void)qfoc_drive_init(&tt_drv, &qfoc_params_reference_shunt);
+    (void)qfoc_drive_shunt_init(&tt_sd, &tt_drv, 2u);
+    for (k = 0u; k < c[0].data->n; k++) {
+        tt_digest_t d;
+        qfoc_adc_t adc;
+        qfoc_adc_t codes;
+        qfoc_pwm_t pwm;
+        const qfoc_shunt_plan_t *plan;
+        adc.iu = tt_in(&c[0], k, 0u);
+        adc.iv = tt_in(&c[0], k, 1u);
+        adc.vdc = tt_in(&c[0], k, 2u);
+        codes = qfoc_drive_shunt_measure(&tt_sd, &tt_drv, &adc, tt_in_i16(&c[0], k, 3u),
+                                         tt_in_i16(&c[0], k, 4u));
+        pwm = qfoc_drive_shunt_output(&tt_sd, qfoc_drive_fast_step(&tt_drv, &codes));
+        plan = qfoc_drive_shunt_plan(&tt_sd, &tt_drv);
+        tt_d_init(&d);
+        tt_d_u32(&d, tt_drive_shunt_digest(&tt_drv, &tt_sd, &codes, &pwm, plan));
+        tt_emit(&c[0], &d);
+        if ((((k + 1u) % ppm) == 0u) && (t < c[1].data->n)) {
+            qfoc_tick_in_t in;
+            qfoc_tick_out_t out;
+            uint16_t len = tt_in(&c[1], t, 2u);
+            if (len > (uint16_t)TT_TICK_RX_MAX) {
+                len = (uint16_t)TT_TICK_RX_MAX;
+            }
+            tt_in_bytes(&c[1], t, 3u, rx, (uint16_t)TT_TICK_RX_MAX);
+            in.t_ipm = tt_in_i16(&c[1], t, 0u);
+            in.t_pcb = tt_in_i16(&c[1], t, 1u);
+            in.rx = rx;
+            in.rx_len = (uint8_t)len;
+            out = qfoc_drive_tick(&tt_drv, &in);
+            tt_d_init(&d);
+            tt_d_u32(&d, tt_drive_tick_digest(&tt_drv, &out));
+            tt_emit(&c[1], &d);
+            t++;
+        }
+    }
+}
+
 /* ------------------------------------------------------------------ shunt.h */
 
 /* shunt: [period, t_settle, t_sample, hold_max, cmp u, v, w, s1, s2] -> the check, the
@@ -1700,4 +1789,11 @@ const tt_suite_t tt_suites[TT_N_SUITES] = {
        beyond, hold 1 .. 16 and out of range, compare values at 0, at the period and beyond;
        1n the Cortex-M4F build's digests against the host build's */
     { { "shunt", NULL }, 1u, tt_replay_shunt },
+    /* Methods: 1b a closed-loop run on the plant's DC-link current with the single-shunt
+       table: cold start (edges shifted at standstill and low speed), 3000 and 5000 rpm,
+       torque compensation, 0.05 A rms noise; 1d two command frames with a wrong checksum, an
+       over-current pulse on both DC-link samples; 1l the pulse and the wrong checksums
+       injected; 1n the Cortex-M4F build's digests of the three calls, the plan and the tick
+       against the host build's, recorded in the closed loop and replayed open loop */
+    { { "drive_shunt_fast", "drive_shunt_tick" }, 2u, tt_replay_drive_shunt },
 };
