@@ -1399,13 +1399,35 @@ static void tt_replay_drive_init(tt_ctx_t *c)
     }
 }
 
+/* One tick of a drive run: vector t of the tick group c (t_ipm, t_pcb, rx_len, the frame's
+   bytes), its digest emitted. */
+static void tt_replay_tick(tt_ctx_t *c, uint32_t t)
+{
+    static uint8_t rx[TT_TICK_RX_MAX];
+    tt_digest_t d;
+    qfoc_tick_in_t in;
+    qfoc_tick_out_t out;
+    uint16_t len = tt_in(c, t, 2u);
+    if (len > (uint16_t)TT_TICK_RX_MAX) {
+        len = (uint16_t)TT_TICK_RX_MAX;
+    }
+    tt_in_bytes(c, t, 3u, rx, (uint16_t)TT_TICK_RX_MAX);
+    in.t_ipm = tt_in_i16(c, t, 0u);
+    in.t_pcb = tt_in_i16(c, t, 1u);
+    in.rx = rx;
+    in.rx_len = (uint8_t)len;
+    out = qfoc_drive_tick(&tt_drv, &in);
+    tt_d_init(&d);
+    tt_d_u32(&d, tt_drive_tick_digest(&tt_drv, &out));
+    tt_emit(c, &d);
+}
+
 /* drive_fast [iu, iv, vdc] and drive_tick [t_ipm, t_pcb, rx_len, 6 words = 12 frame
    bytes]: the closed-loop run, replayed in its order: after every (f_pwm / 1 kHz)-th
    fast step, one tick.  c[0] is drive_fast, c[1] drive_tick.  REQ-TGT-003: the open-loop
    replay of the recorded inputs reproduces the closed-loop run's outputs. */
 static void tt_replay_drive(tt_ctx_t *c)
 {
-    static uint8_t rx[TT_TICK_RX_MAX];
     const uint32_t ppm = ((uint32_t)qfoc_params_reference.f_pwm_hz + 500u) / 1000u;
     uint32_t k;
     uint32_t t = 0u;
@@ -1423,21 +1445,7 @@ static void tt_replay_drive(tt_ctx_t *c)
         tt_d_u32(&d, tt_drive_fast_digest(&tt_drv, &pwm));
         tt_emit(&c[0], &d);
         if ((((k + 1u) % ppm) == 0u) && (t < c[1].data->n)) {
-            qfoc_tick_in_t in;
-            qfoc_tick_out_t out;
-            uint16_t len = tt_in(&c[1], t, 2u);
-            if (len > (uint16_t)TT_TICK_RX_MAX) {
-                len = (uint16_t)TT_TICK_RX_MAX;
-            }
-            tt_in_bytes(&c[1], t, 3u, rx, (uint16_t)TT_TICK_RX_MAX);
-            in.t_ipm = tt_in_i16(&c[1], t, 0u);
-            in.t_pcb = tt_in_i16(&c[1], t, 1u);
-            in.rx = rx;
-            in.rx_len = (uint8_t)len;
-            out = qfoc_drive_tick(&tt_drv, &in);
-            tt_d_init(&d);
-            tt_d_u32(&d, tt_drive_tick_digest(&tt_drv, &out));
-            tt_emit(&c[1], &d);
+            tt_replay_tick(&c[1], t);
             t++;
         }
     }
@@ -1485,7 +1493,6 @@ static qfoc_drive_shunt_t tt_sd;
    (f_pwm / 1 kHz)-th period one tick.  REQ-TGT-003 as for the two-sensor drive. */
 static void tt_replay_drive_shunt(tt_ctx_t *c)
 {
-    static uint8_t rx[TT_TICK_RX_MAX];
     const uint32_t ppm = ((uint32_t)qfoc_params_reference_shunt.f_pwm_hz + 500u) / 1000u;
     uint32_t k;
     uint32_t t = 0u;
@@ -1510,21 +1517,7 @@ static void tt_replay_drive_shunt(tt_ctx_t *c)
         tt_d_u32(&d, tt_drive_shunt_digest(&tt_drv, &tt_sd, &codes, &pwm, plan));
         tt_emit(&c[0], &d);
         if ((((k + 1u) % ppm) == 0u) && (t < c[1].data->n)) {
-            qfoc_tick_in_t in;
-            qfoc_tick_out_t out;
-            uint16_t len = tt_in(&c[1], t, 2u);
-            if (len > (uint16_t)TT_TICK_RX_MAX) {
-                len = (uint16_t)TT_TICK_RX_MAX;
-            }
-            tt_in_bytes(&c[1], t, 3u, rx, (uint16_t)TT_TICK_RX_MAX);
-            in.t_ipm = tt_in_i16(&c[1], t, 0u);
-            in.t_pcb = tt_in_i16(&c[1], t, 1u);
-            in.rx = rx;
-            in.rx_len = (uint8_t)len;
-            out = qfoc_drive_tick(&tt_drv, &in);
-            tt_d_init(&d);
-            tt_d_u32(&d, tt_drive_tick_digest(&tt_drv, &out));
-            tt_emit(&c[1], &d);
+            tt_replay_tick(&c[1], t);
             t++;
         }
     }
