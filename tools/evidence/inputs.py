@@ -72,7 +72,7 @@ SIM = ["sim/*.c", "sim/*.h"]
 def _wp_flags(env):
     return ("frama-c -cpp-extra-args=-Iinclude -Ispecs -wp -wp-rte -warn-signed-overflow "
             "-warn-signed-downcast -warn-unsigned-overflow -warn-unsigned-downcast "
-            f"-wp-timeout {env.get('WP_TIMEOUT') or 60} -wp-par 1; provers z3,cvc4 in the order "
+            f"-wp-timeout {env.get('WP_TIMEOUT') or 120} -wp-par 1; provers z3,cvc4 in the order "
             "of proofs/wp/provers.txt; lemmas -wp-prop=@lemma in a unit of every public header")
 
 

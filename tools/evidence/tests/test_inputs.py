@@ -99,7 +99,7 @@ def test_digest_changes_with_content_files_flags_and_tools(tmp_path, fixed_tools
     (root / "specs/y.acsl").write_text("/*@ predicate Q = \\true; */\n")
     d2 = inputs.digest("wp", str(root))
     assert d2 != d1
-    monkeypatch.setenv("WP_TIMEOUT", "120")
+    monkeypatch.setenv("WP_TIMEOUT", "90")
     d3 = inputs.digest("wp", str(root))
     assert d3 != d2
     monkeypatch.delenv("WP_TIMEOUT")
