@@ -135,6 +135,36 @@ def test_ftti_rows_judge_each_mechanism_against_its_assumption():
     assert (link["within"], link["failed"], link["verdict"]) == (0, 1, "FAIL")
 
 
+# REQ-FINJ-007, REQ-FINJ-008
+# Methods: 1d an injection detected after its mechanism's FTTI that an open finding names: the
+# mechanism's row OPEN, not FAIL, and its JUnit case passes (the class is OPEN too); the same
+# injection unnamed: FAIL in the row and in the JUnit file
+def test_ftti_row_open_when_its_failures_are_named(tmp_path):
+    for named in (True, False):
+        d = ftti_campaign()
+        d.update({"wall_s": 1.0, "mode": "check", "model_checks": []})
+        for c in d["classes"]:
+            c.setdefault("injected", 1)
+            c.setdefault("failed", 0)
+        d["injections"][3]["what"] = "master stops at 3000 rpm"
+        d["injections"][3].update({"t_det_ms": 5200.0, "first": ["LINK"], "ftti_ms": 5000.0,
+                                   "i_peak_a": 10.0, "rpm_peak": 3000.0, "harmless": False,
+                                   "oc_missed": False, "over_full_scale": False,
+                                   "state_bad": False, "pwm_outside_run": False,
+                                   "cmd_changed": False})
+        findings = [{"id": "FND-99", "class": "link_loss", "what": "master stops at 3000 rpm"}]
+        fr.apply_findings(d, findings if named else [])
+        rows = fr.ftti_rows(d, ASSUMED)
+        link = rows[1]
+        assert link["verdict"] == ("OPEN" if named else "FAIL")
+        assert (link["failed"], link["open"]) == ((0, 1) if named else (1, 0))
+        path = tmp_path / f"j{named}.xml"
+        fr.write_junit(d, str(path), rows)
+        text = path.read_text()
+        assert ('name="ftti_IA-08_LINK"><failure' in text) == (not named)
+        assert ('failures="0"' in text) == named
+
+
 # REQ-FINJ-008
 # Methods: 1c a specified reaction above the FTTI (0.5 ms) and the campaign otherwise passing;
 # 1d a mechanism slower than its FTTI
