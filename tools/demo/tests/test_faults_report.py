@@ -137,8 +137,8 @@ def test_ftti_rows_judge_each_mechanism_against_its_assumption():
 
 # REQ-FINJ-007, REQ-FINJ-008
 # Methods: 1d an injection detected after its mechanism's FTTI that an open finding names: the
-# mechanism's row OPEN, not FAIL, and its JUnit case passes (the class is OPEN too); the same
-# injection unnamed: FAIL in the row and in the JUnit file
+# mechanism's row OPEN, not FAIL, and its JUnit case passes (the class is OPEN too), and the
+# same injection unnamed FAIL in the row and in the JUnit file
 def test_ftti_row_open_when_its_failures_are_named(tmp_path):
     for named in (True, False):
         d = ftti_campaign()
