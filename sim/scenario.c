@@ -407,6 +407,16 @@ int scn_table_motor(const scn_table_t *tab, sim_motor_t *m)
     return rc;
 }
 
+void scn_shunt_plant(sim_cfg_t *cfg, const qfoc_param_table_t *table, const sim_motor_t *m)
+{
+    const double tick = 1.0 / m->f_timer_hz;
+    cfg->shunt.active = true;
+    cfg->shunt.t_ring_s = fmax(0.0, (double)table->drive.shunt_settle * tick - m->dead_time_s);
+    cfg->shunt.ring_gain = 0.5;
+    cfg->shunt.f_ring_hz = 2.0e6;
+    cfg->shunt.t_sh_s = (double)table->drive.shunt_sample * tick;
+}
+
 /* The plant and the drive: nominal bus, dead time, 0.05 A rms noise, passive load. */
 static int scn_rig(scn_ctx_t *c, const scn_table_t *tab, const qfoc_param_table_t *table,
                    const sim_motor_t *m, double vdc, double load_nm, double pulse_1x, uint32_t seed,
@@ -424,15 +434,7 @@ static int scn_rig(scn_ctx_t *c, const scn_table_t *tab, const qfoc_param_table_
     cfg.load.t_1x = pulse_1x * load_nm;
     cfg.load.knee_rpm = 30.0;
     if (table->drive.sensing == QFOC_SENSING_SHUNT) {
-        /* one shunt in the DC link: the plant rings for as long as the table's settle time
-           allows after the dead time, at half the step, and samples over the table's
-           sample time (specs/reference-motor.md section 2) */
-        const double tick = 1.0 / m->f_timer_hz;
-        cfg.shunt.active = true;
-        cfg.shunt.t_ring_s = fmax(0.0, (double)table->drive.shunt_settle * tick - m->dead_time_s);
-        cfg.shunt.ring_gain = 0.5;
-        cfg.shunt.f_ring_hz = 2.0e6;
-        cfg.shunt.t_sh_s = (double)table->drive.shunt_sample * tick;
+        scn_shunt_plant(&cfg, table, m);
     }
     if (dsim_init(c->ds, &cfg, table) != QFOC_PARAMS_OK) {
         fprintf(stderr, "%s: the table is refused by qfoc_drive_init\n", tab->name);

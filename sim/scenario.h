@@ -134,6 +134,13 @@ int scn_run_start(const scn_table_t *tab, const scn_start_t *st, const scn_opts_
     file cannot be read or an override is malformed. */
 int scn_table_motor(const scn_table_t *tab, sim_motor_t *m);
 
+/** The plant's single-shunt sensing for a single-shunt table, as every run on it is rigged
+    (the demonstration, the fault campaign, the target test's recording): the DC-link current
+    rings for as long as the table's settle time allows after the motor's dead time, at half
+    the step and 2 MHz, and is sampled over the table's sample time (specs/reference-motor.md
+    section 2).  Sets cfg->shunt only. */
+void scn_shunt_plant(sim_cfg_t *cfg, const qfoc_param_table_t *table, const sim_motor_t *m);
+
 /** The value of metric key, NAN when absent. */
 double scn_value(const scn_result_t *r, const char *key);
 

@@ -548,23 +548,17 @@ static double nominal_nm(void)
     return motor.nominal_torque_nm;
 }
 
-/* The RUN state on the single-shunt inverter: the same plant and operating point, the drive
-   on the ROM single-shunt table behind its front end (latency 2, as the port's interrupt),
-   the plant's DC-link current ringing for as long as the table's settle time allows after
-   the dead time, at half the step, and sampled over the table's sample time (as the
-   scenarios rig it, sim/scenario.c). */
+/* The STOP and RUN states on the single-shunt inverter: the same plant and operating point,
+   the drive on the ROM single-shunt table behind its front end (latency 2, as in
+   drive_sim.h), the plant's single-shunt sensing as the scenarios rig it
+   (scn_shunt_plant). */
 static int make_shunt_state(const sim_cfg_t *base)
 {
-    const double tick = 1.0 / motor.f_timer_hz;
     const qfoc_param_table_t *p = tabs->table;
     sim_cfg_t cfg = *base;
     dsim_t *ds = &snap[S_RUN_SH];
     long k;
-    cfg.shunt.active = true;
-    cfg.shunt.t_ring_s = fmax(0.0, (double)p->drive.shunt_settle * tick - motor.dead_time_s);
-    cfg.shunt.ring_gain = 0.5;
-    cfg.shunt.f_ring_hz = 2.0e6;
-    cfg.shunt.t_sh_s = (double)p->drive.shunt_sample * tick;
+    scn_shunt_plant(&cfg, p, &motor);
     if (dsim_init(ds, &cfg, p) != QFOC_PARAMS_OK ||
         qfoc_drive_shunt_init(&shunt_run, &ds->drv, 2u) != QFOC_SHUNT_OK) {
         fprintf(stderr, "qfoc_faults: %s: the single-shunt drive is refused\n", tabs->name);

@@ -37,6 +37,7 @@
 
 #include "tt.h"
 #include "drive_sim.h"
+#include "scenario.h"
 #include "reference_params.h"
 #include "reference_shunt_params.h"
 #include "qfoc/trig.h"
@@ -1547,17 +1548,11 @@ static int record_drive_shunt(const char *motor, double *rpm_oc)
     static qfoc_drive_shunt_t sd;
     const qfoc_param_table_t *p = &qfoc_params_reference_shunt;
     sim_cfg_t cfg;
-    double tick;
     long ms_end;
     if (plant_cfg(&cfg, motor, 320.0, 11u) != 0) {
         return -1;
     }
-    tick = 1.0 / cfg.motor.f_timer_hz;
-    cfg.shunt.active = true;
-    cfg.shunt.t_ring_s = fmax(0.0, (double)p->drive.shunt_settle * tick - cfg.motor.dead_time_s);
-    cfg.shunt.ring_gain = 0.5;
-    cfg.shunt.f_ring_hz = 2.0e6;
-    cfg.shunt.t_sh_s = (double)p->drive.shunt_sample * tick;
+    scn_shunt_plant(&cfg, p, &cfg.motor);
     g_rec.fast.width = 5u;
     g_rec.tick.width = TT_TICK_WIDTH;
     g_rec.order_ok = true;
