@@ -37,7 +37,7 @@ HOST_OBJS := $(patsubst src/%.c,$(BUILD)/host/obj/%.o,$(SRCS))
 ARM_OBJS  := $(patsubst src/%.c,$(BUILD)/target/obj/%.o,$(SRCS))
 COV_OBJS  := $(patsubst src/%.c,$(BUILD)/cov/obj/%.o,$(SRCS))
 
-.PHONY: help deps lib test coverage prove cbmc misra target trace check demo clean estimator-report identify \
+.PHONY: help deps lib test coverage prove prove-full cbmc misra target trace check demo clean estimator-report identify \
         tune tune-check robustness robustness-replay accuracy
 
 help:
@@ -104,9 +104,13 @@ coverage: deps $(COV_OBJS)
 	@sh tools/gates/coverage.sh "$(COV_OBJS)" $(TESTS)
 
 # ---------------------------------------------------------------- formal proofs
-## prove: Frama-C WP on every unit, proved N / M goals
+## prove: Frama-C WP on every unit, proved N / M goals (prover results of proofs/wp/cache.txt replayed)
 prove: deps
 	@sh tools/gates/prove.sh
+
+## prove-full: Frama-C WP with every goal proved by a prover, no result replayed; rewrites proofs/wp/cache.txt
+prove-full: deps
+	@WP_CACHE=full sh tools/gates/prove.sh
 
 ## cbmc: every CBMC harness under proofs/cbmc
 cbmc: deps

@@ -73,7 +73,8 @@ def _wp_flags(env):
     return ("frama-c -cpp-extra-args=-Iinclude -Ispecs -wp -wp-rte -warn-signed-overflow "
             "-warn-signed-downcast -warn-unsigned-overflow -warn-unsigned-downcast "
             f"-wp-timeout {env.get('WP_TIMEOUT') or 120} -wp-par 1; provers z3,cvc4 in the order "
-            "of proofs/wp/provers.txt; lemmas -wp-prop=@lemma in a unit of every public header")
+            "of proofs/wp/provers.txt; lemmas -wp-prop=@lemma in a unit of every public header; "
+            "prover results recorded in proofs/wp/cache.txt (-wp-cache update, make prove-full: rebuild)")
 
 
 CBMC_CHECKS = ("--bounds-check --pointer-check --div-by-zero-check --signed-overflow-check "
@@ -158,8 +159,9 @@ GATES = {
     "wp": {
         "what": "Frama-C WP (make prove: tools/gates/prove.sh, wp_report.py)",
         "files": HEADERS + SOURCES + ACSL + [
-            "proofs/wp/q15_unit.c", "proofs/wp/provers.txt", "tools/gates/prove.sh",
-            "tools/gates/wp_jobs.py", "tools/gates/wp_report.py", "tools/gates/c_functions.py",
+            "proofs/wp/q15_unit.c", "proofs/wp/provers.txt", "proofs/wp/cache.txt",
+            "tools/gates/prove.sh", "tools/gates/wp_jobs.py", "tools/gates/wp_report.py",
+            "tools/gates/wp_cache.py", "tools/gates/c_functions.py",
             "tools/gates/jobs.sh"],
         "flags": _wp_flags,
         "tools": [("frama-c", lambda env, root: ["frama-c", "-version"]),

@@ -15,6 +15,15 @@
 # UTC time and the SHA-256 of the inputs they were proved from (tools/evidence/inputs.py wp),
 # with the list of those inputs beside them (proofs/wp/inputs-wp.sha256, committed with the
 # results): make evidence shows a result whose inputs changed since as stale.
+#
+# Prover results are kept (tools/gates/wp_cache.py): WP_CACHE=replay, the default, loads the
+# committed results (proofs/wp/cache.txt) into WP's cache, so that a goal whose text, as
+# sent to the prover, is the same as one already proved takes the recorded verdict instead
+# of a prover call; every unit is still parsed, every goal generated and simplified, and any
+# goal not in the store is proved.  One job, chosen from the commit (WP_FRESH names others,
+# or 'none'), is proved with no cache at all, so that over the commits every job is proved
+# from scratch.  WP_CACHE=full (make prove-full) reads nothing, proves every goal with the
+# provers and rewrites the store; WP_CACHE_SAVE=1 adds a replay run's new results to it.
 set -eu
 # Debian's interpreter (a python3 earlier on PATH may lack the packages)
 PY=/usr/bin/python3
@@ -33,10 +42,24 @@ STARTED=$(date +%s)
 # qfoc_commission_start's invariant) needs a timeout of twice that.  The timeout costs time
 # only where the first prover of a goal fails by running out of it (3 goals of 11862 in the
 # last full run; proofs/wp/provers.txt orders the provers so that it stays so).
-JOBS=${WP_JOBS:-3}
+# A run that replays the store spends a third of its wall time or more waiting on WP's
+# scheduler rather than on a prover: four jobs at a time keep the two processors busy.
+CACHE=${WP_CACHE:-replay}
+case "$CACHE" in
+    replay) JOBS=${WP_JOBS:-4} ;;
+    full) JOBS=${WP_JOBS:-3} ;;
+    *) echo "prove: WP_CACHE='$CACHE' is neither 'replay' nor 'full'"; exit 2 ;;
+esac
 TIMEOUT=${WP_TIMEOUT:-120}
+STORE=proofs/wp/cache.txt
 mkdir -p "$OUT"
 rm -f "$OUT"/*.json "$OUT"/*.log "$OUT"/*.time
+rm -rf "$OUT/cache"
+mkdir -p "$OUT/cache"
+if [ "$CACHE" = replay ]; then
+    n=$("$PY" tools/gates/wp_cache.py unpack "$STORE" "$OUT/cache")
+    echo "prove: $n prover results loaded from $STORE"
+fi
 
 # The lemma unit: every public header, hence every specs/*.acsl they include.
 {
@@ -70,9 +93,14 @@ prove_one() {  # prove_one JOB UNIT_PATH PROVERS SELECT
         fi
         return 0
     fi
+    # full: every goal to a prover, each call recorded; replay: the store first, and a
+    # job of WP_FRESH with no cache at all
+    cache="-wp-cache=update"
+    [ "$CACHE" = full ] && cache="-wp-cache=rebuild"
+    case " $FRESH " in *" $job "*) [ "$CACHE" = full ] || cache="-wp-cache=none" ;; esac
     start=$(date +%s)
     if frama-c -cpp-extra-args="-Iinclude -Ispecs" "$unit" \
-        -wp -wp-rte "$select" \
+        -wp -wp-rte "$select" "$cache" -wp-cache-dir="$OUT/cache" \
         -warn-signed-overflow -warn-signed-downcast \
         -warn-unsigned-overflow -warn-unsigned-downcast \
         -wp-prover "$provers" -wp-timeout "$TIMEOUT" -wp-par 1 \
@@ -88,8 +116,23 @@ prove_one() {  # prove_one JOB UNIT_PATH PROVERS SELECT
 }
 
 rm -f "$OUT/failed"
+# the job proved from scratch in a replay run of every unit
+FRESH=${WP_FRESH:-}
+if [ "$CACHE" = replay ] && [ -z "$FRESH" ] && [ $# = 0 ]; then
+    seed=$(git rev-parse HEAD 2>/dev/null || echo 0)
+    FRESH=$("$PY" tools/gates/wp_cache.py pick "$OUT/jobs.txt" "$seed")
+fi
+[ "$FRESH" = none ] && FRESH=""
+echo "$FRESH" > "$OUT/fresh.txt"
+# the jobs proved without the cache take the longest: they start first
+if [ -n "$FRESH" ]; then
+    awk -v fresh=" $FRESH " 'index(fresh, " " $1 " ") { print; next } { rest[++n] = $0 }
+        END { for (i = 1; i <= n; i++) print rest[i] }' "$OUT/jobs.txt" > "$OUT/jobs.ordered"
+    mv "$OUT/jobs.ordered" "$OUT/jobs.txt"
+fi
+[ "$CACHE" = replay ] && [ -n "$FRESH" ] && echo "prove: proved without the cache: $FRESH"
 echo "prove: Frama-C WP (z3 and cvc4, timeout ${TIMEOUT} s): $(wc -l < "$OUT/jobs.txt") jobs over $(cut -d' ' -f2 "$OUT/jobs.txt" | sort -u | wc -l) units"
-export OUT TIMEOUT
+export OUT TIMEOUT CACHE FRESH
 pids=""
 while read -r job unit provers select; do
     prove_one "$job" "$unit" "$provers" "$select" &
@@ -98,13 +141,24 @@ while read -r job unit provers select; do
 done < "$OUT/jobs.txt"
 wait
 # after a full run, record the wall time of every job for the next run's order
-if [ $# = 0 ]; then
+if [ $# = 0 ] && [ "$CACHE" = full ]; then
     for t in "$OUT"/*.time; do
         [ -f "$t" ] && echo "$(basename "$t" .time) $(cat "$t")"
     done | sort > "$TIMES"
 fi
 rc=0
-"$PY" tools/gates/wp_report.py "$OUT" proofs/wp/results.md || rc=$?
+"$PY" tools/gates/wp_report.py "$OUT" proofs/wp/results.md --cache "$CACHE" || rc=$?
+# a full run of every unit replaces the store; a replay run adds to it when asked
+if [ "$rc" = 0 ] && [ -z "$(cat "$OUT/failed" 2>/dev/null)" ]; then
+    if [ $# = 0 ] && [ "$CACHE" = full ]; then save=full
+    elif [ "${WP_CACHE_SAVE:-0}" = 1 ]; then save=update
+    else save=""; fi
+    if [ -n "$save" ]; then
+        n=$("$PY" tools/gates/wp_cache.py pack "$OUT/cache" "$STORE" --mode "$save" \
+            --run "$(date -u -d "@$STARTED" '+%Y-%m-%d %H:%M:%S UTC')")
+        echo "prove: $STORE holds $n prover results ($save)"
+    fi
+fi
 for f in proofs/wp/results.md "$OUT/wp-summary.json"; do
     "$PY" tools/evidence/inputs.py --stamp "$f" wp --started "$STARTED" > /dev/null ||
         { echo "prove: could not stamp $f with its inputs"; rc=1; }

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Summarise Frama-C WP runs: per-function goals, proved, provers and time.
 
-usage: wp_report.py OUTDIR RESULTS_MD
+usage: wp_report.py OUTDIR RESULTS_MD [--cache replay|full]
 Reads OUTDIR/<job>.json (-wp-report-json) and OUTDIR/<job>.log of every job
 (a unit, or a part UNIT@K of one: tools/gates/wp_jobs.py), writes
 RESULTS_MD (committed under proofs/wp/) and OUTDIR/wp-summary.json, prints
@@ -52,8 +52,35 @@ def print_second_prover(outdir: str) -> None:
                   f"(see proofs/wp/provers.txt): " + ", ".join(sorted(late)))
 
 
+def provenance(outdir: str, mode: str) -> dict:
+    """How the goals of this run were proved: by Qed, by a prover in this run, or by the
+    verdict that proofs/wp/cache.txt records for the same goal text (tools/gates/wp_cache.py)."""
+    cached = fresh = qed = 0
+    for name in sorted(os.listdir(outdir)):
+        if not name.endswith(".log"):
+            continue
+        with open(os.path.join(outdir, name), encoding="utf-8") as f:
+            for line in f:
+                m = GOAL.match(line.strip())
+                if not m or m.group(3) != "Valid":
+                    continue
+                if m.group(1) == "Qed":
+                    qed += 1
+                elif line.rstrip().endswith("(cached)"):
+                    cached += 1
+                else:
+                    fresh += 1
+    fresh_jobs = []
+    if os.path.exists(os.path.join(outdir, "fresh.txt")):
+        with open(os.path.join(outdir, "fresh.txt"), encoding="utf-8") as f:
+            fresh_jobs = f.read().split()
+    return {"mode": mode, "qed": qed, "prover": fresh, "store": cached, "fresh_jobs": fresh_jobs}
+
+
 def main() -> int:
     outdir, results_md = sys.argv[1], sys.argv[2]
+    mode = sys.argv[4] if len(sys.argv) == 5 and sys.argv[3] == "--cache" else "full"
+    prov = provenance(outdir, mode)
     rows = []
     total = valid = 0
     clean = True
@@ -106,12 +133,22 @@ def main() -> int:
                 "Time is the sum of the goals' solver times (ms); Qed means the goal was "
                 "discharged by WP's own simplifier.\n\n")
         f.write(f"**proved {valid} / {total} goals**\n\n")
+        if mode == "full":
+            f.write(f"Proved in this run (make prove-full, no recorded result read): "
+                    f"{prov['qed']} by Qed, {prov['prover']} by a prover.\n\n")
+        else:
+            jobs = ", ".join(prov["fresh_jobs"]) or "none"
+            f.write(f"Proved in this run: {prov['qed']} by Qed, {prov['prover']} by a prover "
+                    f"(the jobs proved without any recorded result: {jobs}); {prov['store']} by "
+                    "the verdict recorded in proofs/wp/cache.txt for the same goal, digest for "
+                    "digest as sent to the prover (tools/gates/wp_cache.py; make prove-full "
+                    "proves every goal anew).\n\n")
         f.write("| unit | function | goals | proved | provers | time (ms) |\n")
         f.write("|---|---|---:|---:|---|---:|\n")
         for unit, fn, t, v, provers, ms in rows:
             f.write(f"| {unit} | {fn} | {t} | {v} | {provers} | {ms:.0f} |\n")
     with open(os.path.join(outdir, "wp-summary.json"), "w", encoding="utf-8") as f:
-        json.dump({"proved": valid, "total": total, "clean": clean,
+        json.dump({"proved": valid, "total": total, "clean": clean, "provenance": prov,
                    "functions": [dict(zip(("unit", "function", "goals", "proved", "provers",
                                            "time_ms"), r)) for r in rows]}, f, indent=1)
     print_second_prover(outdir)

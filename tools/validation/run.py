@@ -10,7 +10,7 @@ exact text substitution, and each gate expected to catch it runs on that copy, s
 the unit the defect touches:
 
   wp        tools/gates/prove.sh UNIT...        (WP_JOBS=1; WP_TIMEOUT: the scope's
-            wp_timeout, prove.sh's 60 s without it); caught: a goal not proved
+            wp_timeout, prove.sh's 120 s without it); caught: a goal not proved
   cbmc      tools/gates/cbmc.sh HARNESS...      (JOBS=1);    caught: a property fails
   tests     make build/host/tests/TEST..., tools/gates/run_tests.sh; caught: a test fails,
             or the build stops on a -Werror diagnostic (the test gate builds with -Werror)
@@ -374,7 +374,7 @@ def gate_steps(job, scopes, cbmc):
     sc = scopes[job["scope"]]
     gate = job["gate"]
     if gate == "wp":
-        # the prover time-out of the scope, or prove.sh's own (60 s) when the scope sets none
+        # the prover time-out of the scope, or prove.sh's own (120 s) when the scope sets none
         return [("prove", ["sh", "tools/gates/prove.sh", *sc["wp"]],
                  {"WP_JOBS": "1", "WP_TIMEOUT": str(sc["wp_timeout"]) if "wp_timeout" in sc else None})]
     if gate == "cbmc":
