@@ -194,8 +194,8 @@ typedef struct {
 } sim_inj_t;
 
 /**
- * Recording of the true phase currents at sub-step resolution (REQ-SIM-008; the analysis
- * of the records: sim_harmonics(), REQ-SCN-018).  Off unless sim_record() gives a buffer:
+ * Recording of the true phase currents at sub-step resolution (REQ-SCN-018, with the
+ * analysis of the records, sim_harmonics()).  Off unless sim_record() gives a buffer:
  * nothing of the plant's behaviour or outputs depends on it.  While on, every period
  * appends cfg.substeps samples, one at the end of each uniform sub-step (instants
  * t + (k + 1) T / substeps, k = 0 .. substeps - 1, of the period starting at t; the splits
