@@ -3,7 +3,8 @@
 # sim/apps/shunt_thd.c): the reference motor at 1000, 3000 and 6000 rpm, light and rated
 # load, on its two-sensor table, its single-shunt table and the two-sensor table with the
 # edge shifting alone; the true phase currents at every plant sub-step over whole electrical
-# periods, their DFT; build/reports/shunt_thd.md and .csv.  About a minute: not part of
+# periods, their DFT; then a speed sweep at the rated load and one point at 80 sub-steps;
+# build/reports/shunt_thd.md and .csv.  About 25 s: not part of
 # make check.
 
 .PHONY: shunt-thd

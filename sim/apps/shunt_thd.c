@@ -5,7 +5,9 @@
  *        two-sensor table, on its single-shunt table, and on the two-sensor table with the
  *        single shunt's edge shifting alone; the true phase currents recorded at every plant
  *        sub-step over a whole number of electrical periods and analysed by their DFT
- *        (sim_harmonics()); then the same at one point with 80 sub-steps instead of 20.
+ *        (sim_harmonics()), with the scenarios' sample noise and without; then a speed
+ *        sweep at the rated load (2000 .. 6000 rpm, two sensors and single shunt, no noise)
+ *        and one point with 80 sub-steps instead of 20.
  *
  * usage: qfoc_shunt_thd [--out DIR] [--noise A] [--points N]
  *   --out DIR    build/reports by default: shunt_thd.md and shunt_thd.csv
@@ -51,6 +53,8 @@ static const op_t ops[] = {
     { 6000.0, 1.0, "light" }, { 6000.0, 4.5, "rated" },
 };
 #define N_OPS ((int)(sizeof ops / sizeof ops[0]))
+/* the speed sweep at the rated load: 2000 .. 6000 rpm in 500 rpm steps */
+#define N_SWEEP 9
 
 static int run_point(const scn_table_t *two, const scn_table_t *sh, const op_t *op, int mode,
                      int substeps, double noise, sht_result_t *r)
@@ -179,6 +183,7 @@ int main(int argc, char **argv)
     const scn_table_t *sh = find_table("reference_shunt");
     static sht_result_t res[2][N_OPS][N_MODES];
     static sht_result_t fine[2];
+    static sht_result_t sweep[N_SWEEP][2];
     const int fine_op = 3;  /* 3000 rpm, rated load */
     int kf;
     char path[600];
@@ -213,6 +218,16 @@ int main(int argc, char **argv)
             }
         }
     }
+    /* the sweep: rated load, no noise, 2000 .. 6000 rpm, two sensors and single shunt */
+    for (k = 0; k < N_SWEEP; k++) {
+        const op_t op = { 2000.0 + 500.0 * (double)k, 4.5, "rated" };
+        for (m = 0; m < 2; m++) {
+            if (run_point(two, sh, &op, m, 20, 0.0, &sweep[k][m]) != 0) {
+                return 2;
+            }
+            bad += sweep[k][m].ok ? 0 : 1;
+        }
+    }
     /* the resolution: the same point with 80 sub-steps */
     for (m = 0; m < 2; m++) {
         if (run_point(two, sh, &ops[kf], m, 80, noise[0], &fine[m]) != 0) {
@@ -241,6 +256,12 @@ int main(int argc, char **argv)
     }
     for (m = 0; m < 2; m++) {
         csv_row(csv, &ops[kf], m, 80, noise[0], &fine[m]);
+    }
+    for (k = 0; k < N_SWEEP; k++) {
+        const op_t op = { 2000.0 + 500.0 * (double)k, 4.5, "rated" };
+        for (m = 0; m < 2; m++) {
+            csv_row(csv, &op, m, 20, 0.0, &sweep[k][m]);
+        }
     }
     fclose(csv);
 
@@ -283,8 +304,31 @@ int main(int argc, char **argv)
         pct(md, f, f->dec4 ? f->tdd_dec4 : NAN);
         fputc('\n', md);
     }
+    fprintf(md, "\nThe speed sweep: rated load (4.5 N m), no noise; phase u's harmonics in %% of its "
+                "fundamental (is the single shunt's distortion locked to the speed, and of which "
+                "orders?):\n\n");
+    fprintf(md, "| speed | THD two sensors | THD shunt | shunt: 2nd | 4th | 5th | 7th | "
+                "largest of 2 .. 40, shunt | two sensors: 2nd | 4th |\n");
+    fprintf(md, "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n");
+    for (k = 0; k < N_SWEEP; k++) {
+        const sht_result_t *r2 = &sweep[k][SHT_TWO_SENSOR];
+        const sht_result_t *rs = &sweep[k][SHT_SHUNT];
+        char hs[40];
+        fprintf(md, "| %.0f rpm |", 2000.0 + 500.0 * (double)k);
+        pct(md, r2, r2->thd);
+        pct(md, rs, rs->thd);
+        pct(md, rs, rs->ok ? rs->ph[0].h_rms[2] / rs->ph[0].fund_rms : NAN);
+        pct(md, rs, rs->ok ? rs->ph[0].h_rms[4] / rs->ph[0].fund_rms : NAN);
+        pct(md, rs, rs->ok ? rs->ph[0].h_rms[5] / rs->ph[0].fund_rms : NAN);
+        pct(md, rs, rs->ok ? rs->ph[0].h_rms[7] / rs->ph[0].fund_rms : NAN);
+        top_harm(rs, hs, sizeof hs);
+        fprintf(md, " %s |", rs->ok ? hs : "-");
+        pct(md, r2, r2->ok ? r2->ph[0].h_rms[2] / r2->ph[0].fund_rms : NAN);
+        pct(md, r2, r2->ok ? r2->ph[0].h_rms[4] / r2->ph[0].fund_rms : NAN);
+        fputc('\n', md);
+    }
     fclose(md);
     printf("shunt-thd: %s/shunt_thd.md, %s/shunt_thd.csv; %d of %d runs analysed\n", out, out,
-           2 * n_ops * N_MODES + 2 - bad, 2 * n_ops * N_MODES + 2);
+           2 * n_ops * N_MODES + 2 + 2 * N_SWEEP - bad, 2 * n_ops * N_MODES + 2 + 2 * N_SWEEP);
     return (bad == 0) ? 0 : 1;
 }
