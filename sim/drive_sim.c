@@ -154,7 +154,13 @@ void dsim_period(dsim_t *ds)
         } else {
             ds->pwm = (ds->ident != NULL) ? qfoc_commission_fast_step(&ds->drv, ds->ident, &adc)
                                           : qfoc_drive_fast_step(&ds->drv, &adc);
-            sim_set_compare(&ds->plant, ds->pwm.cmp);
+            if (ds->shift != NULL) {
+                qfoc_shunt_plan_t plan;
+                qfoc_shunt_plan(ds->shift, ds->pwm.cmp, &plan);
+                sim_set_compare2(&ds->plant, plan.up, plan.down);
+            } else {
+                sim_set_compare(&ds->plant, ds->pwm.cmp);
+            }
         }
         sim_set_enable(&ds->plant, ds->pwm.enable);
     } else {

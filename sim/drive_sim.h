@@ -46,6 +46,11 @@ typedef struct {
                                   front end (drive_shunt.h, initialised with latency 2: the
                                   fast step runs at the start of a period with the samples
                                   of the one before), the plant's shunt sensing active */
+    const qfoc_shunt_cfg_t *shift; /**< NULL: the two-sensor drive's compare values applied
+                                  as they are; else (two sensors only) the edge shifting of a
+                                  single shunt alone: the plant gets qfoc_shunt_plan()'s
+                                  up- and down-counting values for this configuration, the
+                                  drive still reads its phase-current sensors (REQ-SCN-018) */
     uint8_t fast_state;      /**< the drive state the last fast step ran in */
     bool fast_ran;           /**< the fast step ran in the last period */
     /* last outputs */

@@ -622,6 +622,43 @@ static void sim_substep(sim_t *s, double a, double hh, double T, const double tx
     *tsum += w * sim_te(&s->cfg.motor, s->id, s->iq);
 }
 
+/* The recording (sim_rec_t): one sample at the end of a uniform sub-step. */
+static void sim_rec_sample(sim_t *s)
+{
+    sim_rec_t *r = s->rec;
+    if (r != NULL) {
+        if (r->n < r->cap) {
+            double iph[3];
+            const double th = s->cfg.motor.pole_pairs * s->theta_m;
+            if (r->n > 0) {
+                /* the mechanical angle's wrap at a period end is n_p whole electrical
+                   turns; the angle moves far less than pi per sub-step otherwise */
+                r->th_turns -= 2.0 * SIM_PI * floor((th - r->th_last) / (2.0 * SIM_PI) + 0.5);
+            }
+            r->th_last = th;
+            sim_phase_i(s, iph);
+            r->buf[4 * r->n] = th + r->th_turns;
+            r->buf[4 * r->n + 1] = iph[0];
+            r->buf[4 * r->n + 2] = iph[1];
+            r->buf[4 * r->n + 3] = iph[2];
+            r->n++;
+        } else {
+            r->dropped++;
+        }
+    }
+}
+
+void sim_record(sim_t *s, sim_rec_t *rec)
+{
+    s->rec = rec;
+    if (rec != NULL) {
+        rec->n = 0;
+        rec->dropped = 0;
+        rec->th_last = 0.0;
+        rec->th_turns = 0.0;
+    }
+}
+
 /* The period with asymmetric compare values or single-shunt samples: the uniform
    sub-steps, split at the samples' start instants. */
 static void sim_step_asym(sim_t *s, double vsum[2], double *tsum)
@@ -672,6 +709,7 @@ static void sim_step_asym(sim_t *s, double vsum[2], double *tsum)
         if (b > a) {
             sim_substep(s, a, b - a, T, tu, tdn, (b - a) / h, vsum, tsum);
         }
+        sim_rec_sample(s);
     }
     s->shunt_taken = take;
 }
@@ -701,6 +739,7 @@ void sim_step_period(sim_t *s)
     for (k = 0; k < n; k++) {
         /* the weight 1.0 leaves the sums exactly those of the uniform sub-steps */
         sim_substep(s, (double)k * h, h, T, tx, NULL, 1.0, vsum, &tsum);
+        sim_rec_sample(s);
     }
     sim_period_end(s, vsum, tsum);
 }

@@ -193,6 +193,25 @@ typedef struct {
     double shunt_offset; /**< single shunt: offset added to both samples, counts */
 } sim_inj_t;
 
+/**
+ * Recording of the true phase currents at sub-step resolution (REQ-SCN-018, with the
+ * analysis of the records, sim_harmonics()).  Off unless sim_record() gives a buffer:
+ * nothing of the plant's behaviour or outputs depends on it.  While on, every period
+ * appends cfg.substeps samples, one at the end of each uniform sub-step (instants
+ * t + (k + 1) T / substeps, k = 0 .. substeps - 1, of the period starting at t; the splits
+ * at the single-shunt sampling instants add none): the electrical angle unwrapped from the
+ * first sample on (rad) and the phase currents u, v, w (A), four doubles per sample in
+ * buf[4 n .. 4 n + 3].  Once cap samples are recorded the rest are counted in dropped.
+ */
+typedef struct {
+    double *buf;       /**< 4 x cap doubles: theta_e (unwrapped), i_u, i_v, i_w */
+    long cap;          /**< samples the buffer holds */
+    long n;            /**< samples recorded */
+    long dropped;      /**< samples not recorded for want of room */
+    double th_last;    /**< the last sample's wrapped angle, for the unwrapping */
+    double th_turns;   /**< 2 pi x the turns unwrapped so far */
+} sim_rec_t;
+
 /** Plant state (read the fields; change them only through the functions). */
 typedef struct {
     sim_cfg_t cfg;
@@ -225,6 +244,7 @@ typedef struct {
     bool held;                /**< rotor held at standstill by load.t_break */
     uint32_t rng;
     sim_inj_t inj;            /**< injected faults (none after sim_init) */
+    sim_rec_t *rec;           /**< sub-step recording (NULL after sim_init: off) */
 } sim_t;
 
 /** Initialise at standstill, zero currents, theta_m = 0, compare = period / 2. */
@@ -266,6 +286,12 @@ void sim_set_triggers(sim_t *s, const uint16_t trig[2], bool on);
  */
 bool sim_sample_shunt(const sim_t *s, uint16_t code[2]);
 
+/**
+ * Record the true phase currents at every sub-step from the next period on into rec
+ * (its n and dropped reset to 0), or stop recording (rec NULL).  See sim_rec_t.
+ */
+void sim_record(sim_t *s, sim_rec_t *rec);
+
 /** Integrate one PWM period; then the pending compare values become active. */
 void sim_step_period(sim_t *s);
 
@@ -293,6 +319,36 @@ int16_t sim_adc_current_q15(uint16_t code);
 int16_t sim_adc_vdc_q15(uint16_t code);
 /** Wrap an angle to [-pi, pi). */
 double sim_wrap_pi(double x);
+
+/* ------------------------------------------------------------------ harmonic analysis */
+
+/** Highest harmonic order sim_harmonics() reports one by one. */
+#define SIM_HARM_MAX 64
+
+/** Harmonic content of a signal over a whole number of periods of its fundamental. */
+typedef struct {
+    double dc;            /**< mean */
+    double fund_rms;      /**< RMS of the fundamental */
+    double fund_phase;    /**< its phase, rad: x_1(k) = sqrt 2 fund_rms cos(w k + fund_phase) */
+    double h_rms[SIM_HARM_MAX + 1]; /**< RMS of harmonic h = 0 .. h_max (h_rms[1] = fund_rms,
+                                         h_rms[0] = |dc|); 0 above h_max */
+    double harm_rms;      /**< RMS of harmonics 2 .. h_max together */
+    double thd;           /**< harm_rms / fund_rms */
+    double dist_rms;      /**< RMS of x minus its fundamental, in the time domain: every other
+                               component (DC, harmonics of any order, the PWM ripple) */
+    double tdd;           /**< dist_rms / fund_rms: the total distortion */
+} sim_harm_t;
+
+/**
+ * @brief The harmonic content of n samples x[0], x[stride], ... taken uniformly over exactly
+ *        `cycles` periods of the fundamental (REQ-SCN-018): the discrete Fourier transform's
+ *        bins h x cycles, h = 0 .. h_max, each evaluated directly in double precision (the
+ *        angle of sample k reduced exactly, (h cycles k) mod n, before the cosine), and the
+ *        time-domain RMS of x less its fundamental.
+ * @return 0; -1 when cycles < 1, h_max is not 2 .. SIM_HARM_MAX, the samples are too few for
+ *         the highest bin (n <= 2 h_max cycles) or the fundamental is zero (out zeroed).
+ */
+int sim_harmonics(const double *x, long stride, long n, int cycles, int h_max, sim_harm_t *out);
 
 /* ------------------------------------------------------------------ ideal controller */
 
