@@ -62,8 +62,10 @@ Exceptions (ARMv7-M Architecture Reference Manual, B1.5 "ARMv7-M exception model
     at most 4 instructions); the real core takes it there and stacks ICI/IT.
   - A peripheral write that makes an interrupt pending, or schedules an event earlier
     than the end of the running chunk, stops the chunk at that instruction.  Unicorn
-    then reports the PC of the store, which it executes again on the restart: the model
-    recognises the repeated store (same PC, address and value) and does not apply it twice.
+    then reports the PC of the store, which it executes again on the restart (found by
+    experiment: the store's hook runs twice): the model keeps the store's PC, address,
+    value and SP per nesting depth and does not apply it a second time when that context
+    resumes with it.
 """
 import heapq
 import struct
@@ -157,7 +159,7 @@ class Core:
         self.lines = {}              # irq -> asserted level (peripheral requests)
         self.active = []             # stack of [irq, exc_return, insns at entry, own insns]
         self.sleeping = False
-        self.replay = None
+        self.replay = {}             # nesting depth -> the store to apply once only
         self.stop_request = False
         self.reason = None
         self.blk_start = 0
@@ -380,11 +382,10 @@ class Core:
             self._fail("write to program flash", addr)
             return
         pc = uc.reg_read(UC_ARM_REG_PC)
-        if self.replay is not None:
-            if self.replay == (pc, addr, value):
-                self.replay = None          # the store Unicorn executes again: applied once
-                return
-            self.replay = None
+        depth = len(self.active)
+        key = self.replay.pop(depth, None)
+        if key is not None and key == (pc, addr, value, uc.reg_read(UC_ARM_REG_SP)):
+            return                          # the store Unicorn executes again: applied once
         if size != 4 or addr % 4:
             self._fail("%d-byte access at an unaligned or partial peripheral address" % size, addr)
             return
@@ -401,7 +402,8 @@ class Core:
             self._fail(str(e), addr)
             return
         if self.stop_request and self.chunk_end is not None:
-            self.replay = (pc, addr, value)
+            # the context at this depth resumes with this store (after any handler)
+            self.replay[depth] = (pc, addr, value, uc.reg_read(UC_ARM_REG_SP))
             self.reason = "write"
             uc.emu_stop()
 

@@ -1,0 +1,410 @@
+"""Tests of the processor-in-the-loop emulator (port_s32k/pil/core.py, periph.py) on small
+Thumb images assembled here (arm-none-eabi-gcc), and one short run of the firmware image
+when it is built (build/s32k144/qfoc_compressor.elf).
+
+    /usr/bin/python3 -m pytest -q port_s32k/pil/tests        (make pil-test)
+"""
+import os
+import shutil
+import struct
+import subprocess
+import sys
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PIL = os.path.dirname(HERE)
+ROOT = os.path.normpath(os.path.join(PIL, "..", ".."))
+sys.path.insert(0, PIL)
+import core  # noqa: E402
+import periph  # noqa: E402
+
+pytestmark = pytest.mark.skipif(shutil.which("arm-none-eabi-gcc") is None,
+                                reason="arm-none-eabi-gcc not installed")
+
+LD = """
+MEMORY { FLASH (rx) : ORIGIN = 0, LENGTH = 512K }
+SECTIONS { .text : { KEEP(*(.vectors)) *(.text*) } > FLASH }
+"""
+
+# Vector table: SP at the top of SRAM_U, reset, then the IRQ vectors named in `irqs`.
+def vectors(irqs):
+    words = ["    .word 0x20007000", "    .word reset + 1"] + ["    .word trap + 1"] * 14
+    for n in range(123):
+        words.append("    .word %s + 1" % irqs[n] if n in irqs else "    .word trap + 1")
+    return "\n".join(words)
+
+
+HEAD = """
+    .syntax unified
+    .cpu cortex-m4
+    .thumb
+    .section .vectors, "a"
+%s
+    .text
+    .thumb_func
+trap:
+    b trap
+"""
+
+# SRAM_L words used by the tests (each written before it is read: the ECC check)
+LOG = 0x1FFF8000
+
+
+def build(tmp_path, name, body, irqs):
+    src = tmp_path / (name + ".S")
+    src.write_text(HEAD % vectors(irqs) + body)
+    ld = tmp_path / "t.ld"
+    ld.write_text(LD)
+    elf = tmp_path / (name + ".elf")
+    subprocess.check_call(["arm-none-eabi-gcc", "-mcpu=cortex-m4", "-mthumb", "-nostdlib",
+                           "-nostartfiles", "-T", str(ld), str(src), "-o", str(elf)])
+    return str(elf)
+
+
+def rd(c, a):
+    return struct.unpack("<I", c.mu.mem_read(a, 4))[0]
+
+
+def sym(elf, name):
+    out = subprocess.check_output(["arm-none-eabi-nm", elf]).decode()
+    for line in out.splitlines():
+        p = line.split()
+        if p[-1] == name:
+            return int(p[0], 16)
+    raise KeyError(name)
+
+
+# ---------------------------------------------------------------------- entry / return
+ROUND_TRIP = """
+    .thumb_func
+reset:
+    ldr r0, =0x1FFF8000        @ clear the log words (32-bit writes: ECC initialised)
+    movs r1, #0
+    movs r2, #32
+1:  str r1, [r0], #4
+    subs r2, #1
+    bne 1b
+    ldr r0, =0xE000E104        @ NVIC_ISER1: IRQ 40
+    movs r1, #1
+    lsls r1, r1, #8
+    str r1, [r0]
+    ldr r0, =0xE000E204        @ NVIC_ISPR1: pend IRQ 40 (masked: PRIMASK set below)
+    cpsid i
+    str r1, [r0]
+    ldr r0, =0x10101010
+    ldr r1, =0x21212121
+    ldr r2, =0x32323232
+    ldr r3, =0x43434343
+    ldr r4, =0x54545454
+    ldr r12, =0xC0C0C0C0
+    ldr lr, =0xE1E1E1E1
+    mov r5, sp
+    ldr r6, =0x1FFF8000
+    str r5, [r6, #0x40]         @ SP before the interrupt
+    movs r7, #0
+    cmp r7, #1                  @ flags: N = 1 (0 - 1 < 0), Z = 0, C = 0
+    cpsie i                     @ the interrupt is taken right here
+    mrs r7, apsr
+    str r0, [r6, #0x00]
+    str r1, [r6, #0x04]
+    str r2, [r6, #0x08]
+    str r3, [r6, #0x0C]
+    str r4, [r6, #0x10]
+    mov r8, r12
+    str r8, [r6, #0x14]
+    mov r8, lr
+    str r8, [r6, #0x18]
+    mov r8, sp
+    str r8, [r6, #0x1C]
+    str r7, [r6, #0x20]
+2:  wfi
+    b 2b
+    .ltorg
+
+    .thumb_func
+isr40:
+    ldr r0, =0x1FFF8000
+    ldr r1, [r0, #0x44]
+    adds r1, #1
+    str r1, [r0, #0x44]         @ entries
+    str lr, [r0, #0x48]         @ EXC_RETURN seen by the handler
+    mrs r2, ipsr
+    str r2, [r0, #0x4C]
+    mov r1, sp
+    str r1, [r0, #0x50]
+    movs r1, #0                 @ clobber the caller-saved registers and the flags
+    movs r2, #0
+    movs r3, #0
+    mov r12, r3
+    cmp r3, #0                  @ Z = 1, N = 0, C = 1
+    bx lr
+    .ltorg
+"""
+
+
+def test_entry_return_round_trip_preserves_registers(tmp_path):
+    elf = build(tmp_path, "round", ROUND_TRIP, {40: "isr40"})
+    c = core.Core(elf)
+    c.boot()
+    assert c.run_until(20000), c.stopped
+    assert rd(c, LOG + 0x44) == 1                              # entered once
+    assert rd(c, LOG + 0x48) == 0xFFFFFFF9                     # from thread mode, basic frame
+    assert rd(c, LOG + 0x4C) == 16 + 40                        # IPSR in the handler
+    sp0 = rd(c, LOG + 0x40)
+    assert rd(c, LOG + 0x50) == sp0 - 32                       # the 8-word frame (SP 8-aligned)
+    assert [rd(c, LOG + 4 * k) for k in range(5)] == [0x10101010, 0x21212121, 0x32323232,
+                                                       0x43434343, 0x54545454]
+    assert rd(c, LOG + 0x14) == 0xC0C0C0C0                     # R12
+    assert rd(c, LOG + 0x18) == 0xE1E1E1E1                     # LR
+    assert rd(c, LOG + 0x1C) == sp0                            # SP restored
+    assert rd(c, LOG + 0x20) >> 28 == 0x8                      # N set, Z and C clear again
+    assert c.irq_stats[40][0][0] > 0 and c.resets == 0
+
+
+def test_misaligned_stack_gets_padding_and_is_restored(tmp_path):
+    body = ROUND_TRIP.replace("    mov r5, sp\n", "    sub sp, #4\n    mov r5, sp\n")
+    elf = build(tmp_path, "pad", body, {40: "isr40"})
+    c = core.Core(elf)
+    c.boot()
+    assert c.run_until(20000), c.stopped
+    sp0 = rd(c, LOG + 0x40)
+    assert sp0 % 8 == 4
+    assert rd(c, LOG + 0x50) == sp0 - 36                       # 4 bytes of padding (xPSR bit 9)
+    assert rd(c, LOG + 0x1C) == sp0
+
+
+# ---------------------------------------------------------------------- pre-emption
+# IRQ 33 (low priority 4) and IRQ 122 (high priority 1): the higher interrupt number has
+# the higher priority.  Each handler appends its mark to a log at 0x1FFF8000 (count at
+# +0x7C).  33 pends 122 in its middle: 122 must pre-empt.  122 pends 33 again: 33 must
+# wait until 122 returns (tail chain).
+PREEMPT = """
+    .thumb_func
+reset:
+    ldr r0, =0x1FFF8000
+    movs r1, #0
+    movs r2, #32
+1:  str r1, [r0], #4
+    subs r2, #1
+    bne 1b
+    cpsid i
+    ldr r0, =0xE000E420         @ NVIC_IPR8: IRQ 33 in byte 1
+    ldr r1, =0x00004000         @ priority 4 << 4
+    str r1, [r0]
+    ldr r0, =0xE000E478         @ NVIC_IPR30: IRQ 122 in byte 2
+    ldr r1, =0x00100000         @ priority 1 << 4
+    str r1, [r0]
+    ldr r0, =0xE000E104         @ ISER1: IRQ 33 (bit 1)
+    movs r1, #2
+    str r1, [r0]
+    ldr r0, =0xE000E10C         @ ISER3: IRQ 122 (bit 26)
+    ldr r1, =0x04000000
+    str r1, [r0]
+    ldr r0, =0xE000E204         @ ISPR1: pend IRQ 33
+    movs r1, #2
+    str r1, [r0]
+    cpsie i
+2:  wfi
+    b 2b
+    .ltorg
+
+    .thumb_func
+mark:                           @ r1 = mark; uses r2, r3
+    ldr r2, =0x1FFF8000
+    ldr r3, [r2, #0x7C]
+    str r1, [r2, r3, lsl #2]
+    adds r3, #1
+    str r3, [r2, #0x7C]
+    bx lr
+    .ltorg
+
+    .thumb_func
+isr33:
+    push {r4, lr}
+    ldr r4, =0x1FFF8000
+    ldr r0, [r4, #0x78]         @ second entry: just mark and leave
+    cbz r0, 3f
+    movs r1, #0x3B
+    bl mark
+    pop {r4, pc}
+3:  movs r0, #1
+    str r0, [r4, #0x78]
+    movs r1, #0x31              @ low: start
+    bl mark
+    ldr r0, =0xE000E20C         @ ISPR3: pend IRQ 122 -> pre-empts here
+    ldr r1, =0x04000000
+    str r1, [r0]
+    movs r1, #0x32              @ low: end
+    bl mark
+    pop {r4, pc}
+    .ltorg
+
+    .thumb_func
+isr122:
+    push {r4, lr}
+    movs r1, #0xA1              @ high: start
+    bl mark
+    ldr r0, =0xE000E204         @ ISPR1: pend IRQ 33 -> must not pre-empt
+    movs r1, #2
+    str r1, [r0]
+    movs r1, #0xA2              @ high: end
+    bl mark
+    pop {r4, pc}
+    .ltorg
+"""
+
+
+def test_priority_inverted_pair_preempts_correctly(tmp_path):
+    elf = build(tmp_path, "preempt", PREEMPT, {33: "isr33", 122: "isr122"})
+    c = core.Core(elf)
+    c.boot()
+    assert c.run_until(50000), c.stopped
+    n = rd(c, LOG + 0x7C)
+    log = [rd(c, LOG + 4 * k) for k in range(n)]
+    # 33 starts; 122 pre-empts it at once and runs to its end (33 pended again waits);
+    # 33 resumes and ends; its second request then runs (tail-chained)
+    assert log == [0x31, 0xA1, 0xA2, 0x32, 0x3B]
+    assert c.preemptions == 1
+    assert c.tailchains == 1
+    assert len(c.irq_stats[33]) == 2 and len(c.irq_stats[122]) == 1
+
+
+# ---------------------------------------------------------------------- stops
+UNKNOWN = """
+    .thumb_func
+reset:
+    ldr r0, =0x40001000
+    .global bad
+bad:
+    ldr r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_unknown_register_stops_with_address_and_pc(tmp_path):
+    elf = build(tmp_path, "unknown", UNKNOWN, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "0x40001000" in c.stopped
+    assert "pc 0x%08X" % (sym(elf, "bad") & ~1) in c.stopped
+    assert "do not know" in c.stopped
+
+
+READ_ONLY = """
+    .thumb_func
+reset:
+    ldr r0, =0x4006509C         @ PCC_ADC1: clock on (SPLLDIV2)
+    ldr r1, =0x46000000
+    str r1, [r0]
+    ldr r0, =0x40027048         @ ADC1_RA: read-only
+    movs r1, #5
+    .global bad
+bad:
+    str r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_write_to_read_only_register_stops(tmp_path):
+    elf = build(tmp_path, "ro", READ_ONLY, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "read-only register ADC1_RA" in c.stopped
+    assert "0x40027048" in c.stopped and "pc 0x%08X" % (sym(elf, "bad") & ~1) in c.stopped
+
+
+UNINIT = """
+    .thumb_func
+reset:
+    ldr r0, =0x1FFF8100
+    .global bad
+bad:
+    ldr r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_sram_read_before_write_stops(tmp_path):
+    elf = build(tmp_path, "ecc", UNINIT, {})
+    c = core.Core(elf)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "SRAM read before its first 32-bit write" in c.stopped and "0x1FFF8100" in c.stopped
+
+
+FTM_WP = """
+    .thumb_func
+reset:
+    ldr r0, =0x40065098         @ PCC_FTM3: clock on
+    ldr r1, =0x46000000
+    str r1, [r0]
+    ldr r0, =0x40026074         @ FTM3_FMS: WPEN
+    movs r1, #0x40
+    str r1, [r0]
+    ldr r0, =0x40026068         @ FTM3_DEADTIME, write-protected now
+    movs r1, #5
+    .global bad
+bad:
+    str r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_ftm_write_while_protected_stops(tmp_path):
+    elf = build(tmp_path, "wp", FTM_WP, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "write-protected" in c.stopped and "0x40026068" in c.stopped
+
+
+MISALIGNED = """
+    .thumb_func
+reset:
+    ldr r0, =0x40065099
+    .global bad
+bad:
+    ldrb r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_partial_peripheral_access_stops(tmp_path):
+    elf = build(tmp_path, "mis", MISALIGNED, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "0x40065099" in c.stopped
+
+
+# ---------------------------------------------------------------------- the image
+FW = os.path.join(ROOT, "build", "s32k144", "qfoc_compressor.elf")
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_firmware_interrupt_rates(tmp_path):
+    import plant as plant_mod
+    import run
+    lib = plant_mod.build(str(tmp_path / "libpilplant.so"))
+    pil = run.PIL(FW, os.path.join(ROOT, "specs", "motors", "reference.toml"), 320.0, lib)
+    c = pil.core
+    c.boot()
+    assert c.run_until(20 * 80_000), c.stopped            # 20 ms
+    per = pil.dev["FTM3"].reloads
+    assert abs(len(c.irq_stats[122]) - per) <= 1 and per >= 150
+    assert abs(len(c.irq_stats[40]) - per) <= 1
+    assert abs(len(c.irq_stats[48]) - 20) <= 1
+    assert pil.dev["WDOG"].refreshes == len(c.irq_stats[48])
+    assert pil.latencies and max(pil.latencies) < 2 * pil.dev["FTM3"].r["MOD"]
