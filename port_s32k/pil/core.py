@@ -143,7 +143,9 @@ class Core:
         for addr in self._find(0xB662):                      # CPSIE I (ARM ARM A7.7.27)
             self.mu.hook_add(UC_HOOK_CODE, self._on_cpsie, begin=addr, end=addr)
         self.irq_names = {}
-        self.irq_stats = {}          # irq -> list of (instructions, cycles incl. entry/exit)
+        # irq -> list of (own instructions, cycles with entry and return, latency from the
+        # request to the first handler instruction, cycle of the request)
+        self.irq_stats = {}
         self.isr_log = []            # (cycle, irq, 'enter'|'return')
         self.log_isr = False
         self.preemptions = 0
@@ -470,7 +472,7 @@ class Core:
             raise Stop("EXC_RETURN 0x%08X not the one of the entry (0x%08X)" % (pc, exc_return))
         own += self.insns - t_insn
         self.irq_stats.setdefault(irq, []).append((own, own + ENTRY_CYCLES + RETURN_CYCLES,
-                                                   t_cyc - waited))
+                                                   t_cyc - waited, waited))
         if self.log_isr:
             self.isr_log.append((self.cycles, irq, "return"))
         if self.lines.get(irq, False):

@@ -13,10 +13,13 @@ Common rules:
 Simplifications (stated; not RM behaviour):
   - Clocks: SCG valid flags follow their enables at once (no oscillator or PLL start-up
     time); the clock switch of RCCR shows in CSR at once; the core clock is 80 MHz from
-    reset (core.py).  The frequencies the models count with are those the port
-    configures: FTM3 and PDB on SYS_CLK 80 MHz, ADC on SPLLDIV2 40 MHz, LPIT and LPUART on
-    SOSCDIV2 8 MHz, WDOG on the 128 kHz LPO; the models check the PCC/SC fields that
-    select them and stop on another choice.
+    reset (core.py).  The frequencies the models count with are those the port states
+    (s32k144_port.h, port_s32k/README.md), not an independent reading of the RM's clock
+    distribution: FTM3 (SC[CLKS] = 01) and the PDBs on SYS_CLK 80 MHz, the ADCs on
+    SPLLDIV2 40 MHz, LPIT and LPUART on SOSCDIV2 8 MHz, WDOG on the 128 kHz LPO; the models
+    check the PCC/SC fields that select them and stop on another choice.  Should the PDB
+    count the bus clock on the part (a point port_s32k/README.md lists as unverified), the
+    sampling instant here would be wrong by the same factor as the port's.
   - FTM3: centre-aligned (CPWMS = 1) and up counting; the channel outputs themselves
     (dead time, polarity, complementary pairs) are not computed: the plant receives the
     even channels' compare values and one enable per period.  The output mask and the gate
@@ -441,8 +444,7 @@ class FTM(Periph):
             self.tick()
             self._start(self.now())
         elif was and not self.running:
-            self.cnt_ref = self.rd_CNT() if False else self.cnt_ref
-            self.gen += 1
+            self.gen += 1                              # counter stopped: no more events
         self._line()
 
     def _buffered(self, n, v):
@@ -464,7 +466,7 @@ class FTM(Periph):
                 return
             if (v ^ self.r["MODE"]) & ~0x4:
                 raise Stop("FTM3_MODE changed while write-protected")
-        self.r["MODE"] = v & ~0x2 if False else v
+        self.r["MODE"] = v
 
     def rd_FMS(self):
         fms = self.r["FMS"] & ~0x20
@@ -650,13 +652,12 @@ class PDB(Periph):
         self.t_trig = None
         self.triggers = 0
         self.pretrig_times = []
+        self.trigger_times = []
         self.ldok_pending = False
 
     def clk(self):
         sc = self.r["SC"]
-        pre = 1 << bits(sc, 12, 3)
-        mult = (1, 10, 20, 40)[bits(sc, 2, 2)]
-        return pre * mult if pre > 1 or mult > 1 else 1
+        return (1 << bits(sc, 12, 3)) * (1, 10, 20, 40)[bits(sc, 2, 2)]   # PRESCALER, MULT
 
     def _load(self):
         for k, v in self.buf.items():
@@ -706,6 +707,7 @@ class PDB(Periph):
         self.gen += 1
         self.triggers += 1
         self.t_trig = t
+        self.trigger_times.append(t)
         c1 = self.r["CH0C1"]
         for m in range(8):
             if c1 & (1 << m) and not c1 & (1 << (16 + m)):

@@ -200,6 +200,30 @@ def main(argv):
           "the bridge switching); CAN frames %d; LIN frames sent to the drive %d, bytes from it %d"
           % (d["WDOG"].refreshes, getattr(c, "wdog_timeouts", 0), d["LPIT0"].timeouts, pil.plant.steps,
              pil.enabled_periods, len(d["CAN0"].frames), lin_sent, len(d["LPUART1"].tx_log)))
+    # LIN status frames from the drive: break, SYNC, PID(0x11), 8 data bytes, checksum
+    frames, cur = [], None
+    for tc, item in d["LPUART1"].tx_log:
+        if item == "BRK":
+            cur = [tc]
+            frames.append(cur)
+        elif cur is not None:
+            cur.append(item)
+    good = [f for f in frames if len(f) == 12 and f[1] == 0x55 and f[2] == lin_pid(0x11)
+            and f[11] == lin_checksum(f[2:11])]
+    lin_states = sorted(set(STATES.get(f[3] & 0xF, "?") for f in good))
+    print("LIN status frames from the drive: %d, %d well-formed (PID, checksum), states %s"
+          % (len(frames), len(good), ", ".join(lin_states) or "-"))
+    trig = d["PDB1"].trigger_times
+    offs = []
+    k = 0
+    for st in c.irq_stats.get(40, []):
+        while k + 1 < len(trig) and trig[k + 1] <= st[3]:
+            k += 1
+        if trig and trig[k] <= st[3]:
+            offs.append(st[3] - trig[k])
+    if offs:
+        print("ADC1 interrupt request after the period's FTM3 init trigger (PDB1 CH0DLY0 = %d, then "
+              "3 conversions): %s clocks" % (d["PDB1"].r["CH0DLY0"], stats(offs)))
     final = state_log[-1] if state_log else None
     seen = []
     for tc, s, sub, _ in state_log:

@@ -408,3 +408,47 @@ def test_firmware_interrupt_rates(tmp_path):
     assert abs(len(c.irq_stats[48]) - 20) <= 1
     assert pil.dev["WDOG"].refreshes == len(c.irq_stats[48])
     assert pil.latencies and max(pil.latencies) < 2 * pil.dev["FTM3"].r["MOD"]
+
+
+# ---------------------------------------------------------------------- watchdog
+# WDOG on after reset (CS reset value: enabled, unlocked); the image sets TOVAL = 8 LPO
+# clocks (8 x 625 = 5000 core clocks) and never refreshes: each timeout resets the part,
+# which boots and configures it again.  The fed variant refreshes every ~300 clocks.
+WDOG_MISS = """
+    .thumb_func
+reset:
+    ldr r0, =0x40052000
+    ldr r1, =0xD928C520
+    str r1, [r0, #4]            @ unlock
+    movs r1, #8
+    str r1, [r0, #8]            @ TOVAL = 8 LPO clocks
+    ldr r1, =0x21A0             @ CMD32EN, LPO, EN, UPDATE
+    str r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+WDOG_FED = WDOG_MISS.replace("1:  b 1b", """    ldr r2, =0xB480A602
+1:  str r2, [r0, #4]            @ refresh
+    movs r3, #100
+2:  subs r3, #1
+    bne 2b
+    b 1b""")
+
+
+def test_missed_watchdog_refresh_resets_the_image(tmp_path):
+    elf = build(tmp_path, "wdog", WDOG_MISS, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert c.run_until(12_000), c.stopped
+    assert c.resets == 2                                    # 8 x 625 clocks after each boot
+
+
+def test_refreshed_watchdog_does_not_reset(tmp_path):
+    elf = build(tmp_path, "wdogok", WDOG_FED, {})
+    c = core.Core(elf)
+    d = periph.build(c)
+    c.boot()
+    assert c.run_until(50_000), c.stopped
+    assert c.resets == 0 and d["WDOG"].refreshes > 10
