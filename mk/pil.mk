@@ -9,7 +9,7 @@
 
 PIL_LIB     := $(BUILD)/pil/libpilplant.so
 PIL_SRCS    := port_s32k/pil/pil_plant.c sim/plant.c sim/motor.c
-PIL_ARGS    ?= --ms 1200 --lin-period-ms 10 --power-on-ms 350
+PIL_ARGS    ?= --ms 1200 --lin-period-ms 20 --power-on-ms 350
 
 .PHONY: pil pil-test
 

@@ -58,6 +58,10 @@ Exceptions (ARMv7-M Architecture Reference Manual, B1.5 "ARMv7-M exception model
     the chunk so that a pending interrupt is taken right after it.  WFI: Unicorn stops by
     itself at a WFI (QEMU's EXCP_HLT); the core then sleeps until the next event and wakes
     on any enabled pending interrupt (taken only if PRIMASK allows: ARM ARM B1.5.19).
+  - Not modelled (the image uses none of them; an access stops the run as an unknown PPB
+    register): BASEPRI, FAULTMASK (no MSR instruction in the image), SysTick, VTOR,
+    AIRCR, SHPR, PSP/CONTROL.SPSEL (thread mode stays on the MSP), fault exceptions (a
+    Unicorn CPU exception other than the return stops the run with its number).
   - Simplification: no interrupt is taken inside an IT block (the core steps to its end,
     at most 4 instructions); the real core takes it there and stacks ICI/IT.
   - A peripheral write that makes an interrupt pending, or schedules an event earlier

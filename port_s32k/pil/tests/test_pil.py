@@ -105,6 +105,8 @@ reset:
     movs r7, #0
     cmp r7, #1                  @ flags: N = 1 (0 - 1 < 0), Z = 0, C = 0
     cpsie i                     @ the interrupt is taken right here
+    .global after_cpsie
+after_cpsie:
     mrs r7, apsr
     str r0, [r6, #0x00]
     str r1, [r6, #0x04]
@@ -133,6 +135,10 @@ isr40:
     str r2, [r0, #0x4C]
     mov r1, sp
     str r1, [r0, #0x50]
+    ldr r1, [sp, #24]           @ the stacked return address
+    str r1, [r0, #0x54]
+    ldr r1, [sp, #28]           @ the stacked xPSR
+    str r1, [r0, #0x58]
     movs r1, #0                 @ clobber the caller-saved registers and the flags
     movs r2, #0
     movs r3, #0
@@ -153,6 +159,9 @@ def test_entry_return_round_trip_preserves_registers(tmp_path):
     assert rd(c, LOG + 0x4C) == 16 + 40                        # IPSR in the handler
     sp0 = rd(c, LOG + 0x40)
     assert rd(c, LOG + 0x50) == sp0 - 32                       # the 8-word frame (SP 8-aligned)
+    assert rd(c, LOG + 0x54) == sym(elf, "after_cpsie") & ~1   # taken right after CPSIE
+    assert rd(c, LOG + 0x58) & (1 << 24)                       # xPSR: Thumb bit stacked
+    assert not rd(c, LOG + 0x58) & (1 << 9)                    # no padding
     assert [rd(c, LOG + 4 * k) for k in range(5)] == [0x10101010, 0x21212121, 0x32323232,
                                                        0x43434343, 0x54545454]
     assert rd(c, LOG + 0x14) == 0xC0C0C0C0                     # R12
@@ -170,7 +179,8 @@ def test_misaligned_stack_gets_padding_and_is_restored(tmp_path):
     assert c.run_until(20000), c.stopped
     sp0 = rd(c, LOG + 0x40)
     assert sp0 % 8 == 4
-    assert rd(c, LOG + 0x50) == sp0 - 36                       # 4 bytes of padding (xPSR bit 9)
+    assert rd(c, LOG + 0x50) == sp0 - 36                       # 4 bytes of padding
+    assert rd(c, LOG + 0x58) & (1 << 9)                        # recorded in xPSR bit 9
     assert rd(c, LOG + 0x1C) == sp0
 
 
@@ -452,3 +462,54 @@ def test_refreshed_watchdog_does_not_reset(tmp_path):
     c.boot()
     assert c.run_until(50_000), c.stopped
     assert c.resets == 0 and d["WDOG"].refreshes > 10
+
+
+# ---------------------------------------------------------------------- Unicorn's behaviour
+# The two facts of Unicorn that core.py relies on, checked on the installed version.
+def _uc(code):
+    from unicorn import Uc, UC_ARCH_ARM, UC_MODE_THUMB, UC_MODE_MCLASS
+    from unicorn.arm_const import UC_ARM_REG_SP
+    mu = Uc(UC_ARCH_ARM, UC_MODE_THUMB | UC_MODE_MCLASS)
+    mu.mem_map(0, 0x1000)
+    mu.mem_write(0, code)
+    mu.mem_map(0x20000000, 0x1000)
+    mu.reg_write(UC_ARM_REG_SP, 0x20000800)
+    return mu
+
+
+def test_unicorn_reports_exc_return_as_exception_8():
+    from unicorn import UcError, UC_HOOK_INTR, UC_ERR_EXCEPTION
+    from unicorn.arm_const import UC_ARM_REG_LR, UC_ARM_REG_PC, UC_ARM_REG_R0
+    code = bytes.fromhex("0530" "7047")            # adds r0, #5 ; bx lr
+    for exc_return in (0xFFFFFFF9, 0xFFFFFFF1):
+        mu = _uc(code)
+        mu.reg_write(UC_ARM_REG_LR, exc_return)
+        with pytest.raises(UcError) as e:          # no hook: an unhandled CPU exception
+            mu.emu_start(1, 0xFFFF, count=10)
+        assert e.value.errno == UC_ERR_EXCEPTION
+        mu = _uc(code)
+        mu.reg_write(UC_ARM_REG_LR, exc_return)
+        seen = []
+        mu.hook_add(UC_HOOK_INTR, lambda uc, n, u: (seen.append((n, uc.reg_read(UC_ARM_REG_PC))),
+                                                    uc.emu_stop()))
+        mu.emu_start(1, 0xFFFF, count=10)
+        assert seen == [(core.EXCP_EXCEPTION_EXIT, exc_return & ~1)]
+        assert mu.reg_read(UC_ARM_REG_R0) == 5     # nothing unstacked: the host's job
+
+
+def test_unicorn_repeats_a_store_stopped_in_its_hook():
+    from unicorn import UC_HOOK_MEM_WRITE
+    from unicorn.arm_const import UC_ARM_REG_PC
+    code = bytes.fromhex("4ff00052" "0120" "1060" "0130" "fee7")  # mov.w r2,#0x20000000; movs r0,#1; str r0,[r2]; adds r0,#1; b .
+    mu = _uc(code)
+    hits = []
+
+    def w(uc, acc, addr, size, value, user):
+        hits.append(uc.reg_read(UC_ARM_REG_PC))
+        if len(hits) == 1:
+            uc.emu_stop()
+    mu.hook_add(UC_HOOK_MEM_WRITE, w)
+    mu.emu_start(1, 0xFFFF, count=100)
+    assert mu.reg_read(UC_ARM_REG_PC) == 6         # stopped at the store, not after it
+    mu.emu_start(6 | 1, 0xFFFF, count=2)
+    assert hits == [6, 6]                          # the store's hook runs again on restart
