@@ -19,9 +19,13 @@ Checks (each stops the run with the address and the PC, `Core.stopped`):
 Time base: one executed instruction = one core clock at 80 MHz (the stated
 approximation; the real core takes 1..n cycles per instruction and waits on flash).
 Unicorn runs in chunks with emu_start(count=N) up to the next peripheral event; no
-per-instruction Python hook.  Within a chunk the instruction count at a peripheral access
-is exact: a block hook keeps the count at the start of each translated block and the
-access's PC gives the position in it (Thumb instruction lengths decoded from the image).
+per-instruction Python hook.  The instruction count is kept by a block hook (the count at
+the start of each translated block; the PC gives the position in it, Thumb instruction
+lengths decoded from the image), so it is exact at every peripheral access and at the end
+of a chunk.  Unicorn's own count (found by comparing the two) does not count the
+instructions of an IT block whose condition fails; the time base does (they take a cycle
+on the core), so a chunk may end up to a few clocks after the event it ran to, which is
+then processed that much late.
 The clock starts at reset at 80 MHz (the FIRC 48 MHz phase before the PLL switch is not
 distinguished).
 
@@ -144,6 +148,7 @@ class Core:
         self.mu.hook_add(UC_HOOK_MEM_INVALID, self._on_invalid)
         self.mu.hook_add(UC_HOOK_BLOCK, self._on_block)
         self.mu.hook_add(UC_HOOK_INTR, self._on_intr)
+        self.wfi_addrs = set(self._find(0xBF30))             # WFI (ARM ARM A7.7.261)
         for addr in self._find(0xB662):                      # CPSIE I (ARM ARM A7.7.27)
             self.mu.hook_add(UC_HOOK_CODE, self._on_cpsie, begin=addr, end=addr)
         self.irq_names = {}
@@ -526,19 +531,18 @@ class Core:
         except UcError as e:
             self._fail("emulation error (%s)" % e, mu.reg_read(UC_ARM_REG_PC))
         pc = mu.reg_read(UC_ARM_REG_PC)
-        if self.reason is None and self.stopped is None:
-            wfi = pc >= 2 and self.flash[pc - 2] | (self.flash[pc - 1] << 8) == 0xBF30
-            done = self.chunk_done + (self.n_insns(self.blk_start, pc)
-                                      if self.blk_start <= pc <= self.blk_end else self.blk_n)
-            if wfi and done < n:
-                self.reason = "wfi"            # Unicorn halts at WFI with PC after it
-            else:
-                done = n
-        elif self.reason == "exc_return":
-            done = self.chunk_done + self.blk_n
+        if self.reason == "exc_return":
+            done = self.chunk_done + self.blk_n        # the return branch ends its block
         else:
+            # exact, also after count=n ran out: Unicorn's count skips the instructions of
+            # an IT block whose condition fails, which take a cycle on the core
             done = self.chunk_done + (self.n_insns(self.blk_start, pc)
                                       if self.blk_start <= pc <= self.blk_end else self.blk_n)
+        if self.reason is None and self.stopped is None:
+            w = pc - 2
+            if (w in self.wfi_addrs and self.blk_start <= w < self.blk_end and
+                    self.n_insns(self.blk_start, w) + 1 == self.n_insns(self.blk_start, pc)):
+                self.reason = "wfi"                    # Unicorn halts at WFI with PC after it
         self.chunk_end = None
         self.insns += done
         self.cycles += done

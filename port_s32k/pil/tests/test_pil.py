@@ -513,3 +513,30 @@ def test_unicorn_repeats_a_store_stopped_in_its_hook():
     assert mu.reg_read(UC_ARM_REG_PC) == 6         # stopped at the store, not after it
     mu.emu_start(6 | 1, 0xFFFF, count=2)
     assert hits == [6, 6]                          # the store's hook runs again on restart
+
+
+def test_unicorn_count_skips_failed_it_instructions_and_the_core_does_not(tmp_path):
+    # movs r0,#0; cmp r0,#0; it ne; movne r1,#1 (condition fails); movs r2,#2; b .
+    code = bytes.fromhex("0020" "0028" "18bf" "0121" "0222" "fee7")
+    from unicorn.arm_const import UC_ARM_REG_PC
+    mu = _uc(code)
+    mu.emu_start(1, 0xFFFF, count=3)
+    assert mu.reg_read(UC_ARM_REG_PC) == 8         # 3 counted, the skipped movne not
+    body = """
+    .thumb_func
+reset:
+    movs r0, #0
+    cmp r0, #0
+    it ne
+    movne r1, #1
+    movs r2, #2
+1:  b 1b
+"""
+    elf = build(tmp_path, "it", body, {})
+    c = core.Core(elf)
+    c.boot()
+    assert c.run_until(4), c.stopped
+    # the chunk of count=4 ran past the movs r2 (5 instructions) and the time base counted
+    # all five: the skipped movne takes its cycle
+    assert c.mu.reg_read(UC_ARM_REG_PC) == (sym(elf, "reset") & ~1) + 10
+    assert c.insns == 5 and c.cycles == 5
