@@ -8,6 +8,8 @@
 #   make pil-test   the emulator's own tests (port_s32k/pil/tests/test_pil.py, pytest)
 
 PIL_LIB     := $(BUILD)/pil/libpilplant.so
+# the 8 kHz image of mk/port.mk (named here: mk/port.mk is read after this file)
+PIL_ELF     := $(BUILD)/s32k144/qfoc_compressor.elf
 PIL_SRCS    := port_s32k/pil/pil_plant.c sim/plant.c sim/motor.c
 PIL_ARGS    ?= --ms 1200 --lin-period-ms 20 --power-on-ms 350
 
@@ -20,9 +22,9 @@ $(PIL_LIB): $(PIL_SRCS) sim/sim.h mk/pil.mk
 	$(CC) -std=c99 -Wall -Wextra -Werror -O2 -shared -fPIC -Isim $(PIL_SRCS) -lm -o $@
 
 ## pil: processor in the loop: the S32K144 image from reset in an emulator, real interrupts, the sim/ motor
-pil: $(FW_ELF) $(PIL_LIB)
-	$(PYTHON) port_s32k/pil/run.py $(FW_ELF) --lib $(PIL_LIB) $(PIL_ARGS)
+pil: $(PIL_ELF) $(PIL_LIB)
+	$(PYTHON) port_s32k/pil/run.py $(PIL_ELF) --lib $(PIL_LIB) $(PIL_ARGS)
 
 ## pil-test: the processor-in-the-loop emulator's tests (exception entry/return, pre-emption, stops)
-pil-test: $(FW_ELF) $(PIL_LIB)
+pil-test: $(PIL_ELF) $(PIL_LIB)
 	$(PYTHON) -m pytest -q port_s32k/pil/tests

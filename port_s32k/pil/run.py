@@ -4,7 +4,8 @@ the emulated Cortex-M4 (core.py) with register-level peripherals (periph.py) and
 interrupts, driving the simulated motor of sim/ (plant.py).
 
 Usage: run.py IMAGE.elf [--ms 300] [--motor specs/motors/reference.toml] [--vdc 320]
-              [--lib build/pil/libpilplant.so] [--lin-period-ms 10] [--power-on-ms T]
+              [--lib build/pil/libpilplant.so] [--lin-period-ms 20] [--power-on-ms T]
+              [--rpm 1500] [--fault-ms T]
 
 Coupling, at each reload point of FTM3 (counter at MOD, SYNC[CNTMAX]; the centre of the
 all-low-side zero vector and the sampling instant of the port, port_s32k/README.md):
@@ -20,6 +21,9 @@ inputs read 2048 (25 degC: no thermal model).
 Commands (optional): the LIN master sends a command frame (SYNC, PID(0x10), 4 data bytes,
 enhanced checksum; include/qfoc/link.h, specs/link-frames.md) every --lin-period-ms on
 the LPUART1 receive line, break first; power_on is set from --power-on-ms on.
+
+Fault (optional, --fault-ms): the over-current comparator asserts FTM3_FLT0 from that time
+on; the bridge must be off from the next reload point and the drive must end in ERROR.
 
 Expectations checked (exit status 1 when one fails): no stop of the run and no
 watchdog reset; FTM3 period interrupts at the PWM frequency and one ADC1 interrupt per
@@ -82,6 +86,8 @@ class PIL:
         self.late_writes = 0
         self.enabled_periods = 0
         self.t_first_reload = None
+        self.t_fault = None          # FTM3_FLT0 asserted from this core clock
+        self.on_after_fault = 0      # periods that started with the bridge on after it
 
     def gate_on(self):
         return self.dev["GPIOD"].pin_high(5)
@@ -101,6 +107,8 @@ class PIL:
         ftm.ldok_writes = []
         on = ftm.outputs_on() and self.gate_on()
         self.enabled_periods += 1 if on else 0
+        if self.t_fault is not None and t > self.t_fault and on:
+            self.on_after_fault += 1
         self.plant.step([ftm.r["C0V"], ftm.r["C2V"], ftm.r["C4V"]], on)
         self.codes = self.plant.sample()
         self.t_sample = t
@@ -135,6 +143,8 @@ def main(argv):
     ap.add_argument("--power-on-ms", type=float, default=None,
                     help="from this time on the command requests RUN")
     ap.add_argument("--rpm", type=int, default=1500)
+    ap.add_argument("--fault-ms", type=float, default=None,
+                    help="assert the over-current input FTM3_FLT0 (PTE7 low) from this time on")
     args = ap.parse_args(argv[1:])
 
     plant_mod.build(args.lib)
@@ -155,6 +165,9 @@ def main(argv):
             d["LPUART1"].inject(c.cycles, command_frame(on, args.rpm))
             lin_sent += 1
             next_lin += int(args.lin_period_ms * hz / 1000)
+        if args.fault_ms is not None and pil.t_fault is None and c.cycles >= args.fault_ms * hz / 1000:
+            pil.t_fault = c.cycles
+            d["FTM3"].set_fault(True)
         c.run_until(t)
         for (tc, ident, dlc, data) in d["CAN0"].frames[len(state_log):]:
             state_log.append((tc, data[0] & 0xF, data[0] >> 4, data))
@@ -252,7 +265,13 @@ def main(argv):
     checks.append(("compare values written before the next reload point",
                    bool(lat) and max(lat) < 2 * per and pil.late_writes <= 1,
                    "late %d" % pil.late_writes))
+    if pil.t_fault is not None:
+        checks.append(("bridge off from the reload point after the fault input (%.1f ms)"
+                       % (pil.t_fault * 1000.0 / hz), pil.on_after_fault == 0,
+                       "%d periods on" % pil.on_after_fault))
     want = 2 if args.power_on_ms is not None else 1
+    if args.fault_ms is not None:
+        want = 3
     checks.append(("drive reaches %s" % STATES[want], final is not None and final[1] == want,
                    STATES.get(final[1], "?") if final else "no CAN frame"))
     print()
