@@ -462,7 +462,8 @@ class Core:
         waited = self.irq_wait.pop(irq, self.cycles)
         if self.active:
             self.active[-1][3] += self.insns - self.active[-1][2]
-        self.active.append([irq, exc_return, self.insns, 0, self.cycles, waited])
+        self.active.append([irq, exc_return, self.insns, 0, self.cycles, waited,
+                            ENTRY_CYCLES if tail is None else TAILCHAIN_CYCLES])
         mu.reg_write(UC_ARM_REG_LR, exc_return)
         mu.reg_write(UC_ARM_REG_IPSR, 16 + irq)
         self.pc = self._vector(irq) | 1
@@ -474,14 +475,12 @@ class Core:
         pc = mu.reg_read(UC_ARM_REG_PC) | 1
         if not self.active:
             raise Stop("exception return in thread mode")
-        irq, exc_return, t_insn, own, t_cyc, waited = self.active.pop()
+        irq, exc_return, t_insn, own, t_cyc, waited, entry = self.active.pop()
         if self.active:
             self.active[-1][2] = self.insns      # the pre-empted handler resumes counting
         if pc != exc_return:
             raise Stop("EXC_RETURN 0x%08X not the one of the entry (0x%08X)" % (pc, exc_return))
         own += self.insns - t_insn
-        self.irq_stats.setdefault(irq, []).append((own, own + ENTRY_CYCLES + RETURN_CYCLES,
-                                                   t_cyc - waited, waited))
         if self.log_isr:
             self.isr_log.append((self.cycles, irq, "return"))
         if self.lines.get(irq, False):
@@ -493,6 +492,10 @@ class Core:
         if mu.reg_read(UC_ARM_REG_PRIMASK) & 1:
             base = min(base, 0)
         nxt = self._deliverable(base)
+        # own instructions; clocks with the entry (12, or 6 when tail-chained) and the
+        # return (10, none when it tail-chains); latency; the request's clock
+        self.irq_stats.setdefault(irq, []).append(
+            (own, own + entry + (RETURN_CYCLES if nxt is None else 0), t_cyc - waited, waited))
         if nxt is not None:
             self._enter(nxt, tail=exc_return)
             return

@@ -182,8 +182,8 @@ def main(argv):
     per = d["FTM3"].r["MOD"]
     if per:
         ftm_hz = hz / (2.0 * per)
-    print("\n%-16s %7s %10s %24s %22s" % ("interrupt", "count", "rate", "instructions min/mean/max",
-                                           "latency clk min/mean/max"))
+    print("\n%-16s %7s %10s %24s %26s %22s" % ("interrupt", "count", "rate", "instructions min/mean/max",
+                                                "clocks w. entry+return", "latency clk min/mean/max"))
     counts = {}
     for irq, name in IRQS.items():
         st = c.irq_stats.get(irq, [])
@@ -194,17 +194,23 @@ def main(argv):
             rate = "%.0f Hz" % (len(st) / span) if span > 0 and st else "-"
         elif name.startswith("LPIT"):
             rate = "%.0f Hz" % (len(st) / (c.cycles / hz)) if st else "-"
-        print("%-16s %7d %10s %24s %22s" % (name, len(st), rate, stats([s[0] for s in st]),
-                                            stats([s[2] for s in st])))
-    print("pre-emptions (nested entries) %d, tail chains %d" % (c.preemptions, c.tailchains))
-    print("(instructions: the handler's own, nested handlers excluded; add %d clocks entry and "
-          "%d return; latency: request to the handler's first instruction, entry included)"
-          % (core_mod.ENTRY_CYCLES, core_mod.RETURN_CYCLES))
+        print("%-16s %7d %10s %24s %26s %22s" % (name, len(st), rate, stats([s[0] for s in st]),
+                                                 stats([s[1] for s in st]), stats([s[2] for s in st])))
+    busy = sum(s[1] for st in c.irq_stats.values() for s in st)
+    print("pre-emptions (nested entries) %d, tail chains %d; clocks in handlers %.1f %% of the run"
+          % (c.preemptions, c.tailchains, 100.0 * busy / max(1, c.cycles)))
+    print("(instructions: the handler's own, nested handlers excluded; clocks: with the entry, %d "
+          "(%d tail-chained), and the return, %d (none when it tail-chains); latency: request to "
+          "the handler's first instruction, entry included)"
+          % (core_mod.ENTRY_CYCLES, core_mod.TAILCHAIN_CYCLES, core_mod.RETURN_CYCLES))
     lat = pil.latencies
     if lat:
         print("\nPDB pre-trigger (sampling instant) -> compare values loaded (PWMLOAD[LDOK] write): "
               "%s clocks = %.2f / %.2f / %.2f us (deadline: the next reload point, %d clocks)"
               % (stats(lat), min(lat) / 80.0, sum(lat) / len(lat) / 80.0, max(lat) / 80.0, 2 * per))
+        dly = d["PDB1"].r["CH0DLY0"]
+        print("PDB trigger input (FTM3 init trigger, counter at CNTIN) -> LDOK write: %s clocks "
+              "(CH0DLY0 = %d plus the above)" % (stats([x + dly for x in lat]), dly))
     print("ADC conversions: ADC0 %d, ADC1 %d; PDB sequence errors ADC0 0x%02X ADC1 0x%02X; "
           "conversions off the reload instant %d; trigger conflicts %d/%d"
           % (d["ADC0"].conversions, d["ADC1"].conversions, d["PDB0"].r["CH0S"] & 0xFF,

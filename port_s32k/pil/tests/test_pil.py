@@ -418,6 +418,11 @@ def test_firmware_interrupt_rates(tmp_path):
     assert abs(len(c.irq_stats[48]) - 20) <= 1
     assert pil.dev["WDOG"].refreshes == len(c.irq_stats[48])
     assert pil.latencies and max(pil.latencies) < 2 * pil.dev["FTM3"].r["MOD"]
+    # the ADC1 request: PDB1 pre-trigger 0 after CH0DLY0 = MOD clocks, then 3 conversions
+    trig = pil.dev["PDB1"].trigger_times
+    req = c.irq_stats[40][-1][3]
+    last = max(t for t in trig if t <= req)
+    assert req - last == pil.dev["FTM3"].r["MOD"] + 3 * pil.dev["ADC1"].conv_cycles()
 
 
 # ---------------------------------------------------------------------- watchdog
@@ -540,3 +545,54 @@ reset:
     # all five: the skipped movne takes its cycle
     assert c.mu.reg_read(UC_ARM_REG_PC) == (sym(elf, "reset") & ~1) + 10
     assert c.insns == 5 and c.cycles == 5
+
+
+# ---------------------------------------------------------------------- FTM3 model
+# FTM3 up-down, MOD 100: a compare value written with LDOK loads at the reload point
+# (counter at MOD, SYNC[CNTMAX]) and not before; RF is set there; CNT counts up then down.
+FTM_LOAD = """
+    .thumb_func
+reset:
+    ldr r0, =0x40065098         @ PCC_FTM3: SPLLDIV1 (PCS 110), clock on
+    ldr r1, =0x46000000
+    str r1, [r0]
+    ldr r0, =0x40026000
+    movs r1, #100
+    str r1, [r0, #0x08]         @ MOD (counter stopped: written at once)
+    movs r1, #50
+    str r1, [r0, #0x10]         @ C0V
+    movs r1, #0x20
+    str r1, [r0, #0x64]         @ COMBINE: SYNCEN0
+    movs r1, #0x02
+    str r1, [r0, #0x58]         @ SYNC: CNTMAX
+    movs r1, #0x28
+    str r1, [r0, #0x00]         @ SC: CLKS = 01, CPWMS: the counter starts
+    movs r1, #20
+    .global wr_c0v
+wr_c0v:
+    str r1, [r0, #0x10]         @ C0V = 20 (buffered)
+    mov r1, #0x200
+    str r1, [r0, #0x98]         @ PWMLOAD[LDOK]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_ftm_compare_loads_at_the_reload_point(tmp_path):
+    elf = build(tmp_path, "ftm", FTM_LOAD, {})
+    c = core.Core(elf)
+    d = periph.build(c)
+    c.boot()
+    ftm = d["FTM3"]
+    assert c.run_until(40), c.stopped
+    t0 = ftm.t_ref
+    assert ftm.r["C0V"] == 50 and ftm.buf["C0V"] == 20 and ftm.r["PWMLOAD"] & 0x200
+    assert c.run_until(t0 + 99), c.stopped
+    assert ftm.r["C0V"] == 50 and not ftm.r["SC"] & 0x80       # not yet at MOD
+    assert c.run_until(t0 + 101), c.stopped
+    assert ftm.r["C0V"] == 20 and ftm.r["SC"] & 0x80           # loaded; RF set
+    assert ftm.r["SC"] & 0x200                                 # TOF: MOD -> MOD - 1
+    assert c.run_until(t0 + 150), c.stopped
+    c.chunk_end = None
+    assert ftm.rd_CNT() == 50 and ftm.dir == -1                # counting down
+    assert ftm.reloads == 1
