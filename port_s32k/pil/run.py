@@ -243,6 +243,18 @@ def main(argv):
     if offs:
         print("ADC1 interrupt request after the period's FTM3 init trigger (PDB1 CH0DLY0 = %d, then "
               "3 conversions): %s clocks" % (d["PDB1"].r["CH0DLY0"], stats(offs)))
+    ph = []
+    k = 0
+    for st in c.irq_stats.get(48, []):
+        while k + 1 < len(trig) and trig[k + 1] <= st[3]:
+            k += 1
+        if trig and trig[k] <= st[3]:
+            ph.append(st[3] - trig[k])
+    if ph:
+        print("LPIT0 request after the period's FTM3 init trigger: %s clocks: a fixed phase (the tick "
+              "and the PWM both come from the 8 MHz crystal); pre-emptions of the tick by the ADC1 "
+              "interrupt (request %d clocks after the trigger): %d"
+              % (stats(ph), offs[0] if offs else 0, c.preemptions))
     final = state_log[-1] if state_log else None
     seen = []
     for tc, s, sub, _ in state_log:
