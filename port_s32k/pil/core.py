@@ -33,9 +33,10 @@ Exceptions (ARMv7-M Architecture Reference Manual, B1.5 "ARMv7-M exception model
   - NVIC: set-enable, clear-enable, set-pending, clear-pending, active (read only) and the
     priority registers of 123 interrupts, 4 priority bits (S32K144: the MSBs of each byte);
     AIRCR[PRIGROUP] is never written by the image and taken as 0 (all 4 bits pre-empt).
-    Interrupts are level sensitive: a peripheral request that is asserted sets the pending
-    bit; entry clears it; a request still asserted at the return pends it again (B1.5.6
-    of the ARM ARM, "Interrupt... level-sensitive").
+    The peripheral requests are levels: a request that becomes asserted sets the pending
+    bit (also while the interrupt is disabled); entry clears it; a request still asserted
+    when its handler returns, or when software clears the pending bit, pends it again
+    (ARM ARM B3.4, "Nested Vectored Interrupt Controller", level-sensitive interrupts).
   - Entry: when an enabled pending interrupt's priority is higher (numerically lower)
     than the execution priority (the highest active exception's priority, 0 with PRIMASK
     set) -- the lowest interrupt number among equal priorities first -- the basic 8-word
@@ -47,17 +48,21 @@ Exceptions (ARMv7-M Architecture Reference Manual, B1.5 "ARMv7-M exception model
     (arm-none-eabi-objdump finds none; the build uses -mfloat-abi=hard only for the ABI),
     so CONTROL.FPCA stays 0 and EXC_RETURN bit 4 is 1.  The entry checks CONTROL.FPCA
     and stops the run if it was ever set.
-  - Return: Unicorn 2 (QEMU 5 core) treats a branch into the M-profile magic range
-    0xFFFFFFxx as an exception return and raises its internal exception 8
-    (EXCP_EXCEPTION_EXIT) before any fetch, with PC = the EXC_RETURN value with bit 0
-    clear and every register unchanged; Unicorn has no NVIC, so it only reports it (with
-    no UC_HOOK_INTR hook emu_start fails with UC_ERR_EXCEPTION).  This module hooks
+  - Return: Unicorn 2.0.1 (its QEMU 5 core) treats a branch (BX LR, POP {.., PC}) to an
+    EXC_RETURN value (tested: 0xFFFFFFF1, 0xFFFFFFF9, 0xFFFFFFFD; in thread mode and with
+    IPSR written alike) as an exception return: it raises its internal exception 8
+    (QEMU's EXCP_EXCEPTION_EXIT) with PC = the EXC_RETURN value with bit 0 clear and
+    every register unchanged, and does nothing more (Unicorn has no NVIC): without a
+    UC_HOOK_INTR hook emu_start fails with UC_ERR_EXCEPTION ("Unhandled CPU exception");
+    with one, the hook gets intno 8 and may stop the emulation cleanly
+    (tests/test_pil.py pins both).  This module hooks
     UC_HOOK_INTR, stops, and unstacks: R0-R3, R12, LR, PC, the flags of xPSR, the SP
     (with the alignment bit), IPSR of the context returned to.  A pending interrupt that
     may pre-empt the context returned to is tail-chained: its handler is entered with the
     same frame and the same EXC_RETURN.
-  - Costs: 12 cycles entry, 10 return, 6 tail chain (Cortex-M4 TRM r0p1, "Exception
-    handling", the zero-wait-state figures), added to the time base.
+  - Costs: 12 clocks entry, 10 return, 6 tail chain: the zero-wait-state figures ARM
+    publishes for the Cortex-M3/M4 (not checked here against a TRM table), added to the
+    time base.
   - PRIMASK (CPSID/CPSIE): read from Unicorn; a code hook on each CPSIE of the image stops
     the chunk so that a pending interrupt is taken right after it.  WFI: Unicorn stops by
     itself at a WFI (QEMU's EXCP_HLT); the core then sleeps until the next event and wakes

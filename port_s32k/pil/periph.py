@@ -20,15 +20,18 @@ Simplifications (stated; not RM behaviour):
     check the PCC/SC fields that select them and stop on another choice.  Should the PDB
     count the bus clock on the part (a point port_s32k/README.md lists as unverified), the
     sampling instant here would be wrong by the same factor as the port's.
-  - FTM3: centre-aligned (CPWMS = 1) and up counting; the channel outputs themselves
-    (dead time, polarity, complementary pairs) are not computed: the plant receives the
-    even channels' compare values and one enable per period.  The output mask and the gate
-    enable are sampled at each reload point (the part applies OUTMASK at once:
-    FTM chapter, OUTMASK, with SYNCONF[SWOM] = 0).  The fault input filter delay is
-    ignored.  Which registers are write-protected follows the list of the FTM chapter,
-    "Write protection", as far as the port uses them: SC[CLKS, PS, CPWMS], MODE (except
-    WPDIS), COMBINE, DEADTIME, POL, FLTCTRL, FLTPOL, FILTER, SYNCONF; a write that would
-    change a protected field while FMS[WPEN] = 1 stops the run (the part ignores it).
+  - FTM3: the counter in up-down (CPWMS = 1) and up counting (CPWMS = 0); the channel
+    outputs themselves (dead time, polarity, complementary pairs) are not computed: the
+    plant receives the even channels' compare values and one enable per period.  The
+    output mask, the fault flag and the gate enable are sampled at each reload point (the
+    part applies OUTMASK at once: FTM chapter, OUTMASK, with SYNCONF[SWOM] = 0; and the
+    fault within the input filter).  The write-protected set modelled is SC[CLKS, PS,
+    CPWMS], MODE (except WPDIS), COMBINE, DEADTIME, POL, FLTCTRL, FLTPOL, FILTER,
+    SYNCONF, as recalled from the FTM chapter's "Write protection" list and not checked
+    against RM Rev. 13 here; after setting WPEN the port writes none of them (SC only with
+    the same CLKS, PS, CPWMS), so the run does not depend on the exact list.  A write that
+    would change a protected field while FMS[WPEN] = 1 stops the run (the part ignores
+    it).
     Whether the hardware clears PWMLOAD[LDOK] after the loading is not modelled: LDOK
     stays set until software writes it 0 (the port sets it in every period, so the values
     it loads do not depend on this).
