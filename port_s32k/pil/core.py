@@ -143,7 +143,9 @@ class Core:
         self.insns = 0               # instructions executed since reset
         self.stopped = None          # reason the run stopped, with address and PC
         self.chunk_end = None
+        self.ev_now = None
         self.resets = 0
+        self.preempt_pairs = {}      # (pre-empted irq, pre-empting irq) -> count
         self._len_cache = {}
         self._init_state()
         self.mu.hook_add(UC_HOOK_MEM_READ, self._on_read, begin=PERIPH[0], end=PERIPH[0] + PERIPH[1] - 1)
@@ -227,9 +229,10 @@ class Core:
         return n
 
     def now(self):
-        """Core clock of the instruction being executed (exact inside a chunk)."""
+        """Core clock of the instruction being executed (exact inside a chunk), or of the
+        event being processed (its own clock, also when processed a few clocks late)."""
         if self.chunk_end is None:
-            return self.cycles
+            return self.cycles if self.ev_now is None else self.ev_now
         pc = self.mu.reg_read(UC_ARM_REG_PC)
         done = self.chunk_done + (self.n_insns(self.blk_start, pc)
                                   if self.blk_start <= pc <= self.blk_end else self.blk_n)
@@ -457,7 +460,10 @@ class Core:
                 self._push(frame + 4 * k, v)
             mu.reg_write(UC_ARM_REG_SP, frame)
             exc_return = 0xFFFFFFF1 if self.active else 0xFFFFFFF9
-            self.preemptions += 1 if self.active else 0
+            if self.active:
+                self.preemptions += 1
+                pair = (self.active[-1][0], irq)
+                self.preempt_pairs[pair] = self.preempt_pairs.get(pair, 0) + 1
             self.cycles += ENTRY_CYCLES
         else:
             exc_return = tail
@@ -524,7 +530,11 @@ class Core:
     def _process_events(self):
         while self.events and self.events[0][0] <= self.cycles:
             t, _, cb = heapq.heappop(self.events)
-            cb(t)
+            self.ev_now = t
+            try:
+                cb(t)
+            finally:
+                self.ev_now = None
 
     def _run_chunk(self, n):
         mu = self.mu

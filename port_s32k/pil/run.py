@@ -252,9 +252,10 @@ def main(argv):
             ph.append(st[3] - trig[k])
     if ph:
         print("LPIT0 request after the period's FTM3 init trigger: %s clocks: a fixed phase (the tick "
-              "and the PWM both come from the 8 MHz crystal); pre-emptions of the tick by the ADC1 "
-              "interrupt (request %d clocks after the trigger): %d"
-              % (stats(ph), offs[0] if offs else 0, c.preemptions))
+              "and the PWM both come from the 8 MHz crystal)" % stats(ph))
+    if c.preempt_pairs:
+        print("pre-emptions: " + ", ".join("%s by %s %d" % (IRQS.get(a, a), IRQS.get(b, b), n)
+                                            for (a, b), n in sorted(c.preempt_pairs.items())))
     final = state_log[-1] if state_log else None
     seen = []
     for tc, s, sub, _ in state_log:
