@@ -582,8 +582,8 @@ class Core:
     def run_until(self, t_end, max_chunk=1_000_000):
         """Run until core clock t_end (or a stop).  Returns False when the run stopped."""
         while self.stopped is None and self.cycles < t_end:
-            self._process_events()
             try:
+                self._process_events()
                 irq = self._deliverable()
                 if irq is not None and not self._it_active():
                     self.sleeping = False
@@ -597,7 +597,7 @@ class Core:
                     self.cycles = max(self.cycles, min(nxt, t_end))
                     continue
                 nxt = self.events[0][0] if self.events else t_end
-                n = max(1, min(nxt, t_end) - self.cycles, 0)
+                n = max(1, min(nxt, t_end) - self.cycles)
                 if irq is not None:
                     n = 1                               # step out of an IT block
                 n = min(n, max_chunk)
