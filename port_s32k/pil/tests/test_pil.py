@@ -596,3 +596,34 @@ def test_ftm_compare_loads_at_the_reload_point(tmp_path):
     c.chunk_end = None
     assert ftm.rd_CNT() == 50 and ftm.dir == -1                # counting down
     assert ftm.reloads == 1
+
+
+# ---------------------------------------------------------------------- FP guard
+# Unicorn executes FP instructions and sets CONTROL.FPCA as the core does; an interrupt
+# taken after that would need the extended frame, which core.py does not stack: it stops.
+FP_USE = """
+    .fpu fpv4-sp-d16
+    .thumb_func
+reset:
+    vmov s0, r0
+    ldr r0, =0xE000E104         @ ISER1, ISPR1: IRQ 40 enabled and pending
+    movs r1, #1
+    lsls r1, r1, #8
+    str r1, [r0]
+    ldr r0, =0xE000E204
+    str r1, [r0]
+1:  b 1b
+    .ltorg
+
+    .thumb_func
+isr40:
+    bx lr
+"""
+
+
+def test_interrupt_after_fp_use_stops(tmp_path):
+    elf = build(tmp_path, "fp", FP_USE, {40: "isr40"})
+    c = core.Core(elf)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "FPCA" in c.stopped
