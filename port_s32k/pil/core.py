@@ -47,7 +47,9 @@ Exceptions (ARMv7-M Architecture Reference Manual, B1.5 "ARMv7-M exception model
   - The extended (FP) frame is never needed: the image has no floating-point instruction
     (arm-none-eabi-objdump finds none; the build uses -mfloat-abi=hard only for the ABI),
     so CONTROL.FPCA stays 0 and EXC_RETURN bit 4 is 1.  The entry checks CONTROL.FPCA
-    and stops the run if it was ever set.
+    and stops the run if it was ever set (Unicorn executes FP instructions whatever the
+    image writes to CPACR, which is plain memory here, and sets CONTROL.FPCA as the core
+    does: tests/test_pil.py).
   - Return: Unicorn 2.0.1 (its QEMU 5 core) treats a branch (BX LR, POP {.., PC}) to an
     EXC_RETURN value (tested: 0xFFFFFFF1, 0xFFFFFFF9, 0xFFFFFFFD; in thread mode and with
     IPSR written alike) as an exception return: it raises its internal exception 8
