@@ -757,6 +757,8 @@ class LPIT(Periph):
              0x24: ("CVAL0", 0xFFFFFFFF), 0x28: ("TCTRL0", 0)}
     ro = ("CVAL0",)
 
+    first_delay = 0                   # scenario: extra core clocks before the first timeout
+
     def reset(self):
         super().reset()
         self.t_load = None
@@ -800,7 +802,7 @@ class LPIT(Periph):
         was = self.r["TCTRL0"] & 1
         self.r["TCTRL0"] = v
         if v & 1 and not was:
-            self._run(self.now())
+            self._run(self.now() + self.first_delay)
         elif not v & 1:
             self.gen += 1
             self.t_load = None

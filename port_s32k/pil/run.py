@@ -41,9 +41,13 @@ sys.path.insert(0, HERE)
 import core as core_mod  # noqa: E402
 import periph  # noqa: E402
 import plant as plant_mod  # noqa: E402
+import twin as twin_mod  # noqa: E402
 
 ROOT = plant_mod.ROOT
 STATES = {0: "PRECHARGE", 1: "STOP", 2: "RUN", 3: "ERROR"}
+# the phase currents convert at the reload point (PDB delay CH0DLY0 = MOD) or, for the
+# second converter's chain, within one conversion time after it
+SAMPLE_TOL = 200
 IRQS = {122: "FTM3 period", 40: "ADC1 complete", 48: "LPIT0 1 ms", 33: "LPUART1"}
 
 
@@ -82,12 +86,19 @@ class PIL:
         self.codes = [2048, 2048, 0]
         self.t_sample = None
         self.off_instant = 0
+        self.iu_conv = 0             # phase-current conversions
+        self.iu_off = 0              # ... started more than SAMPLE_TOL clocks after the reload point
         self.latencies = []          # PDB1 pre-trigger 0 -> LDOK write, core clocks
         self.late_writes = 0
         self.enabled_periods = 0
         self.t_first_reload = None
         self.t_fault = None          # FTM3_FLT0 asserted from this core clock
         self.on_after_fault = 0      # periods that started with the bridge on after it
+        self.lockstep = None         # twin.LockStep when --lockstep
+        self.bridge_log = []         # (core clock, bridge switching) at each change
+
+    def attach_lockstep(self, lib):
+        self.lockstep = twin_mod.LockStep(self, lib)
 
     def gate_on(self):
         return self.dev["GPIOD"].pin_high(5)
@@ -106,6 +117,10 @@ class PIL:
                 self.late_writes += 1
         ftm.ldok_writes = []
         on = ftm.outputs_on() and self.gate_on()
+        if not self.bridge_log or self.bridge_log[-1][1] != on:
+            self.bridge_log.append((t, on))
+        if self.lockstep is not None:
+            self.lockstep.on_reload(ftm, fault_latched=not self.gate_on())
         self.enabled_periods += 1 if on else 0
         if self.t_fault is not None and t > self.t_fault and on:
             self.on_after_fault += 1
@@ -122,6 +137,10 @@ class PIL:
             raise core_mod.Stop("ADC%d channel %d has no input in the plant" % (adc, ch))
         if t != self.t_sample:
             self.off_instant += 1
+        if k < 2:
+            self.iu_conv += 1
+            if self.t_sample is None or t - self.t_sample > SAMPLE_TOL:
+                self.iu_off += 1
         return self.codes[k]
 
 
@@ -145,12 +164,50 @@ def main(argv):
     ap.add_argument("--rpm", type=int, default=1500)
     ap.add_argument("--fault-ms", type=float, default=None,
                     help="assert the over-current input FTM3_FLT0 (PTE7 low) from this time on")
+    ap.add_argument("--lockstep", action="store_true",
+                    help="lock-step with the host build of the drive (twin.py)")
+    ap.add_argument("--twin-lib", default=os.path.join(ROOT, "build", "pil", "libpiltwin.so"))
+    ap.add_argument("--rpm-step-ms", type=float, default=None, help="from this time on command --rpm2")
+    ap.add_argument("--rpm2", type=int, default=2500)
+    ap.add_argument("--power-off-ms", type=float, default=None, help="from this time on power_on is clear")
+    ap.add_argument("--lin-stop-ms", type=float, default=None,
+                    help="the LIN master stops sending command frames at this time (link loss)")
+    ap.add_argument("--stall-adc-isr-ms", type=float, default=None,
+                    help="from this time on the ADC1 handler spins (a stalled interrupt)")
+    ap.add_argument("--stuck-adc-ms", type=float, default=None,
+                    help="from this time on ADC1 converts nothing (no conversion complete)")
+    ap.add_argument("--tick-phase-clk", type=int, default=0,
+                    help="delay the first LPIT0 timeout by this many core clocks (the tick's phase "
+                         "in the PWM period)")
+    ap.add_argument("--adc-latency-max", type=int, default=None,
+                    help="expect every ADC1 interrupt latency (request -> first handler "
+                         "instruction) at most this many clocks")
+    ap.add_argument("--expect", default=None,
+                    help="expected final state: PRECHARGE, STOP, RUN, ERROR or RESET (a watchdog reset)")
     args = ap.parse_args(argv[1:])
+    return execute(args)["rc"]
+
+
+def execute(args):
+    """One run; prints the report and returns a dict with the verdict and the figures."""
 
     plant_mod.build(args.lib)
     pil = PIL(args.elf, args.motor, args.vdc, args.lib)
     c, d = pil.core, pil.dev
     hz = core_mod.CORE_HZ
+    if args.lockstep:
+        twin_mod.build(args.twin_lib)
+        pil.attach_lockstep(args.twin_lib)
+    d["LPIT0"].first_delay = args.tick_phase_clk
+    inject = None
+    if args.stall_adc_isr_ms is not None:
+        inject = int(args.stall_adc_isr_ms * hz / 1000)
+        stall_at(c, inject)
+    if args.stuck_adc_ms is not None:
+        inject = int(args.stuck_adc_ms * hz / 1000)
+        stuck_adc(d["ADC1"], inject)
+    if pil.lockstep is not None and inject is not None:
+        pil.lockstep.compare_until = inject
     c.boot()
     t_end = int(args.ms * hz / 1000)
     state_log = []
@@ -160,9 +217,15 @@ def main(argv):
     lin_sent = 0
     while t < t_end and c.stopped is None:
         t = min(t + step, t_end)
-        if next_lin is not None and c.cycles >= next_lin and d["LPUART1"].r["CTRL"] & (1 << 18):
+        lin_on = args.lin_stop_ms is None or c.cycles < args.lin_stop_ms * hz / 1000
+        if next_lin is not None and c.cycles >= next_lin and d["LPUART1"].r["CTRL"] & (1 << 18) and lin_on:
             on = args.power_on_ms is not None and c.cycles >= args.power_on_ms * hz / 1000
-            d["LPUART1"].inject(c.cycles, command_frame(on, args.rpm))
+            if args.power_off_ms is not None and c.cycles >= args.power_off_ms * hz / 1000:
+                on = False
+            rpm = args.rpm
+            if args.rpm_step_ms is not None and c.cycles >= args.rpm_step_ms * hz / 1000:
+                rpm = args.rpm2
+            d["LPUART1"].inject(c.cycles, command_frame(on, rpm))
             lin_sent += 1
             next_lin += int(args.lin_period_ms * hz / 1000)
         if args.fault_ms is not None and pil.t_fault is None and c.cycles >= args.fault_ms * hz / 1000:
@@ -267,39 +330,98 @@ def main(argv):
     print("plant: t %.4f s, w_e %.1f rad/s, id %.2f A, iq %.2f A" % (ps["t"], ps["w_e"], ps["id"], ps["iq"]))
 
     # ------------------------------------------------------------------ verdict
+    ls = pil.lockstep
+    if ls is not None:
+        print(ls.report())
+    adc_lat = [st[2] for st in c.irq_stats.get(40, [])]
+    iu_off = pil.iu_off
+    print("phase-current conversions (ADC0_SE3, ADC1_SE2) started off the reload instant: %d of %d; "
+          "ADC1 latency max %s clocks" % (iu_off, pil.iu_conv, max(adc_lat) if adc_lat else "-"))
+    lat_ok = bool(lat) and max(lat) < 2 * per and pil.late_writes <= 1
+    t_inj = inject
     checks = []
     checks.append(("the run completes without a stop", c.stopped is None, c.stopped or ""))
-    checks.append(("no watchdog reset", c.resets == 0, "%d" % c.resets))
     n_per = d["FTM3"].reloads
-    checks.append(("FTM3 period interrupt once per PWM period (%d periods, %.0f Hz)" % (n_per, ftm_hz or 0),
-                   abs(counts[122] - n_per) <= 2 and n_per > 0, "%d" % counts[122]))
-    checks.append(("ADC1 interrupt once per PWM period", abs(counts[40] - n_per) <= 2 and n_per > 0,
-                   "%d" % counts[40]))
     n_ms = d["LPIT0"].timeouts
-    checks.append(("LPIT0 tick every 1 ms (%d timeouts)" % n_ms,
-                   abs(counts[48] - n_ms) <= 1 and abs(n_ms - (c.cycles - 0) / 80000.0) <= 2,
-                   "%d" % counts[48]))
-    checks.append(("watchdog refreshed by every tick", abs(d["WDOG"].refreshes - counts[48]) <= 1,
-                   "%d" % d["WDOG"].refreshes))
-    checks.append(("compare values written before the next reload point",
-                   bool(lat) and max(lat) < 2 * per and pil.late_writes <= 1,
-                   "late %d" % pil.late_writes))
+    expect = args.expect
+    if expect is None:
+        want = 2 if args.power_on_ms is not None else 1
+        if args.fault_ms is not None:
+            want = 3
+        expect = STATES[want]
+    if t_inj is None:
+        checks.append(("no watchdog reset", c.resets == 0, "%d" % c.resets))
+        checks.append(("FTM3 period interrupt once per PWM period (%d periods, %.0f Hz)" % (n_per, ftm_hz or 0),
+                       abs(counts[122] - n_per) <= 2 and n_per > 0, "%d" % counts[122]))
+        checks.append(("ADC1 interrupt once per PWM period", abs(counts[40] - n_per) <= 2 and n_per > 0,
+                       "%d" % counts[40]))
+        checks.append(("LPIT0 tick every 1 ms (%d timeouts)" % n_ms,
+                       abs(counts[48] - n_ms) <= 1 and abs(n_ms - (c.cycles - args.tick_phase_clk) / 80000.0) <= 2,
+                       "%d" % counts[48]))
+        checks.append(("watchdog refreshed by every tick", abs(d["WDOG"].refreshes - counts[48]) <= 1,
+                       "%d" % d["WDOG"].refreshes))
+        checks.append(("compare values written before the next reload point", lat_ok,
+                       "late %d" % pil.late_writes))
+        checks.append(("phase currents sampled at the reload instant (centre of the low-side zero vector)",
+                       pil.iu_conv > 0 and iu_off == 0, "%d of %d off" % (iu_off, pil.iu_conv)))
+    if args.adc_latency_max is not None:
+        checks.append(("ADC1 interrupt latency <= %d clocks (never delayed by a lower-priority handler)"
+                       % args.adc_latency_max, bool(adc_lat) and max(adc_lat) <= args.adc_latency_max,
+                       "max %s" % (max(adc_lat) if adc_lat else "-")))
     if pil.t_fault is not None:
         checks.append(("bridge off from the reload point after the fault input (%.1f ms)"
                        % (pil.t_fault * 1000.0 / hz), pil.on_after_fault == 0,
                        "%d periods on" % pil.on_after_fault))
-    want = 2 if args.power_on_ms is not None else 1
-    if args.fault_ms is not None:
-        want = 3
-    checks.append(("drive reaches %s" % STATES[want], final is not None and final[1] == want,
-                   STATES.get(final[1], "?") if final else "no CAN frame"))
+    if ls is not None:
+        checks.append(("lock-step with the host build: no divergence (%d periods, %d ticks)"
+                       % (ls.periods, ls.ticks_compared), ls.divergence is None and ls.periods > 0,
+                       "first divergence at period %d: %s image %s host %s" % ls.divergence[:4]
+                       if ls.divergence else "none"))
+    if expect == "RESET":
+        checks.append(("watchdog reset of the image after %.1f ms" % (t_inj * 1000.0 / hz if t_inj else 0),
+                       c.resets >= 1, "%d resets" % c.resets))
+    else:
+        checks.append(("drive reaches %s" % expect, final is not None and STATES.get(final[1]) == expect,
+                       STATES.get(final[1], "?") if final else "no CAN frame"))
+    for what, good, detail in getattr(args, "extra_checks", lambda r: [])(
+            {"pil": pil, "seen": seen, "hz": hz, "inject": t_inj}):
+        checks.append((what, good, detail))
     print()
     ok = True
     for what, good, detail in checks:
         ok &= bool(good)
         print("%-4s %s (%s)" % ("PASS" if good else "FAIL", what, detail))
     print("pil: %s" % ("PASS" if ok else "FAIL"))
-    return 0 if ok else 1
+    return {"rc": 0 if ok else 1, "ok": ok, "checks": checks, "pil": pil, "seen": seen,
+            "lockstep": ls, "ms": ms, "adc_latency_max": max(adc_lat) if adc_lat else None}
+
+
+def stall_at(c, t0):
+    """From core clock t0 on, the ADC1 handler (qfoc_s32k_adc_isr) spins at its entry: a
+    stalled interrupt (the PC is set to a `b .` found in the image)."""
+    from unicorn import UC_HOOK_CODE
+    from unicorn.arm_const import UC_ARM_REG_PC
+    spins = list(c._find(0xE7FE))
+    if not spins:
+        raise core_mod.Stop("no `b .` in the image for the stall")
+    target = spins[0]
+    a = c.syms["qfoc_s32k_adc_isr"] & ~1
+
+    def hook(mu, addr, size, data):
+        if c.now() >= t0:
+            mu.reg_write(UC_ARM_REG_PC, target | 1)
+    c.mu.hook_add(UC_HOOK_CODE, hook, begin=a, end=a)
+
+
+def stuck_adc(adc, t0):
+    """From core clock t0 on, the converter starts no conversion (no COCO, no interrupt)."""
+    orig = adc.pretrigger
+
+    def pretrigger(n, t):
+        if t >= t0:
+            return
+        orig(n, t)
+    adc.pretrigger = pretrigger
 
 
 if __name__ == "__main__":

@@ -1,0 +1,229 @@
+"""twin.py -- lock-step of the image with the host build of the same drive.
+
+The host twin is the library (src/*.c) compiled for the host with the image's parameter
+table (tables/reference_params.c: main.c's table of the 8 kHz image, mk/port.mk) and the
+flat interface of pil_twin.c, called with ctypes.  It is driven from what the image's code
+actually passes, read from the image's memory by Unicorn code hooks on the entries of the
+image's functions:
+
+- qfoc_drive_init (main.c): the twin is initialised (again after a watchdog reset);
+- qfoc_drive_fast_step (called by qfoc_s32k_adc_isr, isr.c): r0 = the result's address
+  (qfoc_pwm_t, 8 bytes, returned in memory, AAPCS), r1 = the drive, r2 = &adc; the twin's
+  fast step is called with the three codes the image's ADC read delivered (qfoc_adc_t:
+  iu, iv, vdc, uint16 each);
+- qfoc_drive_tick (called by qfoc_s32k_tick_isr): r0 = the result's address
+  (qfoc_tick_out_t), r2 = &in (qfoc_tick_in_t: t_ipm, t_pcb int16 at 0 and 2, rx pointer
+  at 4, rx_len at 8): the twin's tick is called with the same temperatures and the same
+  received bytes (the frame the UART receive path assembled); at the return address (a
+  code hook on the caller's instruction after the call) the image's qfoc_tick_out_t is
+  read from the result's address and compared field by field with the twin's (tx_len,
+  tx[0..tx_len), the CAN frame id, dlc, data, can_send, pwm_off).
+
+The calls reach the twin in the image's order, with the image's inputs.  At each FTM3
+reload point the compare values in effect (C0V..C5V, as loaded from the buffers with
+LDOK) and the enable (OUTMASK = 0) are compared with what the twin's last fast step
+implies for the port's qfoc_hal_pwm_write (hal_s32k.c, two current sensors): C(2k)V =
+min(cmp[k], MOD), the odd channels as the initialisation set them (the even channel's CnV
+sets both edges), OUTMASK = 0 exactly when enable (and the port's fault latch is not
+set).  A tick's pwm_off also writes {0, 0, 0, off}, which the next fast step overwrites
+before the next reload point; the twin applies it at the image's tick return.  The first
+divergence stops the comparison and is reported (period, field, image value, host
+value).  compare_until (core clock) ends the comparison at an injected port-level fault
+(a stalled interrupt, a stuck converter), after which the image and the drive are meant
+to differ.
+"""
+import ctypes
+import os
+import struct
+import subprocess
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+
+
+def sources():
+    src = sorted(os.path.join(ROOT, "src", f) for f in os.listdir(os.path.join(ROOT, "src"))
+                 if f.endswith(".c"))
+    return [os.path.join(HERE, "pil_twin.c"), os.path.join(ROOT, "tables", "reference_params.c")] + src
+
+
+def build(out):
+    srcs = sources()
+    hdr_dirs = [os.path.join(ROOT, "include", "qfoc"), os.path.join(ROOT, "src"), os.path.join(ROOT, "tables")]
+    deps = srcs + [os.path.join(d, f) for d in hdr_dirs for f in os.listdir(d) if f.endswith(".h")]
+    if os.path.exists(out) and all(os.path.getmtime(out) >= os.path.getmtime(s) for s in deps):
+        return out
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    subprocess.check_call(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "-shared", "-fPIC",
+                           "-I" + os.path.join(ROOT, "include"), "-I" + os.path.join(ROOT, "tables")]
+                          + srcs + ["-o", out])
+    return out
+
+
+class Twin:
+    def __init__(self, lib_path):
+        lib = ctypes.CDLL(lib_path)
+        lib.pil_twin_init.restype = ctypes.c_int32
+        lib.pil_twin_fast.argtypes = [ctypes.c_uint16] * 3 + [ctypes.POINTER(ctypes.c_uint16)]
+        lib.pil_twin_tick.argtypes = [ctypes.c_int16, ctypes.c_int16, ctypes.c_char_p, ctypes.c_uint8,
+                                      ctypes.POINTER(ctypes.c_uint8)]
+        self.lib = lib
+
+    def init(self):
+        return self.lib.pil_twin_init()
+
+    def fast(self, iu, iv, vdc):
+        o = (ctypes.c_uint16 * 4)()
+        self.lib.pil_twin_fast(iu, iv, vdc, o)
+        return [o[0], o[1], o[2]], bool(o[3])
+
+    def tick(self, t_ipm, t_pcb, rx):
+        o = (ctypes.c_uint8 * 32)()
+        self.lib.pil_twin_tick(t_ipm, t_pcb, bytes(rx), len(rx), o)
+        b = bytes(o)
+        return {"tx_len": b[11], "tx": b[:b[11]], "can_id": b[12] | (b[13] << 8), "can_dlc": b[14],
+                "can_data": b[15:23], "can_send": b[23], "pwm_off": b[24]}
+
+
+def image_tick_out(mem):
+    """qfoc_tick_out_t in the image (arm-none-eabi layout: tx[11], tx_len 11, can 12..23
+    (id 12, dlc 14, data 15..22), can_send 24, pwm_off 25)."""
+    n = mem[11]
+    return {"tx_len": n, "tx": bytes(mem[:min(n, 11)]), "can_id": mem[12] | (mem[13] << 8),
+            "can_dlc": mem[14], "can_data": bytes(mem[15:23]), "can_send": mem[24], "pwm_off": mem[25]}
+
+
+class LockStep:
+    """Attach to a run.PIL instance before boot."""
+    def __init__(self, pil, lib_path):
+        from unicorn import UC_HOOK_CODE
+        from unicorn.arm_const import UC_ARM_REG_R0, UC_ARM_REG_R2, UC_ARM_REG_LR, UC_ARM_REG_SP
+        self.R0, self.R2, self.LR, self.SP = UC_ARM_REG_R0, UC_ARM_REG_R2, UC_ARM_REG_LR, UC_ARM_REG_SP
+        self.HOOK = UC_HOOK_CODE
+        self.pil = pil
+        self.core = pil.core
+        self.twin = Twin(lib_path)
+        self.inits = 0
+        self.fast_calls = 0
+        self.tick_calls = 0
+        self.ticks_compared = 0
+        self.periods = 0               # reload points compared
+        self.divergence = None         # (period, field, image, host)
+        self.compare_until = None
+        self.expect = None             # ([C0V..C5V], enable) the twin implies
+        self.odd = None                # odd channels as initialised
+        self.pending_tick = {}         # sp -> (out address, host out)
+        self.ret_hooked = set()
+        self.frames_rx = 0
+        syms = self.core.syms
+        mu = self.core.mu
+        for name, fn in (("qfoc_drive_init", self._on_init), ("qfoc_drive_fast_step", self._on_fast),
+                         ("qfoc_drive_tick", self._on_tick)):
+            a = syms[name] & ~1
+            mu.hook_add(UC_HOOK_CODE, fn, begin=a, end=a)
+        self.last_entry = {}
+
+    def active(self):
+        return self.divergence is None and (self.compare_until is None or self.core.now() < self.compare_until)
+
+    def _dup(self, name, sp):
+        # a code hook may fire again at a restarted instruction: one call per (function, sp, time)
+        key = (sp, self.core.now(), self.core.insns)
+        if self.last_entry.get(name) == key:
+            return True
+        self.last_entry[name] = key
+        return False
+
+    def _on_init(self, mu, addr, size, data):
+        if self._dup("init", mu.reg_read(self.SP)):
+            return
+        self.inits += 1
+        self.twin.init()
+        self.expect = None
+        self.pending_tick = {}
+
+    def _on_fast(self, mu, addr, size, data):
+        if self._dup("fast", mu.reg_read(self.SP)):
+            return
+        p = mu.reg_read(self.R2)
+        iu, iv, vdc = struct.unpack("<HHH", bytes(mu.mem_read(p, 6)))
+        cmp_, en = self.twin.fast(iu, iv, vdc)
+        self.fast_calls += 1
+        self.expect = (cmp_, en)
+
+    def _on_tick(self, mu, addr, size, data):
+        sp = mu.reg_read(self.SP)
+        if self._dup("tick", sp):
+            return
+        outp = mu.reg_read(self.R0)
+        p = mu.reg_read(self.R2)
+        t_ipm, t_pcb, rxp, n = struct.unpack("<hhIB", bytes(mu.mem_read(p, 9)))
+        rx = bytes(mu.mem_read(rxp, n)) if n else b""
+        self.frames_rx += 1 if n else 0
+        host = self.twin.tick(t_ipm, t_pcb, rx)
+        self.tick_calls += 1
+        ret = mu.reg_read(self.LR) & ~1
+        if ret not in self.ret_hooked:
+            self.ret_hooked.add(ret)
+            mu.hook_add(self.HOOK, self._on_tick_ret, begin=ret, end=ret)
+        self.pending_tick[sp] = (outp, host)
+
+    def _on_tick_ret(self, mu, addr, size, data):
+        sp = mu.reg_read(self.SP)
+        item = self.pending_tick.pop(sp, None)
+        if item is None:
+            return
+        outp, host = item
+        img = image_tick_out(bytes(mu.mem_read(outp, 26)))
+        if host["pwm_off"]:
+            self.expect = ([0, 0, 0], False)
+        if not self.active():
+            return
+        self.ticks_compared += 1
+        for f in ("tx_len", "tx", "can_send", "pwm_off"):
+            if img[f] != host[f]:
+                self._diverge("tick %d: %s" % (self.tick_calls, f), img[f], host[f])
+                return
+        if host["can_send"]:
+            for f in ("can_id", "can_dlc", "can_data"):
+                if img[f] != host[f]:
+                    self._diverge("tick %d: %s" % (self.tick_calls, f), img[f], host[f])
+                    return
+
+    def _diverge(self, field, img, host):
+        fmt = lambda v: v.hex() if isinstance(v, bytes) else v  # noqa: E731
+        self.divergence = (self.periods, field, fmt(img), fmt(host), self.core.now())
+
+    def on_reload(self, ftm, fault_latched=False):
+        """At an FTM3 reload point, after the buffers loaded."""
+        if self.expect is None:
+            return
+        if self.odd is None:
+            self.odd = [ftm.r["C%dV" % (2 * k + 1)] for k in range(3)]
+        if not self.active():
+            return
+        self.periods += 1
+        cmp_, en = self.expect
+        mod = ftm.r["MOD"]
+        for k in range(3):
+            want = min(cmp_[k], mod)
+            if ftm.r["C%dV" % (2 * k)] != want:
+                self._diverge("C%dV" % (2 * k), ftm.r["C%dV" % (2 * k)], want)
+                return
+            if ftm.r["C%dV" % (2 * k + 1)] != self.odd[k]:
+                self._diverge("C%dV" % (2 * k + 1), ftm.r["C%dV" % (2 * k + 1)], self.odd[k])
+                return
+        img_en = (ftm.r["OUTMASK"] & 0x3F) == 0
+        if img_en != (en and not fault_latched):
+            self._diverge("enable (OUTMASK = 0)", img_en, en)
+
+    def report(self):
+        s = ("lock-step with the host build: %d PWM periods compared (C0V..C5V, enable), %d ticks "
+             "compared (LIN tx, CAN frame, pwm_off); calls: fast step %d, tick %d (%d with a received "
+             "frame), drive inits %d" % (self.periods, self.ticks_compared, self.fast_calls, self.tick_calls,
+                                         self.frames_rx, self.inits))
+        if self.divergence:
+            p, f, a, b, t = self.divergence
+            s += "\nlock-step FIRST DIVERGENCE at period %d (%.3f ms): %s image %s host %s" % (
+                p, t / 80000.0, f, a, b)
+        return s
