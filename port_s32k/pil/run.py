@@ -96,6 +96,11 @@ class PIL:
         self.on_after_fault = 0      # periods that started with the bridge on after it
         self.lockstep = None         # twin.LockStep when --lockstep
         self.bridge_log = []         # (core clock, bridge switching) at each change
+        self.w_log = []              # (core clock, plant electrical speed rad/s) every 10 ms
+        self.reset_times = []        # core clocks of the watchdog resets
+        self.t_gate_off = None       # first reload point with PTD5 low after an injection
+        self.inject = None
+        self.lin_last = None         # core clock of the last command frame sent
 
     def attach_lockstep(self, lib):
         self.lockstep = twin_mod.LockStep(self, lib)
@@ -117,6 +122,9 @@ class PIL:
                 self.late_writes += 1
         ftm.ldok_writes = []
         on = ftm.outputs_on() and self.gate_on()
+        if self.inject is not None and t >= self.inject and self.t_gate_off is None and \
+                not self.gate_on() and ftm.r["OUTMASK"] & 0x3F == 0x3F:
+            self.t_gate_off = t
         if not self.bridge_log or self.bridge_log[-1][1] != on:
             self.bridge_log.append((t, on))
         if self.lockstep is not None:
@@ -151,6 +159,10 @@ def stats(xs):
 
 
 def main(argv):
+    return execute(parse_args(argv[1:]))["rc"]
+
+
+def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("elf")
     ap.add_argument("--ms", type=float, default=300.0)
@@ -184,8 +196,7 @@ def main(argv):
                          "instruction) at most this many clocks")
     ap.add_argument("--expect", default=None,
                     help="expected final state: PRECHARGE, STOP, RUN, ERROR or RESET (a watchdog reset)")
-    args = ap.parse_args(argv[1:])
-    return execute(args)["rc"]
+    return ap.parse_args(argv)
 
 
 def execute(args):
@@ -206,11 +217,20 @@ def execute(args):
     if args.stuck_adc_ms is not None:
         inject = int(args.stuck_adc_ms * hz / 1000)
         stuck_adc(d["ADC1"], inject)
+    pil.inject = inject
+    core_reset = c.reset
+
+    def reset():
+        pil.reset_times.append(c.now())
+        core_reset()
+    c.reset = reset
     if pil.lockstep is not None and inject is not None:
         pil.lockstep.compare_until = inject
     c.boot()
     t_end = int(args.ms * hz / 1000)
     state_log = []
+    can_seen = 0
+    can_list = d["CAN0"].frames
     next_lin = int(args.lin_period_ms * hz / 1000) if args.lin_period_ms > 0 else None
     t = 0
     step = hz // 1000
@@ -226,14 +246,22 @@ def execute(args):
             if args.rpm_step_ms is not None and c.cycles >= args.rpm_step_ms * hz / 1000:
                 rpm = args.rpm2
             d["LPUART1"].inject(c.cycles, command_frame(on, rpm))
+            pil.lin_last = c.cycles
             lin_sent += 1
             next_lin += int(args.lin_period_ms * hz / 1000)
         if args.fault_ms is not None and pil.t_fault is None and c.cycles >= args.fault_ms * hz / 1000:
             pil.t_fault = c.cycles
             d["FTM3"].set_fault(True)
         c.run_until(t)
-        for (tc, ident, dlc, data) in d["CAN0"].frames[len(state_log):]:
+        if (t // step) % 10 == 0:
+            pil.w_log.append((c.cycles, pil.plant.state()["w_e"]))
+        frames = d["CAN0"].frames
+        if frames is not can_list:
+            can_list, can_seen = frames, 0     # the controller's log restarted with a reset
+        for (tc, ident, dlc, data) in frames[can_seen:]:
+            can_seen += 1
             state_log.append((tc, data[0] & 0xF, data[0] >> 4, data))
+    pil.state_log = state_log
     ms = c.cycles * 1000.0 / hz
 
     # ------------------------------------------------------------------ report
@@ -377,7 +405,9 @@ def execute(args):
                        % (ls.periods, ls.ticks_compared), ls.divergence is None and ls.periods > 0,
                        "first divergence at period %d: %s image %s host %s" % ls.divergence[:4]
                        if ls.divergence else "none"))
-    if expect == "RESET":
+    if expect == "ANY":
+        pass
+    elif expect == "RESET":
         checks.append(("watchdog reset of the image after %.1f ms" % (t_inj * 1000.0 / hz if t_inj else 0),
                        c.resets >= 1, "%d resets" % c.resets))
     else:
@@ -407,8 +437,11 @@ def stall_at(c, t0):
     target = spins[0]
     a = c.syms["qfoc_s32k_adc_isr"] & ~1
 
+    done = []
+
     def hook(mu, addr, size, data):
-        if c.now() >= t0:
+        if c.now() >= t0 and not done:             # once: the image restarts after the reset
+            done.append(c.now())
             mu.reg_write(UC_ARM_REG_PC, target | 1)
     c.mu.hook_add(UC_HOOK_CODE, hook, begin=a, end=a)
 

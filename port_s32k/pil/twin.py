@@ -13,11 +13,15 @@ image's functions:
   iu, iv, vdc, uint16 each);
 - qfoc_drive_tick (called by qfoc_s32k_tick_isr): r0 = the result's address
   (qfoc_tick_out_t), r2 = &in (qfoc_tick_in_t: t_ipm, t_pcb int16 at 0 and 2, rx pointer
-  at 4, rx_len at 8): the twin's tick is called with the same temperatures and the same
-  received bytes (the frame the UART receive path assembled); at the return address (a
-  code hook on the caller's instruction after the call) the image's qfoc_tick_out_t is
-  read from the result's address and compared field by field with the twin's (tx_len,
-  tx[0..tx_len), the CAN frame id, dlc, data, can_send, pwm_off).
+  at 4, rx_len at 8): the inputs are read at the entry (the same temperatures, the same
+  received bytes: the frame the UART receive path assembled); the twin's tick runs at
+  the return address (a code hook on the caller's instruction after the call), so that a
+  fast step that pre-empted the image's tick runs in the twin before the tick (the twin
+  cannot split a tick); then the image's qfoc_tick_out_t is read from the result's
+  address and compared field by field with the twin's (tx_len, tx[0..tx_len), the CAN
+  frame id, dlc, data, can_send, pwm_off).  Without pre-emption the order is the image's
+  exactly; with a pre-empted tick it is exact only if the fast step does not read what
+  the tick writes before its end (a divergence then says where it does).
 
 The calls reach the twin in the image's order, with the image's inputs.  At each FTM3
 reload point the compare values in effect (C0V..C5V, as loaded from the buffers with
@@ -160,20 +164,20 @@ class LockStep:
         t_ipm, t_pcb, rxp, n = struct.unpack("<hhIB", bytes(mu.mem_read(p, 9)))
         rx = bytes(mu.mem_read(rxp, n)) if n else b""
         self.frames_rx += 1 if n else 0
-        host = self.twin.tick(t_ipm, t_pcb, rx)
         self.tick_calls += 1
         ret = mu.reg_read(self.LR) & ~1
         if ret not in self.ret_hooked:
             self.ret_hooked.add(ret)
             mu.hook_add(self.HOOK, self._on_tick_ret, begin=ret, end=ret)
-        self.pending_tick[sp] = (outp, host)
+        self.pending_tick[sp] = (outp, (t_ipm, t_pcb, rx))
 
     def _on_tick_ret(self, mu, addr, size, data):
         sp = mu.reg_read(self.SP)
         item = self.pending_tick.pop(sp, None)
         if item is None:
             return
-        outp, host = item
+        outp, inputs = item
+        host = self.twin.tick(*inputs)
         img = image_tick_out(bytes(mu.mem_read(outp, 26)))
         if host["pwm_off"]:
             self.expect = ([0, 0, 0], False)
