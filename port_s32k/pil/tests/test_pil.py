@@ -150,6 +150,10 @@ isr40:
 
 
 def test_entry_return_round_trip_preserves_registers(tmp_path):
+    """REQ-PIL-001: an interrupt taken from thread mode right after CPSIE returns with every register, SP and the flags restored.
+
+    Methods: 1a the exception entry and return of the statement (frame, EXC_RETURN, stacked return address); 1b the class of a basic frame from thread mode with an 8-aligned SP
+    """
     elf = build(tmp_path, "round", ROUND_TRIP, {40: "isr40"})
     c = core.Core(elf)
     c.boot()
@@ -172,6 +176,10 @@ def test_entry_return_round_trip_preserves_registers(tmp_path):
 
 
 def test_misaligned_stack_gets_padding_and_is_restored(tmp_path):
+    """REQ-PIL-001: a 4-aligned SP at the interrupt gets the alignment pad (xPSR bit 9) and the SP is restored.
+
+    Methods: 1b the class of a stack pointer not 8-aligned at the exception; 1c the boundary of the pad, SP 4 below an 8-aligned address
+    """
     body = ROUND_TRIP.replace("    mov r5, sp\n", "    sub sp, #4\n    mov r5, sp\n")
     elf = build(tmp_path, "pad", body, {40: "isr40"})
     c = core.Core(elf)
@@ -266,6 +274,11 @@ isr122:
 
 
 def test_priority_inverted_pair_preempts_correctly(tmp_path):
+    """REQ-PIL-001: IRQ 122 of the higher priority pre-empts IRQ 33 at once; IRQ 33 pended again
+    meanwhile does not pre-empt itself and runs tail-chained after it.
+
+    Methods: 1a pre-emption by priority and tail chaining of the statement; 1d the error guessed: pre-emption decided by the IRQ number instead of the priority
+    """
     elf = build(tmp_path, "preempt", PREEMPT, {33: "isr33", 122: "isr122"})
     c = core.Core(elf)
     c.boot()
@@ -294,6 +307,10 @@ bad:
 
 
 def test_unknown_register_stops_with_address_and_pc(tmp_path):
+    """REQ-PIL-002: an access to a register no model defines stops the run with the address and the PC.
+
+    Methods: 1a the stop on an unknown register; 1d the error guessed: a model that reads 0 for a register it does not know
+    """
     elf = build(tmp_path, "unknown", UNKNOWN, {})
     c = core.Core(elf)
     periph.build(c)
@@ -321,6 +338,10 @@ bad:
 
 
 def test_write_to_read_only_register_stops(tmp_path):
+    """REQ-PIL-002: a write to a read-only register stops the run.
+
+    Methods: 1a the stop on a read-only register; 1b the class of read-only registers
+    """
     elf = build(tmp_path, "ro", READ_ONLY, {})
     c = core.Core(elf)
     periph.build(c)
@@ -343,6 +364,10 @@ bad:
 
 
 def test_sram_read_before_write_stops(tmp_path):
+    """REQ-PIL-002: a read of SRAM before its first write stops the run (the part's ECC fault).
+
+    Methods: 1a the stop on SRAM read before written; 1d the error guessed: start-up code that skips the RAM initialisation
+    """
     elf = build(tmp_path, "ecc", UNINIT, {})
     c = core.Core(elf)
     c.boot()
@@ -370,6 +395,10 @@ bad:
 
 
 def test_ftm_write_while_protected_stops(tmp_path):
+    """REQ-PIL-002: a change of a write-protected FTM3 register stops the run.
+
+    Methods: 1a the stop on a write-protected FTM3 register; 1d the error guessed: configuration written after FMS[WPEN]
+    """
     elf = build(tmp_path, "wp", FTM_WP, {})
     c = core.Core(elf)
     periph.build(c)
@@ -391,6 +420,10 @@ bad:
 
 
 def test_partial_peripheral_access_stops(tmp_path):
+    """REQ-PIL-002: a byte read at an address inside a 32-bit peripheral register stops the run.
+
+    Methods: 1a the stop on a partial access; 1b the class of byte and half-word accesses
+    """
     elf = build(tmp_path, "mis", MISALIGNED, {})
     c = core.Core(elf)
     periph.build(c)
@@ -405,6 +438,10 @@ FW = os.path.join(ROOT, "build", "s32k144", "qfoc_compressor.elf")
 
 @pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
 def test_firmware_interrupt_rates(tmp_path):
+    """REQ-PIL-001: 20 ms of the firmware image: FTM3 and ADC1 once per PWM period, LPIT0 once per ms, every tick refreshes the watchdog, the ADC1 request at MOD plus three conversions.
+
+    Methods: 1a the interrupt rates of the statement on the image
+    """
     import plant as plant_mod
     import run
     lib = plant_mod.build(str(tmp_path / "libpilplant.so"))
@@ -452,6 +489,10 @@ WDOG_FED = WDOG_MISS.replace("1:  b 1b", """    ldr r2, =0xB480A602
 
 
 def test_missed_watchdog_refresh_resets_the_image(tmp_path):
+    """REQ-PIL-001: an image that never refreshes the watchdog is reset at each timeout and boots again.
+
+    Methods: 1a the watchdog reset of the statement; 1l the fault injected: the refresh left out
+    """
     elf = build(tmp_path, "wdog", WDOG_MISS, {})
     c = core.Core(elf)
     periph.build(c)
@@ -461,6 +502,10 @@ def test_missed_watchdog_refresh_resets_the_image(tmp_path):
 
 
 def test_refreshed_watchdog_does_not_reset(tmp_path):
+    """REQ-PIL-001: an image that refreshes the watchdog is never reset.
+
+    Methods: 1a no reset while refreshed; 1b the class of a refresh well within the timeout
+    """
     elf = build(tmp_path, "wdogok", WDOG_FED, {})
     c = core.Core(elf)
     d = periph.build(c)
@@ -483,6 +528,10 @@ def _uc(code):
 
 
 def test_unicorn_reports_exc_return_as_exception_8():
+    """REQ-PIL-001: Unicorn's behaviour the core relies on: a branch to EXC_RETURN reported as exception 8.
+
+    Methods: 1a the exception return the core implements on Unicorn's report; 1d the error guessed: a Unicorn version that changes the report
+    """
     from unicorn import UcError, UC_HOOK_INTR, UC_ERR_EXCEPTION
     from unicorn.arm_const import UC_ARM_REG_LR, UC_ARM_REG_PC, UC_ARM_REG_R0
     code = bytes.fromhex("0530" "7047")            # adds r0, #5 ; bx lr
@@ -503,6 +552,10 @@ def test_unicorn_reports_exc_return_as_exception_8():
 
 
 def test_unicorn_repeats_a_store_stopped_in_its_hook():
+    """REQ-PIL-001: Unicorn's behaviour the core relies on: a store stopped in its hook is executed again on restart.
+
+    Methods: 1a the store applied once per nesting depth; 1d the error guessed: a store applied twice
+    """
     from unicorn import UC_HOOK_MEM_WRITE
     from unicorn.arm_const import UC_ARM_REG_PC
     code = bytes.fromhex("4ff00052" "0120" "1060" "0130" "fee7")  # mov.w r2,#0x20000000; movs r0,#1; str r0,[r2]; adds r0,#1; b .
@@ -521,6 +574,10 @@ def test_unicorn_repeats_a_store_stopped_in_its_hook():
 
 
 def test_unicorn_count_skips_failed_it_instructions_and_the_core_does_not(tmp_path):
+    """REQ-PIL-001: the time base counts an IT-block instruction whose condition fails (Unicorn's count does not).
+
+    Methods: 1a the time base of one clock per instruction; 1c the boundary of an IT block whose condition fails
+    """
     # movs r0,#0; cmp r0,#0; it ne; movne r1,#1 (condition fails); movs r2,#2; b .
     code = bytes.fromhex("0020" "0028" "18bf" "0121" "0222" "fee7")
     from unicorn.arm_const import UC_ARM_REG_PC
@@ -579,6 +636,10 @@ wr_c0v:
 
 
 def test_ftm_compare_loads_at_the_reload_point(tmp_path):
+    """REQ-PIL-001: FTM3 compare values written with LDOK load at the reload point, not at the write.
+
+    Methods: 1a the compare values in effect at the reload point; 1c the boundary: written just before and just after a reload point
+    """
     elf = build(tmp_path, "ftm", FTM_LOAD, {})
     c = core.Core(elf)
     d = periph.build(c)
@@ -622,8 +683,141 @@ isr40:
 
 
 def test_interrupt_after_fp_use_stops(tmp_path):
+    """REQ-PIL-002: an interrupt taken after a floating-point instruction (CONTROL.FPCA set) stops the run.
+
+    Methods: 1a the stop on the extended frame, not modelled; 1d the error guessed: port code compiled with FP instructions in a handler
+    """
     elf = build(tmp_path, "fp", FP_USE, {40: "isr40"})
     c = core.Core(elf)
     c.boot()
     assert not c.run_until(10000)
     assert "FPCA" in c.stopped
+
+
+# ---------------------------------------------------------------------- lock-step and scenarios
+@pytest.fixture(scope="module")
+def libs(tmp_path_factory):
+    import plant as plant_mod
+    import twin as twin_mod
+    d = tmp_path_factory.mktemp("pil")
+    return (plant_mod.build(str(d / "libpilplant.so")), twin_mod.build(str(d / "libpiltwin.so")))
+
+
+def fw_run(libs, *argv):
+    import run
+    args = run.parse_args([FW, "--lib", libs[0], "--twin-lib", libs[1], "--lockstep"] + list(argv))
+    return args, run
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_lockstep_short_run_without_divergence(libs, capsys):
+    """REQ-PIL-003: 150 ms of the image (PRECHARGE) in lock-step with the host build: every
+    period's C0V..C5V and enable and every tick's outputs equal the host's.
+
+    Methods: 1a the comparison of the statement, period by period and tick by tick;
+    1n back-to-back comparison of the image against the host build of the same drive
+    """
+    args, run = fw_run(libs, "--ms", "150", "--expect", "PRECHARGE")
+    r = run.execute(args)
+    ls = r["lockstep"]
+    assert r["ok"], capsys.readouterr().out
+    assert ls.divergence is None and ls.periods >= 1150 and ls.ticks_compared >= 149
+    assert ls.inits == 1 and ls.fast_calls >= ls.periods
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_lockstep_reports_an_injected_divergence(libs, monkeypatch, capsys):
+    """REQ-PIL-003: the host's compare value of phase u made one count larger from its 400th
+    fast step on: the run fails with the first divergence at that period, field C0V, the
+    image's and the host's values.
+
+    Methods: 1l the fault injected into the host's output (one count on one phase from one
+    period on); 1c the boundary of a one-count difference
+    """
+    import twin as twin_mod
+    fast = twin_mod.Twin.fast
+    calls = []
+
+    def skewed(self, iu, iv, vdc):
+        cmp_, en = fast(self, iu, iv, vdc)
+        calls.append(1)
+        if len(calls) >= 400:
+            cmp_ = [cmp_[0] + 1] + cmp_[1:]
+        return cmp_, en
+    monkeypatch.setattr(twin_mod.Twin, "fast", skewed)
+    args, run = fw_run(libs, "--ms", "80")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    period, field, img, host, t = r["lockstep"].divergence
+    assert not r["ok"] and field == "C0V" and host == img + 1
+    assert abs(period - 400) <= 2
+    assert "FIRST DIVERGENCE" in out
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_stalled_adc_handler_resets_the_image_by_the_watchdog(libs, capsys):
+    """REQ-PIL-004: the ADC1 handler spins from 50 ms on: the tick no longer runs, the
+    watchdog (10 ms) resets the image within the timeout plus one tick; the lock-step holds
+    up to the stall.
+
+    Methods: 1l the fault injected: a handler that never returns; 1c the boundary of the
+    watchdog timeout plus one tick
+    """
+    args, run = fw_run(libs, "--ms", "75", "--stall-adc-isr-ms", "50", "--expect", "ANY")
+    r = run.execute(args)
+    pil = r["pil"]
+    assert r["ok"], capsys.readouterr().out
+    assert len(pil.reset_times) == 1
+    assert 0 < pil.reset_times[0] - 50 * 80_000 <= 11 * 80_000
+    assert r["lockstep"].periods > 350 and r["lockstep"].divergence is None
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_stuck_converter_latches_the_fault_output(libs, capsys):
+    """REQ-PIL-004: ADC1 converts nothing from 50 ms on: the tick's supervision (more than 2
+    periods without a fast step in a millisecond) masks the six outputs and disables the
+    gate driver within 2 ms; no watchdog reset.
+
+    Methods: 1l the fault injected: no conversion complete; 1c the boundary of the 2 ms
+    from the last conversion to the latched output
+    """
+    args, run = fw_run(libs, "--ms", "60", "--stuck-adc-ms", "50", "--expect", "ANY")
+    r = run.execute(args)
+    pil = r["pil"]
+    assert r["ok"], capsys.readouterr().out
+    assert pil.t_gate_off is not None and pil.t_gate_off - 50 * 80_000 <= 2 * 80_000
+    assert pil.core.resets == 0
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_tick_preempted_by_the_adc_interrupt_at_once(libs, capsys):
+    """REQ-PIL-004: the tick's phase shifted by 5000 clocks (requested 335 clocks before the
+    ADC1 request): the ADC1 interrupt pre-empts every tick with a latency of at most 100
+    clocks, and the lock-step holds with the tick pre-empted.
+
+    Methods: 1a the priorities of the port (REQ-PORT-015) seen as latency; 1c the boundary of
+    a tick requested just before the ADC1 request
+    """
+    args, run = fw_run(libs, "--ms", "60", "--tick-phase-clk", "5000", "--adc-latency-max", "100",
+                       "--expect", "ANY")
+    r = run.execute(args)
+    c = r["pil"].core
+    assert r["ok"], capsys.readouterr().out
+    assert c.preempt_pairs.get((48, 40), 0) >= 50
+    assert r["adc_latency_max"] <= 100
+
+
+def test_seeded_defects_apply_exactly_once():
+    """REQ-PIL-005: each seeded defect of defects.py is one substitution whose text occurs
+    exactly once in the port's source file and differs from its replacement; the control
+    has none.
+
+    Methods: 1d the errors guessed: a PDB delay off by half a PWM period, a compare value on
+    the wrong channel pair, the ADC interrupt below the tick in priority
+    """
+    import defects
+    names = [d[0] for d in defects.DEFECTS]
+    assert names[0] == "control" and len(names) == 4
+    for name, fname, old, new, what in defects.DEFECTS[1:]:
+        text = open(os.path.join(ROOT, "port_s32k", fname)).read()
+        assert text.count(old) == 1 and old != new and new not in text, name
