@@ -81,6 +81,8 @@ Exceptions (ARMv7-M Architecture Reference Manual, B1.5 "ARMv7-M exception model
     experiment: the store's hook runs twice): the model keeps the store's PC, address,
     value and SP per nesting depth and does not apply it a second time when that context
     resumes with it.
+
+Requirements: REQ-PIL-001, REQ-PIL-002 (specs/requirements/pil.md).
 """
 import heapq
 import struct

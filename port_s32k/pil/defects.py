@@ -12,6 +12,8 @@ Exit status 1 when a defect is missed or the control fails.
 
 Usage: defects.py --cc arm-none-eabi-gcc --cflags "..." --ldflags "..." --lib libqfoc.a
                   [--out build/pil/defects] [--only NAME,...] [--jobs 2]
+
+Requirement: REQ-PIL-005 (specs/requirements/pil.md).
 """
 import argparse
 import glob

@@ -48,6 +48,8 @@ Simplifications (stated; not RM behaviour):
   - WDOG: counts the LPO while enabled; a refresh (0xB480A602 written to CNT) restarts
     it; the unlock is valid until the CS write (the 128-bus-clock window after the
     unlock is not timed); a timeout resets the part (core.Core.reset).
+
+Requirements: REQ-PIL-001, REQ-PIL-002 (specs/requirements/pil.md).
 """
 from core import Stop, CORE_HZ
 

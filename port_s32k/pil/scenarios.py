@@ -17,6 +17,8 @@ The targets come from the requirements: the link timeout is the table's link_tim
 reports LINK); the watchdog timeout 10 ms (REQ-PORT-014); the supervision latches the
 fault output when more than 2 periods pass without a fast step within a millisecond
 (REQ-PORT-018); the ADC-complete interrupt pre-empts the tick (REQ-PORT-015).
+
+Requirement: REQ-PIL-004 (specs/requirements/pil.md).
 """
 import argparse
 import contextlib

@@ -35,6 +35,8 @@ divergence stops the comparison and is reported (period, field, image value, hos
 value).  compare_until (core clock) ends the comparison at an injected port-level fault
 (a stalled interrupt, a stuck converter), after which the image and the drive are meant
 to differ.
+
+Requirement: REQ-PIL-003 (specs/requirements/pil.md).
 """
 import ctypes
 import os
