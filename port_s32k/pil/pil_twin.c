@@ -15,6 +15,8 @@ int32_t pil_twin_init(void);
 void pil_twin_fast(uint16_t iu, uint16_t iv, uint16_t vdc, uint16_t out[4]);
 void pil_twin_tick(int16_t t_ipm, int16_t t_pcb, const uint8_t *rx, uint8_t rx_len, uint8_t out[32]);
 uint32_t pil_twin_size(void);
+void pil_twin_save(uint8_t *buf);
+void pil_twin_restore(const uint8_t *buf);
 
 int32_t pil_twin_init(void)
 {
@@ -61,4 +63,15 @@ void pil_twin_tick(int16_t t_ipm, int16_t t_pcb, const uint8_t *rx, uint8_t rx_l
     memcpy(&out[15], o.can.data, 8u);
     out[23] = o.can_send ? 1u : 0u;
     out[24] = o.pwm_off ? 1u : 0u;
+}
+
+/* The twin's whole state, to run a fast step that pre-empted a tick in both orders. */
+void pil_twin_save(uint8_t *buf)
+{
+    memcpy(buf, &s_twin, sizeof s_twin);
+}
+
+void pil_twin_restore(const uint8_t *buf)
+{
+    memcpy(&s_twin, buf, sizeof s_twin);
 }

@@ -20,8 +20,13 @@ image's functions:
   cannot split a tick); then the image's qfoc_tick_out_t is read from the result's
   address and compared field by field with the twin's (tx_len, tx[0..tx_len), the CAN
   frame id, dlc, data, can_send, pwm_off).  Without pre-emption the order is the image's
-  exactly; with a pre-empted tick it is exact only if the fast step does not read what
-  the tick writes before its end (a divergence then says where it does).
+  exactly.  A fast step that pre-empts the image's tick (a tick pending at its entry) is
+  run in the twin in both orders, from a saved copy of the twin's state: before the tick
+  and after it (the tick then done at that point); the image's result, read at the fast
+  step's return (qfoc_pwm_t at r0), selects the order and its state, and the count of
+  each order is reported.  A result that matches neither order is a divergence (a fast
+  step that saw part of the tick's writes); when both orders give the same result the
+  "before" order is kept (a later divergence would show if the states differ).
 
 The calls reach the twin in the image's order, with the image's inputs.  At each FTM3
 reload point the compare values in effect (C0V..C5V, as loaded from the buffers with
@@ -73,7 +78,19 @@ class Twin:
         lib.pil_twin_fast.argtypes = [ctypes.c_uint16] * 3 + [ctypes.POINTER(ctypes.c_uint16)]
         lib.pil_twin_tick.argtypes = [ctypes.c_int16, ctypes.c_int16, ctypes.c_char_p, ctypes.c_uint8,
                                       ctypes.POINTER(ctypes.c_uint8)]
+        lib.pil_twin_size.restype = ctypes.c_uint32
+        lib.pil_twin_save.argtypes = [ctypes.c_char_p]
+        lib.pil_twin_restore.argtypes = [ctypes.c_char_p]
         self.lib = lib
+        self.size = lib.pil_twin_size()
+
+    def save(self):
+        b = ctypes.create_string_buffer(self.size)
+        self.lib.pil_twin_save(b)
+        return b.raw
+
+    def restore(self, raw):
+        self.lib.pil_twin_restore(raw)
 
     def init(self):
         return self.lib.pil_twin_init()
@@ -128,6 +145,13 @@ class LockStep:
             a = syms[name] & ~1
             mu.hook_add(UC_HOOK_CODE, fn, begin=a, end=a)
         self.last_entry = {}
+        self.fresh = None              # the candidates of a fast step, until its return
+        self.cands = None
+        self.max_cands = 1
+        self.fast_ret_hooked = set()
+        self.order_before = 0          # pre-empting fast steps the image ran before the tick's effect
+        self.order_after = 0           # ... after it
+        self.order_same = 0            # ... where both orders give the same output
 
     def active(self):
         return self.divergence is None and (self.compare_until is None or self.core.now() < self.compare_until)
@@ -140,22 +164,87 @@ class LockStep:
         self.last_entry[name] = key
         return False
 
+    # The twin's candidate states: normally one.  A fast step that pre-empts the image's
+    # tick (a tick pending at its entry) is run in both orders, before the tick's effect and
+    # after it, from saved copies of the state; the image's own results (each fast step's
+    # qfoc_pwm_t read at its return, each tick's qfoc_tick_out_t) keep the candidates that
+    # produced them.  No candidate left is a divergence.
+    MAX_CANDS = 16
+
     def _on_init(self, mu, addr, size, data):
         if self._dup("init", mu.reg_read(self.SP)):
             return
         self.inits += 1
         self.twin.init()
+        self.cands = [{"state": self.twin.save(), "applied": {}, "expect": None}]
         self.expect = None
         self.pending_tick = {}
 
+    def _hook_ret(self, mu, fn, hooked):
+        ret = mu.reg_read(self.LR) & ~1
+        if ret not in hooked:
+            hooked.add(ret)
+            mu.hook_add(self.HOOK, fn, begin=ret, end=ret)
+
     def _on_fast(self, mu, addr, size, data):
-        if self._dup("fast", mu.reg_read(self.SP)):
+        if self._dup("fast", mu.reg_read(self.SP)) or not getattr(self, "cands", None):
             return
         p = mu.reg_read(self.R2)
         iu, iv, vdc = struct.unpack("<HHH", bytes(mu.mem_read(p, 6)))
-        cmp_, en = self.twin.fast(iu, iv, vdc)
         self.fast_calls += 1
-        self.expect = (cmp_, en)
+        new = []
+        preempting = False
+        for c in self.cands:
+            self.twin.restore(c["state"])
+            out = self.twin.fast(iu, iv, vdc)
+            new.append({"state": self.twin.save(), "applied": dict(c["applied"]), "expect": out,
+                        "order": "before"})
+            for tk, (outp, inputs) in self.pending_tick.items():
+                if tk in c["applied"]:
+                    continue
+                preempting = True
+                self.twin.restore(c["state"])
+                tick_out = self.twin.tick(*inputs)
+                out = self.twin.fast(iu, iv, vdc)
+                ap = dict(c["applied"])
+                ap[tk] = tick_out
+                new.append({"state": self.twin.save(), "applied": ap, "expect": out, "order": "after"})
+        self.fresh = (mu.reg_read(self.R0), new, preempting)
+        self._hook_ret(mu, self._on_fast_ret, self.fast_ret_hooked)
+
+    def _on_fast_ret(self, mu, addr, size, data):
+        if getattr(self, "fresh", None) is None:
+            return
+        resp, new, preempting = self.fresh
+        self.fresh = None
+        c0, c1, c2, en = struct.unpack("<HHHB", bytes(mu.mem_read(resp, 7)))
+        img = ([c0, c1, c2], bool(en))
+        keep = [c for c in new if c["expect"] == img]
+        if preempting:
+            orders = {c["order"] for c in keep}
+            if orders == {"before"}:
+                self.order_before += 1
+            elif orders == {"after"}:
+                self.order_after += 1
+            elif orders:
+                self.order_same += 1
+        if not keep:
+            if self.active():
+                self._diverge("fast step %d result%s" % (self.fast_calls, " (pre-empting a tick, either order)"
+                                                         if preempting else ""), img, new[0]["expect"])
+            keep = new[:1]
+        self.cands = self._merge(keep)
+        self.expect = self.cands[0]["expect"]
+
+    def _merge(self, cands):
+        out, seen = [], set()
+        for c in cands:
+            key = (c["state"], tuple(sorted(c["applied"])))
+            if key not in seen:
+                seen.add(key)
+                out.append(c)
+        self.max_cands = max(getattr(self, "max_cands", 1), len(out))
+        return out[:self.MAX_CANDS]
 
     def _on_tick(self, mu, addr, size, data):
         sp = mu.reg_read(self.SP)
@@ -167,34 +256,52 @@ class LockStep:
         rx = bytes(mu.mem_read(rxp, n)) if n else b""
         self.frames_rx += 1 if n else 0
         self.tick_calls += 1
-        ret = mu.reg_read(self.LR) & ~1
-        if ret not in self.ret_hooked:
-            self.ret_hooked.add(ret)
-            mu.hook_add(self.HOOK, self._on_tick_ret, begin=ret, end=ret)
+        self._hook_ret(mu, self._on_tick_ret, self.ret_hooked)
         self.pending_tick[sp] = (outp, (t_ipm, t_pcb, rx))
 
     def _on_tick_ret(self, mu, addr, size, data):
         sp = mu.reg_read(self.SP)
         item = self.pending_tick.pop(sp, None)
-        if item is None:
+        if item is None or not getattr(self, "cands", None):
             return
         outp, inputs = item
-        host = self.twin.tick(*inputs)
         img = image_tick_out(bytes(mu.mem_read(outp, 26)))
-        if host["pwm_off"]:
-            self.expect = ([0, 0, 0], False)
-        if not self.active():
-            return
-        self.ticks_compared += 1
+        keep, first_bad = [], None
+        for c in self.cands:
+            if sp in c["applied"]:
+                host = c["applied"].pop(sp)
+                state = c["state"]
+            else:
+                self.twin.restore(c["state"])
+                host = self.twin.tick(*inputs)
+                state = self.twin.save()
+            bad = self._tick_diff(img, host)
+            c2 = {"state": state, "applied": c["applied"],
+                  "expect": ([0, 0, 0], False) if host["pwm_off"] else c["expect"]}
+            if bad is None:
+                keep.append(c2)
+            elif first_bad is None:
+                first_bad = bad + (c2,)
+        if self.active():
+            self.ticks_compared += 1
+        if not keep:
+            if self.active():
+                f, a, b, _ = first_bad
+                self._diverge("tick %d: %s" % (self.tick_calls, f), a, b)
+            keep = [first_bad[3]]
+        self.cands = self._merge(keep)
+        self.expect = self.cands[0]["expect"]
+
+    @staticmethod
+    def _tick_diff(img, host):
         for f in ("tx_len", "tx", "can_send", "pwm_off"):
             if img[f] != host[f]:
-                self._diverge("tick %d: %s" % (self.tick_calls, f), img[f], host[f])
-                return
+                return (f, img[f], host[f])
         if host["can_send"]:
             for f in ("can_id", "can_dlc", "can_data"):
                 if img[f] != host[f]:
-                    self._diverge("tick %d: %s" % (self.tick_calls, f), img[f], host[f])
-                    return
+                    return (f, img[f], host[f])
+        return None
 
     def _diverge(self, field, img, host):
         fmt = lambda v: v.hex() if isinstance(v, bytes) else v  # noqa: E731
@@ -226,8 +333,9 @@ class LockStep:
     def report(self):
         s = ("lock-step with the host build: %d PWM periods compared (C0V..C5V, enable), %d ticks "
              "compared (LIN tx, CAN frame, pwm_off); calls: fast step %d, tick %d (%d with a received "
-             "frame), drive inits %d" % (self.periods, self.ticks_compared, self.fast_calls, self.tick_calls,
-                                         self.frames_rx, self.inits))
+             "frame), drive inits %d; fast steps pre-empting a tick: %d saw the tick's effect, %d did not, %d "
+             "either" % (self.periods, self.ticks_compared, self.fast_calls, self.tick_calls,
+                         self.frames_rx, self.inits, self.order_after, self.order_before, self.order_same))
         if self.divergence:
             p, f, a, b, t = self.divergence
             s += "\nlock-step FIRST DIVERGENCE at period %d (%.3f ms): %s image %s host %s" % (
