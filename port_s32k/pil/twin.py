@@ -15,18 +15,16 @@ image's functions:
   (qfoc_tick_out_t), r2 = &in (qfoc_tick_in_t: t_ipm, t_pcb int16 at 0 and 2, rx pointer
   at 4, rx_len at 8): the inputs are read at the entry (the same temperatures, the same
   received bytes: the frame the UART receive path assembled); the twin's tick runs at
-  the return address (a code hook on the caller's instruction after the call), so that a
-  fast step that pre-empted the image's tick runs in the twin before the tick (the twin
-  cannot split a tick); then the image's qfoc_tick_out_t is read from the result's
+  the return address (a code hook on the caller's instruction after the call); then the image's qfoc_tick_out_t is read from the result's
   address and compared field by field with the twin's (tx_len, tx[0..tx_len), the CAN
   frame id, dlc, data, can_send, pwm_off).  Without pre-emption the order is the image's
   exactly.  A fast step that pre-empts the image's tick (a tick pending at its entry) is
-  run in the twin in both orders, from a saved copy of the twin's state: before the tick
-  and after it (the tick then done at that point); the image's result, read at the fast
-  step's return (qfoc_pwm_t at r0), selects the order and its state, and the count of
-  each order is reported.  A result that matches neither order is a divergence (a fast
-  step that saw part of the tick's writes); when both orders give the same result the
-  "before" order is kept (a later divergence would show if the states differ).
+  run in the twin in both orders, from saved copies of the twin's state: before the tick
+  and after it (the tick then done at that point).  The twin keeps a set of candidate
+  states (normally one): every fast step's result (qfoc_pwm_t at r0, read at its
+  return) and every tick's output keep the candidates that produced them; no candidate
+  left is a divergence (a fast step that read part of the tick's writes, which drive.h
+  allows, shows as one: the twin's limit under pre-emption).
 
 The calls reach the twin in the image's order, with the image's inputs.  At each FTM3
 reload point the compare values in effect (C0V..C5V, as loaded from the buffers with
