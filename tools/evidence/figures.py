@@ -338,7 +338,8 @@ def values(root="."):
     put("tests.port", sum(1 for f, _n, _i in cm if os.path.basename(f) == "test_port.c"),
         "tests/test_port.c")
     put("tests.cmocka_files", len({f for f, _n, _i in cm}), "tests/*.c with registered tests")
-    put("tests.pytest", len(py), "tools/*/tests/*.py (test_ functions)")
+    put("tests.pytest", sum(1 for f, _n, _i in py if f.startswith("tools/")),
+        "tools/*/tests/*.py (test_ functions)")
     put("tests.pytest_tune", sum(1 for f, _n, _i in py if f.startswith("tools/tune/")),
         "tools/tune/tests/*.py (test_ functions)")
     put("tt.groups", len(groups) or None, "tools/target_test/tt_groups.c")

@@ -20,7 +20,8 @@ names, contract documentation) and from the committed proof results:
   cbmc       proofs/cbmc/<harness>/harness.c naming the ID anywhere, with the harness's row
              of proofs/cbmc/results.md
   tests      CMocka tests (the functions registered with cmocka_unit_test*() in tests/*.c)
-             and pytest tests (test_* in tools/*/tests/*.py) naming the ID in their body or in
+             and pytest tests (test_* in tools/*/tests/*.py and port_s32k/pil/tests/*.py)
+             naming the ID in their body or in
              the comment block right above their definition (decorators skipped), or in
              their name (test_<mod>_NNN_...: REQ-<MOD>-NNN, when defined); the
              target-equivalence groups of tools/target_test/tt_groups.c (the IDs of the
@@ -38,7 +39,8 @@ names, contract documentation) and from the committed proof results:
              tools/a2l/qfoc_a2l.py, the evidence generator's
              tools/evidence/evidence.py, the architecture check tools/evidence/arch_check.py,
              the vector format tools/target_test/tt.h, the
-             bench's tools/bench/*.h and the fuzz harnesses' tests/fuzz/fuzz.h
+             bench's tools/bench/*.h, the fuzz harnesses' tests/fuzz/fuzz.h and the
+             processor-in-the-loop modules port_s32k/pil/{core,periph,twin,scenarios,defects}.py
 
 Gates (exit status 1, every offender listed):
   (a) a requirement with no proof (a contract with WP goals, an ACSL lemma, or a CBMC
@@ -76,6 +78,12 @@ REQ = re.compile(r"\bREQ-([A-Z0-9]+)-(\d{3})\b")
 RANGE = re.compile(r"\bREQ-([A-Z0-9]+)-(\d{3})\s*(?:\.\.|\u2026|--)\s*REQ-([A-Z0-9]+)-(\d{3})\b")
 HEAD = re.compile(r"^###\s+(REQ-[A-Z0-9]+-\d{3})\s+(.*)$")
 OUT = "build/trace"
+
+# The processor-in-the-loop tests (port_s32k/pil/, specs/requirements/pil.md): pytest too,
+# and the modules of port_s32k/pil/ whose docstrings name its requirements.
+PIL_TESTS = "port_s32k/pil/tests/test_*.py"
+PIL_INTERFACES = ("port_s32k/pil/core.py", "port_s32k/pil/periph.py", "port_s32k/pil/twin.py",
+                  "port_s32k/pil/scenarios.py", "port_s32k/pil/defects.py")
 
 # Checking programs of the target-equivalence test: each is one test, traced by its header.
 TT_CHECKERS = ("tools/target_test/target_test.sh", "tools/target_test/tt_gen.c",
@@ -477,7 +485,7 @@ def with_names(tests, defined):
 
 def pytest_tests(defined):
     tests = []
-    for path in sorted(glob.glob("tools/*/tests/*.py")):
+    for path in sorted(glob.glob("tools/*/tests/*.py") + glob.glob(PIL_TESTS)):
         text = read(path)
         lines = text.splitlines()
         tree = ast.parse(text, path)
@@ -729,7 +737,7 @@ def main() -> int:
                      "tools/evidence/evidence.py",
                      "tools/evidence/arch_check.py", "tools/target_test/tt.h",
                      "sim/sim.h"]
-                  + sorted(glob.glob("tools/bench/*.h")) + [FUZZ_INTERFACE])
+                  + sorted(glob.glob("tools/bench/*.h")) + [FUZZ_INTERFACE] + list(PIL_INTERFACES))
     named_in = {}
     for p in interfaces:
         if os.path.exists(p):

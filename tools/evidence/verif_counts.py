@@ -14,7 +14,7 @@ Suites and their cases (paths relative to the root; a suite whose files are abse
 out):
   CMocka     each tests/test_*.c; a case is each function registered with cmocka_unit_test*()
              (a file without registrations: each 'void test_*(void **state)' function);
-  pytest     each test_*.py under tools/ (any depth); a case is each function 'def test_*'
+  pytest     each test_*.py under tools/ (any depth) and port_s32k/pil/tests/; a case is each function 'def test_*'
              (a parametrised function is one case), named by the file's base name (its path
              relative to the root when two files share a base name);
   CBMC       proofs/cbmc: a case is each folder holding a harness.c;
@@ -422,7 +422,8 @@ def py_cases(root, path):
 
 
 def pytest_suites(root):
-    paths = sorted(glob.glob(os.path.join(root, "tools", "**", "test_*.py"), recursive=True))
+    paths = sorted(glob.glob(os.path.join(root, "tools", "**", "test_*.py"), recursive=True)
+                   + glob.glob(os.path.join(root, "port_s32k", "pil", "tests", "test_*.py")))
     base = [os.path.basename(p) for p in paths]
     suites = []
     for path, b in zip(paths, base):

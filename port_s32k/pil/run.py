@@ -1,0 +1,461 @@
+#!/usr/bin/env python3
+"""run.py -- processor in the loop: the unchanged S32K144 image from its reset vector on
+the emulated Cortex-M4 (core.py) with register-level peripherals (periph.py) and real
+interrupts, driving the simulated motor of sim/ (plant.py).
+
+Usage: run.py IMAGE.elf [--ms 300] [--motor specs/motors/reference.toml] [--vdc 320]
+              [--lib build/pil/libpilplant.so] [--lin-period-ms 20] [--power-on-ms T]
+              [--rpm 1500] [--fault-ms T]
+
+Coupling, at each reload point of FTM3 (counter at MOD, SYNC[CNTMAX]; the centre of the
+all-low-side zero vector and the sampling instant of the port, port_s32k/README.md):
+the compare values C0V, C2V, C4V in effect from that point and the enable (all six outputs
+switching, PTD5 high) go to the plant, which integrates the period that has just ended
+(sim_step_period) and is then sampled (sim_sample): the ADC model converts these codes
+when the PDB pre-triggers start its conversions (i_u on ADC0_SE3, i_v on ADC1_SE2, V_dc on
+ADC1_SE8).  The plant samples only at period starts: a conversion that does not start at
+the reload instant (T_PCB, T_IPM and V_dc, back to back after it) converts the values of
+that instant (counted as `off-instant` conversions; the bus is constant here).  The NTC
+inputs read 2048 (25 degC: no thermal model).
+
+Commands (optional): the LIN master sends a command frame (SYNC, PID(0x10), 4 data bytes,
+enhanced checksum; include/qfoc/link.h, specs/link-frames.md) every --lin-period-ms on
+the LPUART1 receive line, break first; power_on is set from --power-on-ms on.
+
+Fault (optional, --fault-ms): the over-current comparator asserts FTM3_FLT0 from that time
+on; the bridge must be off from the next reload point and the drive must end in ERROR.
+
+Expectations checked (exit status 1 when one fails): no stop of the run and no
+watchdog reset; FTM3 period interrupts at the PWM frequency and one ADC1 interrupt per
+PWM period once the PWM runs (+-2); one LPIT0 interrupt per ms (+-1); the watchdog
+refreshed at every tick; the compare values written (LDOK) before the next reload point
+after their samples; the drive state reported on CAN reaches STOP (ready) after PRECHARGE
+(or RUN with --power-on-ms).
+"""
+import argparse
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import core as core_mod  # noqa: E402
+import periph  # noqa: E402
+import plant as plant_mod  # noqa: E402
+import twin as twin_mod  # noqa: E402
+
+ROOT = plant_mod.ROOT
+STATES = {0: "PRECHARGE", 1: "STOP", 2: "RUN", 3: "ERROR"}
+# the phase currents convert at the reload point (PDB delay CH0DLY0 = MOD) or, for the
+# second converter's chain, within one conversion time after it
+SAMPLE_TOL = 200
+IRQS = {122: "FTM3 period", 40: "ADC1 complete", 48: "LPIT0 1 ms", 33: "LPUART1"}
+
+
+def lin_pid(i):
+    i &= 0x3F
+    b = [(i >> k) & 1 for k in range(6)]
+    p0 = b[0] ^ b[1] ^ b[2] ^ b[4]
+    p1 = 1 - (b[1] ^ b[3] ^ b[4] ^ b[5])
+    return i | (p0 << 6) | (p1 << 7)
+
+
+def lin_checksum(data):
+    s = 0
+    for x in data:
+        s += x
+        if s > 255:
+            s -= 255
+    return 255 - s
+
+
+def command_frame(power_on, rpm, fault_clear=False, id_cmd=0x10):
+    pid = lin_pid(id_cmd)
+    data = [(1 if power_on else 0) | (2 if fault_clear else 0), rpm & 0xFF, (rpm >> 8) & 0xFF, 0]
+    return bytes([0x55, pid] + data + [lin_checksum([pid] + data)])
+
+
+class PIL:
+    def __init__(self, elf, motor, vdc, lib):
+        self.core = core_mod.Core(elf)
+        self.dev = periph.build(self.core)
+        self.plant = plant_mod.Plant(lib, motor, vdc)
+        ftm = self.dev["FTM3"]
+        ftm.on_reload = self.on_reload
+        self.dev["ADC0"].analog = self.analog
+        self.dev["ADC1"].analog = self.analog
+        self.codes = [2048, 2048, 0]
+        self.t_sample = None
+        self.off_instant = 0
+        self.iu_conv = 0             # phase-current conversions
+        self.iu_off = 0              # ... started more than SAMPLE_TOL clocks after the reload point
+        self.latencies = []          # PDB1 pre-trigger 0 -> LDOK write, core clocks
+        self.late_writes = 0
+        self.enabled_periods = 0
+        self.t_first_reload = None
+        self.t_fault = None          # FTM3_FLT0 asserted from this core clock
+        self.on_after_fault = 0      # periods that started with the bridge on after it
+        self.lockstep = None         # twin.LockStep when --lockstep
+        self.bridge_log = []         # (core clock, bridge switching) at each change
+        self.w_log = []              # (core clock, plant electrical speed rad/s) every 10 ms
+        self.reset_times = []        # core clocks of the watchdog resets
+        self.t_gate_off = None       # first reload point with PTD5 low after an injection
+        self.inject = None
+        self.lin_last = None         # core clock of the last command frame sent
+
+    def attach_lockstep(self, lib):
+        self.lockstep = twin_mod.LockStep(self, lib)
+
+    def gate_on(self):
+        return self.dev["GPIOD"].pin_high(5)
+
+    def on_reload(self, t):
+        ftm = self.dev["FTM3"]
+        if self.t_first_reload is None:
+            self.t_first_reload = t
+        pre = self.dev["PDB1"].pretrig_times
+        if pre:
+            tp = pre[-1]
+            after = [w for w in ftm.ldok_writes if w > tp]
+            if after:
+                self.latencies.append(after[0] - tp)     # the first write after the samples
+            elif len(pre) > 1:
+                self.late_writes += 1
+        ftm.ldok_writes = []
+        on = ftm.outputs_on() and self.gate_on()
+        if self.inject is not None and t >= self.inject and self.t_gate_off is None and \
+                not self.gate_on() and ftm.r["OUTMASK"] & 0x3F == 0x3F:
+            self.t_gate_off = t
+        if not self.bridge_log or self.bridge_log[-1][1] != on:
+            self.bridge_log.append((t, on))
+        if self.lockstep is not None:
+            self.lockstep.on_reload(ftm, fault_latched=not self.gate_on())
+        self.enabled_periods += 1 if on else 0
+        if self.t_fault is not None and t > self.t_fault and on:
+            self.on_after_fault += 1
+        self.plant.step([ftm.r["C0V"], ftm.r["C2V"], ftm.r["C4V"]], on)
+        self.codes = self.plant.sample()
+        self.t_sample = t
+
+    def analog(self, adc, ch, t):
+        table = {(0, 3): 0, (1, 2): 1, (1, 8): 2}
+        k = table.get((adc, ch))
+        if k is None:
+            if (adc, ch) in ((0, 12), (1, 7)):
+                return 2048                          # NTC at 25 degC
+            raise core_mod.Stop("ADC%d channel %d has no input in the plant" % (adc, ch))
+        if t != self.t_sample:
+            self.off_instant += 1
+        if k < 2:
+            self.iu_conv += 1
+            if self.t_sample is None or t - self.t_sample > SAMPLE_TOL:
+                self.iu_off += 1
+        return self.codes[k]
+
+
+def stats(xs):
+    if not xs:
+        return "-"
+    return "%d / %.1f / %d" % (min(xs), sum(xs) / len(xs), max(xs))
+
+
+def main(argv):
+    return execute(parse_args(argv[1:]))["rc"]
+
+
+def parse_args(argv):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("elf")
+    ap.add_argument("--ms", type=float, default=300.0)
+    ap.add_argument("--motor", default=os.path.join(ROOT, "specs", "motors", "reference.toml"))
+    ap.add_argument("--vdc", type=float, default=320.0)
+    ap.add_argument("--lib", default=os.path.join(ROOT, "build", "pil", "libpilplant.so"))
+    ap.add_argument("--lin-period-ms", type=float, default=0.0,
+                    help="send a LIN command frame this often (0: no LIN traffic)")
+    ap.add_argument("--power-on-ms", type=float, default=None,
+                    help="from this time on the command requests RUN")
+    ap.add_argument("--rpm", type=int, default=1500)
+    ap.add_argument("--fault-ms", type=float, default=None,
+                    help="assert the over-current input FTM3_FLT0 (PTE7 low) from this time on")
+    ap.add_argument("--lockstep", action="store_true",
+                    help="lock-step with the host build of the drive (twin.py)")
+    ap.add_argument("--twin-lib", default=os.path.join(ROOT, "build", "pil", "libpiltwin.so"))
+    ap.add_argument("--rpm-step-ms", type=float, default=None, help="from this time on command --rpm2")
+    ap.add_argument("--rpm2", type=int, default=2500)
+    ap.add_argument("--power-off-ms", type=float, default=None, help="from this time on power_on is clear")
+    ap.add_argument("--lin-stop-ms", type=float, default=None,
+                    help="the LIN master stops sending command frames at this time (link loss)")
+    ap.add_argument("--stall-adc-isr-ms", type=float, default=None,
+                    help="from this time on the ADC1 handler spins (a stalled interrupt)")
+    ap.add_argument("--stuck-adc-ms", type=float, default=None,
+                    help="from this time on ADC1 converts nothing (no conversion complete)")
+    ap.add_argument("--tick-phase-clk", type=int, default=0,
+                    help="delay the first LPIT0 timeout by this many core clocks (the tick's phase "
+                         "in the PWM period)")
+    ap.add_argument("--adc-latency-max", type=int, default=None,
+                    help="expect every ADC1 interrupt latency (request -> first handler "
+                         "instruction) at most this many clocks")
+    ap.add_argument("--expect", default=None,
+                    help="expected final state: PRECHARGE, STOP, RUN, ERROR or RESET (a watchdog reset)")
+    return ap.parse_args(argv)
+
+
+def execute(args):
+    """One run; prints the report and returns a dict with the verdict and the figures."""
+
+    plant_mod.build(args.lib)
+    pil = PIL(args.elf, args.motor, args.vdc, args.lib)
+    c, d = pil.core, pil.dev
+    hz = core_mod.CORE_HZ
+    if args.lockstep:
+        twin_mod.build(args.twin_lib)
+        pil.attach_lockstep(args.twin_lib)
+    d["LPIT0"].first_delay = args.tick_phase_clk
+    inject = None
+    if args.stall_adc_isr_ms is not None:
+        inject = int(args.stall_adc_isr_ms * hz / 1000)
+        stall_at(c, inject)
+    if args.stuck_adc_ms is not None:
+        inject = int(args.stuck_adc_ms * hz / 1000)
+        stuck_adc(d["ADC1"], inject)
+    pil.inject = inject
+    core_reset = c.reset
+
+    def reset():
+        pil.reset_times.append(c.now())
+        core_reset()
+    c.reset = reset
+    if pil.lockstep is not None and inject is not None:
+        pil.lockstep.compare_until = inject
+    c.boot()
+    t_end = int(args.ms * hz / 1000)
+    state_log = []
+    can_seen = 0
+    can_list = d["CAN0"].frames
+    next_lin = int(args.lin_period_ms * hz / 1000) if args.lin_period_ms > 0 else None
+    t = 0
+    step = hz // 1000
+    lin_sent = 0
+    while t < t_end and c.stopped is None:
+        t = min(t + step, t_end)
+        lin_on = args.lin_stop_ms is None or c.cycles < args.lin_stop_ms * hz / 1000
+        if next_lin is not None and c.cycles >= next_lin and d["LPUART1"].r["CTRL"] & (1 << 18) and lin_on:
+            on = args.power_on_ms is not None and c.cycles >= args.power_on_ms * hz / 1000
+            if args.power_off_ms is not None and c.cycles >= args.power_off_ms * hz / 1000:
+                on = False
+            rpm = args.rpm
+            if args.rpm_step_ms is not None and c.cycles >= args.rpm_step_ms * hz / 1000:
+                rpm = args.rpm2
+            d["LPUART1"].inject(c.cycles, command_frame(on, rpm))
+            pil.lin_last = c.cycles
+            lin_sent += 1
+            next_lin += int(args.lin_period_ms * hz / 1000)
+        if args.fault_ms is not None and pil.t_fault is None and c.cycles >= args.fault_ms * hz / 1000:
+            pil.t_fault = c.cycles
+            d["FTM3"].set_fault(True)
+        c.run_until(t)
+        if (t // step) % 10 == 0:
+            pil.w_log.append((c.cycles, pil.plant.state()["w_e"]))
+        frames = d["CAN0"].frames
+        if frames is not can_list:
+            can_list, can_seen = frames, 0     # the controller's log restarted with a reset
+        for (tc, ident, dlc, data) in frames[can_seen:]:
+            can_seen += 1
+            state_log.append((tc, data[0] & 0xF, data[0] >> 4, data))
+    pil.state_log = state_log
+    ms = c.cycles * 1000.0 / hz
+
+    # ------------------------------------------------------------------ report
+    print("pil: %s, %.1f ms simulated (%d core clocks at 80 MHz), %d instructions executed"
+          % (os.path.basename(args.elf), ms, c.cycles, c.insns))
+    if c.stopped:
+        print("pil: RUN STOPPED: %s" % c.stopped)
+    ftm_hz = None
+    per = d["FTM3"].r["MOD"]
+    if per:
+        ftm_hz = hz / (2.0 * per)
+    print("\n%-16s %7s %10s %24s %26s %22s" % ("interrupt", "count", "rate", "instructions min/mean/max",
+                                                "clocks w. entry+return", "latency clk min/mean/max"))
+    counts = {}
+    for irq, name in IRQS.items():
+        st = c.irq_stats.get(irq, [])
+        counts[irq] = len(st)
+        rate = ""
+        if name.startswith("FTM") or name.startswith("ADC"):
+            span = (c.cycles - (pil.t_first_reload or 0)) / hz
+            rate = "%.0f Hz" % (len(st) / span) if span > 0 and st else "-"
+        elif name.startswith("LPIT"):
+            rate = "%.0f Hz" % (len(st) / (c.cycles / hz)) if st else "-"
+        print("%-16s %7d %10s %24s %26s %22s" % (name, len(st), rate, stats([s[0] for s in st]),
+                                                 stats([s[1] for s in st]), stats([s[2] for s in st])))
+    busy = sum(s[1] for st in c.irq_stats.values() for s in st)
+    print("pre-emptions (nested entries) %d, tail chains %d; clocks in handlers %.1f %% of the run"
+          % (c.preemptions, c.tailchains, 100.0 * busy / max(1, c.cycles)))
+    print("(instructions: the handler's own, nested handlers excluded; clocks: with the entry, %d "
+          "(%d tail-chained), and the return, %d (none when it tail-chains); latency: request to "
+          "the handler's first instruction, entry included)"
+          % (core_mod.ENTRY_CYCLES, core_mod.TAILCHAIN_CYCLES, core_mod.RETURN_CYCLES))
+    lat = pil.latencies
+    if lat:
+        print("\nPDB pre-trigger (sampling instant) -> compare values loaded (PWMLOAD[LDOK] write): "
+              "%s clocks = %.2f / %.2f / %.2f us (deadline: the next reload point, %d clocks)"
+              % (stats(lat), min(lat) / 80.0, sum(lat) / len(lat) / 80.0, max(lat) / 80.0, 2 * per))
+        dly = d["PDB1"].r["CH0DLY0"]
+        print("PDB trigger input (FTM3 init trigger, counter at CNTIN) -> LDOK write: %s clocks "
+              "(CH0DLY0 = %d plus the above)" % (stats([x + dly for x in lat]), dly))
+    print("ADC conversions: ADC0 %d, ADC1 %d; PDB sequence errors ADC0 0x%02X ADC1 0x%02X; "
+          "conversions off the reload instant %d; trigger conflicts %d/%d"
+          % (d["ADC0"].conversions, d["ADC1"].conversions, d["PDB0"].r["CH0S"] & 0xFF,
+             d["PDB1"].r["CH0S"] & 0xFF, pil.off_instant, d["ADC0"].conflicts, d["ADC1"].conflicts))
+    print("watchdog refreshes %d, timeouts (resets) %d; LPIT timeouts %d; plant periods %d (%d with "
+          "the bridge switching); CAN frames %d; LIN frames sent to the drive %d, bytes from it %d"
+          % (d["WDOG"].refreshes, getattr(c, "wdog_timeouts", 0), d["LPIT0"].timeouts, pil.plant.steps,
+             pil.enabled_periods, len(d["CAN0"].frames), lin_sent, len(d["LPUART1"].tx_log)))
+    # LIN status frames from the drive: break, SYNC, PID(0x11), 8 data bytes, checksum
+    frames, cur = [], None
+    for tc, item in d["LPUART1"].tx_log:
+        if item == "BRK":
+            cur = [tc]
+            frames.append(cur)
+        elif cur is not None:
+            cur.append(item)
+    good = [f for f in frames if len(f) == 12 and f[1] == 0x55 and f[2] == lin_pid(0x11)
+            and f[11] == lin_checksum(f[2:11])]
+    lin_states = sorted(set(STATES.get(f[3] & 0xF, "?") for f in good))
+    print("LIN status frames from the drive: %d, %d well-formed (PID, checksum), states %s"
+          % (len(frames), len(good), ", ".join(lin_states) or "-"))
+    trig = d["PDB1"].trigger_times
+    offs = []
+    k = 0
+    for st in c.irq_stats.get(40, []):
+        while k + 1 < len(trig) and trig[k + 1] <= st[3]:
+            k += 1
+        if trig and trig[k] <= st[3]:
+            offs.append(st[3] - trig[k])
+    if offs:
+        print("ADC1 interrupt request after the period's FTM3 init trigger (PDB1 CH0DLY0 = %d, then "
+              "3 conversions): %s clocks" % (d["PDB1"].r["CH0DLY0"], stats(offs)))
+    ph = []
+    k = 0
+    for st in c.irq_stats.get(48, []):
+        while k + 1 < len(trig) and trig[k + 1] <= st[3]:
+            k += 1
+        if trig and trig[k] <= st[3]:
+            ph.append(st[3] - trig[k])
+    if ph:
+        print("LPIT0 request after the period's FTM3 init trigger: %s clocks: a fixed phase (the tick "
+              "and the PWM both come from the 8 MHz crystal)" % stats(ph))
+    if c.preempt_pairs:
+        print("pre-emptions: " + ", ".join("%s by %s %d" % (IRQS.get(a, a), IRQS.get(b, b), n)
+                                            for (a, b), n in sorted(c.preempt_pairs.items())))
+    final = state_log[-1] if state_log else None
+    seen = []
+    for tc, s, sub, _ in state_log:
+        if not seen or seen[-1][1:] != (s, sub):
+            seen.append((tc, s, sub))
+    print("drive states (CAN status frame, byte 0): " +
+          ", ".join("%s/%d at %.1f ms" % (STATES.get(s, s), sub, tc * 1000.0 / hz) for tc, s, sub in seen))
+    ps = pil.plant.state()
+    print("plant: t %.4f s, w_e %.1f rad/s, id %.2f A, iq %.2f A" % (ps["t"], ps["w_e"], ps["id"], ps["iq"]))
+
+    # ------------------------------------------------------------------ verdict
+    ls = pil.lockstep
+    if ls is not None:
+        print(ls.report())
+    adc_lat = [st[2] for st in c.irq_stats.get(40, [])]
+    iu_off = pil.iu_off
+    print("phase-current conversions (ADC0_SE3, ADC1_SE2) started off the reload instant: %d of %d; "
+          "ADC1 latency max %s clocks" % (iu_off, pil.iu_conv, max(adc_lat) if adc_lat else "-"))
+    lat_ok = bool(lat) and max(lat) < 2 * per and pil.late_writes <= 1
+    t_inj = inject
+    checks = []
+    checks.append(("the run completes without a stop", c.stopped is None, c.stopped or ""))
+    n_per = d["FTM3"].reloads
+    n_ms = d["LPIT0"].timeouts
+    expect = args.expect
+    if expect is None:
+        want = 2 if args.power_on_ms is not None else 1
+        if args.fault_ms is not None:
+            want = 3
+        expect = STATES[want]
+    if t_inj is None:
+        checks.append(("no watchdog reset", c.resets == 0, "%d" % c.resets))
+        checks.append(("FTM3 period interrupt once per PWM period (%d periods, %.0f Hz)" % (n_per, ftm_hz or 0),
+                       abs(counts[122] - n_per) <= 2 and n_per > 0, "%d" % counts[122]))
+        checks.append(("ADC1 interrupt once per PWM period", abs(counts[40] - n_per) <= 2 and n_per > 0,
+                       "%d" % counts[40]))
+        checks.append(("LPIT0 tick every 1 ms (%d timeouts)" % n_ms,
+                       abs(counts[48] - n_ms) <= 1 and abs(n_ms - (c.cycles - args.tick_phase_clk) / 80000.0) <= 2,
+                       "%d" % counts[48]))
+        checks.append(("watchdog refreshed by every tick", abs(d["WDOG"].refreshes - counts[48]) <= 1,
+                       "%d" % d["WDOG"].refreshes))
+        checks.append(("compare values written before the next reload point", lat_ok,
+                       "late %d" % pil.late_writes))
+        checks.append(("phase currents sampled at the reload instant (centre of the low-side zero vector)",
+                       pil.iu_conv > 0 and iu_off == 0, "%d of %d off" % (iu_off, pil.iu_conv)))
+    if args.adc_latency_max is not None:
+        checks.append(("ADC1 interrupt latency <= %d clocks (never delayed by a lower-priority handler)"
+                       % args.adc_latency_max, bool(adc_lat) and max(adc_lat) <= args.adc_latency_max,
+                       "max %s" % (max(adc_lat) if adc_lat else "-")))
+    if pil.t_fault is not None:
+        checks.append(("bridge off from the reload point after the fault input (%.1f ms)"
+                       % (pil.t_fault * 1000.0 / hz), pil.on_after_fault == 0,
+                       "%d periods on" % pil.on_after_fault))
+    if ls is not None:
+        checks.append(("lock-step with the host build: no divergence (%d periods, %d ticks)"
+                       % (ls.periods, ls.ticks_compared), ls.divergence is None and ls.periods > 0,
+                       "first divergence at period %d: %s image %s host %s" % ls.divergence[:4]
+                       if ls.divergence else "none"))
+    if expect == "ANY":
+        pass
+    elif expect == "RESET":
+        checks.append(("watchdog reset of the image after %.1f ms" % (t_inj * 1000.0 / hz if t_inj else 0),
+                       c.resets >= 1, "%d resets" % c.resets))
+    else:
+        checks.append(("drive reaches %s" % expect, final is not None and STATES.get(final[1]) == expect,
+                       STATES.get(final[1], "?") if final else "no CAN frame"))
+    for what, good, detail in getattr(args, "extra_checks", lambda r: [])(
+            {"pil": pil, "seen": seen, "hz": hz, "inject": t_inj}):
+        checks.append((what, good, detail))
+    print()
+    ok = True
+    for what, good, detail in checks:
+        ok &= bool(good)
+        print("%-4s %s (%s)" % ("PASS" if good else "FAIL", what, detail))
+    print("pil: %s" % ("PASS" if ok else "FAIL"))
+    return {"rc": 0 if ok else 1, "ok": ok, "checks": checks, "pil": pil, "seen": seen,
+            "lockstep": ls, "ms": ms, "adc_latency_max": max(adc_lat) if adc_lat else None}
+
+
+def stall_at(c, t0):
+    """From core clock t0 on, the ADC1 handler (qfoc_s32k_adc_isr) spins at its entry: a
+    stalled interrupt (the PC is set to a `b .` found in the image)."""
+    from unicorn import UC_HOOK_CODE
+    from unicorn.arm_const import UC_ARM_REG_PC
+    spins = list(c._find(0xE7FE))
+    if not spins:
+        raise core_mod.Stop("no `b .` in the image for the stall")
+    target = spins[0]
+    a = c.syms["qfoc_s32k_adc_isr"] & ~1
+
+    done = []
+
+    def hook(mu, addr, size, data):
+        if c.now() >= t0 and not done:             # once: the image restarts after the reset
+            done.append(c.now())
+            mu.reg_write(UC_ARM_REG_PC, target | 1)
+    c.mu.hook_add(UC_HOOK_CODE, hook, begin=a, end=a)
+
+
+def stuck_adc(adc, t0):
+    """From core clock t0 on, the converter starts no conversion (no COCO, no interrupt)."""
+    orig = adc.pretrigger
+
+    def pretrigger(n, t):
+        if t >= t0:
+            return
+        orig(n, t)
+    adc.pretrigger = pretrigger
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,824 @@
+"""Tests of the processor-in-the-loop emulator (port_s32k/pil/core.py, periph.py) on small
+Thumb images assembled here (arm-none-eabi-gcc), and one short run of the firmware image
+when it is built (build/s32k144/qfoc_compressor.elf).
+
+    /usr/bin/python3 -m pytest -q port_s32k/pil/tests        (make pil-test)
+"""
+import os
+import shutil
+import struct
+import subprocess
+import sys
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PIL = os.path.dirname(HERE)
+ROOT = os.path.normpath(os.path.join(PIL, "..", ".."))
+sys.path.insert(0, PIL)
+import core  # noqa: E402
+import periph  # noqa: E402
+
+pytestmark = pytest.mark.skipif(shutil.which("arm-none-eabi-gcc") is None,
+                                reason="arm-none-eabi-gcc not installed")
+
+LD = """
+MEMORY { FLASH (rx) : ORIGIN = 0, LENGTH = 512K }
+SECTIONS { .text : { KEEP(*(.vectors)) *(.text*) } > FLASH }
+"""
+
+# Vector table: SP at the top of SRAM_U, reset, then the IRQ vectors named in `irqs`.
+def vectors(irqs):
+    words = ["    .word 0x20007000", "    .word reset + 1"] + ["    .word trap + 1"] * 14
+    for n in range(123):
+        words.append("    .word %s + 1" % irqs[n] if n in irqs else "    .word trap + 1")
+    return "\n".join(words)
+
+
+HEAD = """
+    .syntax unified
+    .cpu cortex-m4
+    .thumb
+    .section .vectors, "a"
+%s
+    .text
+    .thumb_func
+trap:
+    b trap
+"""
+
+# SRAM_L words used by the tests (each written before it is read: the ECC check)
+LOG = 0x1FFF8000
+
+
+def build(tmp_path, name, body, irqs):
+    src = tmp_path / (name + ".S")
+    src.write_text(HEAD % vectors(irqs) + body)
+    ld = tmp_path / "t.ld"
+    ld.write_text(LD)
+    elf = tmp_path / (name + ".elf")
+    subprocess.check_call(["arm-none-eabi-gcc", "-mcpu=cortex-m4", "-mthumb", "-nostdlib",
+                           "-nostartfiles", "-T", str(ld), str(src), "-o", str(elf)])
+    return str(elf)
+
+
+def rd(c, a):
+    return struct.unpack("<I", c.mu.mem_read(a, 4))[0]
+
+
+def sym(elf, name):
+    out = subprocess.check_output(["arm-none-eabi-nm", elf]).decode()
+    for line in out.splitlines():
+        p = line.split()
+        if p[-1] == name:
+            return int(p[0], 16)
+    raise KeyError(name)
+
+
+# ---------------------------------------------------------------------- entry / return
+ROUND_TRIP = """
+    .thumb_func
+reset:
+    ldr r0, =0x1FFF8000        @ clear the log words (32-bit writes: ECC initialised)
+    movs r1, #0
+    movs r2, #32
+1:  str r1, [r0], #4
+    subs r2, #1
+    bne 1b
+    ldr r0, =0xE000E104        @ NVIC_ISER1: IRQ 40
+    movs r1, #1
+    lsls r1, r1, #8
+    str r1, [r0]
+    ldr r0, =0xE000E204        @ NVIC_ISPR1: pend IRQ 40 (masked: PRIMASK set below)
+    cpsid i
+    str r1, [r0]
+    ldr r0, =0x10101010
+    ldr r1, =0x21212121
+    ldr r2, =0x32323232
+    ldr r3, =0x43434343
+    ldr r4, =0x54545454
+    ldr r12, =0xC0C0C0C0
+    ldr lr, =0xE1E1E1E1
+    mov r5, sp
+    ldr r6, =0x1FFF8000
+    str r5, [r6, #0x40]         @ SP before the interrupt
+    movs r7, #0
+    cmp r7, #1                  @ flags: N = 1 (0 - 1 < 0), Z = 0, C = 0
+    cpsie i                     @ the interrupt is taken right here
+    .global after_cpsie
+after_cpsie:
+    mrs r7, apsr
+    str r0, [r6, #0x00]
+    str r1, [r6, #0x04]
+    str r2, [r6, #0x08]
+    str r3, [r6, #0x0C]
+    str r4, [r6, #0x10]
+    mov r8, r12
+    str r8, [r6, #0x14]
+    mov r8, lr
+    str r8, [r6, #0x18]
+    mov r8, sp
+    str r8, [r6, #0x1C]
+    str r7, [r6, #0x20]
+2:  wfi
+    b 2b
+    .ltorg
+
+    .thumb_func
+isr40:
+    ldr r0, =0x1FFF8000
+    ldr r1, [r0, #0x44]
+    adds r1, #1
+    str r1, [r0, #0x44]         @ entries
+    str lr, [r0, #0x48]         @ EXC_RETURN seen by the handler
+    mrs r2, ipsr
+    str r2, [r0, #0x4C]
+    mov r1, sp
+    str r1, [r0, #0x50]
+    ldr r1, [sp, #24]           @ the stacked return address
+    str r1, [r0, #0x54]
+    ldr r1, [sp, #28]           @ the stacked xPSR
+    str r1, [r0, #0x58]
+    movs r1, #0                 @ clobber the caller-saved registers and the flags
+    movs r2, #0
+    movs r3, #0
+    mov r12, r3
+    cmp r3, #0                  @ Z = 1, N = 0, C = 1
+    bx lr
+    .ltorg
+"""
+
+
+def test_entry_return_round_trip_preserves_registers(tmp_path):
+    """REQ-PIL-001: an interrupt taken from thread mode right after CPSIE returns with every register, SP and the flags restored.
+
+    Methods: 1a the exception entry and return of the statement (frame, EXC_RETURN, stacked return address); 1b the class of a basic frame from thread mode with an 8-aligned SP
+    """
+    elf = build(tmp_path, "round", ROUND_TRIP, {40: "isr40"})
+    c = core.Core(elf)
+    c.boot()
+    assert c.run_until(20000), c.stopped
+    assert rd(c, LOG + 0x44) == 1                              # entered once
+    assert rd(c, LOG + 0x48) == 0xFFFFFFF9                     # from thread mode, basic frame
+    assert rd(c, LOG + 0x4C) == 16 + 40                        # IPSR in the handler
+    sp0 = rd(c, LOG + 0x40)
+    assert rd(c, LOG + 0x50) == sp0 - 32                       # the 8-word frame (SP 8-aligned)
+    assert rd(c, LOG + 0x54) == sym(elf, "after_cpsie") & ~1   # taken right after CPSIE
+    assert rd(c, LOG + 0x58) & (1 << 24)                       # xPSR: Thumb bit stacked
+    assert not rd(c, LOG + 0x58) & (1 << 9)                    # no padding
+    assert [rd(c, LOG + 4 * k) for k in range(5)] == [0x10101010, 0x21212121, 0x32323232,
+                                                       0x43434343, 0x54545454]
+    assert rd(c, LOG + 0x14) == 0xC0C0C0C0                     # R12
+    assert rd(c, LOG + 0x18) == 0xE1E1E1E1                     # LR
+    assert rd(c, LOG + 0x1C) == sp0                            # SP restored
+    assert rd(c, LOG + 0x20) >> 28 == 0x8                      # N set, Z and C clear again
+    assert c.irq_stats[40][0][0] > 0 and c.resets == 0
+
+
+def test_misaligned_stack_gets_padding_and_is_restored(tmp_path):
+    """REQ-PIL-001: a 4-aligned SP at the interrupt gets the alignment pad (xPSR bit 9) and the SP is restored.
+
+    Methods: 1b the class of a stack pointer not 8-aligned at the exception; 1c the boundary of the pad, SP 4 below an 8-aligned address
+    """
+    body = ROUND_TRIP.replace("    mov r5, sp\n", "    sub sp, #4\n    mov r5, sp\n")
+    elf = build(tmp_path, "pad", body, {40: "isr40"})
+    c = core.Core(elf)
+    c.boot()
+    assert c.run_until(20000), c.stopped
+    sp0 = rd(c, LOG + 0x40)
+    assert sp0 % 8 == 4
+    assert rd(c, LOG + 0x50) == sp0 - 36                       # 4 bytes of padding
+    assert rd(c, LOG + 0x58) & (1 << 9)                        # recorded in xPSR bit 9
+    assert rd(c, LOG + 0x1C) == sp0
+
+
+# ---------------------------------------------------------------------- pre-emption
+# IRQ 33 (low priority 4) and IRQ 122 (high priority 1): the higher interrupt number has
+# the higher priority.  Each handler appends its mark to a log at 0x1FFF8000 (count at
+# +0x7C).  33 pends 122 in its middle: 122 must pre-empt.  122 pends 33 again: 33 must
+# wait until 122 returns (tail chain).
+PREEMPT = """
+    .thumb_func
+reset:
+    ldr r0, =0x1FFF8000
+    movs r1, #0
+    movs r2, #32
+1:  str r1, [r0], #4
+    subs r2, #1
+    bne 1b
+    cpsid i
+    ldr r0, =0xE000E420         @ NVIC_IPR8: IRQ 33 in byte 1
+    ldr r1, =0x00004000         @ priority 4 << 4
+    str r1, [r0]
+    ldr r0, =0xE000E478         @ NVIC_IPR30: IRQ 122 in byte 2
+    ldr r1, =0x00100000         @ priority 1 << 4
+    str r1, [r0]
+    ldr r0, =0xE000E104         @ ISER1: IRQ 33 (bit 1)
+    movs r1, #2
+    str r1, [r0]
+    ldr r0, =0xE000E10C         @ ISER3: IRQ 122 (bit 26)
+    ldr r1, =0x04000000
+    str r1, [r0]
+    ldr r0, =0xE000E204         @ ISPR1: pend IRQ 33
+    movs r1, #2
+    str r1, [r0]
+    cpsie i
+2:  wfi
+    b 2b
+    .ltorg
+
+    .thumb_func
+mark:                           @ r1 = mark; uses r2, r3
+    ldr r2, =0x1FFF8000
+    ldr r3, [r2, #0x7C]
+    str r1, [r2, r3, lsl #2]
+    adds r3, #1
+    str r3, [r2, #0x7C]
+    bx lr
+    .ltorg
+
+    .thumb_func
+isr33:
+    push {r4, lr}
+    ldr r4, =0x1FFF8000
+    ldr r0, [r4, #0x78]         @ second entry: just mark and leave
+    cbz r0, 3f
+    movs r1, #0x3B
+    bl mark
+    pop {r4, pc}
+3:  movs r0, #1
+    str r0, [r4, #0x78]
+    movs r1, #0x31              @ low: start
+    bl mark
+    ldr r0, =0xE000E20C         @ ISPR3: pend IRQ 122 -> pre-empts here
+    ldr r1, =0x04000000
+    str r1, [r0]
+    movs r1, #0x32              @ low: end
+    bl mark
+    pop {r4, pc}
+    .ltorg
+
+    .thumb_func
+isr122:
+    push {r4, lr}
+    movs r1, #0xA1              @ high: start
+    bl mark
+    ldr r0, =0xE000E204         @ ISPR1: pend IRQ 33 -> must not pre-empt
+    movs r1, #2
+    str r1, [r0]
+    movs r1, #0xA2              @ high: end
+    bl mark
+    pop {r4, pc}
+    .ltorg
+"""
+
+
+def test_priority_inverted_pair_preempts_correctly(tmp_path):
+    """REQ-PIL-001: IRQ 122 of the higher priority pre-empts IRQ 33 at once; IRQ 33 pended again
+    meanwhile does not pre-empt itself and runs tail-chained after it.
+
+    Methods: 1a pre-emption by priority and tail chaining of the statement; 1d the error guessed: pre-emption decided by the IRQ number instead of the priority
+    """
+    elf = build(tmp_path, "preempt", PREEMPT, {33: "isr33", 122: "isr122"})
+    c = core.Core(elf)
+    c.boot()
+    assert c.run_until(50000), c.stopped
+    n = rd(c, LOG + 0x7C)
+    log = [rd(c, LOG + 4 * k) for k in range(n)]
+    # 33 starts; 122 pre-empts it at once and runs to its end (33 pended again waits);
+    # 33 resumes and ends; its second request then runs (tail-chained)
+    assert log == [0x31, 0xA1, 0xA2, 0x32, 0x3B]
+    assert c.preemptions == 1
+    assert c.tailchains == 1
+    assert len(c.irq_stats[33]) == 2 and len(c.irq_stats[122]) == 1
+
+
+# ---------------------------------------------------------------------- stops
+UNKNOWN = """
+    .thumb_func
+reset:
+    ldr r0, =0x40001000
+    .global bad
+bad:
+    ldr r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_unknown_register_stops_with_address_and_pc(tmp_path):
+    """REQ-PIL-002: an access to a register no model defines stops the run with the address and the PC.
+
+    Methods: 1a the stop on an unknown register; 1d the error guessed: a model that reads 0 for a register it does not know
+    """
+    elf = build(tmp_path, "unknown", UNKNOWN, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "0x40001000" in c.stopped
+    assert "pc 0x%08X" % (sym(elf, "bad") & ~1) in c.stopped
+    assert "do not know" in c.stopped
+
+
+READ_ONLY = """
+    .thumb_func
+reset:
+    ldr r0, =0x4006509C         @ PCC_ADC1: clock on (SPLLDIV2)
+    ldr r1, =0x46000000
+    str r1, [r0]
+    ldr r0, =0x40027048         @ ADC1_RA: read-only
+    movs r1, #5
+    .global bad
+bad:
+    str r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_write_to_read_only_register_stops(tmp_path):
+    """REQ-PIL-002: a write to a read-only register stops the run.
+
+    Methods: 1a the stop on a read-only register; 1b the class of read-only registers
+    """
+    elf = build(tmp_path, "ro", READ_ONLY, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "read-only register ADC1_RA" in c.stopped
+    assert "0x40027048" in c.stopped and "pc 0x%08X" % (sym(elf, "bad") & ~1) in c.stopped
+
+
+UNINIT = """
+    .thumb_func
+reset:
+    ldr r0, =0x1FFF8100
+    .global bad
+bad:
+    ldr r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_sram_read_before_write_stops(tmp_path):
+    """REQ-PIL-002: a read of SRAM before its first write stops the run (the part's ECC fault).
+
+    Methods: 1a the stop on SRAM read before written; 1d the error guessed: start-up code that skips the RAM initialisation
+    """
+    elf = build(tmp_path, "ecc", UNINIT, {})
+    c = core.Core(elf)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "SRAM read before its first 32-bit write" in c.stopped and "0x1FFF8100" in c.stopped
+
+
+FTM_WP = """
+    .thumb_func
+reset:
+    ldr r0, =0x40065098         @ PCC_FTM3: clock on
+    ldr r1, =0x46000000
+    str r1, [r0]
+    ldr r0, =0x40026074         @ FTM3_FMS: WPEN
+    movs r1, #0x40
+    str r1, [r0]
+    ldr r0, =0x40026068         @ FTM3_DEADTIME, write-protected now
+    movs r1, #5
+    .global bad
+bad:
+    str r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_ftm_write_while_protected_stops(tmp_path):
+    """REQ-PIL-002: a change of a write-protected FTM3 register stops the run.
+
+    Methods: 1a the stop on a write-protected FTM3 register; 1d the error guessed: configuration written after FMS[WPEN]
+    """
+    elf = build(tmp_path, "wp", FTM_WP, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "write-protected" in c.stopped and "0x40026068" in c.stopped
+
+
+MISALIGNED = """
+    .thumb_func
+reset:
+    ldr r0, =0x40065099
+    .global bad
+bad:
+    ldrb r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_partial_peripheral_access_stops(tmp_path):
+    """REQ-PIL-002: a byte read at an address inside a 32-bit peripheral register stops the run.
+
+    Methods: 1a the stop on a partial access; 1b the class of byte and half-word accesses
+    """
+    elf = build(tmp_path, "mis", MISALIGNED, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "0x40065099" in c.stopped
+
+
+# ---------------------------------------------------------------------- the image
+FW = os.path.join(ROOT, "build", "s32k144", "qfoc_compressor.elf")
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_firmware_interrupt_rates(tmp_path):
+    """REQ-PIL-001: 20 ms of the firmware image: FTM3 and ADC1 once per PWM period, LPIT0 once per ms, every tick refreshes the watchdog, the ADC1 request at MOD plus three conversions.
+
+    Methods: 1a the interrupt rates of the statement on the image
+    """
+    import plant as plant_mod
+    import run
+    lib = plant_mod.build(str(tmp_path / "libpilplant.so"))
+    pil = run.PIL(FW, os.path.join(ROOT, "specs", "motors", "reference.toml"), 320.0, lib)
+    c = pil.core
+    c.boot()
+    assert c.run_until(20 * 80_000), c.stopped            # 20 ms
+    per = pil.dev["FTM3"].reloads
+    assert abs(len(c.irq_stats[122]) - per) <= 1 and per >= 150
+    assert abs(len(c.irq_stats[40]) - per) <= 1
+    assert abs(len(c.irq_stats[48]) - 20) <= 1
+    assert pil.dev["WDOG"].refreshes == len(c.irq_stats[48])
+    assert pil.latencies and max(pil.latencies) < 2 * pil.dev["FTM3"].r["MOD"]
+    # the ADC1 request: PDB1 pre-trigger 0 after CH0DLY0 = MOD clocks, then 3 conversions
+    trig = pil.dev["PDB1"].trigger_times
+    req = c.irq_stats[40][-1][3]
+    last = max(t for t in trig if t <= req)
+    assert req - last == pil.dev["FTM3"].r["MOD"] + 3 * pil.dev["ADC1"].conv_cycles()
+
+
+# ---------------------------------------------------------------------- watchdog
+# WDOG on after reset (CS reset value: enabled, unlocked); the image sets TOVAL = 8 LPO
+# clocks (8 x 625 = 5000 core clocks) and never refreshes: each timeout resets the part,
+# which boots and configures it again.  The fed variant refreshes every ~300 clocks.
+WDOG_MISS = """
+    .thumb_func
+reset:
+    ldr r0, =0x40052000
+    ldr r1, =0xD928C520
+    str r1, [r0, #4]            @ unlock
+    movs r1, #8
+    str r1, [r0, #8]            @ TOVAL = 8 LPO clocks
+    ldr r1, =0x21A0             @ CMD32EN, LPO, EN, UPDATE
+    str r1, [r0]
+1:  b 1b
+    .ltorg
+"""
+
+WDOG_FED = WDOG_MISS.replace("1:  b 1b", """    ldr r2, =0xB480A602
+1:  str r2, [r0, #4]            @ refresh
+    movs r3, #100
+2:  subs r3, #1
+    bne 2b
+    b 1b""")
+
+
+def test_missed_watchdog_refresh_resets_the_image(tmp_path):
+    """REQ-PIL-001: an image that never refreshes the watchdog is reset at each timeout and boots again.
+
+    Methods: 1a the watchdog reset of the statement; 1l the fault injected: the refresh left out
+    """
+    elf = build(tmp_path, "wdog", WDOG_MISS, {})
+    c = core.Core(elf)
+    periph.build(c)
+    c.boot()
+    assert c.run_until(12_000), c.stopped
+    assert c.resets == 2                                    # 8 x 625 clocks after each boot
+
+
+def test_refreshed_watchdog_does_not_reset(tmp_path):
+    """REQ-PIL-001: an image that refreshes the watchdog is never reset.
+
+    Methods: 1a no reset while refreshed; 1b the class of a refresh well within the timeout
+    """
+    elf = build(tmp_path, "wdogok", WDOG_FED, {})
+    c = core.Core(elf)
+    d = periph.build(c)
+    c.boot()
+    assert c.run_until(50_000), c.stopped
+    assert c.resets == 0 and d["WDOG"].refreshes > 10
+
+
+# ---------------------------------------------------------------------- Unicorn's behaviour
+# The two facts of Unicorn that core.py relies on, checked on the installed version.
+def _uc(code):
+    from unicorn import Uc, UC_ARCH_ARM, UC_MODE_THUMB, UC_MODE_MCLASS
+    from unicorn.arm_const import UC_ARM_REG_SP
+    mu = Uc(UC_ARCH_ARM, UC_MODE_THUMB | UC_MODE_MCLASS)
+    mu.mem_map(0, 0x1000)
+    mu.mem_write(0, code)
+    mu.mem_map(0x20000000, 0x1000)
+    mu.reg_write(UC_ARM_REG_SP, 0x20000800)
+    return mu
+
+
+def test_unicorn_reports_exc_return_as_exception_8():
+    """REQ-PIL-001: Unicorn's behaviour the core relies on: a branch to EXC_RETURN reported as exception 8.
+
+    Methods: 1a the exception return the core implements on Unicorn's report; 1d the error guessed: a Unicorn version that changes the report
+    """
+    from unicorn import UcError, UC_HOOK_INTR, UC_ERR_EXCEPTION
+    from unicorn.arm_const import UC_ARM_REG_LR, UC_ARM_REG_PC, UC_ARM_REG_R0
+    code = bytes.fromhex("0530" "7047")            # adds r0, #5 ; bx lr
+    for exc_return in (0xFFFFFFF9, 0xFFFFFFF1):
+        mu = _uc(code)
+        mu.reg_write(UC_ARM_REG_LR, exc_return)
+        with pytest.raises(UcError) as e:          # no hook: an unhandled CPU exception
+            mu.emu_start(1, 0xFFFF, count=10)
+        assert e.value.errno == UC_ERR_EXCEPTION
+        mu = _uc(code)
+        mu.reg_write(UC_ARM_REG_LR, exc_return)
+        seen = []
+        mu.hook_add(UC_HOOK_INTR, lambda uc, n, u: (seen.append((n, uc.reg_read(UC_ARM_REG_PC))),
+                                                    uc.emu_stop()))
+        mu.emu_start(1, 0xFFFF, count=10)
+        assert seen == [(core.EXCP_EXCEPTION_EXIT, exc_return & ~1)]
+        assert mu.reg_read(UC_ARM_REG_R0) == 5     # nothing unstacked: the host's job
+
+
+def test_unicorn_repeats_a_store_stopped_in_its_hook():
+    """REQ-PIL-001: Unicorn's behaviour the core relies on: a store stopped in its hook is executed again on restart.
+
+    Methods: 1a the store applied once per nesting depth; 1d the error guessed: a store applied twice
+    """
+    from unicorn import UC_HOOK_MEM_WRITE
+    from unicorn.arm_const import UC_ARM_REG_PC
+    code = bytes.fromhex("4ff00052" "0120" "1060" "0130" "fee7")  # mov.w r2,#0x20000000; movs r0,#1; str r0,[r2]; adds r0,#1; b .
+    mu = _uc(code)
+    hits = []
+
+    def w(uc, acc, addr, size, value, user):
+        hits.append(uc.reg_read(UC_ARM_REG_PC))
+        if len(hits) == 1:
+            uc.emu_stop()
+    mu.hook_add(UC_HOOK_MEM_WRITE, w)
+    mu.emu_start(1, 0xFFFF, count=100)
+    assert mu.reg_read(UC_ARM_REG_PC) == 6         # stopped at the store, not after it
+    mu.emu_start(6 | 1, 0xFFFF, count=2)
+    assert hits == [6, 6]                          # the store's hook runs again on restart
+
+
+def test_unicorn_count_skips_failed_it_instructions_and_the_core_does_not(tmp_path):
+    """REQ-PIL-001: the time base counts an IT-block instruction whose condition fails (Unicorn's count does not).
+
+    Methods: 1a the time base of one clock per instruction; 1c the boundary of an IT block whose condition fails
+    """
+    # movs r0,#0; cmp r0,#0; it ne; movne r1,#1 (condition fails); movs r2,#2; b .
+    code = bytes.fromhex("0020" "0028" "18bf" "0121" "0222" "fee7")
+    from unicorn.arm_const import UC_ARM_REG_PC
+    mu = _uc(code)
+    mu.emu_start(1, 0xFFFF, count=3)
+    assert mu.reg_read(UC_ARM_REG_PC) == 8         # 3 counted, the skipped movne not
+    body = """
+    .thumb_func
+reset:
+    movs r0, #0
+    cmp r0, #0
+    it ne
+    movne r1, #1
+    movs r2, #2
+1:  b 1b
+"""
+    elf = build(tmp_path, "it", body, {})
+    c = core.Core(elf)
+    c.boot()
+    assert c.run_until(4), c.stopped
+    # the chunk of count=4 ran past the movs r2 (5 instructions) and the time base counted
+    # all five: the skipped movne takes its cycle
+    assert c.mu.reg_read(UC_ARM_REG_PC) == (sym(elf, "reset") & ~1) + 10
+    assert c.insns == 5 and c.cycles == 5
+
+
+# ---------------------------------------------------------------------- FTM3 model
+# FTM3 up-down, MOD 100: a compare value written with LDOK loads at the reload point
+# (counter at MOD, SYNC[CNTMAX]) and not before; RF is set there; CNT counts up then down.
+FTM_LOAD = """
+    .thumb_func
+reset:
+    ldr r0, =0x40065098         @ PCC_FTM3: SPLLDIV1 (PCS 110), clock on
+    ldr r1, =0x46000000
+    str r1, [r0]
+    ldr r0, =0x40026000
+    movs r1, #100
+    str r1, [r0, #0x08]         @ MOD (counter stopped: written at once)
+    movs r1, #50
+    str r1, [r0, #0x10]         @ C0V
+    movs r1, #0x20
+    str r1, [r0, #0x64]         @ COMBINE: SYNCEN0
+    movs r1, #0x02
+    str r1, [r0, #0x58]         @ SYNC: CNTMAX
+    movs r1, #0x28
+    str r1, [r0, #0x00]         @ SC: CLKS = 01, CPWMS: the counter starts
+    movs r1, #20
+    .global wr_c0v
+wr_c0v:
+    str r1, [r0, #0x10]         @ C0V = 20 (buffered)
+    mov r1, #0x200
+    str r1, [r0, #0x98]         @ PWMLOAD[LDOK]
+1:  b 1b
+    .ltorg
+"""
+
+
+def test_ftm_compare_loads_at_the_reload_point(tmp_path):
+    """REQ-PIL-001: FTM3 compare values written with LDOK load at the reload point, not at the write.
+
+    Methods: 1a the compare values in effect at the reload point; 1c the boundary: written just before and just after a reload point
+    """
+    elf = build(tmp_path, "ftm", FTM_LOAD, {})
+    c = core.Core(elf)
+    d = periph.build(c)
+    c.boot()
+    ftm = d["FTM3"]
+    assert c.run_until(40), c.stopped
+    t0 = ftm.t_ref
+    assert ftm.r["C0V"] == 50 and ftm.buf["C0V"] == 20 and ftm.r["PWMLOAD"] & 0x200
+    assert c.run_until(t0 + 99), c.stopped
+    assert ftm.r["C0V"] == 50 and not ftm.r["SC"] & 0x80       # not yet at MOD
+    assert c.run_until(t0 + 101), c.stopped
+    assert ftm.r["C0V"] == 20 and ftm.r["SC"] & 0x80           # loaded; RF set
+    assert ftm.r["SC"] & 0x200                                 # TOF: MOD -> MOD - 1
+    assert c.run_until(t0 + 150), c.stopped
+    c.chunk_end = None
+    assert ftm.rd_CNT() == 50 and ftm.dir == -1                # counting down
+    assert ftm.reloads == 1
+
+
+# ---------------------------------------------------------------------- FP guard
+# Unicorn executes FP instructions and sets CONTROL.FPCA as the core does; an interrupt
+# taken after that would need the extended frame, which core.py does not stack: it stops.
+FP_USE = """
+    .fpu fpv4-sp-d16
+    .thumb_func
+reset:
+    vmov s0, r0
+    ldr r0, =0xE000E104         @ ISER1, ISPR1: IRQ 40 enabled and pending
+    movs r1, #1
+    lsls r1, r1, #8
+    str r1, [r0]
+    ldr r0, =0xE000E204
+    str r1, [r0]
+1:  b 1b
+    .ltorg
+
+    .thumb_func
+isr40:
+    bx lr
+"""
+
+
+def test_interrupt_after_fp_use_stops(tmp_path):
+    """REQ-PIL-002: an interrupt taken after a floating-point instruction (CONTROL.FPCA set) stops the run.
+
+    Methods: 1a the stop on the extended frame, not modelled; 1d the error guessed: port code compiled with FP instructions in a handler
+    """
+    elf = build(tmp_path, "fp", FP_USE, {40: "isr40"})
+    c = core.Core(elf)
+    c.boot()
+    assert not c.run_until(10000)
+    assert "FPCA" in c.stopped
+
+
+# ---------------------------------------------------------------------- lock-step and scenarios
+@pytest.fixture(scope="module")
+def libs(tmp_path_factory):
+    import plant as plant_mod
+    import twin as twin_mod
+    d = tmp_path_factory.mktemp("pil")
+    return (plant_mod.build(str(d / "libpilplant.so")), twin_mod.build(str(d / "libpiltwin.so")))
+
+
+def fw_run(libs, *argv):
+    import run
+    args = run.parse_args([FW, "--lib", libs[0], "--twin-lib", libs[1], "--lockstep"] + list(argv))
+    return args, run
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_lockstep_short_run_without_divergence(libs, capsys):
+    """REQ-PIL-003: 150 ms of the image (PRECHARGE) in lock-step with the host build: every
+    period's C0V..C5V and enable and every tick's outputs equal the host's.
+
+    Methods: 1a the comparison of the statement, period by period and tick by tick;
+    1n back-to-back comparison of the image against the host build of the same drive
+    """
+    args, run = fw_run(libs, "--ms", "150", "--expect", "PRECHARGE")
+    r = run.execute(args)
+    ls = r["lockstep"]
+    assert r["ok"], capsys.readouterr().out
+    assert ls.divergence is None and ls.periods >= 1150 and ls.ticks_compared >= 149
+    assert ls.inits == 1 and ls.fast_calls >= ls.periods
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_lockstep_reports_an_injected_divergence(libs, monkeypatch, capsys):
+    """REQ-PIL-003: the host's compare value of phase u made one count larger from its 400th
+    fast step on: the run fails with the first divergence at that fast step (its result,
+    read at its return), the image's and the host's values.
+
+    Methods: 1l the fault injected into the host's output (one count on one phase from one
+    period on); 1c the boundary of a one-count difference
+    """
+    import twin as twin_mod
+    fast = twin_mod.Twin.fast
+    calls = []
+
+    def skewed(self, iu, iv, vdc):
+        cmp_, en = fast(self, iu, iv, vdc)
+        calls.append(1)
+        if len(calls) >= 400:
+            cmp_ = [cmp_[0] + 1] + cmp_[1:]
+        return cmp_, en
+    monkeypatch.setattr(twin_mod.Twin, "fast", skewed)
+    args, run = fw_run(libs, "--ms", "80")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    period, field, img, host, t = r["lockstep"].divergence
+    assert not r["ok"] and field == "fast step 400 result"
+    assert host[0][0] == img[0][0] + 1 and host[0][1:] == img[0][1:]
+    assert abs(period - 400) <= 2
+    assert "FIRST DIVERGENCE" in out
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_stalled_adc_handler_resets_the_image_by_the_watchdog(libs, capsys):
+    """REQ-PIL-004: the ADC1 handler spins from 50 ms on: the tick no longer runs, the
+    watchdog (10 ms) resets the image within the timeout plus one tick; the lock-step holds
+    up to the stall.
+
+    Methods: 1l the fault injected: a handler that never returns; 1c the boundary of the
+    watchdog timeout plus one tick
+    """
+    args, run = fw_run(libs, "--ms", "75", "--stall-adc-isr-ms", "50", "--expect", "ANY")
+    r = run.execute(args)
+    pil = r["pil"]
+    assert r["ok"], capsys.readouterr().out
+    assert len(pil.reset_times) == 1
+    assert 0 < pil.reset_times[0] - 50 * 80_000 <= 11 * 80_000
+    assert r["lockstep"].periods > 350 and r["lockstep"].divergence is None
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_stuck_converter_latches_the_fault_output(libs, capsys):
+    """REQ-PIL-004: ADC1 converts nothing from 50 ms on: the tick's supervision (more than 2
+    periods without a fast step in a millisecond) masks the six outputs and disables the
+    gate driver within 2 ms; no watchdog reset.
+
+    Methods: 1l the fault injected: no conversion complete; 1c the boundary of the 2 ms
+    from the last conversion to the latched output
+    """
+    args, run = fw_run(libs, "--ms", "60", "--stuck-adc-ms", "50", "--expect", "ANY")
+    r = run.execute(args)
+    pil = r["pil"]
+    assert r["ok"], capsys.readouterr().out
+    assert pil.t_gate_off is not None and pil.t_gate_off - 50 * 80_000 <= 2 * 80_000
+    assert pil.core.resets == 0
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_tick_preempted_by_the_adc_interrupt_at_once(libs, capsys):
+    """REQ-PIL-004: the tick's phase shifted by 5000 clocks (requested 335 clocks before the
+    ADC1 request): the ADC1 interrupt pre-empts every tick with a latency of at most 100
+    clocks, and the lock-step holds with the tick pre-empted.
+
+    Methods: 1a the priorities of the port (REQ-PORT-015) seen as latency; 1c the boundary of
+    a tick requested just before the ADC1 request
+    """
+    args, run = fw_run(libs, "--ms", "60", "--tick-phase-clk", "5000", "--adc-latency-max", "100",
+                       "--expect", "ANY")
+    r = run.execute(args)
+    c = r["pil"].core
+    assert r["ok"], capsys.readouterr().out
+    assert c.preempt_pairs.get((48, 40), 0) >= 50
+    assert r["adc_latency_max"] <= 100
+
+
+def test_seeded_defects_apply_exactly_once():
+    """REQ-PIL-005: each seeded defect of defects.py is one substitution whose text occurs
+    exactly once in the port's source file and differs from its replacement; the control
+    has none.
+
+    Methods: 1d the errors guessed: a PDB delay off by half a PWM period, a compare value on
+    the wrong channel pair, the ADC interrupt below the tick in priority
+    """
+    import defects
+    names = [d[0] for d in defects.DEFECTS]
+    assert names[0] == "control" and len(names) == 4
+    for name, fname, old, new, what in defects.DEFECTS[1:]:
+        text = open(os.path.join(ROOT, "port_s32k", fname)).read()
+        assert text.count(old) == 1 and old != new and new not in text, name
