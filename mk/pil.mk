@@ -2,7 +2,7 @@
 # run unchanged from its reset vector on an emulated Cortex-M4 (Unicorn) with register-level
 # models of the S32K144 peripherals and real interrupts, driving the simulated motor of
 # sim/, in lock-step with the host build of the same drive.  Included by the Makefile
-# (mk/*.mk); not part of `make check` (make pil-check is its short form, not wired yet).
+# (mk/*.mk); `make check` runs the short form, make pil-check (tools/gates/check.sh).
 #
 #   make pil          the scenario table (port_s32k/pil/scenarios.py): start, speed step,
 #                     stop, over-current, link loss, stalled and stuck ADC, pre-empted tick;
@@ -47,11 +47,13 @@ pil-run: $(PIL_ELF) $(PIL_LIB) $(PIL_TWIN)
 
 ## pil-test: the processor-in-the-loop emulator's tests (exception entry/return, pre-emption, stops)
 pil-test: $(PIL_ELF) $(PIL_LIB) $(PIL_TWIN)
-	$(PYTHON) -m pytest -q port_s32k/pil/tests
+	@mkdir -p $(BUILD)/junit
+	$(PYTHON) -m pytest -q --junitxml=$(BUILD)/junit/pytest-pil.xml -o junit_suite_name=pytest port_s32k/pil/tests
 
 ## pil-check: short form of make pil (< 60 s): the emulator's tests and the short scenario in lock-step
 pil-check: $(PIL_ELF) $(PIL_LIB) $(PIL_TWIN)
-	$(PYTHON) -m pytest -q port_s32k/pil/tests
+	@mkdir -p $(BUILD)/junit
+	$(PYTHON) -m pytest -q --junitxml=$(BUILD)/junit/pytest-pil.xml -o junit_suite_name=pytest port_s32k/pil/tests
 	$(PYTHON) port_s32k/pil/scenarios.py $(PIL_ELF) --only short --lib $(PIL_LIB) --twin-lib $(PIL_TWIN) \
 	    --log-dir $(PIL_LOGS)
 

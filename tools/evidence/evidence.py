@@ -32,8 +32,8 @@ misra/reviews.md, in section 3, and the rows of the software FMEA of specs/safet
 section 14) are current or stale against the files they reviewed
 (tools/evidence/review_stamp.py): a stale or unstamped record makes its summary row red, and
 an FMEA row is green only when every requirement it names is verified.  The requirements are
-specs/requirements/evidence.md (REQ-EVD-001 .. REQ-EVD-031; REQ-EVD-030 the tool validation of
-section 13, REQ-EVD-031 the review records).
+specs/requirements/evidence.md (REQ-EVD-001 .. REQ-EVD-032; REQ-EVD-030 the tool validation of
+section 13, REQ-EVD-031 the review records, REQ-EVD-032 the store of WP's prover results).
 """
 import argparse
 import datetime

@@ -57,6 +57,7 @@ gate misra-cs make --no-print-directory misra-summary
 gate static   make --no-print-directory static
 gate target   make --no-print-directory target
 gate tgt-test make --no-print-directory target-test
+gate pil      make --no-print-directory pil-check
 gate bench    make --no-print-directory bench
 gate trace    make --no-print-directory trace
 gate docs     make --no-print-directory docs

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The committed store of WP's prover results (proofs/wp/cache.txt).
+"""The committed store of WP's prover results (proofs/wp/cache.txt; REQ-EVD-032).
 
 usage: wp_cache.py unpack PACK DIR
        wp_cache.py pack DIR PACK --mode full|update --run UTC
