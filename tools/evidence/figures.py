@@ -166,6 +166,9 @@ FIGURES = [
     (README, "proved {wp.proved} / {wp.goals} goals ({wp.units} units, lemmas included; the drive alone "
              "{wp.drive_goals})"),
     (README, "{cbmc.harnesses} harnesses, {cbmc.properties} properties, all hold"),
+    (README, "In `make check` {wp.qed} goals are closed by Qed"),
+    (README, "clang-tidy bugprone and cert: {static.findings} findings, all accepted"),
+    (README, "`make pil-check`: {tests.pil} tests of the emulator"),
     (README, "{misra.guidelines} guidelines, {misra.compliant} compliant, {misra.deviated} with deviations "
              "({misra.devs_short}, {misra.sites} tagged sites), {misra.disapplied} disapplied"),
     (README, "{req.count} requirements, each named by its interface"),
@@ -292,6 +295,8 @@ def values(root="."):
     put("wp.goals", sum(int(r[2]) for r in wp) if wp else None, src)
     put("wp.proved", sum(int(r[3]) for r in wp) if wp else None, src)
     put("wp.units", len({r[0] for r in wp}) if wp else None, src)
+    qed = re.search(r"^Proved in this run[^:]*: (\d+) by Qed", _read(root, src) or "", re.M)
+    put("wp.qed", int(qed.group(1)) if qed else None, src)
     put("wp.iref_goals", sum(int(r[2]) for r in wp if r[0] == "qfoc_iref") if wp else None, src)
     put("wp.drive_goals", sum(int(r[2]) for r in wp if r[0] in ("qfoc_drive", "qfoc_drive_mon", "qfoc_drive_start"))
         if wp else None, src)
@@ -342,6 +347,8 @@ def values(root="."):
         "tools/*/tests/*.py (test_ functions)")
     put("tests.pytest_tune", sum(1 for f, _n, _i in py if f.startswith("tools/tune/")),
         "tools/tune/tests/*.py (test_ functions)")
+    put("tests.pil", sum(1 for f, _n, _i in py if f.startswith("port_s32k/pil/")),
+        "port_s32k/pil/tests/*.py (test_ functions)")
     put("tt.groups", len(groups) or None, "tools/target_test/tt_groups.c")
     loops = variants = 0
     for p in sorted(glob.glob(os.path.join(root, "src/*.c"))):
@@ -378,6 +385,8 @@ def values(root="."):
                 break
     put("junit.executables", len(junit) or None, "build/junit/test_*.xml")
     put("junit.failed", fails, "build/junit/test_*.xml")
+    st = re.search(r"\*\*static: (\d+) findings", _read(root, "build/static/static.md") or "")
+    put("static.findings", int(st.group(1)) if st else None, "build/static/static.md")
     bench = _read(root, "build/bench/bench.json")
     periods = None
     if bench:
