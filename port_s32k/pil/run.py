@@ -199,6 +199,20 @@ def parse_args(argv):
     return ap.parse_args(argv)
 
 
+
+def since_trigger(irq_stats, trig):
+    """The clocks from the last FTM3 init trigger (PDB1's, time-sorted) to each request of
+    an interrupt's statistics (its request time is field 3); requests before the first
+    trigger are left out."""
+    out = []
+    k = 0
+    for st in irq_stats:
+        while k + 1 < len(trig) and trig[k + 1] <= st[3]:
+            k += 1
+        if trig and trig[k] <= st[3]:
+            out.append(st[3] - trig[k])
+    return out
+
 def execute(args):
     """One run; prints the report and returns a dict with the verdict and the figures."""
 
@@ -324,23 +338,11 @@ def execute(args):
     print("LIN status frames from the drive: %d, %d well-formed (PID, checksum), states %s"
           % (len(frames), len(good), ", ".join(lin_states) or "-"))
     trig = d["PDB1"].trigger_times
-    offs = []
-    k = 0
-    for st in c.irq_stats.get(40, []):
-        while k + 1 < len(trig) and trig[k + 1] <= st[3]:
-            k += 1
-        if trig and trig[k] <= st[3]:
-            offs.append(st[3] - trig[k])
+    offs = since_trigger(c.irq_stats.get(40, []), trig)
     if offs:
         print("ADC1 interrupt request after the period's FTM3 init trigger (PDB1 CH0DLY0 = %d, then "
               "3 conversions): %s clocks" % (d["PDB1"].r["CH0DLY0"], stats(offs)))
-    ph = []
-    k = 0
-    for st in c.irq_stats.get(48, []):
-        while k + 1 < len(trig) and trig[k + 1] <= st[3]:
-            k += 1
-        if trig and trig[k] <= st[3]:
-            ph.append(st[3] - trig[k])
+    ph = since_trigger(c.irq_stats.get(48, []), trig)
     if ph:
         print("LPIT0 request after the period's FTM3 init trigger: %s clocks: a fixed phase (the tick "
               "and the PWM both come from the 8 MHz crystal)" % stats(ph))
