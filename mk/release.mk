@@ -9,7 +9,10 @@
 #                        built or packaged, every reason said) unless the working tree is a
 #                        clean git checkout (untracked files count; build/ and dist/ aside)
 #                        and the evidence bundle (EVIDENCE_DIR, default build/evidence) is
-#                        of HEAD, made in a clean tree, with every summary row green
+#                        of HEAD, made in a clean tree, with every summary row green, and
+#                        the WP prover results (proofs/wp/cache.txt) are those of a full run
+#                        (make prove-full) over HEAD's proof sources; QFOC_RELEASE_CANDIDATE=1
+#                        makes a package of such a tree that RELEASE.txt calls a candidate
 #   make release-check   the package unpacked in an empty directory: sums verified, its
 #                        evidence green and of its commit, built with its own Makefile (host,
 #                        Cortex-M4F identical to the shipped library, the example run, the

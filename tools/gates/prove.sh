@@ -118,6 +118,12 @@ prove_one() {  # prove_one JOB UNIT_PATH PROVERS SELECT
 rm -f "$OUT/failed"
 # the job proved from scratch in a replay run of every unit
 FRESH=${WP_FRESH:-}
+# what a full run proves, read before it starts: its record in the store's header
+# (wp_cache.py sources; make release checks it with wp_cache.py full-check)
+if [ $# = 0 ] && [ "$CACHE" = full ]; then
+    "$PY" tools/gates/wp_cache.py sources > "$OUT/sources.txt" ||
+        { echo "prove: cannot list the sources of this run (wp_cache.py sources)"; exit 1; }
+fi
 if [ "$CACHE" = replay ] && [ -z "$FRESH" ] && [ $# = 0 ]; then
     seed=$(git rev-parse HEAD 2>/dev/null || echo 0)
     FRESH=$("$PY" tools/gates/wp_cache.py pick "$OUT/jobs.txt" "$seed")
@@ -150,12 +156,14 @@ rc=0
 "$PY" tools/gates/wp_report.py "$OUT" proofs/wp/results.md --cache "$CACHE" || rc=$?
 # a full run of every unit replaces the store; a replay run adds to it when asked
 if [ "$rc" = 0 ] && [ -z "$(cat "$OUT/failed" 2>/dev/null)" ]; then
-    if [ $# = 0 ] && [ "$CACHE" = full ]; then save=full
+    srcs=""
+    if [ $# = 0 ] && [ "$CACHE" = full ]; then save=full; srcs="--sources $OUT/sources.txt"
     elif [ "${WP_CACHE_SAVE:-0}" = 1 ]; then save=update
     else save=""; fi
     if [ -n "$save" ]; then
+        # shellcheck disable=SC2086  # $srcs: a full run's record of its sources, or nothing
         n=$("$PY" tools/gates/wp_cache.py pack "$OUT/cache" "$STORE" --mode "$save" \
-            --run "$(date -u -d "@$STARTED" '+%Y-%m-%d %H:%M:%S UTC')")
+            --run "$(date -u -d "@$STARTED" '+%Y-%m-%d %H:%M:%S UTC')" $srcs)
         echo "prove: $STORE holds $n prover results ($save)"
     fi
 fi

@@ -164,6 +164,22 @@ rows=$("$PY" -c 'import json, sys
 d = json.load(open(sys.argv[1]))
 print("%s of %s summary rows green, made %s" % (d["green"], len(d["summary"]), d["date"]))' "$EVIDENCE/evidence.json")
 
+# the provenance of the prover verdicts the proofs replayed (REQ-EVD-032): a production
+# release needs the store of a full run over these sources (release_ready.py refused the
+# tree otherwise); a candidate (QFOC_RELEASE_CANDIDATE=1) says that it is one
+full_run=$(sed -n 's/^# last full run (make prove-full, no entry read): \(.*\)$/\1/p' proofs/wp/cache.txt)
+if "$PY" tools/gates/wp_cache.py full-check proofs/wp/cache.txt > "$STAGE_ROOT/wp-store.txt" 2>&1; then
+    proofs="proofs: every WP prover verdict replayed comes from the full run of ${full_run:-?} over these sources and tools (proofs/wp/cache.txt)"
+elif [ "${QFOC_RELEASE_CANDIDATE:-0}" = 1 ]; then
+    n=$(grep -c '^  ' "$STAGE_ROOT/wp-store.txt" || true)
+    proofs="status: CANDIDATE, not for production: the WP prover results replayed (proofs/wp/cache.txt) were last proved in full on ${full_run:-no record} over other sources or tools ($n difference(s)); a release needs make prove-full first"
+else
+    cat "$STAGE_ROOT/wp-store.txt"
+    echo "release: the WP prover results are not those of a full run over these sources: make prove-full"
+    exit 1
+fi
+rm -f "$STAGE_ROOT/wp-store.txt"
+
 # what the release is
 {
     echo "qfoc $VERSION"
@@ -172,6 +188,7 @@ print("%s of %s summary rows green, made %s" % (d["green"], len(d["summary"]), d
     echo "subject: $(git log -1 --format=%s "$COMMIT")"
     echo "evidence: evidence/index.html, of commit $COMMIT in a clean tree: $rows"
     echo "library: lib/cortex-m4f/libqfoc.a sha256 $LIB_SHA"
+    echo "$proofs"
 } > "$PKG/RELEASE.txt"
 
 # normalised modes: directories and scripts 0755, other files 0644

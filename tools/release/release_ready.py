@@ -24,7 +24,15 @@ Refusal (exit status 1, every reason printed, one per line, after "release: refu
              STALE: computed from other inputs than the tree's), each row named;
            - a result the bundle took as current is stale now (its inputs stamp checked again
              against the tree with tools/evidence/inputs.py: a tool version changed since);
-           - the bundle's MANIFEST.sha256 does not match its files.
+           - the bundle's MANIFEST.sha256 does not match its files;
+           - the WP prover results the proofs replayed (proofs/wp/cache.txt, REQ-EVD-032)
+             were not all proved by one full run (make prove-full) over the tree's sources,
+             headers, ACSL files and proof drivers with the installed Frama-C, Why3 and
+             provers: every changed file named (tools/gates/wp_cache.py full-check).  With
+             QFOC_RELEASE_CANDIDATE=1 in the environment this one reason does not refuse:
+             the package is made as a candidate, and its RELEASE.txt says so
+             (tools/release/release.sh; the release gate of make check does this, so that
+             every commit's packaging is checked before its store is re-proved in full).
   package  - RELEASE.txt missing or without its commit line;
            - evidence/evidence.json missing or unreadable, of another commit than the
              package's, made in a modified tree, or with a summary row that is not green;
@@ -195,6 +203,23 @@ def stamps_now(data, root):
     return out
 
 
+def wp_store_problems(root):
+    """[] when the store of WP's prover results was written by a full run over the tree's
+    proof sources and tools, else the reasons (tools/gates/wp_cache.py full-check)."""
+    sys.path.insert(0, os.path.join(root, "tools", "gates"))
+    try:
+        import wp_cache  # noqa: E402  (tools/gates/wp_cache.py of ROOT)
+    except ImportError as exc:
+        return [f"tools/gates/wp_cache.py cannot be loaded to check the WP store: {exc}"]
+    diff = wp_cache.full_check(os.path.join(root, "proofs", "wp", "cache.txt"), root)
+    if not diff:
+        return []
+    return [f"the WP prover results of proofs/wp/cache.txt were not all proved by one full run "
+            f"over this tree's proof sources and tools ({len(diff)} difference"
+            f"{'s' if len(diff) != 1 else ''}): run make prove-full and commit proofs/wp/"] + \
+        listed(diff)
+
+
 def check_tree(root, evidence):
     root = os.path.abspath(root)
     bundle = evidence if os.path.isabs(evidence) else os.path.join(root, evidence)
@@ -222,6 +247,13 @@ def check_tree(root, evidence):
                 reasons += listed(mp)
         if not reasons:
             reasons += stamps_now(data, root)
+    store = wp_store_problems(root)
+    if store and os.environ.get("QFOC_RELEASE_CANDIDATE") == "1":
+        print(f"release: candidate (QFOC_RELEASE_CANDIDATE=1), not for production: {store[0]}")
+        for r in store[1:]:
+            print(r)
+    else:
+        reasons += store
     if reasons:
         for r in reasons:
             print(r if r.startswith("  ") else f"release: refused: {r}")

@@ -30,6 +30,14 @@ def run(*args):
                           text=True, check=False)
 
 
+def sources_file(tmp_path):
+    """A full run's record of its sources, in the form `wp_cache.py sources` prints."""
+    f = tmp_path / "sources.txt"
+    f.write_text("flags -wp\ntool frama-c: 25.0\nfile " + "1" * 64 + " include/qfoc/q15.h\n",
+                 encoding="utf-8")
+    return f
+
+
 def write_entry(d, digest, obj):
     d.mkdir(parents=True, exist_ok=True)
     (d / (digest + ".json")).write_text(json.dumps(obj), encoding="utf-8")
@@ -49,7 +57,8 @@ def test_wp_cache_pack_unpack_round_trip(tmp_path):
     write_entry(src, B, {"prover": "CVC4:1.8", "verdict": "timeout", "time": 120.0})
     write_entry(src, A, {"prover": "Z3:4.8.12", "verdict": "valid", "time": 0.05, "steps": 64917})
     pack = tmp_path / "cache.txt"
-    r = run("pack", src, pack, "--mode", "full", "--run", "2026-12-07 22:00:00 UTC")
+    r = run("pack", src, pack, "--mode", "full", "--run", "2026-12-07 22:00:00 UTC",
+            "--sources", sources_file(tmp_path))
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "3"
     lines = [x for x in pack.read_text(encoding="utf-8").splitlines() if not x.startswith("#")]
@@ -73,7 +82,8 @@ def test_wp_cache_update_adds_and_keeps(tmp_path):
     pack = tmp_path / "cache.txt"
     first = tmp_path / "first"
     write_entry(first, A, {"prover": "Z3:4.8.12", "verdict": "valid", "time": 0.1})
-    assert run("pack", first, pack, "--mode", "full", "--run", "T1").returncode == 0
+    srcs = sources_file(tmp_path)
+    assert run("pack", first, pack, "--mode", "full", "--run", "T1", "--sources", srcs).returncode == 0
     second = tmp_path / "second"
     write_entry(second, B, {"prover": "Z3:4.8.12", "verdict": "valid", "time": 0.2})
     r = run("pack", second, pack, "--mode", "update", "--run", "T2")
@@ -81,9 +91,52 @@ def test_wp_cache_update_adds_and_keeps(tmp_path):
     text = pack.read_text(encoding="utf-8")
     assert "full run (make prove-full, no entry read): T1" in text
     assert "updated by the replay run of T2: +1 prover calls" in text
+    assert "# full run over: file " + "1" * 64 + " include/qfoc/q15.h" in text
     r = run("pack", second, pack, "--mode", "full", "--run", "T3")
+    assert r.returncode != 0 and "a full run's pack needs --sources" in r.stderr
+    r = run("pack", second, pack, "--mode", "full", "--run", "T3", "--sources", srcs)
     assert r.returncode == 0 and r.stdout.strip() == "1"
     assert A not in pack.read_text(encoding="utf-8")
+
+
+def test_wp_cache_full_check_names_what_changed(tmp_path):
+    """REQ-EVD-032: the store of a full run over this tree's sources passes full-check; a
+    source changed since, a store without the record, and an update run over changed sources
+    fail it, each difference named (make release refuses such a tree).
+    Methods: 1b the record a full run writes; 1c a changed file, no record, an update"""
+    srcs = tmp_path / "sources.txt"
+    r = run("sources")
+    assert r.returncode == 0, r.stderr
+    srcs.write_text(r.stdout, encoding="utf-8")
+    assert "file " in r.stdout and "include/qfoc/q15.h" in r.stdout and "src/qfoc_pi.c" in r.stdout
+    named = [x.split()[2] for x in r.stdout.splitlines() if x.startswith("file ")]
+    assert not [x for x in named if x.startswith("tools/") or x == "proofs/wp/cache.txt"]
+    d = tmp_path / "d"
+    write_entry(d, A, {"prover": "Z3:4.8.12", "verdict": "valid", "time": 0.1})
+    pack = tmp_path / "cache.txt"
+    assert run("pack", d, pack, "--mode", "full", "--run", "T", "--sources", srcs).returncode == 0
+    r = run("full-check", pack)
+    assert r.returncode == 0 and "the last full run proved the sources and tools of this tree" \
+        in r.stdout, r.stdout
+    # the record of one source as if it had been another text
+    text = pack.read_text(encoding="utf-8")
+    line = next(x for x in text.splitlines() if x.endswith(" src/qfoc_pi.c"))
+    pack.write_text(text.replace(line, line.split()[0] + " full run over: file " + "0" * 64
+                                 + " src/qfoc_pi.c"), encoding="utf-8")
+    r = run("full-check", pack)
+    assert r.returncode == 1 and "(1 difference)" in r.stdout \
+        and "src/qfoc_pi.c: changed since the last full run" in r.stdout, r.stdout
+    # an update run keeps the old record: still not a full run over this tree
+    e = tmp_path / "e"
+    write_entry(e, B, {"prover": "Z3:4.8.12", "verdict": "valid", "time": 0.1})
+    assert run("pack", e, pack, "--mode", "update", "--run", "T2").returncode == 0
+    r = run("full-check", pack)
+    assert r.returncode == 1 and "src/qfoc_pi.c: changed since the last full run" in r.stdout
+    # no record at all
+    pack.write_text("# header\n" + A + ' { "prover": "Z3:4.8.12", "verdict": "valid" }\n',
+                    encoding="utf-8")
+    r = run("full-check", pack)
+    assert r.returncode == 1 and "records no full run over named sources" in r.stdout
 
 
 @pytest.mark.parametrize("line,expect", [
@@ -158,7 +211,8 @@ def test_wp_cache_replays_only_the_same_goal(tmp_path):
     assert proved(first) == (4, 4)
     assert "(cached)" not in first and "[Cache] updated:2" in first
     pack = tmp_path / "cache.txt"
-    assert run("pack", cache, pack, "--mode", "full", "--run", "T").returncode == 0
+    assert run("pack", cache, pack, "--mode", "full", "--run", "T",
+               "--sources", sources_file(tmp_path)).returncode == 0
     replay = tmp_path / "replay"
     assert run("unpack", pack, replay).returncode == 0
     again = wp(unit, replay, "update")

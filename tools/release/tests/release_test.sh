@@ -34,6 +34,13 @@ mkdir -p "$BASE"
 ( cd "$TOP" && git ls-files -z --cached --others --exclude-standard ) |
     ( cd "$TOP" && tar --null --ignore-failed-read -T - -cf - 2> /dev/null ) | tar -xf - -C "$BASE"
 rm -rf "$BASE/build" "$BASE/dist"
+# its store of WP prover results as a full run over its sources would have left it (the
+# cases below that need another store seed it)
+( cd "$BASE" && { grep '^#' proofs/wp/cache.txt | grep -v '^# full run over: \|^# last full run\|^# updated by'
+                  echo "# last full run (make prove-full, no entry read): release-test, 0 prover calls"
+                  "$PY" tools/gates/wp_cache.py sources | sed 's/^/# full run over: /'
+                  grep -v '^#' proofs/wp/cache.txt; } > cache.tmp && mv cache.tmp proofs/wp/cache.txt ) ||
+    { echo "release-test: cannot record a full run in the base repository"; exit 1; }
 ( cd "$BASE" && git init --quiet && $GIT add -A && $GIT commit --quiet -m "the tree under test" ) ||
     { echo "release-test: cannot make the base repository"; exit 1; }
 
@@ -145,6 +152,30 @@ mkdir -p "$R/build/x" "$R/dist" && echo x > "$R/build/x/y.o" && echo x > "$R/dis
 ( cd "$R" && "$PY" tools/release/release_ready.py tree > "$T/aside.out" 2>&1 ); rc=$?
 expect "build/ and dist/ set aside, green evidence of HEAD accepted" 0 "$rc" "$T/aside.out" \
     "release: tree clean at [0-9a-f]{40}; evidence build/evidence: commit [0-9a-f]{40}, 3 of 3 summary rows green"
+
+# 4a. the WP store of no full run (REQ-EVD-032): refused, every other reason absent
+case_repo nofull
+sed -i '/^# full run over: /d' "$R/proofs/wp/cache.txt" && ( cd "$R" && $GIT commit --quiet -am "store without its record" )
+green_bundle "$R/build/evidence" "$(git -C "$R" rev-parse HEAD)" false
+( cd "$R" && "$PY" tools/release/release_ready.py tree > "$T/nofull.out" 2>&1 ); rc=$?
+expect "WP store without a full run refused" 1 "$rc" "$T/nofull.out" \
+    "release: refused: the WP prover results of proofs/wp/cache.txt were not all proved by one full run" \
+    "records no full run over named sources"
+
+# 4b. a proof source changed (and committed) since the store's full run: refused, the file
+#     named; as a candidate (QFOC_RELEASE_CANDIDATE=1) accepted, and said to be one
+case_repo srcchanged
+echo "/* a comment committed after the full run */" >> "$R/include/qfoc/version.h"
+( cd "$R" && $GIT commit --quiet -am "a header changed" )
+green_bundle "$R/build/evidence" "$(git -C "$R" rev-parse HEAD)" false
+( cd "$R" && "$PY" tools/release/release_ready.py tree > "$T/srcchanged.out" 2>&1 ); rc=$?
+expect "proof source changed since the full run refused" 1 "$rc" "$T/srcchanged.out" \
+    "were not all proved by one full run over this tree's proof sources and tools \(1 difference\)" \
+    "include/qfoc/version.h: changed since the last full run"
+( cd "$R" && QFOC_RELEASE_CANDIDATE=1 "$PY" tools/release/release_ready.py tree > "$T/candidate.out" 2>&1 ); rc=$?
+expect "the same tree as a candidate accepted, and said to be one" 0 "$rc" "$T/candidate.out" \
+    "release: candidate \(QFOC_RELEASE_CANDIDATE=1\), not for production" \
+    "include/qfoc/version.h: changed since the last full run" "release: tree clean at [0-9a-f]{40}"
 
 # 5. no evidence bundle
 case_repo none
