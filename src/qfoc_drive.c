@@ -425,7 +425,10 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
     } else {
         /* within the current limit */
     }
-    drv_current_loop(f, p, &ref, w, &v_dq);
+    /* CATCH measures the back-EMF by the voltage the zero-current PIs need: no feed-forward
+       of the estimate's own speed, which would put on the terminals the very back-EMF the
+       verdict looks for, kept by the inverter's dead band at zero current (REQ-DRV-027) */
+    drv_current_loop(f, p, &ref, (sub == QFOC_SUB_CATCH) ? (qfoc_q15_t)0 : w, &v_dq);
     /* the command acts from the next period on, on average 1.5 periods later */
     {
         const int32_t adv = drv_advance(w, p->pll.k_theta);

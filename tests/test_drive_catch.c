@@ -278,6 +278,52 @@ static void test_req_drv_027_standing_rotor(void **state)
     }
 }
 
+/* REQ-DRV-027: in CATCH the current loops put out only what the zero-current PIs need,
+   with no decoupling feed-forward at the estimated speed.  On the rig (zero current
+   samples) the observer's PLL is set to a speed w (half the reference table's speed_max)
+   once the drive is in CATCH; in the next fast steps the estimate still says about w, yet
+   the voltage command stays 0.  With the feed-forward, it would be w psi_f / 2^psi_shift
+   on the q axis (the expected value is computed here and shown to be far from 0): a
+   voltage that, held by the inverter's dead band at zero current, the observer reads back
+   as the back-EMF of a rotor turning at w, so that CATCH caught a standing rotor (the
+   robustness campaign, axis ecomp800, seeds 800016 and 800052: dead time 1.59 and 1.75
+   times the compensated one, rotor held by its breakaway torque).
+   Methods: 1b the sub-state CATCH with a speed estimate far from 0; 1n the feed-forward
+   voltage by hand */
+static void test_req_drv_027_no_feedforward_in_catch(void **state)
+{
+    const qfoc_param_table_t *const t = &qfoc_params_reference;
+    const int32_t w = abs((int32_t)t->speed_max) / 2;
+    const int32_t ff = (w * abs((int32_t)t->psi_f) / 32768) * (1 << t->drive.psi_shift);
+    rig_t r;
+    int ms;
+    int j;
+    (void)state;
+    rig_init_table(&r, t, 3000u);
+    rig_ms(&r, 300);
+    r.power_on = true;
+    for (ms = 0; (ms < 20) && (r.d.s.sm.state != QFOC_STATE_RUN); ms++) {
+        rig_ms(&r, 1);
+    }
+    assert_int_equal(r.d.s.sm.sub, QFOC_SUB_CATCH);
+    print_message("CATCH with the estimate at w = %d (Q15): the feed-forward would be %d\n",
+                  (int)w, (int)ff);
+    assert_true(ff > 1000);
+    /* past the first fast step in RUN, which restarts the estimator */
+    for (j = 0; j < 4; j++) {
+        rig_fast(&r);
+    }
+    qfoc_pll_reset(&r.d.f.pll, 0u, (qfoc_q15_t)w);
+    for (j = 0; j < 8; j++) {
+        rig_fast(&r);
+        assert_true(r.pwm.enable);
+        assert_int_equal(r.d.s.sm.sub, QFOC_SUB_CATCH);
+        assert_int_equal(r.d.f.speed_f, w);
+        assert_int_equal(r.d.f.u_last.alpha, 0);
+        assert_int_equal(r.d.f.u_last.beta, 0);
+    }
+}
+
 /* REQ-DRV-027, REQ-CATCH-002: the STILL threshold's floor on the rig: the reference table
    (of_speed 3277, psi_f 13383: e_min / 4 = 334) with flux_v_err 0, 3, 173 (v_still
    = max(2 |flux_v_err|, 334) = 334, 334, 346) and 174, 280 (348, 560), ho_dwell_ms 50 and
@@ -473,6 +519,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_req_drv_027_standing_rotor),
         cmocka_unit_test(test_req_drv_027_standing_rotor_floor),
+        cmocka_unit_test(test_req_drv_027_no_feedforward_in_catch),
         cmocka_unit_test(test_req_drv_027_standing_rotor_plant),
         cmocka_unit_test(test_req_drv_027_coasting_rotor_caught),
         cmocka_unit_test(test_req_drv_027_reverse_rotation),
