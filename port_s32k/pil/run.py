@@ -42,6 +42,7 @@ import core as core_mod  # noqa: E402
 import periph  # noqa: E402
 import plant as plant_mod  # noqa: E402
 import twin as twin_mod  # noqa: E402
+import timing as timing_mod  # noqa: E402
 
 ROOT = plant_mod.ROOT
 STATES = {0: "PRECHARGE", 1: "STOP", 2: "RUN", 3: "ERROR"}
@@ -194,6 +195,8 @@ def parse_args(argv):
     ap.add_argument("--adc-latency-max", type=int, default=None,
                     help="expect every ADC1 interrupt latency (request -> first handler "
                          "instruction) at most this many clocks")
+    ap.add_argument("--timing-json", default=None,
+                    help="write the run's timing figures (timing.summary) to this file")
     ap.add_argument("--expect", default=None,
                     help="expected final state: PRECHARGE, STOP, RUN, ERROR or RESET (a watchdog reset)")
     return ap.parse_args(argv)
@@ -223,6 +226,8 @@ def execute(args):
     if args.lockstep:
         twin_mod.build(args.twin_lib)
         pil.attach_lockstep(args.twin_lib)
+    lib = timing_mod.LibTiming(c)
+    bounds = timing_mod.static_bounds(args.elf)
     d["LPIT0"].first_delay = args.tick_phase_clk
     inject = None
     if args.stall_adc_isr_ms is not None:
@@ -359,6 +364,18 @@ def execute(args):
     ps = pil.plant.state()
     print("plant: t %.4f s, w_e %.1f rad/s, id %.2f A, iq %.2f A" % (ps["t"], ps["w_e"], ps["id"], ps["iq"]))
 
+    print("library entry points in the image (instructions from the first to the return "
+          "instruction, callees included, nested handlers excluded) against their static bound "
+          "(tools/bench/wcet.py on this image):")
+    for f in timing_mod.FUNCS:
+        print("  %-22s %6d calls, %s instructions (the longest at %s ms); static bound %d"
+              % (f, len(lib.calls[f]), stats(lib.calls[f]),
+                 "%.3f" % (lib.max_at[f] * 1000.0 / hz) if lib.max_at[f] is not None else "-", bounds[f]))
+    summ = timing_mod.summary(c, pil, lib)
+    summ["static_bound"] = bounds
+    if args.timing_json:
+        timing_mod.write(args.timing_json, summ)
+
     # ------------------------------------------------------------------ verdict
     ls = pil.lockstep
     if ls is not None:
@@ -394,6 +411,12 @@ def execute(args):
                        "late %d" % pil.late_writes))
         checks.append(("phase currents sampled at the reload instant (centre of the low-side zero vector)",
                        pil.iu_conv > 0 and iu_off == 0, "%d of %d off" % (iu_off, pil.iu_conv)))
+    over = ["%s %d > %d" % (f, max(lib.calls[f]), bounds[f]) for f in timing_mod.FUNCS
+            if lib.calls[f] and max(lib.calls[f]) > bounds[f]]
+    checks.append(("the library's measured instructions within their static bound (fast step %d, "
+                   "tick %d)" % (bounds["qfoc_drive_fast_step"], bounds["qfoc_drive_tick"]),
+                   not over, "; ".join(over) or "max %s" % ", ".join(
+                       str(max(lib.calls[f])) if lib.calls[f] else "-" for f in timing_mod.FUNCS)))
     if args.adc_latency_max is not None:
         checks.append(("ADC1 interrupt latency <= %d clocks (never delayed by a lower-priority handler)"
                        % args.adc_latency_max, bool(adc_lat) and max(adc_lat) <= args.adc_latency_max,
@@ -425,7 +448,7 @@ def execute(args):
         print("%-4s %s (%s)" % ("PASS" if good else "FAIL", what, detail))
     print("pil: %s" % ("PASS" if ok else "FAIL"))
     return {"rc": 0 if ok else 1, "ok": ok, "checks": checks, "pil": pil, "seen": seen,
-            "lockstep": ls, "ms": ms, "adc_latency_max": max(adc_lat) if adc_lat else None}
+            "lockstep": ls, "ms": ms, "timing": summ, "lib": lib, "adc_latency_max": max(adc_lat) if adc_lat else None}
 
 
 def stall_at(c, t0):

@@ -822,3 +822,39 @@ def test_seeded_defects_apply_exactly_once():
     for name, fname, old, new, what in defects.DEFECTS[1:]:
         text = open(os.path.join(ROOT, "port_s32k", fname)).read()
         assert text.count(old) == 1 and old != new and new not in text, name
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_library_counts_within_the_static_bound(libs, monkeypatch, capsys):
+    """REQ-PIL-006: the instructions the image executes inside qfoc_drive_fast_step and
+    qfoc_drive_tick, counted at their entry and return in the running image, are at most the
+    static bound tools/bench/wcet.py computes for them on the same image; the RUN entry
+    (power on at 350 ms) is inside the run.  Each fast step runs inside an ADC1 handler, so
+    the handler's own instructions are at least the fast step's.  With the bound made one
+    below the longest measured call the run fails on that check.
+
+    Methods: 1a the comparison of the statement; 1c the boundary of a bound one below the
+    measured maximum
+    """
+    import timing
+    args, run = fw_run(libs, "--ms", "420", "--lin-period-ms", "20", "--power-on-ms", "350")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert r["ok"], out
+    lib, c = r["lib"], r["pil"].core
+    bounds = r["timing"]["static_bound"]
+    fast, tick = lib.calls["qfoc_drive_fast_step"], lib.calls["qfoc_drive_tick"]
+    adc = [s[0] for s in c.irq_stats[40]]
+    assert len(fast) == len(adc) and len(tick) == len(c.irq_stats[48])
+    assert 1000 < max(fast) <= bounds["qfoc_drive_fast_step"]
+    assert max(tick) <= bounds["qfoc_drive_tick"]
+    assert all(a >= f for a, f in zip(adc, fast))
+    assert r["timing"]["lib"]["qfoc_drive_fast_step"]["max"] == max(fast)
+
+    low = dict(bounds, qfoc_drive_fast_step=max(fast) - 1)
+    monkeypatch.setattr(timing, "static_bounds", lambda elf: low)
+    args, run = fw_run(libs, "--ms", "420", "--lin-period-ms", "20", "--power-on-ms", "350")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert not r["ok"]
+    assert "FAIL the library's measured instructions within their static bound" in out
