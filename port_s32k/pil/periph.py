@@ -20,12 +20,19 @@ Simplifications (stated; not RM behaviour):
     check the PCC/SC fields that select them and stop on another choice.  Should the PDB
     count the bus clock on the part (a point port_s32k/README.md lists as unverified), the
     sampling instant here would be wrong by the same factor as the port's.
-  - FTM3: the counter in up-down (CPWMS = 1) and up counting (CPWMS = 0); the channel
-    outputs themselves (dead time, polarity, complementary pairs) are not computed: the
-    plant receives the even channels' compare values and one enable per period.  The
-    output mask, the fault flag and the gate enable are sampled at each reload point (the
-    part applies OUTMASK at once: FTM chapter, OUTMASK, with SYNCONF[SWOM] = 0; and the
-    fault within the input filter).  The write-protected set modelled is SC[CLKS, PS,
+  - FTM3: the counter in up-down (CPWMS = 1) and up counting (CPWMS = 0).  The six
+    channel outputs are computed from the registers at each reload point for the period
+    that starts there (FTM.pin_on: the centre-aligned PWM of each even channel, COMBINE
+    [COMPm] complement or an own PWM for the odd channel, COMBINE[DTENm] with DEADTIME
+    [DTPS, DTVAL, DTVALEX], POL, OUTMASK, PWMENn, the fault flag with FAULTENm; combine
+    mode and a non-zero CNTIN are not modelled and stop); the gate signals are turned into
+    the plant's inverter (periph.bridge: the three compare values, the dead time, the
+    enable) or stop the run on a pattern the plant's model does not have (a shoot-through,
+    a floating leg, an asymmetric or per-phase dead time).  PAIRnDEADTIME (0xA0 ..) is not
+    modelled (an access stops: the port writes DEADTIME only).  The outputs, the output
+    mask, the fault flag and the gate enable are sampled at each reload point, so that a
+    change within a period takes effect at the next one (the part applies OUTMASK at once:
+    FTM chapter, OUTMASK, with SYNCONF[SWOM] = 0; and the fault within the input filter).  The write-protected set modelled is SC[CLKS, PS,
     CPWMS], MODE (except WPDIS), COMBINE, DEADTIME, POL, FLTCTRL, FLTPOL, FILTER,
     SYNCONF, as recalled from the FTM chapter's "Write protection" list and not checked
     against RM Rev. 13 here; after setting WPEN the port writes none of them (SC only with
@@ -49,7 +56,7 @@ Simplifications (stated; not RM behaviour):
     it; the unlock is valid until the CS write (the 128-bus-clock window after the
     unlock is not timed); a timeout resets the part (core.Core.reset).
 
-Requirements: REQ-PIL-001, REQ-PIL-002 (specs/requirements/pil.md).
+Requirements: REQ-PIL-001, REQ-PIL-002, REQ-PIL-007 (specs/requirements/pil.md).
 """
 from core import Stop, CORE_HZ
 
@@ -502,12 +509,144 @@ class FTM(Periph):
         if asserted and self.r["FLTCTRL"] & 0x1:
             self.r["FMS"] |= 0x81                      # FAULTF0, FAULTF
 
+    # ------------------------------------------------------------------ channel outputs
+    def dead_ticks(self):
+        """The inserted dead time in FTM clocks (RM FTM chapter, "Deadtime insertion",
+        register DEADTIME): the prescaler of DTPS (0x: 1, 10: 4, 11: 16) times the count
+        DTVALEX:DTVAL (DTVAL bits 5:0, DTVALEX bits 19:16 its upper 4 bits)."""
+        dt = self.r["DEADTIME"]
+        ps = (1, 1, 4, 16)[bits(dt, 6, 2)]
+        return ps * ((bits(dt, 16, 4) << 6) | bits(dt, 0, 6))
+
+    def _cpwm_on(self, ch):
+        """The on-intervals in [0, 2 MOD) of channel ch's PWM in up-down counting, the
+        period counted from the reload point at MOD (RM FTM, "Center-aligned PWM (CPWM)
+        mode"): ELSB:ELSA = 10 high-true (cleared at the up-counting match, set at the
+        down-counting match: high while CNT < CnV), 01 low-true (the complement); CnV = 0 (=
+        CNTIN) never high, CnV >= MOD always high."""
+        m, v = self.r["MOD"], self.r["C%dV" % ch]
+        els = bits(self.r["C%dSC" % ch], 2, 2)
+        if els not in (1, 2):
+            raise Stop("FTM3 channel %d: ELSB:ELSA = %d is not modelled (the output is "
+                       "not a PWM)" % (ch, els))
+        if v <= self.r["CNTIN"]:
+            on = []
+        elif v >= m:
+            on = [(0, 2 * m)]
+        else:
+            on = [(m - v, m + v)]
+        return on if els == 2 else _complement(on, 2 * m)
+
+    def pin_on(self):
+        """Each of the six channel outputs as its on-intervals (pin high) in the PWM period
+        [0, 2 MOD) FTM clocks that begins at this reload point, from the registers in effect
+        (RM FTM chapter): COMBINE[COMPm] makes channel 2m+1 the complement of channel 2m
+        (else it is a PWM of its own CnV); COMBINE[DTENm] delays every rising edge of both
+        channels of the pair by the dead time (dead_ticks()), and a pulse no longer than
+        the dead time disappears; POL[POLn] inverts channel n; a channel whose PWMENn is 0,
+        masked by OUTMASK, or of a pair with FAULTENm while a fault flag is set is at its
+        inactive level (low with POLn = 0, high with POLn = 1: "Output mask", "Fault
+        control").  An edge at the period's start or end is the continuation of the
+        previous period, not an edge.  Only the up-down counting of the two-sensor image is
+        modelled: COMBINEm, up counting or a non-zero CNTIN stop the run."""
+        m = self.r["MOD"]
+        if not self.cpwm() or self.r["CNTIN"] != 0:
+            raise Stop("FTM3 outputs: only up-down counting from CNTIN = 0 is modelled")
+        comb, pol, mask = self.r["COMBINE"], self.r["POL"], self.r["OUTMASK"]
+        dt = self.dead_ticks()
+        out = []
+        for pair in range(3):
+            f = bits(comb, 8 * pair, 8)
+            if f & 0x1:
+                raise Stop("FTM3 pair %d: combine mode (COMBINE%d) is not modelled" % (pair, pair))
+            n0, n1 = 2 * pair, 2 * pair + 1
+            w0 = self._cpwm_on(n0)
+            w1 = _complement(w0, 2 * m) if f & 0x2 else self._cpwm_on(n1)
+            if f & 0x10:
+                w0, w1 = _delay_rising(w0, dt, 2 * m), _delay_rising(w1, dt, 2 * m)
+            fault = bool(f & 0x40) and bool(self.r["FMS"] & 0x80)
+            for n, w in ((n0, w0), (n1, w1)):
+                inv = bool(pol & (1 << n))
+                if not self.running or not bits(self.r["SC"], 16 + n, 1) or mask & (1 << n) or fault:
+                    w = [(0, 2 * m)] if inv else []
+                elif inv:
+                    w = _complement(w, 2 * m)
+                out.append(w)
+        return out
+
     def outputs_on(self):
         """Every one of the six outputs switching: counter running, PWMEN0..5, not
         masked, no fault flag (FAULTM = 10 keeps them safe until the flag is cleared)."""
         sc = self.r["SC"]
         return (self.running and bits(sc, 16, 6) == 0x3F and self.r["OUTMASK"] & 0x3F == 0
                 and not self.r["FMS"] & 0x80)
+
+
+def _complement(on, length):
+    """The complement of sorted disjoint on-intervals within [0, length)."""
+    res, t = [], 0
+    for a, b in on:
+        if a > t:
+            res.append((t, a))
+        t = max(t, b)
+    if t < length:
+        res.append((t, length))
+    return res
+
+
+def _delay_rising(on, dt, length):
+    """Every rising edge (an interval's start other than the period's start) delayed by dt;
+    an interval no longer than dt disappears."""
+    res = []
+    for a, b in on:
+        a2 = a + dt if a > 0 else a
+        if a2 < b:
+            res.append((a2, b))
+    return res
+
+
+def _overlap(u, v):
+    return sum(max(0, min(b, d) - max(a, c)) for a, b in u for c, d in v)
+
+
+def bridge(pins, mod):
+    """The inverter seen by the plant from the six gate signals (pins[2k]: the high side
+    of phase k, pins[2k+1]: its low side; on-intervals in [0, 2 mod)): (cmp, td, on) with
+    cmp the three compare values (the high side's nominal half-width around the period's
+    centre, FTM clocks), td the dead time between each switch's turn-off and the other's
+    turn-on (FTM clocks; None when no phase switches), on whether the bridge switches.
+    A phase whose two switches are on at once (shoot-through), a phase left floating while
+    the others switch, an asymmetric gap or phases with different dead times stop the run:
+    none of them is a pattern of the plant's inverter model (sim/plant.c, sim_pole_avg)."""
+    full = 2 * mod
+    cmp, tds = [], []
+    if all(not p for p in pins):
+        return [0, 0, 0], None, False
+    for k in range(3):
+        hs, ls = pins[2 * k], pins[2 * k + 1]
+        ov = _overlap(hs, ls)
+        if ov:
+            raise Stop("FTM3 phase %d: high and low side on together for %d FTM clocks a period "
+                       "(shoot-through)" % (k, ov))
+        if hs == [(0, full)]:
+            cmp.append(mod)
+        elif ls == [(0, full)]:
+            cmp.append(0)
+        elif len(ls) == 2 and ls[0][0] == 0 and ls[1][1] == full and len(hs) <= 1:
+            c, d = ls[0][1], ls[1][0]
+            x = mod - c                                   # nominal half-width
+            td = d - (mod + x)
+            if hs and (hs[0][0] - c != td or hs[0][1] != mod + x):
+                raise Stop("FTM3 phase %d: gaps %d and %d FTM clocks around the high side: "
+                           "asymmetric dead time, not modelled" % (k, hs[0][0] - c, d - hs[0][1]))
+            cmp.append(x)
+            tds.append(td)
+        else:
+            raise Stop("FTM3 phase %d: gate pattern high %s low %s is not a complementary pair "
+                       "(not modelled)" % (k, hs, ls))
+    if len(set(tds)) > 1:
+        raise Stop("FTM3: different dead times per phase %s (not modelled)" % tds)
+    return cmp, (tds[0] if tds else None), True
 
 
 for _n in range(8):

@@ -35,16 +35,23 @@ class Plant:
         lib.pil_plant_state.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double)]
         lib.pil_plant_period.argtypes = [ctypes.c_void_p]
         lib.pil_plant_free.argtypes = [ctypes.c_void_p]
+        lib.pil_plant_set_dead_time.argtypes = [ctypes.c_void_p, ctypes.c_double]
         self.lib = lib
         self.p = lib.pil_plant_new(motor_file.encode(), vdc_v, substeps)
         if not self.p:
             raise RuntimeError("pil_plant_new: cannot load %s" % motor_file)
         self.period = lib.pil_plant_period(self.p)
         self.steps = 0
+        self.dead_time_s = None       # None: the motor file's, until set from the registers
 
     def step(self, cmp3, enable):
         self.lib.pil_plant_step(self.p, cmp3[0], cmp3[1], cmp3[2], 1 if enable else 0)
         self.steps += 1
+
+    def set_dead_time(self, td_s):
+        """The inverter's dead time from now on (the FTM3 registers'), s."""
+        self.lib.pil_plant_set_dead_time(self.p, td_s)
+        self.dead_time_s = td_s
 
     def sample(self):
         out = (ctypes.c_uint * 3)()

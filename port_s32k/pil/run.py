@@ -9,8 +9,10 @@ Usage: run.py IMAGE.elf [--ms 300] [--motor specs/motors/reference.toml] [--vdc 
 
 Coupling, at each reload point of FTM3 (counter at MOD, SYNC[CNTMAX]; the centre of the
 all-low-side zero vector and the sampling instant of the port, port_s32k/README.md):
-the compare values C0V, C2V, C4V in effect from that point and the enable (all six outputs
-switching, PTD5 high) go to the plant, which integrates the period that has just ended
+the six gate signals of the period that starts there, computed from the FTM3 registers in
+effect (periph.FTM.pin_on: complementary pairs, dead time, polarity, mask, fault; PTD5 low
+holds every switch off), give the plant its compare values, its enable and its dead time
+(periph.bridge), and the plant integrates the period that has just ended
 (sim_step_period) and is then sampled (sim_sample): the ADC model converts these codes
 when the PDB pre-triggers start its conversions (i_u on ADC0_SE3, i_v on ADC1_SE2, V_dc on
 ADC1_SE8).  The plant samples only at period starts: a conversion that does not start at
@@ -27,7 +29,9 @@ on; the bridge must be off from the next reload point and the drive must end in 
 
 Expectations checked (exit status 1 when one fails): no stop of the run and no
 watchdog reset; FTM3 period interrupts at the PWM frequency and one ADC1 interrupt per
-PWM period once the PWM runs (+-2); one LPIT0 interrupt per ms (+-1); the watchdog
+PWM period once the PWM runs (+-2); one LPIT0 interrupt per ms (+-1); the inverter's
+dead time from the FTM3 registers equal to the table's dead-time compensation (2 dt_comp
+FTM clocks); the library's instructions within their static bound (timing.py); the watchdog
 refreshed at every tick; the compare values written (LDOK) before the next reload point
 after their samples; the drive state reported on CAN reaches STOP (ready) after PRECHARGE
 (or RUN with --power-on-ms).
@@ -102,6 +106,7 @@ class PIL:
         self.t_gate_off = None       # first reload point with PTD5 low after an injection
         self.inject = None
         self.lin_last = None         # core clock of the last command frame sent
+        self.dead_ticks = {}         # dead time from the FTM3 registers (FTM clocks) -> periods
 
     def attach_lockstep(self, lib):
         self.lockstep = twin_mod.LockStep(self, lib)
@@ -130,10 +135,23 @@ class PIL:
             self.bridge_log.append((t, on))
         if self.lockstep is not None:
             self.lockstep.on_reload(ftm, fault_latched=not self.gate_on())
+        # the six gate signals from the registers (complementary pairs, dead time, polarity,
+        # mask, fault; PTD5 low: the gate driver holds every switch off), and from them the
+        # plant's inverter: compare values, enable and dead time
+        pins = ftm.pin_on() if self.gate_on() else [[] for _ in range(6)]
+        cmp3, td, on_pins = periph.bridge(pins, ftm.r["MOD"])
+        if on_pins != on:
+            raise core_mod.Stop("FTM3 outputs: the gate signals (%s) disagree with the enable "
+                                "(OUTMASK, PWMEN, fault flag, PTD5: %s)" % (on_pins, on))
+        if td is not None:
+            self.dead_ticks[td] = self.dead_ticks.get(td, 0) + 1
+            td_s = td / float(core_mod.CORE_HZ // ftm.tick())
+            if self.plant.dead_time_s != td_s:
+                self.plant.set_dead_time(td_s)
         self.enabled_periods += 1 if on else 0
         if self.t_fault is not None and t > self.t_fault and on:
             self.on_after_fault += 1
-        self.plant.step([ftm.r["C0V"], ftm.r["C2V"], ftm.r["C4V"]], on)
+        self.plant.step(cmp3, on)
         self.codes = self.plant.sample()
         self.t_sample = t
 
@@ -223,8 +241,8 @@ def execute(args):
     pil = PIL(args.elf, args.motor, args.vdc, args.lib)
     c, d = pil.core, pil.dev
     hz = core_mod.CORE_HZ
+    twin_mod.build(args.twin_lib)
     if args.lockstep:
-        twin_mod.build(args.twin_lib)
         pil.attach_lockstep(args.twin_lib)
     lib = timing_mod.LibTiming(c)
     bounds = timing_mod.static_bounds(args.elf)
@@ -371,6 +389,8 @@ def execute(args):
         print("  %-22s %6d calls, %s instructions (the longest at %s ms); static bound %d"
               % (f, len(lib.calls[f]), stats(lib.calls[f]),
                  "%.3f" % (lib.max_at[f] * 1000.0 / hz) if lib.max_at[f] is not None else "-", bounds[f]))
+    dt = dead_time_report(pil, args.twin_lib)
+    print(dt["text"])
     summ = timing_mod.summary(c, pil, lib)
     summ["static_bound"] = bounds
     if args.timing_json:
@@ -417,6 +437,8 @@ def execute(args):
                    "tick %d)" % (bounds["qfoc_drive_fast_step"], bounds["qfoc_drive_tick"]),
                    not over, "; ".join(over) or "max %s" % ", ".join(
                        str(max(lib.calls[f])) if lib.calls[f] else "-" for f in timing_mod.FUNCS)))
+    checks.append(("the inverter's dead time from the FTM3 registers equals the table's dead-time "
+                   "compensation (2 dt_comp FTM clocks); the plant switched with it", dt["ok"], dt["detail"]))
     if args.adc_latency_max is not None:
         checks.append(("ADC1 interrupt latency <= %d clocks (never delayed by a lower-priority handler)"
                        % args.adc_latency_max, bool(adc_lat) and max(adc_lat) <= args.adc_latency_max,
@@ -449,6 +471,37 @@ def execute(args):
     print("pil: %s" % ("PASS" if ok else "FAIL"))
     return {"rc": 0 if ok else 1, "ok": ok, "checks": checks, "pil": pil, "seen": seen,
             "lockstep": ls, "ms": ms, "timing": summ, "lib": lib, "adc_latency_max": max(adc_lat) if adc_lat else None}
+
+
+def dead_time_report(pil, twin_lib):
+    """The dead time the image's FTM3 set-up inserts (DEADTIME with DTEN of the three pairs:
+    FTM.dead_ticks()) and the dead times of the periods the plant switched (from the gate
+    signals, periph.bridge) against the table's dead-time compensation in the image
+    (qfoc_params_reference.svpwm.dt_comp, one compare count = 2 FTM clocks of high time:
+    tables/reference_params.c); the port derives its dead time from it
+    (qfoc_s32k_pwm_cfg), so a difference is a compensation that does not match the
+    inverter."""
+    ftm = pil.dev["FTM3"]
+    c = pil.core
+    off, host = twin_mod.dt_comp_field(twin_lib)
+    a = c.syms.get("qfoc_params_reference")
+    if a is None:
+        return {"ok": False, "detail": "no qfoc_params_reference in the image", "text": ""}
+    dt_comp = int.from_bytes(bytes(c.flash[a + off:a + off + 2]), "little")
+    want = 2 * dt_comp
+    dten = [bool(ftm.r["COMBINE"] & (0x10 << (8 * k))) for k in range(3)]
+    reg = ftm.dead_ticks() if all(dten) else (0 if not any(dten) else None)
+    f_ftm = core_mod.CORE_HZ // ftm.tick() if ftm.r["SC"] & 0x18 else core_mod.CORE_HZ
+    seen = dict(sorted(pil.dead_ticks.items()))
+    ok = reg == want and all(k == want for k in seen) and dt_comp == host
+    text = ("inverter dead time from FTM3: DEADTIME 0x%08X, DTEN %s -> %s FTM clocks (%s us at %.0f MHz); "
+            "periods switched by dead time (FTM clocks: periods) %s; the table's compensation dt_comp %d "
+            "(image; host table %d) = %d FTM clocks"
+            % (ftm.r["DEADTIME"], "".join("1" if x else "0" for x in dten), reg,
+               "%.3f" % (reg * 1e6 / f_ftm) if reg is not None else "-", f_ftm / 1e6,
+               seen or "none", dt_comp, host, want))
+    detail = "registers %s, periods %s, table %d" % (reg, ",".join(str(k) for k in seen) or "-", want)
+    return {"ok": ok, "detail": detail, "text": text, "reg": reg, "seen": seen, "want": want}
 
 
 def stall_at(c, t0):

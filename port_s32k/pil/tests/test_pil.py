@@ -814,11 +814,12 @@ def test_seeded_defects_apply_exactly_once():
     has none.
 
     Methods: 1d the errors guessed: a PDB delay off by half a PWM period, a compare value on
-    the wrong channel pair, the ADC interrupt below the tick in priority
+    the wrong channel pair, the dead time not inserted, the low side not the complement, the
+    ADC interrupt below the tick in priority
     """
     import defects
     names = [d[0] for d in defects.DEFECTS]
-    assert names[0] == "control" and len(names) == 4
+    assert names[0] == "control" and len(names) == 6
     for name, fname, old, new, what in defects.DEFECTS[1:]:
         text = open(os.path.join(ROOT, "port_s32k", fname)).read()
         assert text.count(old) == 1 and old != new and new not in text, name
@@ -858,3 +859,88 @@ def test_library_counts_within_the_static_bound(libs, monkeypatch, capsys):
     out = capsys.readouterr().out
     assert not r["ok"]
     assert "FAIL the library's measured instructions within their static bound" in out
+
+
+# ---------------------------------------------------------------------- FTM3 outputs
+def ftm_cpwm(c0v=(1200, 2500, 4000), deadtime=0x94, comb_pair=0x72, pol=0, outmask=0):
+    """An FTM3 model in the port's set-up, without a core: up-down counting, MOD 5000,
+    six high-true channels, the pairs complementary with dead time (COMP, DTEN, SYNCEN,
+    FAULTEN: 0x72), DEADTIME 0x94 (DTPS /4, DTVAL 20: 80 clocks)."""
+    f = periph.FTM()
+    f.running = True
+    f.r["SC"] = 0x20 | (1 << 3) | (0x3F << 16)
+    f.r["MOD"] = 5000
+    for ch in range(6):
+        f.r["C%dSC" % ch] = 0x28
+        f.r["C%dV" % ch] = c0v[ch // 2] if ch % 2 == 0 else 2500
+    f.r["COMBINE"] = comb_pair | (comb_pair << 8) | (comb_pair << 16)
+    f.r["DEADTIME"], f.r["POL"], f.r["OUTMASK"] = deadtime, pol, outmask
+    return f
+
+
+def test_ftm_outputs_complementary_with_dead_time():
+    """REQ-PIL-007: in the port's set-up each high side is on from MOD - CnV + dead time to
+    MOD + CnV of the period that starts at the reload point, its low side before MOD - CnV and
+    from MOD + CnV + dead time on; the plant gets CnV and the dead time 80 FTM clocks
+    (DTPS /4 x DTVAL 20); DTVALEX extends DTVAL; a high-side pulse no longer than the dead
+    time disappears and the plant keeps its nominal width (the diode conducts in the gap).
+
+    Methods: 1a the RM's output of a complementary pair with dead time; 1b prescalers /1, /4,
+    /16 and DTVALEX; 1c the boundary of a pulse as long as the dead time
+    """
+    f = ftm_cpwm()
+    assert f.dead_ticks() == 80
+    pins = f.pin_on()
+    assert pins[0] == [(5000 - 1200 + 80, 5000 + 1200)]
+    assert pins[1] == [(0, 5000 - 1200), (5000 + 1200 + 80, 10000)]
+    assert periph.bridge(pins, 5000) == ([1200, 2500, 4000], 80, True)
+    for reg, ticks in ((0x05, 5), (0x45, 5), (0x85, 20), (0xC5, 80), ((1 << 16) | 0x05, 69),
+                       ((0xF << 16) | 0xFF, 16 * 1023)):
+        assert ftm_cpwm(deadtime=reg).dead_ticks() == ticks, hex(reg)
+    f = ftm_cpwm(c0v=(40, 2500, 5000))
+    pins = f.pin_on()
+    assert pins[0] == [] and pins[4] == [(0, 10000)] and pins[5] == []
+    assert periph.bridge(pins, 5000) == ([40, 2500, 5000], 80, True)
+
+
+def test_ftm_outputs_without_dead_time_mask_polarity_and_shoot_through():
+    """REQ-PIL-007: DTEN clear gives dead time 0 to the plant; OUTMASK of all six outputs
+    switches the bridge off; COMP clear (the low side a PWM of its own CnV) or POL set on a
+    low side puts both switches of a leg on together: the run stops on the shoot-through.
+
+    Methods: 1d the errors guessed: dead time off, complementary mode off, an inverted
+    output; 1b the masked bridge
+    """
+    f = ftm_cpwm(comb_pair=0x62)
+    assert periph.bridge(f.pin_on(), 5000) == ([1200, 2500, 4000], 0, True)
+    f = ftm_cpwm(outmask=0x3F)
+    assert periph.bridge(f.pin_on(), 5000) == ([0, 0, 0], None, False)
+    for kw in ({"comb_pair": 0x70}, {"pol": 0x02}):
+        with pytest.raises(core.Stop, match="shoot-through"):
+            periph.bridge(ftm_cpwm(**kw).pin_on(), 5000)
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_dead_time_mismatch_with_the_table_is_reported(libs, monkeypatch, capsys):
+    """REQ-PIL-007: the image's FTM3 inserts 80 FTM clocks, the table compensates dt_comp =
+    40 compare counts (80 clocks): the run passes and the plant switches with the registers'
+    dead time (1 us); with the registers read as 60 clocks the run fails on the dead-time
+    check, which names both figures.
+
+    Methods: 1a the comparison of the statement; 1l the fault injected: a dead time 20 clocks
+    short of the compensation
+    """
+    args, run = fw_run(libs, "--ms", "420", "--lin-period-ms", "20", "--power-on-ms", "350")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert r["ok"], out
+    pil = r["pil"]
+    assert set(pil.dead_ticks) == {80} and pil.dead_ticks[80] > 100
+    assert abs(pil.plant.dead_time_s - 1.0e-6) < 1e-12
+    monkeypatch.setattr(periph.FTM, "dead_ticks", lambda self: 60)
+    args, run = fw_run(libs, "--ms", "60")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert not r["ok"]
+    assert "FAIL the inverter's dead time from the FTM3 registers" in out
+    assert "registers 60" in out and "table 80" in out
