@@ -62,7 +62,7 @@ pil-check: $(PIL_ELF) $(PIL_LIB) $(PIL_TWIN)
 	$(PYTHON) port_s32k/pil/scenarios.py $(PIL_ELF) --only short --lib $(PIL_LIB) --twin-lib $(PIL_TWIN) \
 	    --log-dir $(PIL_LOGS)
 
-## pil-defects: seeded port defects (PDB delay, channel pair, dead time, complementary mode, ADC priority) each in its own image: caught or missed
+## pil-defects: seeded port defects (PDB delay, channel pair, dead time, complementary mode, clock divider, ADC priority) each in its own image: caught or missed
 pil-defects: $(BUILD)/target/libqfoc.a $(PIL_LIB) $(PIL_TWIN)
 	$(PYTHON) port_s32k/pil/defects.py --cc $(ARM_CC) --cflags "$(ARM_CFLAGS) $(FW_DEFS) -g" \
 	    --ldflags "$(filter-out -T $(FW_LD) -Wl$(pil_comma)-Map=$(FW_MAP),$(FW_LDFLAGS))" \

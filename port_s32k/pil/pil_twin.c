@@ -93,3 +93,12 @@ uint32_t pil_twin_dt_comp(void)
 {
     return (uint32_t)qfoc_params_reference.svpwm.dt_comp;
 }
+
+/* The offset of f_pwm_hz (uint16_t) in qfoc_param_table_t, for the check of the PWM
+   frequency from the FTM3 registers and the clock tree (port_s32k/pil/run.py). */
+uint32_t pil_twin_f_pwm_offset(void);
+
+uint32_t pil_twin_f_pwm_offset(void)
+{
+    return (uint32_t)offsetof(qfoc_param_table_t, f_pwm_hz);
+}

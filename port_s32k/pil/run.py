@@ -29,7 +29,10 @@ on; the bridge must be off from the next reload point and the drive must end in 
 
 Expectations checked (exit status 1 when one fails): no stop of the run and no
 watchdog reset; FTM3 period interrupts at the PWM frequency and one ADC1 interrupt per
-PWM period once the PWM runs (+-2); one LPIT0 interrupt per ms (+-1); the inverter's
+PWM period once the PWM runs (+-2); one LPIT0 interrupt per ms (+-1); the rates from the
+registers and the clock tree (periph.SCG.clock_tree): the PWM frequency against the
+table's f_pwm_hz, the LPIT0 period against 1 ms, LIN 19200 baud +-1.5 %, CAN 500 kbit/s
++-0.5 %; the inverter's
 dead time from the FTM3 registers equal to the table's dead-time compensation (2 dt_comp
 FTM clocks); the library's instructions within their static bound (timing.py); the watchdog
 refreshed at every tick; the compare values written (LDOK) before the next reload point
@@ -391,6 +394,8 @@ def execute(args):
                  "%.3f" % (lib.max_at[f] * 1000.0 / hz) if lib.max_at[f] is not None else "-", bounds[f]))
     dt = dead_time_report(pil, args.twin_lib)
     print(dt["text"])
+    clk = clock_report(pil, args.twin_lib)
+    print(clk["text"])
     summ = timing_mod.summary(c, pil, lib)
     summ["static_bound"] = bounds
     if args.timing_json:
@@ -437,6 +442,8 @@ def execute(args):
                    "tick %d)" % (bounds["qfoc_drive_fast_step"], bounds["qfoc_drive_tick"]),
                    not over, "; ".join(over) or "max %s" % ", ".join(
                        str(max(lib.calls[f])) if lib.calls[f] else "-" for f in timing_mod.FUNCS)))
+    for what, good, detail in clk["checks"]:
+        checks.append((what, good, detail))
     checks.append(("the inverter's dead time from the FTM3 registers equals the table's dead-time "
                    "compensation (2 dt_comp FTM clocks); the plant switched with it", dt["ok"], dt["detail"]))
     if args.adc_latency_max is not None:
@@ -471,6 +478,89 @@ def execute(args):
     print("pil: %s" % ("PASS" if ok else "FAIL"))
     return {"rc": 0 if ok else 1, "ok": ok, "checks": checks, "pil": pil, "seen": seen,
             "lockstep": ls, "ms": ms, "timing": summ, "lib": lib, "adc_latency_max": max(adc_lat) if adc_lat else None}
+
+
+LIN_BAUD = 19200            # the LIN network's bit rate (QFOC_S32K_LIN_BAUD; specs/link-frames.md)
+LIN_TOL = 0.015             # LIN 2.x: a slave node without synchronisation, +-1.5 %
+CAN_BPS = 500_000           # the CAN network's bit rate (s32k144_port.h, McuCANConfig)
+CAN_TOL = 0.005
+
+
+def clock_report(pil, twin_lib):
+    """The clock tree from the SCG registers (periph.SCG.clock_tree) and the clock of each
+    peripheral the models count with, and the checks of the rates they give against the
+    system's: the PWM frequency (f_FTM / (2 MOD), up-down counting) against the table's
+    f_pwm_hz in the image, the LIN and CAN bit rates against the networks', the LPIT0
+    period against 1 ms.  A quantity whose clock is off or whose peripheral was never set up
+    is reported as '-' and its check fails."""
+    d, c = pil.dev, pil.core
+    tree = d["SCG"].clock_tree()
+    hz = core_mod.CORE_HZ
+
+    def mhz(f):
+        return "-" if not f else "%g" % (f / 1e6)
+    lines = ["clock tree from the SCG registers (SOSC 8 MHz crystal assumed), MHz: " + ", ".join(
+        "%s %s" % (k, mhz(tree.get(k))) for k in ("SOSC", "SPLL", "SOSCDIV1", "SOSCDIV2", "SPLLDIV1",
+                                                  "SPLLDIV2", "CORE", "SYS", "BUS", "FLASH"))]
+    checks = []
+
+    def safe(fn):
+        try:
+            return fn()
+        except core_mod.Stop as e:
+            return "%s" % e
+    ftm = d["FTM3"]
+    t_ftm = safe(ftm.tick)
+    f_pwm = None
+    if isinstance(t_ftm, int) and ftm.r["MOD"]:
+        f_pwm = hz / t_ftm / (2.0 * ftm.r["MOD"])
+    a = c.syms.get("qfoc_params_reference")
+    off = twin_mod.f_pwm_offset(twin_lib)
+    f_tab = int.from_bytes(bytes(c.flash[a + off:a + off + 2]), "little") if a is not None else None
+    lines.append("  FTM3: SC[CLKS] = %d (SYS_CLK), PS /%d: %s MHz; MOD %d, up-down: PWM %s Hz (table f_pwm_hz %s)"
+                 % ((ftm.r["SC"] >> 3) & 3, 1 << (ftm.r["SC"] & 7),
+                    mhz(hz / t_ftm) if isinstance(t_ftm, int) else t_ftm, ftm.r["MOD"],
+                    "%.1f" % f_pwm if f_pwm else "-", f_tab))
+    checks.append(("PWM frequency from the FTM3 registers and the clock tree equals the table's f_pwm_hz",
+                   f_pwm is not None and f_tab is not None and abs(f_pwm - f_tab) < 1e-6 * f_tab,
+                   "%s Hz, table %s Hz" % ("%.1f" % f_pwm if f_pwm else "-", f_tab)))
+    for k in (0, 1):
+        p = d["PDB%d" % k]
+        lines.append("  PDB%d: SYS_CLK %s MHz, %d core clocks per count; CH0DLY0 %d counts = %d clocks"
+                     % (k, mhz(tree.get("SYS")), safe(p.clk) if isinstance(safe(p.clk), int) else -1,
+                        p.r["CH0DLY0"], p.r["CH0DLY0"] * (safe(p.clk) if isinstance(safe(p.clk), int) else 0)))
+        adc = d["ADC%d" % k]
+        f = safe(adc.adck_hz)
+        lines.append("  ADC%d: PCC PCS %d (DIV2), ADIV %d: ADCK %s MHz; conversion %s ADCK (SMPLTS + 1 + %d, "
+                     "the compare clocks an assumption)"
+                     % (k, pil.core.pcc_dev.pcs(adc.pcc), (adc.r["CFG1"] >> 5) & 3,
+                        mhz(f) if isinstance(f, int) else f, (adc.r["CFG2"] & 0xFF) + 1 + periph.ADC_COMPARE_CLOCKS,
+                        periph.ADC_COMPARE_CLOCKS))
+    lp = d["LPIT0"]
+    t_l = safe(lp.clk)
+    per = (lp.r["TVAL0"] + 1) * t_l if isinstance(t_l, int) else None
+    lines.append("  LPIT0: PCC PCS %d (DIV2) %s MHz, TVAL0 %d: period %s clocks"
+                 % (c.pcc_dev.pcs(lp.pcc), mhz(hz / t_l) if isinstance(t_l, int) else t_l, lp.r["TVAL0"], per))
+    checks.append(("LPIT0 period from its registers and the clock tree: 1 ms", per == hz // 1000,
+                   "%s clocks" % per))
+    t_u = safe(d["LPUART1"].bit_cycles)
+    baud = hz / t_u if isinstance(t_u, int) and t_u else None
+    lines.append("  LPUART1: PCC PCS %d (DIV2), BAUD 0x%08X: %s baud (LIN %d)"
+                 % (c.pcc_dev.pcs(d["LPUART1"].pcc), d["LPUART1"].r["BAUD"],
+                    "%.1f" % baud if baud else t_u, LIN_BAUD))
+    checks.append(("LIN bit rate from LPUART1's registers and the clock tree: %d baud +-%.1f %%"
+                   % (LIN_BAUD, 100 * LIN_TOL), baud is not None and abs(baud / LIN_BAUD - 1) <= LIN_TOL,
+                   "%s baud" % ("%.1f" % baud if baud else "-")))
+    can = d["CAN0"]
+    t_c = safe(can.bit_cycles) if can.r["CTRL1"] else "CAN0 not set up"
+    bps = hz / t_c if isinstance(t_c, int) and t_c else None
+    lines.append("  CAN0: CTRL1[CLKSRC] = 0 (SOSCDIV2 %s MHz): %s bit/s (network %d)"
+                 % (mhz(tree.get("SOSCDIV2")), "%.0f" % bps if bps else t_c, CAN_BPS))
+    checks.append(("CAN bit rate from CAN0's registers and the clock tree: %d bit/s +-%.1f %%"
+                   % (CAN_BPS, 100 * CAN_TOL), bps is not None and abs(bps / CAN_BPS - 1) <= CAN_TOL,
+                   "%s bit/s" % ("%.0f" % bps if bps else "-")))
+    return {"text": "\n".join(lines), "checks": checks, "tree": tree, "f_pwm": f_pwm, "baud": baud,
+            "bps": bps, "lpit_period": per}
 
 
 def dead_time_report(pil, twin_lib):

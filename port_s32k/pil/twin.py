@@ -78,6 +78,13 @@ def dt_comp_field(lib_path):
     return lib.pil_twin_dt_comp_offset(), lib.pil_twin_dt_comp()
 
 
+def f_pwm_offset(lib_path):
+    """The offset of f_pwm_hz in qfoc_param_table_t (pil_twin.c)."""
+    lib = ctypes.CDLL(lib_path)
+    lib.pil_twin_f_pwm_offset.restype = ctypes.c_uint32
+    return lib.pil_twin_f_pwm_offset()
+
+
 class Twin:
     def __init__(self, lib_path):
         lib = ctypes.CDLL(lib_path)

@@ -814,12 +814,12 @@ def test_seeded_defects_apply_exactly_once():
     has none.
 
     Methods: 1d the errors guessed: a PDB delay off by half a PWM period, a compare value on
-    the wrong channel pair, the dead time not inserted, the low side not the complement, the
-    ADC interrupt below the tick in priority
+    the wrong channel pair, the dead time not inserted, the low side not the complement, a
+    clock divider off by a factor of 2, the ADC interrupt below the tick in priority
     """
     import defects
     names = [d[0] for d in defects.DEFECTS]
-    assert names[0] == "control" and len(names) == 6
+    assert names[0] == "control" and len(names) == 7
     for name, fname, old, new, what in defects.DEFECTS[1:]:
         text = open(os.path.join(ROOT, "port_s32k", fname)).read()
         assert text.count(old) == 1 and old != new and new not in text, name
@@ -944,3 +944,104 @@ def test_dead_time_mismatch_with_the_table_is_reported(libs, monkeypatch, capsys
     assert not r["ok"]
     assert "FAIL the inverter's dead time from the FTM3 registers" in out
     assert "registers 60" in out and "table 80" in out
+
+
+# ---------------------------------------------------------------------- clocks
+def scg_regs(**kw):
+    """An SCG model with the port's clock set-up (mcu.c, qfoc_s32k_clock_init): SOSC 8 MHz
+    crystal, SOSCDIV1 = SOSCDIV2 = /1, SPLL PREDIV 0, MULT 24, SPLLDIV1 /2, SPLLDIV2 /4,
+    RCCR SCS = SPLL, DIVCORE 1, DIVBUS 1, DIVSLOW 2; keyword arguments replace registers."""
+    g = periph.SCG()
+    g.r.update({"SOSCCSR": 1, "SOSCCFG": 0x24, "SOSCDIV": 0x101, "SPLLCSR": 1,
+                "SPLLCFG": 24 << 16, "SPLLDIV": 0x302, "RCCR": 0x06010012})
+    g.r.update(kw)
+    g._tree = None
+    return g
+
+
+def test_clock_tree_from_the_scg_registers():
+    """REQ-PIL-008: the port's set-up gives VCO 320 MHz, SPLL_CLK 160 MHz, SPLLDIV1 80,
+    SPLLDIV2 40, SOSCDIV2 8, CORE = SYS 80, BUS 40, FLASH 80 / 3 MHz; PREDIV divides the
+    source by PREDIV + 1, MULT multiplies by MULT + 16, a divider field n by 2^(n - 1), 0
+    turns the output off; without the crystal (EREFS 0) or the SOSC disabled the SPLL is off.
+
+    Methods: 1a the RM's formulas; 1b each divider code; 1c the boundaries 0 (off) and 7
+    (/64) of a divider field
+    """
+    t = scg_regs().clock_tree()
+    assert (t["VCO"], t["SPLL"], t["SPLLDIV1"], t["SPLLDIV2"]) == (320e6, 160e6, 80e6, 40e6)
+    assert (t["SOSCDIV1"], t["SOSCDIV2"], t["CORE"], t["SYS"], t["BUS"]) == (8e6, 8e6, 80e6, 80e6, 40e6)
+    assert t["FLASH"] == 80_000_000 // 3
+    t = scg_regs(SPLLCFG=(24 << 16) | (1 << 8)).clock_tree()
+    assert t["VCO"] == 160e6 and t["SPLLDIV1"] == 40e6
+    t = scg_regs(SPLLCFG=4 << 16).clock_tree()
+    assert t["SPLL"] == 80e6
+    for field, div in ((1, 1), (2, 2), (3, 4), (7, 64)):
+        assert scg_regs(SOSCDIV=field << 8).clock_tree()["SOSCDIV2"] == 8e6 / div
+    assert scg_regs(SOSCDIV=0).clock_tree()["SOSCDIV2"] is None
+    assert scg_regs(SOSCCFG=0x20).clock_tree()["SPLL"] is None
+    assert scg_regs(SOSCCSR=0).clock_tree()["SOSCDIV2"] is None
+
+
+def test_peripheral_clocks_follow_the_registers(tmp_path):
+    """REQ-PIL-008: the core clocks per count of FTM3 (CLKS 01: SYS_CLK), the PDBs (SYS_CLK),
+    the ADCs (PCC PCS: SPLLDIV2 / 2^ADIV), LPIT0 and LPUART1 (PCC PCS: SOSCDIV2) follow the
+    SCG and PCC registers: SOSCDIV2 halved doubles the LPIT0 and LPUART1 counts, SPLLDIV2
+    halved doubles the ADC conversion; a clock that is off, a PCC source not modelled, or
+    a core clock other than the 80 MHz time base stops the run.
+
+    Methods: 1a the clock of each peripheral per the RM; 1d the errors guessed: a divider
+    off by 2, a clock left off, the core switched to another frequency
+    """
+    elf = build(tmp_path, "idle", "    .thumb_func\nreset:\n    b reset\n", {})
+    c = core.Core(elf)
+    dev = periph.build(c)
+    g = dev["SCG"]
+    g.r.update(scg_regs().r)
+    g._tree = None
+    for off, pcs in ((0xDC, 1), (0x1AC, 1), (0xEC, 6), (0x9C, 6), (0x98, 6)):
+        dev["PCC"].r[off] = (1 << 31) | periph.CGC | (pcs << 24)
+    ftm, pdb, adc, lpit, uart = dev["FTM3"], dev["PDB1"], dev["ADC1"], dev["LPIT0"], dev["LPUART1"]
+    ftm.r["SC"] = 1 << 3
+    adc.r["CFG2"] = 12
+    uart.r["BAUD"] = 0x0F00801A
+    assert (ftm.tick(), pdb.clk(), lpit.clk(), adc.conv_cycles()) == (1, 1, 10, 2 * 33)
+    assert uart.bit_cycles() == 16 * 26 * 10
+    g.r["SOSCDIV"] = 0x201
+    g._tree = None
+    assert (lpit.clk(), uart.bit_cycles()) == (20, 16 * 26 * 20)
+    g.r["SPLLDIV"] = 0x402
+    g._tree = None
+    assert adc.conv_cycles() == 4 * 33 and ftm.tick() == 1
+    g.r["SPLLDIV"] = 0x002
+    g._tree = None
+    with pytest.raises(core.Stop, match="SPLLDIV2 is off"):
+        adc.conv_cycles()
+    dev["PCC"].r[0xDC] = (1 << 31) | periph.CGC | (3 << 24)
+    with pytest.raises(core.Stop, match="FIRCDIV2 is not modelled"):
+        lpit.clk()
+    with pytest.raises(core.Stop, match="time base"):
+        g.wr_RCCR(0x06020012)
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_image_rates_from_the_clock_tree(libs, monkeypatch, capsys):
+    """REQ-PIL-008: the image's registers give the table's PWM frequency (8000 Hz), a 1 ms
+    LPIT0 period, LIN 19230.8 baud (19200 +-1.5 %) and CAN 500 kbit/s; with the crystal
+    taken as 4 MHz (every clock derived from it halved) the image's switch of the core to
+    the SPLL stops the run: CORE_CLK 40 MHz from the registers, not the 80 MHz time base.
+
+    Methods: 1a the rates of the statement from the registers; 1l the fault injected: the
+    crystal at half its frequency
+    """
+    args, run = fw_run(libs, "--ms", "60", "--expect", "ANY")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert r["ok"], out
+    assert "PWM 8000.0 Hz (table f_pwm_hz 8000)" in out and "19230.8 baud" in out
+    assert "500000 bit/s (network 500000)" in out and "period 80000 clocks" in out
+    monkeypatch.setattr(periph, "SOSC_HZ", 4_000_000)
+    args, run = fw_run(libs, "--ms", "60", "--expect", "ANY")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert not r["ok"] and "CORE_CLK 40000000 Hz" in out
