@@ -64,7 +64,9 @@ Simplifications (stated; not RM behaviour):
     it; the unlock is valid until the CS write (the 128-bus-clock window after the
     unlock is not timed); a timeout resets the part (core.Core.reset).
 
-Requirements: REQ-PIL-001, REQ-PIL-002, REQ-PIL-007, REQ-PIL-008 (specs/requirements/pil.md).
+Requirements: REQ-PIL-001, REQ-PIL-002, REQ-PIL-007, REQ-PIL-008, REQ-PIL-009 (the ADC's
+input taken at the conversion's start: run.PIL.analog converts the plant at that instant)
+(specs/requirements/pil.md).
 """
 from core import Stop, CORE_HZ
 

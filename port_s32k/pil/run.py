@@ -14,11 +14,12 @@ effect (periph.FTM.pin_on: complementary pairs, dead time, polarity, mask, fault
 holds every switch off), give the plant its compare values, its enable and its dead time
 (periph.bridge), and the plant integrates the period that has just ended
 (sim_step_period) and is then sampled (sim_sample): the ADC model converts these codes
-when the PDB pre-triggers start its conversions (i_u on ADC0_SE3, i_v on ADC1_SE2, V_dc on
-ADC1_SE8).  The plant samples only at period starts: a conversion that does not start at
-the reload instant (T_PCB, T_IPM and V_dc, back to back after it) converts the values of
-that instant (counted as `off-instant` conversions; the bus is constant here).  The NTC
-inputs read 2048 (25 degC: no thermal model).
+when the PDB pre-triggers start its conversions at the reload instant (i_u on ADC0_SE3,
+i_v on ADC1_SE2).  A conversion that starts later in the period (V_dc on ADC1_SE8, back to
+back after i_v; counted as `off-instant` conversions) converts the plant at its own
+instant: a copy of the plant integrated from the reload point to it with the period's
+settings (sim_sample_at).  The NTC inputs (ADC0_SE12, ADC1_SE7) read 2048 (25 degC: the
+plant has no thermal model, so their instant does not matter).
 
 Commands (optional): the LIN master sends a command frame (SYNC, PID(0x10), 4 data bytes,
 enhanced checksum; include/qfoc/link.h, specs/link-frames.md) every --lin-period-ms on
@@ -110,6 +111,9 @@ class PIL:
         self.inject = None
         self.lin_last = None         # core clock of the last command frame sent
         self.dead_ticks = {}         # dead time from the FTM3 registers (FTM clocks) -> periods
+        self.at_cache = (None, None)  # (core clock, plant codes) of the last off-instant conversion
+        self.tau_log = {}            # (adc, channel) -> largest clocks after the reload point
+        self.ntc_conv = 0
 
     def attach_lockstep(self, lib):
         self.lockstep = twin_mod.LockStep(self, lib)
@@ -159,19 +163,31 @@ class PIL:
         self.t_sample = t
 
     def analog(self, adc, ch, t):
+        """The code a conversion started at core clock t converts: the plant's value at that
+        instant (sim_sample_at, tau = t - the last reload point), the NTC inputs 2048."""
         table = {(0, 3): 0, (1, 2): 1, (1, 8): 2}
         k = table.get((adc, ch))
         if k is None:
             if (adc, ch) in ((0, 12), (1, 7)):
-                return 2048                          # NTC at 25 degC
+                self.ntc_conv += 1
+                return 2048                          # NTC at 25 degC: no thermal model
             raise core_mod.Stop("ADC%d channel %d has no input in the plant" % (adc, ch))
-        if t != self.t_sample:
+        codes = self.codes
+        if self.t_sample is not None and t != self.t_sample:
             self.off_instant += 1
+            tau = t - self.t_sample
+            if tau >= 2 * self.dev["FTM3"].r["MOD"] * self.dev["FTM3"].tick():
+                raise core_mod.Stop("ADC%d channel %d converted %d clocks after the last reload "
+                                    "point: beyond the plant's period" % (adc, ch, tau))
+            if self.at_cache[0] != t:
+                self.at_cache = (t, self.plant.sample_at(tau / float(core_mod.CORE_HZ)))
+            codes = self.at_cache[1]
+            self.tau_log[(adc, ch)] = max(self.tau_log.get((adc, ch), 0), tau)
         if k < 2:
             self.iu_conv += 1
             if self.t_sample is None or t - self.t_sample > SAMPLE_TOL:
                 self.iu_off += 1
-        return self.codes[k]
+        return codes[k]
 
 
 def stats(xs):
@@ -343,9 +359,12 @@ def execute(args):
         print("PDB trigger input (FTM3 init trigger, counter at CNTIN) -> LDOK write: %s clocks "
               "(CH0DLY0 = %d plus the above)" % (stats([x + dly for x in lat]), dly))
     print("ADC conversions: ADC0 %d, ADC1 %d; PDB sequence errors ADC0 0x%02X ADC1 0x%02X; "
-          "conversions off the reload instant %d; trigger conflicts %d/%d"
+          "conversions off the reload instant %d (the plant converted at their instant, "
+          "clocks after the reload point at most: %s), NTC %d (2048); trigger conflicts %d/%d"
           % (d["ADC0"].conversions, d["ADC1"].conversions, d["PDB0"].r["CH0S"] & 0xFF,
-             d["PDB1"].r["CH0S"] & 0xFF, pil.off_instant, d["ADC0"].conflicts, d["ADC1"].conflicts))
+             d["PDB1"].r["CH0S"] & 0xFF, pil.off_instant,
+             ", ".join("ADC%d_SE%d %d" % (a, ch, v) for (a, ch), v in sorted(pil.tau_log.items())) or "-",
+             pil.ntc_conv, d["ADC0"].conflicts, d["ADC1"].conflicts))
     print("watchdog refreshes %d, timeouts (resets) %d; LPIT timeouts %d; plant periods %d (%d with "
           "the bridge switching); CAN frames %d; LIN frames sent to the drive %d, bytes from it %d"
           % (d["WDOG"].refreshes, getattr(c, "wdog_timeouts", 0), d["LPIT0"].timeouts, pil.plant.steps,

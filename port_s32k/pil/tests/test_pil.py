@@ -1045,3 +1045,66 @@ def test_image_rates_from_the_clock_tree(libs, monkeypatch, capsys):
     r = run.execute(args)
     out = capsys.readouterr().out
     assert not r["ok"] and "CORE_CLK 40000000 Hz" in out
+
+
+# ---------------------------------------------------------------------- sampling instant
+def test_plant_sampled_at_an_instant_of_the_period(libs):
+    """REQ-PIL-009: the plant's codes at tau after the period's start (sim_sample_at): at
+    tau = 0 those of the period's start, at tau = T those the plant gives after the period
+    with the same compare values and enable, in between the current's ripple (a code other
+    than the start's); the plant itself is not changed.
+
+    Methods: 1a the statement; 1c the boundaries tau = 0 and tau = T
+    """
+    import plant as plant_mod
+    p = plant_mod.Plant(libs[0], os.path.join(ROOT, "specs", "motors", "reference.toml"), 320.0)
+    p.set_dead_time(1e-6)
+    cmp3 = [2700, 2500, 2300]
+    for _ in range(40):
+        p.step(cmp3, True)
+    start = p.sample()
+    T = 2.0 * p.period / 80e6
+    assert p.sample_at(0.0) == start
+    mid = [p.sample_at(T * k / 8.0) for k in range(1, 8)]
+    end = p.sample_at(T)
+    assert p.sample() == start                      # unchanged by sample_at
+    assert any(m[:2] != start[:2] for m in mid)
+    p.step(cmp3, True)
+    assert p.sample() == end
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_conversions_convert_the_plant_at_their_instant(libs, monkeypatch, capsys):
+    """REQ-PIL-009: a conversion that starts after the reload point (V_dc on ADC1_SE8, back to
+    back after i_v) converts the plant at its own instant: sample_at is called with the
+    clocks since the reload point (132 for V_dc) and its code is the one converted; with the
+    plant's bus read as 0 V at those instants the drive never leaves PRECHARGE.
+
+    Methods: 1a the instant of each conversion; 1l the fault injected: the bus code of the
+    conversion instant 0
+    """
+    import plant as plant_mod
+    taus = []
+    orig = plant_mod.Plant.sample_at
+
+    def spy(self, tau):
+        taus.append(round(tau * 80e6))
+        return orig(self, tau)
+    monkeypatch.setattr(plant_mod.Plant, "sample_at", spy)
+    args, run = fw_run(libs, "--ms", "150", "--expect", "PRECHARGE")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert r["ok"], out
+    pil = r["pil"]
+    assert pil.tau_log == {(1, 8): 132} and set(taus) == {132}
+    assert len(taus) == pil.off_instant > 1000
+
+    def bus_zero(self, tau):
+        return orig(self, tau)[:2] + [0]
+    monkeypatch.setattr(plant_mod.Plant, "sample_at", bus_zero)
+    args, run = fw_run(libs, "--ms", "450", "--lin-period-ms", "20", "--power-on-ms", "350",
+                       "--expect", "STOP")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert not r["ok"]
+    assert all(run.STATES.get(s) == "PRECHARGE" for _, s, _ in r["seen"])
