@@ -1108,3 +1108,74 @@ def test_conversions_convert_the_plant_at_their_instant(libs, monkeypatch, capsy
     out = capsys.readouterr().out
     assert not r["ok"]
     assert all(run.STATES.get(s) == "PRECHARGE" for _, s, _ in r["seen"])
+
+
+# ---------------------------------------------------------------------- library counts
+# Two functions named as the drive's entry points, called from thread mode: the first runs
+# 6 instructions (its bx lr included); the second pends IRQ 40 in its third store, which is
+# taken at once (nested in the call: 4 instructions, entry and return), then runs on: 12
+# instructions of its own.
+LIB_COUNT = """
+    .thumb_func
+reset:
+    bl qfoc_drive_fast_step
+    bl qfoc_drive_tick
+    ldr r0, =0x1FFF8000
+    str r0, [r0]
+1:  b 1b
+
+    .thumb_func
+qfoc_drive_fast_step:
+    movs r0, #1
+    adds r0, r0, #1
+    adds r0, r0, #1
+    adds r0, r0, #1
+    adds r0, r0, #1
+    bx lr
+
+    .thumb_func
+qfoc_drive_tick:
+    ldr r0, =0xE000E104         @ ISER1: IRQ 40 enabled
+    movs r1, #1
+    lsls r1, r1, #8
+    str r1, [r0]
+    ldr r0, =0xE000E204         @ ISPR1: IRQ 40 pending: taken after this store
+    str r1, [r0]
+    movs r2, #1
+    adds r2, r2, #1
+    adds r2, r2, #1
+    adds r2, r2, #1
+    adds r2, r2, #1
+    bx lr
+    .ltorg
+
+    .thumb_func
+isr40:
+    movs r3, #1
+    adds r3, r3, #1
+    adds r3, r3, #1
+    bx lr
+"""
+
+
+def test_library_counts_exclude_nested_handlers(tmp_path):
+    """REQ-PIL-006: the count of a call is its own instructions from the first to the return
+    instruction: 6 for a straight function, 12 for one in which an interrupt (4 instructions,
+    12 clocks of entry and 10 of return) is taken, the handler's 26 clocks left out.
+
+    Methods: 1a the count of the statement on known instruction sequences; 1b a call with and
+    without a nested handler
+    """
+    import timing
+    elf = build(tmp_path, "libcount", LIB_COUNT, {40: "isr40"})
+    c = core.Core(elf)
+    lib = timing.LibTiming(c)
+    c.log_isr = True
+    c.boot()
+    assert c.run_until(400), c.stopped
+    assert lib.calls["qfoc_drive_fast_step"] == [6]
+    assert lib.calls["qfoc_drive_tick"] == [12]
+    assert [s[0] for s in c.irq_stats[40]] == [4] and c.handler_clocks == 4 + 12 + 10
+    t_tick = lib.max_at["qfoc_drive_tick"]
+    enter = [t for t, irq, what in c.isr_log if irq == 40 and what == "enter"]
+    assert len(enter) == 1 and t_tick < enter[0] < t_tick + 12 + 26      # nested in the call
