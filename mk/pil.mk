@@ -6,7 +6,8 @@
 #
 #   make pil          the scenario table (port_s32k/pil/scenarios.py): start, speed step,
 #                     stop, over-current, link loss, stalled and stuck ADC, pre-empted tick;
-#                     exit status 1 on a failed target or a lock-step divergence
+#                     exit status 1 on a failed target or a lock-step divergence; the
+#                     image's measured timing in $(PIL_TIMING) for make bench
 #   make pil-run      one run of port_s32k/pil/run.py with PIL_ARGS (the first slice's run)
 #   make pil-test     the emulator's own tests (port_s32k/pil/tests/test_pil.py, pytest)
 #   make pil-check    the short form (< 60 s): pil-test and the short scenario with lock-step
@@ -20,6 +21,9 @@ PIL_ELF     := $(BUILD)/s32k144/qfoc_compressor.elf
 PIL_SRCS    := port_s32k/pil/pil_plant.c sim/plant.c sim/motor.c
 PIL_ARGS    ?= --ms 1200 --lin-period-ms 20 --power-on-ms 350 --lockstep
 PIL_LOGS    := $(BUILD)/pil/scenarios
+# the measured timing of the image over the scenarios of make pil (port_s32k/pil/timing.py),
+# reported by make bench beside the bench's static bounds (mk/bench.mk)
+PIL_TIMING  := $(BUILD)/pil/timing.json
 pil_comma   := ,
 
 .PHONY: pil pil-run pil-test pil-check pil-defects
@@ -39,7 +43,8 @@ $(PIL_TWIN): port_s32k/pil/pil_twin.c $(SRCS) $(HDRS) $(wildcard src/*.h) tables
 
 ## pil: processor in the loop: the scenario table (image from reset in an emulator, sim/ motor, lock-step with the host build)
 pil: $(PIL_ELF) $(PIL_LIB) $(PIL_TWIN)
-	$(PYTHON) port_s32k/pil/scenarios.py $(PIL_ELF) --lib $(PIL_LIB) --twin-lib $(PIL_TWIN) --log-dir $(PIL_LOGS)
+	$(PYTHON) port_s32k/pil/scenarios.py $(PIL_ELF) --lib $(PIL_LIB) --twin-lib $(PIL_TWIN) --log-dir $(PIL_LOGS) \
+	    --timing-json $(PIL_TIMING)
 
 ## pil-run: one processor-in-the-loop run with PIL_ARGS (port_s32k/pil/run.py)
 pil-run: $(PIL_ELF) $(PIL_LIB) $(PIL_TWIN)
@@ -57,7 +62,7 @@ pil-check: $(PIL_ELF) $(PIL_LIB) $(PIL_TWIN)
 	$(PYTHON) port_s32k/pil/scenarios.py $(PIL_ELF) --only short --lib $(PIL_LIB) --twin-lib $(PIL_TWIN) \
 	    --log-dir $(PIL_LOGS)
 
-## pil-defects: seeded port defects (PDB delay, channel pair, ADC priority) each in its own image: caught or missed
+## pil-defects: seeded port defects (PDB delay, channel pair, dead time, complementary mode, clock divider, ADC priority) each in its own image: caught or missed
 pil-defects: $(BUILD)/target/libqfoc.a $(PIL_LIB) $(PIL_TWIN)
 	$(PYTHON) port_s32k/pil/defects.py --cc $(ARM_CC) --cflags "$(ARM_CFLAGS) $(FW_DEFS) -g" \
 	    --ldflags "$(filter-out -T $(FW_LD) -Wl$(pil_comma)-Map=$(FW_MAP),$(FW_LDFLAGS))" \

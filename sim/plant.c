@@ -744,6 +744,31 @@ void sim_step_period(sim_t *s)
     sim_period_end(s, vsum, tsum);
 }
 
+void sim_sample_at(const sim_t *s, double tau, sim_adc_t *adc)
+{
+    sim_t c = *s;
+    const double T = c.bases.t_s;
+    const double h = T / (double)c.cfg.substeps;
+    double tx[3];
+    double vsum[2] = { 0.0, 0.0 };
+    double tsum = 0.0;
+    double a = 0.0;
+    int j;
+
+    c.rec = NULL;
+    if (!c.asym_active && !(c.cfg.shunt.active && c.trig_active)) {
+        for (j = 0; j < 3; j++) {
+            tx[j] = T * (double)c.cmp_active[j] / (double)c.bases.period;
+        }
+        while ((tau - a) > 1e-15) {
+            const double hh = fmin(h, tau - a);
+            sim_substep(&c, a, hh, T, tx, NULL, hh / h, vsum, &tsum);
+            a += hh;
+        }
+    }
+    sim_sample(&c, adc);
+}
+
 /* The end of a period: the angle wrapped, the averages, the pending settings active. */
 static void sim_period_end(sim_t *s, const double vsum[2], double tsum)
 {

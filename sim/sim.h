@@ -296,6 +296,18 @@ void sim_record(sim_t *s, sim_rec_t *rec);
 void sim_step_period(sim_t *s);
 
 /**
+ * The ADC codes (as sim_sample()) at the instant tau s after the start of the current PWM
+ * period: a copy of the plant integrated from the period's start to tau with the period's
+ * active compare values and enable, in the uniform sub-steps of sim_step_period() (the last
+ * one cut at tau), then sampled; s itself is not changed.  tau = 0 gives sim_sample() of
+ * s; tau = T gives the codes of s after sim_step_period() with the same settings.  For
+ * symmetric compare values only: with asymmetric ones or single-shunt triggers active the
+ * codes of the period's start are returned.  (The processor-in-the-loop run converts the
+ * plant at each conversion's start: port_s32k/pil/.)
+ */
+void sim_sample_at(const sim_t *s, double tau, sim_adc_t *adc);
+
+/**
  * Inverter enable for the next period (like the compare values).  Disabled: all six
  * switches off; each pole follows its current through the freewheeling diodes
  * (low for a positive current, high for a negative one), so the currents decay

@@ -166,6 +166,7 @@ class Core:
         # irq -> list of (own instructions, cycles with entry and return, latency from the
         # request to the first handler instruction, cycle of the request)
         self.irq_stats = {}
+        self.handler_clocks = 0      # clocks of every completed handler (entry, own, return)
         self.isr_log = []            # (cycle, irq, 'enter'|'return')
         self.log_isr = False
         self.preemptions = 0
@@ -509,8 +510,9 @@ class Core:
         nxt = self._deliverable(base)
         # own instructions; clocks with the entry (12, or 6 when tail-chained) and the
         # return (10, none when it tail-chains); latency; the request's clock
-        self.irq_stats.setdefault(irq, []).append(
-            (own, own + entry + (RETURN_CYCLES if nxt is None else 0), t_cyc - waited, waited))
+        clocks = own + entry + (RETURN_CYCLES if nxt is None else 0)
+        self.irq_stats.setdefault(irq, []).append((own, clocks, t_cyc - waited, waited))
+        self.handler_clocks += clocks
         if nxt is not None:
             self._enter(nxt, tail=exc_return)
             return

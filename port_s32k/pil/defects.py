@@ -42,6 +42,21 @@ DEFECTS = [
      "s32k_write(S32K_FTM3_C0V + (16u * k), s32k_cmp(pwm->cmp[k]));",
      "s32k_write(S32K_FTM3_C0V + (16u * ((k + 1u) % 3u)), s32k_cmp(pwm->cmp[k]));",
      "phase k's compare value written to the channel pair of phase k+1"),
+    ("deadtime-disabled", "mcu.c",
+     "const uint32_t pair = comb | S32K_FTM_COMB_COMP | S32K_FTM_COMB_DTEN | S32K_FTM_COMB_SYNCEN |",
+     "const uint32_t pair = comb | S32K_FTM_COMB_COMP | S32K_FTM_COMB_SYNCEN |",
+     "COMBINE[DTENm] clear in the three pairs: no dead time inserted while the table "
+     "compensates 1 us"),
+    ("complementary-off", "mcu.c",
+     "const uint32_t pair = comb | S32K_FTM_COMB_COMP | S32K_FTM_COMB_DTEN | S32K_FTM_COMB_SYNCEN |",
+     "const uint32_t pair = comb | S32K_FTM_COMB_DTEN | S32K_FTM_COMB_SYNCEN |",
+     "COMBINE[COMPm] clear: each low-side channel a PWM of its own (at 50 %) instead of the "
+     "high side's complement: both switches of a leg on together"),
+    ("soscdiv2-halved", "s32k144_port.h",
+     "#define QFOC_S32K_SOSCDIV2_FIELD (1u)",
+     "#define QFOC_S32K_SOSCDIV2_FIELD (2u)",
+     "SCG_SOSCDIV[SOSCDIV2] divide by 2 instead of 1: the clock of LPIT0, LPUART1 and the CAN "
+     "engine 4 MHz where the port counts 8 MHz (the tick period, the LIN and CAN bit rates doubled)"),
     ("adc-priority-below-tick", "s32k144_port.h",
      "#define QFOC_S32K_PRIO_ADC      (1u)",
      "#define QFOC_S32K_PRIO_ADC      (4u)",

@@ -11,21 +11,35 @@ Common rules:
     stops the run (core.py).
 
 Simplifications (stated; not RM behaviour):
-  - Clocks: SCG valid flags follow their enables at once (no oscillator or PLL start-up
-    time); the clock switch of RCCR shows in CSR at once; the core clock is 80 MHz from
-    reset (core.py).  The frequencies the models count with are those the port states
-    (s32k144_port.h, port_s32k/README.md), not an independent reading of the RM's clock
-    distribution: FTM3 (SC[CLKS] = 01) and the PDBs on SYS_CLK 80 MHz, the ADCs on
-    SPLLDIV2 40 MHz, LPIT and LPUART on SOSCDIV2 8 MHz, WDOG on the 128 kHz LPO; the models
-    check the PCC/SC fields that select them and stop on another choice.  Should the PDB
-    count the bus clock on the part (a point port_s32k/README.md lists as unverified), the
-    sampling instant here would be wrong by the same factor as the port's.
-  - FTM3: the counter in up-down (CPWMS = 1) and up counting (CPWMS = 0); the channel
-    outputs themselves (dead time, polarity, complementary pairs) are not computed: the
-    plant receives the even channels' compare values and one enable per period.  The
-    output mask, the fault flag and the gate enable are sampled at each reload point (the
-    part applies OUTMASK at once: FTM chapter, OUTMASK, with SYNCONF[SWOM] = 0; and the
-    fault within the input filter).  The write-protected set modelled is SC[CLKS, PS,
+  - Clocks: the frequencies the models count with are computed from the registers the
+    image writes (SCG.clock_tree: the SOSC crystal, 8 MHz, is the board's and assumed;
+    SPLLCFG PREDIV and MULT, SPLLDIV, SOSCDIV, RCCR DIVCORE, DIVBUS, DIVSLOW) and the PCC
+    PCS selections, each peripheral on the clock the S32K1xx RM (Rev. 13, chapter "Clock
+    distribution", the peripheral clocking table; corroborated by NXP's S32K1 SDK, whose
+    clock names group PDB0/PDB1 with the SYS_CLK modules, the FTMs with the DIV1 and the
+    ADCs, LPIT and LPUART with the DIV2 functional clocks, and whose FTM driver counts
+    SC[CLKS] = 01 at CORE_CLK) gives it: FTM3 with SC[CLKS] = 01 and the PDBs on SYS_CLK,
+    the ADCs on the DIV2 output of their PCS source (ALTCLK1, ADICLK = 00) divided by ADIV,
+    LPIT0 and LPUART1 on the DIV2 output of their PCS source, the CAN engine with
+    CTRL1[CLKSRC] = 0 on SOSCDIV2, WDOG on the 128 kHz LPO.  A clock that is off, a PCS
+    source whose dividers are not modelled (SIRC, FIRC), a frequency that is not a whole
+    fraction of the 80 MHz time base, or a core clock other than 80 MHz at the switch of
+    RCCR stops the run.  SCG valid flags follow their enables at once (no oscillator or PLL
+    start-up time); the clock switch of RCCR shows in CSR at once; the core clock is 80 MHz
+    from reset (core.py; the FIRC 48 MHz phase before the switch is not distinguished).
+  - FTM3: the counter in up-down (CPWMS = 1) and up counting (CPWMS = 0).  The six
+    channel outputs are computed from the registers at each reload point for the period
+    that starts there (FTM.pin_on: the centre-aligned PWM of each even channel, COMBINE
+    [COMPm] complement or an own PWM for the odd channel, COMBINE[DTENm] with DEADTIME
+    [DTPS, DTVAL, DTVALEX], POL, OUTMASK, PWMENn, the fault flag with FAULTENm; combine
+    mode and a non-zero CNTIN are not modelled and stop); the gate signals are turned into
+    the plant's inverter (periph.bridge: the three compare values, the dead time, the
+    enable) or stop the run on a pattern the plant's model does not have (a shoot-through,
+    a floating leg, an asymmetric or per-phase dead time).  PAIRnDEADTIME (0xA0 ..) is not
+    modelled (an access stops: the port writes DEADTIME only).  The outputs, the output
+    mask, the fault flag and the gate enable are sampled at each reload point, so that a
+    change within a period takes effect at the next one (the part applies OUTMASK at once:
+    FTM chapter, OUTMASK, with SYNCONF[SWOM] = 0; and the fault within the input filter).  The write-protected set modelled is SC[CLKS, PS,
     CPWMS], MODE (except WPDIS), COMBINE, DEADTIME, POL, FLTCTRL, FLTPOL, FILTER,
     SYNCONF, as recalled from the FTM chapter's "Write protection" list and not checked
     against RM Rev. 13 here; after setting WPEN the port writes none of them (SC only with
@@ -36,8 +50,9 @@ Simplifications (stated; not RM behaviour):
     stays set until software writes it 0 (the port sets it in every period, so the values
     it loads do not depend on this).
   - ADC: conversion time = (SMPLTS + 1) sample clocks + ADC_COMPARE_CLOCKS (20) ADC
-    clocks (an ASSUMPTION for a 12-bit conversion, not taken from the RM's timing
-    table); the input is sampled at the conversion's start; calibration completes
+    clocks (an ASSUMPTION for a 12-bit conversion: the RM's conversion-time formula was
+    not found in the sources at hand, so the 20 compare clocks stay the port's
+    assumption); the input is sampled at the conversion's start; calibration completes
     CAL_CYCLES after CAL is set (its duration on the part is longer).
   - PDB: channel 0 only; pre-trigger delays counted on SYS_CLK with PRESCALER and MULT.
   - LPUART: 8N1 frames at the configured bit time, one data buffer and the shift
@@ -49,7 +64,9 @@ Simplifications (stated; not RM behaviour):
     it; the unlock is valid until the CS write (the 128-bus-clock window after the
     unlock is not timed); a timeout resets the part (core.Core.reset).
 
-Requirements: REQ-PIL-001, REQ-PIL-002 (specs/requirements/pil.md).
+Requirements: REQ-PIL-001, REQ-PIL-002, REQ-PIL-007, REQ-PIL-008, REQ-PIL-009 (the ADC's
+input taken at the conversion's start: run.PIL.analog converts the plant at that instant)
+(specs/requirements/pil.md).
 """
 from core import Stop, CORE_HZ
 
@@ -60,6 +77,34 @@ PCS_SHIFT = 24
 
 def bits(v, lo, n):
     return (v >> lo) & ((1 << n) - 1)
+
+
+def clock_hz(core, name):
+    """The frequency of a clock of the tree (SCG.clock_tree), stopping when it is off."""
+    f = core.scg_dev.clock_tree().get(name)
+    if not f:
+        raise Stop("%s is off (SCG registers)" % name)
+    return f
+
+
+def pcc_hz(core, pcc_off, div, who):
+    """The functional clock PCC[PCS] selects for a peripheral, its DIV1 or DIV2 output
+    (RM chapter PCC; which one by the peripheral: S32K1xx RM, chapter "Clock distribution",
+    the peripheral clocking table)."""
+    pcs = core.pcc_dev.pcs(pcc_off)
+    src = PCS_SOURCES.get(pcs)
+    if src is None:
+        raise Stop("%s: PCC[PCS] = %d selects no modelled clock" % (who, pcs))
+    if src in ("SIRC", "FIRC"):
+        raise Stop("%s: %sDIV%d is not modelled" % (who, src, div))
+    return clock_hz(core, "%sDIV%d" % (src, div))
+
+
+def cycles_per(core, hz, who):
+    """Core clocks (the 80 MHz time base) per clock of `hz`: an integer, or the run stops."""
+    if CORE_HZ % hz:
+        raise Stop("%s: clock %d Hz is not a whole fraction of the %d Hz time base" % (who, hz, CORE_HZ))
+    return CORE_HZ // hz
 
 
 class Periph:
@@ -139,9 +184,41 @@ class PCC(Periph):
         return bits(self.r[off], PCS_SHIFT, 3)
 
 
+SOSC_HZ = 8_000_000          # the board: an 8 MHz crystal on EXTAL/XTAL (port_s32k/README.md)
+SIRC_HZ = 8_000_000          # RM SCG chapter: the slow IRC, 8 MHz range
+FIRC_HZ = 48_000_000         # RM SCG chapter: the fast IRC, 48 MHz (the clock at reset)
+# PCC[PCS] (RM chapter PCC, PCS field): the functional clock of a peripheral with one;
+# which divider output (DIV1 or DIV2) depends on the peripheral (pcc_hz() and its users)
+PCS_SOURCES = {1: "SOSC", 2: "SIRC", 3: "FIRC", 6: "SPLL"}
+
+
+def scg_div(field):
+    """SCG xDIV1 / xDIV2 (RM SCG chapter, SOSCDIV and SPLLDIV): 0 = output disabled, n =
+    divide by 2^(n - 1) (1, 2, 4, .. 64); None when disabled."""
+    return None if field == 0 else 1 << (field - 1)
+
+
 class SCG(Periph):
     """RM chapter SCG: SOSCCSR/SPLLCSR[VLD] (bit 24) with the enable (bit 0); CSR shows
-    RCCR; SOSCCFG/SPLLCFG written only with the source disabled."""
+    RCCR; SOSCCFG/SPLLCFG written only with the source disabled.
+
+    The clock tree (clock_tree(): Hz of every clock the models count with), from the
+    registers the image writes, per the RM's SCG chapter (S32K1xx RM Rev. 13):
+      SOSC_CLK   SOSC_HZ (8 MHz crystal: the board's, an assumption) with SOSCCSR[SOSCEN]
+                 and SOSCCFG[EREFS] = 1 (crystal);
+      VCO_CLK    SPLL source (SOSC_CLK) / (SPLLCFG[PREDIV] + 1) x (SPLLCFG[MULT] + 16);
+                 SPLL_CLK = VCO_CLK / 2 (SPLLCFG description; NXP's S32K144 cookbook
+                 example: "SPLL_CLK = 8MHz / 1 * 20 / 2 = 80 MHz").  The VCO's range (180 ..
+                 320 MHz by the port's statement, s32k144_port.h) is not checked here;
+      xDIVn_CLK  source / scg_div(xDIVn) (SOSCDIV, SPLLDIV);
+      CORE_CLK = SYS_CLK  the RCCR[SCS] source / (DIVCORE + 1); BUS_CLK = CORE_CLK /
+                 (DIVBUS + 1); FLASH_CLK = CORE_CLK / (DIVSLOW + 1) (RCCR description,
+                 "divide by n + 1"; the dividers in series as in the RM's clocking
+                 diagram);
+    SIRC and FIRC dividers are not modelled (their registers stop the run).  The time base
+    of core.py is 80 MHz: a switch of RCCR to another CORE_CLK stops the run; until the
+    image writes RCCR, CORE_CLK = SYS_CLK is taken as that time base's 80 MHz (the FIRC
+    phase after reset is not distinguished, core.py)."""
     name = "SCG"
     base = 0x40064000
     table = {0x010: ("CSR", 0x03010001), 0x014: ("RCCR", 0x03010001), 0x100: ("SOSCCSR", 0),
@@ -151,6 +228,55 @@ class SCG(Periph):
 
     def rd_CSR(self):
         return self.r["RCCR"]
+
+    def reset(self):
+        super().reset()
+        self._tree = None
+        self.rccr_written = False
+
+    def write(self, off, v):
+        self._tree = None
+        super().write(off, v)
+
+    def wr_RCCR(self, v):
+        self.r["RCCR"] = v
+        self.rccr_written = True
+        self._tree = None
+        core = self.clock_tree()["CORE"]
+        if core != CORE_HZ:
+            raise Stop("SCG_RCCR: CORE_CLK %s Hz from the registers; the time base is %d Hz"
+                       % (core, CORE_HZ))
+
+    def clock_tree(self):
+        """{clock name: Hz or None (off)} from the registers (the class docstring)."""
+        if self._tree is not None:
+            return self._tree
+        r = self.r
+        t = {"SIRC": SIRC_HZ, "FIRC": FIRC_HZ}
+        sosc = SOSC_HZ if (r["SOSCCSR"] & 1 and r["SOSCCFG"] & 0x4) else None
+        t["SOSC"] = sosc
+        spll = None
+        if r["SPLLCSR"] & 1 and sosc is not None:
+            prediv, mult = bits(r["SPLLCFG"], 8, 3), bits(r["SPLLCFG"], 16, 5)
+            vco = sosc * (mult + 16) // (prediv + 1)
+            t["VCO"] = vco
+            spll = vco // 2
+        t["SPLL"] = spll
+        for src, reg in (("SOSC", "SOSCDIV"), ("SPLL", "SPLLDIV")):
+            for n, lo in ((1, 0), (2, 8)):
+                d = scg_div(bits(r[reg], lo, 3))
+                t["%sDIV%d" % (src, n)] = t[src] // d if (t[src] is not None and d) else None
+        scs = bits(r["RCCR"], 24, 4)
+        src = {1: "SOSC", 2: "SIRC", 3: "FIRC", 6: "SPLL"}.get(scs)
+        f = t.get(src) if src else None
+        core = f // (bits(r["RCCR"], 16, 4) + 1) if f else None
+        if not self.rccr_written:
+            core = CORE_HZ          # before the switch: the time base's 80 MHz (core.py)
+        t["CORE"] = t["SYS"] = core
+        t["BUS"] = core // (bits(r["RCCR"], 4, 4) + 1) if core else None
+        t["FLASH"] = core // (bits(r["RCCR"], 0, 4) + 1) if core else None
+        self._tree = t
+        return t
 
     def rd_SOSCCSR(self):
         v = self.r["SOSCCSR"]
@@ -367,10 +493,19 @@ class FTM(Periph):
 
     # counter
     def tick(self):
+        """Core clocks per counter clock: SC[CLKS] = 01 selects the FTM input clock, SYS_CLK
+        on the S32K1xx (RM FTM chapter, SC[CLKS], and the chip's FTM clocking: the
+        synchronous clock; NXP's S32K1 SDK counts CLKS = 01 at CORE_CLK = SYS_CLK); 11 the
+        external clock, the DIV1 output PCC[PCS] selects; 10 (the fixed-frequency RTC clock)
+        stops.  Then the prescaler SC[PS] (1 << PS)."""
         clks, ps = bits(self.r["SC"], 3, 2), bits(self.r["SC"], 0, 3)
-        if clks != 1:
-            raise Stop("FTM3 clock source other than CLKS = 01 is not modelled")
-        return 1 << ps
+        if clks == 1:
+            hz = clock_hz(self.core, "SYS")
+        elif clks == 3:
+            hz = pcc_hz(self.core, self.pcc, 1, "FTM3 external clock")
+        else:
+            raise Stop("FTM3 clock source CLKS = %d is not modelled" % clks)
+        return cycles_per(self.core, hz, "FTM3") << ps
 
     def cpwm(self):
         return bool(self.r["SC"] & 0x20)
@@ -502,12 +637,144 @@ class FTM(Periph):
         if asserted and self.r["FLTCTRL"] & 0x1:
             self.r["FMS"] |= 0x81                      # FAULTF0, FAULTF
 
+    # ------------------------------------------------------------------ channel outputs
+    def dead_ticks(self):
+        """The inserted dead time in FTM clocks (RM FTM chapter, "Deadtime insertion",
+        register DEADTIME): the prescaler of DTPS (0x: 1, 10: 4, 11: 16) times the count
+        DTVALEX:DTVAL (DTVAL bits 5:0, DTVALEX bits 19:16 its upper 4 bits)."""
+        dt = self.r["DEADTIME"]
+        ps = (1, 1, 4, 16)[bits(dt, 6, 2)]
+        return ps * ((bits(dt, 16, 4) << 6) | bits(dt, 0, 6))
+
+    def _cpwm_on(self, ch):
+        """The on-intervals in [0, 2 MOD) of channel ch's PWM in up-down counting, the
+        period counted from the reload point at MOD (RM FTM, "Center-aligned PWM (CPWM)
+        mode"): ELSB:ELSA = 10 high-true (cleared at the up-counting match, set at the
+        down-counting match: high while CNT < CnV), 01 low-true (the complement); CnV = 0 (=
+        CNTIN) never high, CnV >= MOD always high."""
+        m, v = self.r["MOD"], self.r["C%dV" % ch]
+        els = bits(self.r["C%dSC" % ch], 2, 2)
+        if els not in (1, 2):
+            raise Stop("FTM3 channel %d: ELSB:ELSA = %d is not modelled (the output is "
+                       "not a PWM)" % (ch, els))
+        if v <= self.r["CNTIN"]:
+            on = []
+        elif v >= m:
+            on = [(0, 2 * m)]
+        else:
+            on = [(m - v, m + v)]
+        return on if els == 2 else _complement(on, 2 * m)
+
+    def pin_on(self):
+        """Each of the six channel outputs as its on-intervals (pin high) in the PWM period
+        [0, 2 MOD) FTM clocks that begins at this reload point, from the registers in effect
+        (RM FTM chapter): COMBINE[COMPm] makes channel 2m+1 the complement of channel 2m
+        (else it is a PWM of its own CnV); COMBINE[DTENm] delays every rising edge of both
+        channels of the pair by the dead time (dead_ticks()), and a pulse no longer than
+        the dead time disappears; POL[POLn] inverts channel n; a channel whose PWMENn is 0,
+        masked by OUTMASK, or of a pair with FAULTENm while a fault flag is set is at its
+        inactive level (low with POLn = 0, high with POLn = 1: "Output mask", "Fault
+        control").  An edge at the period's start or end is the continuation of the
+        previous period, not an edge.  Only the up-down counting of the two-sensor image is
+        modelled: COMBINEm, up counting or a non-zero CNTIN stop the run."""
+        m = self.r["MOD"]
+        if not self.cpwm() or self.r["CNTIN"] != 0:
+            raise Stop("FTM3 outputs: only up-down counting from CNTIN = 0 is modelled")
+        comb, pol, mask = self.r["COMBINE"], self.r["POL"], self.r["OUTMASK"]
+        dt = self.dead_ticks()
+        out = []
+        for pair in range(3):
+            f = bits(comb, 8 * pair, 8)
+            if f & 0x1:
+                raise Stop("FTM3 pair %d: combine mode (COMBINE%d) is not modelled" % (pair, pair))
+            n0, n1 = 2 * pair, 2 * pair + 1
+            w0 = self._cpwm_on(n0)
+            w1 = _complement(w0, 2 * m) if f & 0x2 else self._cpwm_on(n1)
+            if f & 0x10:
+                w0, w1 = _delay_rising(w0, dt, 2 * m), _delay_rising(w1, dt, 2 * m)
+            fault = bool(f & 0x40) and bool(self.r["FMS"] & 0x80)
+            for n, w in ((n0, w0), (n1, w1)):
+                inv = bool(pol & (1 << n))
+                if not self.running or not bits(self.r["SC"], 16 + n, 1) or mask & (1 << n) or fault:
+                    w = [(0, 2 * m)] if inv else []
+                elif inv:
+                    w = _complement(w, 2 * m)
+                out.append(w)
+        return out
+
     def outputs_on(self):
         """Every one of the six outputs switching: counter running, PWMEN0..5, not
         masked, no fault flag (FAULTM = 10 keeps them safe until the flag is cleared)."""
         sc = self.r["SC"]
         return (self.running and bits(sc, 16, 6) == 0x3F and self.r["OUTMASK"] & 0x3F == 0
                 and not self.r["FMS"] & 0x80)
+
+
+def _complement(on, length):
+    """The complement of sorted disjoint on-intervals within [0, length)."""
+    res, t = [], 0
+    for a, b in on:
+        if a > t:
+            res.append((t, a))
+        t = max(t, b)
+    if t < length:
+        res.append((t, length))
+    return res
+
+
+def _delay_rising(on, dt, length):
+    """Every rising edge (an interval's start other than the period's start) delayed by dt;
+    an interval no longer than dt disappears."""
+    res = []
+    for a, b in on:
+        a2 = a + dt if a > 0 else a
+        if a2 < b:
+            res.append((a2, b))
+    return res
+
+
+def _overlap(u, v):
+    return sum(max(0, min(b, d) - max(a, c)) for a, b in u for c, d in v)
+
+
+def bridge(pins, mod):
+    """The inverter seen by the plant from the six gate signals (pins[2k]: the high side
+    of phase k, pins[2k+1]: its low side; on-intervals in [0, 2 mod)): (cmp, td, on) with
+    cmp the three compare values (the high side's nominal half-width around the period's
+    centre, FTM clocks), td the dead time between each switch's turn-off and the other's
+    turn-on (FTM clocks; None when no phase switches), on whether the bridge switches.
+    A phase whose two switches are on at once (shoot-through), a phase left floating while
+    the others switch, an asymmetric gap or phases with different dead times stop the run:
+    none of them is a pattern of the plant's inverter model (sim/plant.c, sim_pole_avg)."""
+    full = 2 * mod
+    cmp, tds = [], []
+    if all(not p for p in pins):
+        return [0, 0, 0], None, False
+    for k in range(3):
+        hs, ls = pins[2 * k], pins[2 * k + 1]
+        ov = _overlap(hs, ls)
+        if ov:
+            raise Stop("FTM3 phase %d: high and low side on together for %d FTM clocks a period "
+                       "(shoot-through)" % (k, ov))
+        if hs == [(0, full)]:
+            cmp.append(mod)
+        elif ls == [(0, full)]:
+            cmp.append(0)
+        elif len(ls) == 2 and ls[0][0] == 0 and ls[1][1] == full and len(hs) <= 1:
+            c, d = ls[0][1], ls[1][0]
+            x = mod - c                                   # nominal half-width
+            td = d - (mod + x)
+            if hs and (hs[0][0] - c != td or hs[0][1] != mod + x):
+                raise Stop("FTM3 phase %d: gaps %d and %d FTM clocks around the high side: "
+                           "asymmetric dead time, not modelled" % (k, hs[0][0] - c, d - hs[0][1]))
+            cmp.append(x)
+            tds.append(td)
+        else:
+            raise Stop("FTM3 phase %d: gate pattern high %s low %s is not a complementary pair "
+                       "(not modelled)" % (k, hs, ls))
+    if len(set(tds)) > 1:
+        raise Stop("FTM3: different dead times per phase %s (not modelled)" % tds)
+    return cmp, (tds[0] if tds else None), True
 
 
 for _n in range(8):
@@ -554,14 +821,17 @@ class ADC(Periph):
         self.conversions = 0
         self.conflicts = 0
 
+    def adck_hz(self):
+        """ADCK: CFG1[ADICLK] = 00 selects ALTCLK1, the functional clock of PCC[PCS] (its
+        DIV2 output: the ADCs are among the peripherals on the DIV2 clocks, S32K1xx RM
+        "Clock distribution"), divided by 2^CFG1[ADIV]; another ADICLK stops."""
+        if bits(self.r["CFG1"], 0, 2) != 0:
+            raise Stop("%s: ADICLK other than 00 (ALTCLK1) is not modelled" % self.name)
+        return pcc_hz(self.core, self.pcc, 2, self.name) >> bits(self.r["CFG1"], 5, 2)
+
     def conv_cycles(self):
-        pcs = self.core.pcc_dev.pcs(self.pcc)
-        if pcs != 6:
-            raise Stop("%s functional clock other than SPLLDIV2 (PCS 110) is not modelled" % self.name)
-        if bits(self.r["CFG1"], 5, 2) != 0 or bits(self.r["CFG1"], 0, 2) != 0:
-            raise Stop("%s: ADIV or ADICLK other than 0 is not modelled" % self.name)
         adck = (self.r["CFG2"] & 0xFF) + 1 + ADC_COMPARE_CLOCKS
-        return adck * (CORE_HZ // 40_000_000)
+        return adck * cycles_per(self.core, self.adck_hz(), self.name)
 
     def _line(self):
         on = any(self.r["SC1%s" % chr(65 + n)] & 0xC0 == 0xC0 for n in range(16))
@@ -661,8 +931,13 @@ class PDB(Periph):
         self.ldok_pending = False
 
     def clk(self):
+        """Core clocks per PDB count: the PDB counts its peripheral clock, SYS_CLK (the PDBs
+        are among the SYS_CLK modules of the S32K1xx RM's peripheral clocking table; NXP's
+        S32K1 SDK lists PDB0_CLK and PDB1_CLK with the SYS clocks), divided by
+        2^PRESCALER x MULT (1, 10, 20, 40)."""
         sc = self.r["SC"]
-        return (1 << bits(sc, 12, 3)) * (1, 10, 20, 40)[bits(sc, 2, 2)]   # PRESCALER, MULT
+        return (cycles_per(self.core, clock_hz(self.core, "SYS"), self.name)
+                * (1 << bits(sc, 12, 3)) * (1, 10, 20, 40)[bits(sc, 2, 2)])
 
     def _load(self):
         for k, v in self.buf.items():
@@ -767,9 +1042,8 @@ class LPIT(Periph):
         self.timeouts = 0
 
     def clk(self):
-        if self.core.pcc_dev.pcs(self.pcc) != 1:
-            raise Stop("LPIT0 functional clock other than SOSCDIV2 (PCS 001) is not modelled")
-        return CORE_HZ // 8_000_000
+        """Core clocks per LPIT count: the functional clock of PCC[PCS], its DIV2 output."""
+        return cycles_per(self.core, pcc_hz(self.core, self.pcc, 2, "LPIT0"), "LPIT0")
 
     def _line(self):
         self.core.set_line(self.IRQ, bool(self.r["MSR"] & self.r["MIER"] & 1))
@@ -839,10 +1113,11 @@ class LPUART(Periph):
         self.rx_byte = 0
 
     def bit_cycles(self):
-        if self.core.pcc_dev.pcs(self.pcc) != 1:
-            raise Stop("LPUART1 functional clock other than SOSCDIV2 is not modelled")
+        """Core clocks per bit: (OSR + 1) x SBR clocks of the functional clock of PCC[PCS],
+        its DIV2 output (RM LPUART chapter, "Baud rate generation")."""
         b = self.r["BAUD"]
-        return (bits(b, 24, 5) + 1) * (b & 0x1FFF) * (CORE_HZ // 8_000_000)
+        return (bits(b, 24, 5) + 1) * (b & 0x1FFF) * cycles_per(
+            self.core, pcc_hz(self.core, self.pcc, 2, "LPUART1"), "LPUART1")
 
     def _line(self):
         s, c, b = self.r["STAT"], self.r["CTRL"], self.r["BAUD"]
@@ -984,7 +1259,11 @@ class FlexCAN(Periph):
         c = self.r["CTRL1"]
         tq = 1 + (bits(c, 0, 3) + 1) + (bits(c, 19, 3) + 1) + (bits(c, 16, 3) + 1)
         presdiv = bits(c, 24, 8) + 1
-        return tq * presdiv * (CORE_HZ // 8_000_000)
+        if c & (1 << 13):
+            raise Stop("CAN0_CTRL1[CLKSRC] = 1 (peripheral clock) is not modelled")
+        # CLKSRC = 0: the oscillator clock, SOSCDIV2_CLK on the S32K1xx (RM FlexCAN chapter,
+        # the chip-specific clocking)
+        return tq * presdiv * cycles_per(self.core, clock_hz(self.core, "SOSCDIV2"), "CAN0")
 
     def wr_RAM0(self, v):
         self.r["RAM0"] = v
@@ -1007,10 +1286,12 @@ def build(core):
     """Attach every model to the core; return them by name."""
     pcc = PCC()
     core.pcc_dev = pcc
+    scg = SCG()
+    core.scg_dev = scg
     portd = PORT("D", 0x4004C000, 0x130)
     adc0 = ADC(0, 0x4003B000, 0xEC, 39)
     adc1 = ADC(1, 0x40027000, 0x9C, 40)
-    d = {"PCC": pcc, "SCG": SCG(), "SMC": SMC(), "SIM": SIM(),
+    d = {"PCC": pcc, "SCG": scg, "SMC": SMC(), "SIM": SIM(),
          "PORTA": PORT("A", 0x40049000, 0x124), "PORTB": PORT("B", 0x4004A000, 0x128),
          "PORTC": PORT("C", 0x4004B000, 0x12C), "PORTD": portd,
          "PORTE": PORT("E", 0x4004D000, 0x134), "GPIOD": GPIOD(portd), "TRGMUX": TRGMUX(),

@@ -17,6 +17,8 @@ int pil_plant_period(const void *p);
 void pil_plant_step(void *p, unsigned c0, unsigned c1, unsigned c2, int enable);
 void pil_plant_sample(void *p, unsigned out[3]);
 void pil_plant_state(const void *p, double out[6]);
+void pil_plant_set_dead_time(void *p, double td_s);
+void pil_plant_sample_at(const void *p, double tau_s, unsigned out[3]);
 
 /* A plant of the motor file at the bus voltage: the motor's own dead time, no noise, no
    load, switching off until the first period handed in (the FTM3 outputs start masked). */
@@ -84,4 +86,22 @@ void pil_plant_state(const void *p, double out[6])
     out[3] = s->id;
     out[4] = s->iq;
     out[5] = s->en_active ? 1.0 : 0.0;
+}
+
+/* The inverter's dead time from now on, s: the one the FTM3 registers insert
+   (port_s32k/pil/periph.py, FTM.pin_on), in place of the motor file's. */
+void pil_plant_set_dead_time(void *p, double td_s)
+{
+    ((sim_t *)p)->cfg.dead_time_s = td_s;
+}
+
+/* The ADC codes of i_u, i_v and V_dc at tau_s after the start of the current period (the
+   last reload point): sim_sample_at(), the plant itself unchanged. */
+void pil_plant_sample_at(const void *p, double tau_s, unsigned out[3])
+{
+    sim_adc_t adc;
+    sim_sample_at(p, tau_s, &adc);
+    out[0] = adc.iu;
+    out[1] = adc.iv;
+    out[2] = adc.vdc;
 }

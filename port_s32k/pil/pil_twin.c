@@ -4,6 +4,7 @@
  * (tables/reference_params.c, the table of main.c for the 8 kHz image, mk/port.mk), behind
  * a flat interface called with ctypes (twin.py).  Not part of the library, not MISRA.
  */
+#include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 #include "qfoc/drive.h"
@@ -74,4 +75,30 @@ void pil_twin_save(uint8_t *buf)
 void pil_twin_restore(const uint8_t *buf)
 {
     memcpy(&s_twin, buf, sizeof s_twin);
+}
+
+/* Where the image's table keeps the dead-time compensation: the offset of svpwm.dt_comp in
+   qfoc_param_table_t (fixed-width fields only: the same layout on the Cortex-M4 as here) and
+   the value of the host's copy of the table, for the check of the inverter's dead time
+   (port_s32k/pil/run.py). */
+uint32_t pil_twin_dt_comp_offset(void);
+uint32_t pil_twin_dt_comp(void);
+
+uint32_t pil_twin_dt_comp_offset(void)
+{
+    return (uint32_t)(offsetof(qfoc_param_table_t, svpwm) + offsetof(qfoc_svpwm_cfg_t, dt_comp));
+}
+
+uint32_t pil_twin_dt_comp(void)
+{
+    return (uint32_t)qfoc_params_reference.svpwm.dt_comp;
+}
+
+/* The offset of f_pwm_hz (uint16_t) in qfoc_param_table_t, for the check of the PWM
+   frequency from the FTM3 registers and the clock tree (port_s32k/pil/run.py). */
+uint32_t pil_twin_f_pwm_offset(void);
+
+uint32_t pil_twin_f_pwm_offset(void)
+{
+    return (uint32_t)offsetof(qfoc_param_table_t, f_pwm_hz);
 }

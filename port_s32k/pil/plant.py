@@ -1,5 +1,9 @@
 """plant.py -- the simulated motor of sim/ (sim/plant.c, sim/motor.c through the shim
-pil_plant.c) as a shared library called with ctypes.
+pil_plant.c) as a shared library called with ctypes: a period at a time, sampled at the
+period's start (sample) or at an instant inside it (sample_at), with the inverter's dead
+time from the FTM3 registers (set_dead_time).
+
+Requirements: REQ-PIL-007, REQ-PIL-009 (specs/requirements/pil.md).
 
 build() compiles it with `gcc -O2 -shared -fPIC` (mk/pil.mk does the same) when the
 library is missing or older than its sources.
@@ -35,20 +39,36 @@ class Plant:
         lib.pil_plant_state.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double)]
         lib.pil_plant_period.argtypes = [ctypes.c_void_p]
         lib.pil_plant_free.argtypes = [ctypes.c_void_p]
+        lib.pil_plant_set_dead_time.argtypes = [ctypes.c_void_p, ctypes.c_double]
+        lib.pil_plant_sample_at.argtypes = [ctypes.c_void_p, ctypes.c_double,
+                                            ctypes.POINTER(ctypes.c_uint)]
         self.lib = lib
         self.p = lib.pil_plant_new(motor_file.encode(), vdc_v, substeps)
         if not self.p:
             raise RuntimeError("pil_plant_new: cannot load %s" % motor_file)
         self.period = lib.pil_plant_period(self.p)
         self.steps = 0
+        self.dead_time_s = None       # None: the motor file's, until set from the registers
 
     def step(self, cmp3, enable):
         self.lib.pil_plant_step(self.p, cmp3[0], cmp3[1], cmp3[2], 1 if enable else 0)
         self.steps += 1
 
+    def set_dead_time(self, td_s):
+        """The inverter's dead time from now on (the FTM3 registers'), s."""
+        self.lib.pil_plant_set_dead_time(self.p, td_s)
+        self.dead_time_s = td_s
+
     def sample(self):
         out = (ctypes.c_uint * 3)()
         self.lib.pil_plant_sample(self.p, out)
+        return list(out)
+
+    def sample_at(self, tau_s):
+        """The ADC codes tau_s after the start of the current period (sim_sample_at), the
+        plant unchanged."""
+        out = (ctypes.c_uint * 3)()
+        self.lib.pil_plant_sample_at(self.p, tau_s, out)
         return list(out)
 
     def state(self):

@@ -9,14 +9,17 @@ Usage: run.py IMAGE.elf [--ms 300] [--motor specs/motors/reference.toml] [--vdc 
 
 Coupling, at each reload point of FTM3 (counter at MOD, SYNC[CNTMAX]; the centre of the
 all-low-side zero vector and the sampling instant of the port, port_s32k/README.md):
-the compare values C0V, C2V, C4V in effect from that point and the enable (all six outputs
-switching, PTD5 high) go to the plant, which integrates the period that has just ended
+the six gate signals of the period that starts there, computed from the FTM3 registers in
+effect (periph.FTM.pin_on: complementary pairs, dead time, polarity, mask, fault; PTD5 low
+holds every switch off), give the plant its compare values, its enable and its dead time
+(periph.bridge), and the plant integrates the period that has just ended
 (sim_step_period) and is then sampled (sim_sample): the ADC model converts these codes
-when the PDB pre-triggers start its conversions (i_u on ADC0_SE3, i_v on ADC1_SE2, V_dc on
-ADC1_SE8).  The plant samples only at period starts: a conversion that does not start at
-the reload instant (T_PCB, T_IPM and V_dc, back to back after it) converts the values of
-that instant (counted as `off-instant` conversions; the bus is constant here).  The NTC
-inputs read 2048 (25 degC: no thermal model).
+when the PDB pre-triggers start its conversions at the reload instant (i_u on ADC0_SE3,
+i_v on ADC1_SE2).  A conversion that starts later in the period (V_dc on ADC1_SE8, back to
+back after i_v; counted as `off-instant` conversions) converts the plant at its own
+instant: a copy of the plant integrated from the reload point to it with the period's
+settings (sim_sample_at).  The NTC inputs (ADC0_SE12, ADC1_SE7) read 2048 (25 degC: the
+plant has no thermal model, so their instant does not matter).
 
 Commands (optional): the LIN master sends a command frame (SYNC, PID(0x10), 4 data bytes,
 enhanced checksum; include/qfoc/link.h, specs/link-frames.md) every --lin-period-ms on
@@ -27,7 +30,12 @@ on; the bridge must be off from the next reload point and the drive must end in 
 
 Expectations checked (exit status 1 when one fails): no stop of the run and no
 watchdog reset; FTM3 period interrupts at the PWM frequency and one ADC1 interrupt per
-PWM period once the PWM runs (+-2); one LPIT0 interrupt per ms (+-1); the watchdog
+PWM period once the PWM runs (+-2); one LPIT0 interrupt per ms (+-1); the rates from the
+registers and the clock tree (periph.SCG.clock_tree): the PWM frequency against the
+table's f_pwm_hz, the LPIT0 period against 1 ms, LIN 19200 baud +-1.5 %, CAN 500 kbit/s
++-0.5 %; the inverter's
+dead time from the FTM3 registers equal to the table's dead-time compensation (2 dt_comp
+FTM clocks); the library's instructions within their static bound (timing.py); the watchdog
 refreshed at every tick; the compare values written (LDOK) before the next reload point
 after their samples; the drive state reported on CAN reaches STOP (ready) after PRECHARGE
 (or RUN with --power-on-ms).
@@ -42,6 +50,7 @@ import core as core_mod  # noqa: E402
 import periph  # noqa: E402
 import plant as plant_mod  # noqa: E402
 import twin as twin_mod  # noqa: E402
+import timing as timing_mod  # noqa: E402
 
 ROOT = plant_mod.ROOT
 STATES = {0: "PRECHARGE", 1: "STOP", 2: "RUN", 3: "ERROR"}
@@ -101,6 +110,10 @@ class PIL:
         self.t_gate_off = None       # first reload point with PTD5 low after an injection
         self.inject = None
         self.lin_last = None         # core clock of the last command frame sent
+        self.dead_ticks = {}         # dead time from the FTM3 registers (FTM clocks) -> periods
+        self.at_cache = (None, None)  # (core clock, plant codes) of the last off-instant conversion
+        self.tau_log = {}            # (adc, channel) -> largest clocks after the reload point
+        self.ntc_conv = 0
 
     def attach_lockstep(self, lib):
         self.lockstep = twin_mod.LockStep(self, lib)
@@ -129,27 +142,52 @@ class PIL:
             self.bridge_log.append((t, on))
         if self.lockstep is not None:
             self.lockstep.on_reload(ftm, fault_latched=not self.gate_on())
+        # the six gate signals from the registers (complementary pairs, dead time, polarity,
+        # mask, fault; PTD5 low: the gate driver holds every switch off), and from them the
+        # plant's inverter: compare values, enable and dead time
+        pins = ftm.pin_on() if self.gate_on() else [[] for _ in range(6)]
+        cmp3, td, on_pins = periph.bridge(pins, ftm.r["MOD"])
+        if on_pins != on:
+            raise core_mod.Stop("FTM3 outputs: the gate signals (%s) disagree with the enable "
+                                "(OUTMASK, PWMEN, fault flag, PTD5: %s)" % (on_pins, on))
+        if td is not None:
+            self.dead_ticks[td] = self.dead_ticks.get(td, 0) + 1
+            td_s = td / float(core_mod.CORE_HZ // ftm.tick())
+            if self.plant.dead_time_s != td_s:
+                self.plant.set_dead_time(td_s)
         self.enabled_periods += 1 if on else 0
         if self.t_fault is not None and t > self.t_fault and on:
             self.on_after_fault += 1
-        self.plant.step([ftm.r["C0V"], ftm.r["C2V"], ftm.r["C4V"]], on)
+        self.plant.step(cmp3, on)
         self.codes = self.plant.sample()
         self.t_sample = t
 
     def analog(self, adc, ch, t):
+        """The code a conversion started at core clock t converts: the plant's value at that
+        instant (sim_sample_at, tau = t - the last reload point), the NTC inputs 2048."""
         table = {(0, 3): 0, (1, 2): 1, (1, 8): 2}
         k = table.get((adc, ch))
         if k is None:
             if (adc, ch) in ((0, 12), (1, 7)):
-                return 2048                          # NTC at 25 degC
+                self.ntc_conv += 1
+                return 2048                          # NTC at 25 degC: no thermal model
             raise core_mod.Stop("ADC%d channel %d has no input in the plant" % (adc, ch))
-        if t != self.t_sample:
+        codes = self.codes
+        if self.t_sample is not None and t != self.t_sample:
             self.off_instant += 1
+            tau = t - self.t_sample
+            if tau >= 2 * self.dev["FTM3"].r["MOD"] * self.dev["FTM3"].tick():
+                raise core_mod.Stop("ADC%d channel %d converted %d clocks after the last reload "
+                                    "point: beyond the plant's period" % (adc, ch, tau))
+            if self.at_cache[0] != t:
+                self.at_cache = (t, self.plant.sample_at(tau / float(core_mod.CORE_HZ)))
+            codes = self.at_cache[1]
+            self.tau_log[(adc, ch)] = max(self.tau_log.get((adc, ch), 0), tau)
         if k < 2:
             self.iu_conv += 1
             if self.t_sample is None or t - self.t_sample > SAMPLE_TOL:
                 self.iu_off += 1
-        return self.codes[k]
+        return codes[k]
 
 
 def stats(xs):
@@ -194,6 +232,8 @@ def parse_args(argv):
     ap.add_argument("--adc-latency-max", type=int, default=None,
                     help="expect every ADC1 interrupt latency (request -> first handler "
                          "instruction) at most this many clocks")
+    ap.add_argument("--timing-json", default=None,
+                    help="write the run's timing figures (timing.summary) to this file")
     ap.add_argument("--expect", default=None,
                     help="expected final state: PRECHARGE, STOP, RUN, ERROR or RESET (a watchdog reset)")
     return ap.parse_args(argv)
@@ -220,9 +260,11 @@ def execute(args):
     pil = PIL(args.elf, args.motor, args.vdc, args.lib)
     c, d = pil.core, pil.dev
     hz = core_mod.CORE_HZ
+    twin_mod.build(args.twin_lib)
     if args.lockstep:
-        twin_mod.build(args.twin_lib)
         pil.attach_lockstep(args.twin_lib)
+    lib = timing_mod.LibTiming(c)
+    bounds = timing_mod.static_bounds(args.elf)
     d["LPIT0"].first_delay = args.tick_phase_clk
     inject = None
     if args.stall_adc_isr_ms is not None:
@@ -317,9 +359,12 @@ def execute(args):
         print("PDB trigger input (FTM3 init trigger, counter at CNTIN) -> LDOK write: %s clocks "
               "(CH0DLY0 = %d plus the above)" % (stats([x + dly for x in lat]), dly))
     print("ADC conversions: ADC0 %d, ADC1 %d; PDB sequence errors ADC0 0x%02X ADC1 0x%02X; "
-          "conversions off the reload instant %d; trigger conflicts %d/%d"
+          "conversions off the reload instant %d (the plant converted at their instant, "
+          "clocks after the reload point at most: %s), NTC %d (2048); trigger conflicts %d/%d"
           % (d["ADC0"].conversions, d["ADC1"].conversions, d["PDB0"].r["CH0S"] & 0xFF,
-             d["PDB1"].r["CH0S"] & 0xFF, pil.off_instant, d["ADC0"].conflicts, d["ADC1"].conflicts))
+             d["PDB1"].r["CH0S"] & 0xFF, pil.off_instant,
+             ", ".join("ADC%d_SE%d %d" % (a, ch, v) for (a, ch), v in sorted(pil.tau_log.items())) or "-",
+             pil.ntc_conv, d["ADC0"].conflicts, d["ADC1"].conflicts))
     print("watchdog refreshes %d, timeouts (resets) %d; LPIT timeouts %d; plant periods %d (%d with "
           "the bridge switching); CAN frames %d; LIN frames sent to the drive %d, bytes from it %d"
           % (d["WDOG"].refreshes, getattr(c, "wdog_timeouts", 0), d["LPIT0"].timeouts, pil.plant.steps,
@@ -359,6 +404,22 @@ def execute(args):
     ps = pil.plant.state()
     print("plant: t %.4f s, w_e %.1f rad/s, id %.2f A, iq %.2f A" % (ps["t"], ps["w_e"], ps["id"], ps["iq"]))
 
+    print("library entry points in the image (instructions from the first to the return "
+          "instruction, callees included, nested handlers excluded) against their static bound "
+          "(tools/bench/wcet.py on this image):")
+    for f in timing_mod.FUNCS:
+        print("  %-22s %6d calls, %s instructions (the longest at %s ms); static bound %d"
+              % (f, len(lib.calls[f]), stats(lib.calls[f]),
+                 "%.3f" % (lib.max_at[f] * 1000.0 / hz) if lib.max_at[f] is not None else "-", bounds[f]))
+    dt = dead_time_report(pil, args.twin_lib)
+    print(dt["text"])
+    clk = clock_report(pil, args.twin_lib)
+    print(clk["text"])
+    summ = timing_mod.summary(c, pil, lib)
+    summ["static_bound"] = bounds
+    if args.timing_json:
+        timing_mod.write(args.timing_json, summ)
+
     # ------------------------------------------------------------------ verdict
     ls = pil.lockstep
     if ls is not None:
@@ -394,6 +455,16 @@ def execute(args):
                        "late %d" % pil.late_writes))
         checks.append(("phase currents sampled at the reload instant (centre of the low-side zero vector)",
                        pil.iu_conv > 0 and iu_off == 0, "%d of %d off" % (iu_off, pil.iu_conv)))
+    over = ["%s %d > %d" % (f, max(lib.calls[f]), bounds[f]) for f in timing_mod.FUNCS
+            if lib.calls[f] and max(lib.calls[f]) > bounds[f]]
+    checks.append(("the library's measured instructions within their static bound (fast step %d, "
+                   "tick %d)" % (bounds["qfoc_drive_fast_step"], bounds["qfoc_drive_tick"]),
+                   not over, "; ".join(over) or "max %s" % ", ".join(
+                       str(max(lib.calls[f])) if lib.calls[f] else "-" for f in timing_mod.FUNCS)))
+    for what, good, detail in clk["checks"]:
+        checks.append((what, good, detail))
+    checks.append(("the inverter's dead time from the FTM3 registers equals the table's dead-time "
+                   "compensation (2 dt_comp FTM clocks); the plant switched with it", dt["ok"], dt["detail"]))
     if args.adc_latency_max is not None:
         checks.append(("ADC1 interrupt latency <= %d clocks (never delayed by a lower-priority handler)"
                        % args.adc_latency_max, bool(adc_lat) and max(adc_lat) <= args.adc_latency_max,
@@ -425,7 +496,121 @@ def execute(args):
         print("%-4s %s (%s)" % ("PASS" if good else "FAIL", what, detail))
     print("pil: %s" % ("PASS" if ok else "FAIL"))
     return {"rc": 0 if ok else 1, "ok": ok, "checks": checks, "pil": pil, "seen": seen,
-            "lockstep": ls, "ms": ms, "adc_latency_max": max(adc_lat) if adc_lat else None}
+            "lockstep": ls, "ms": ms, "timing": summ, "lib": lib, "adc_latency_max": max(adc_lat) if adc_lat else None}
+
+
+LIN_BAUD = 19200            # the LIN network's bit rate (QFOC_S32K_LIN_BAUD; specs/link-frames.md)
+LIN_TOL = 0.015             # LIN 2.x: a slave node without synchronisation, +-1.5 %
+CAN_BPS = 500_000           # the CAN network's bit rate (s32k144_port.h, McuCANConfig)
+CAN_TOL = 0.005
+
+
+def clock_report(pil, twin_lib):
+    """The clock tree from the SCG registers (periph.SCG.clock_tree) and the clock of each
+    peripheral the models count with, and the checks of the rates they give against the
+    system's: the PWM frequency (f_FTM / (2 MOD), up-down counting) against the table's
+    f_pwm_hz in the image, the LIN and CAN bit rates against the networks', the LPIT0
+    period against 1 ms.  A quantity whose clock is off or whose peripheral was never set up
+    is reported as '-' and its check fails."""
+    d, c = pil.dev, pil.core
+    tree = d["SCG"].clock_tree()
+    hz = core_mod.CORE_HZ
+
+    def mhz(f):
+        return "-" if not f else "%g" % (f / 1e6)
+    lines = ["clock tree from the SCG registers (SOSC 8 MHz crystal assumed), MHz: " + ", ".join(
+        "%s %s" % (k, mhz(tree.get(k))) for k in ("SOSC", "SPLL", "SOSCDIV1", "SOSCDIV2", "SPLLDIV1",
+                                                  "SPLLDIV2", "CORE", "SYS", "BUS", "FLASH"))]
+    checks = []
+
+    def safe(fn):
+        try:
+            return fn()
+        except core_mod.Stop as e:
+            return "%s" % e
+    ftm = d["FTM3"]
+    t_ftm = safe(ftm.tick)
+    f_pwm = None
+    if isinstance(t_ftm, int) and ftm.r["MOD"]:
+        f_pwm = hz / t_ftm / (2.0 * ftm.r["MOD"])
+    a = c.syms.get("qfoc_params_reference")
+    off = twin_mod.f_pwm_offset(twin_lib)
+    f_tab = int.from_bytes(bytes(c.flash[a + off:a + off + 2]), "little") if a is not None else None
+    lines.append("  FTM3: SC[CLKS] = %d (SYS_CLK), PS /%d: %s MHz; MOD %d, up-down: PWM %s Hz (table f_pwm_hz %s)"
+                 % ((ftm.r["SC"] >> 3) & 3, 1 << (ftm.r["SC"] & 7),
+                    mhz(hz / t_ftm) if isinstance(t_ftm, int) else t_ftm, ftm.r["MOD"],
+                    "%.1f" % f_pwm if f_pwm else "-", f_tab))
+    checks.append(("PWM frequency from the FTM3 registers and the clock tree equals the table's f_pwm_hz",
+                   f_pwm is not None and f_tab is not None and abs(f_pwm - f_tab) < 1e-6 * f_tab,
+                   "%s Hz, table %s Hz" % ("%.1f" % f_pwm if f_pwm else "-", f_tab)))
+    for k in (0, 1):
+        p = d["PDB%d" % k]
+        lines.append("  PDB%d: SYS_CLK %s MHz, %d core clocks per count; CH0DLY0 %d counts = %d clocks"
+                     % (k, mhz(tree.get("SYS")), safe(p.clk) if isinstance(safe(p.clk), int) else -1,
+                        p.r["CH0DLY0"], p.r["CH0DLY0"] * (safe(p.clk) if isinstance(safe(p.clk), int) else 0)))
+        adc = d["ADC%d" % k]
+        f = safe(adc.adck_hz)
+        lines.append("  ADC%d: PCC PCS %d (DIV2), ADIV %d: ADCK %s MHz; conversion %s ADCK (SMPLTS + 1 + %d, "
+                     "the compare clocks an assumption)"
+                     % (k, pil.core.pcc_dev.pcs(adc.pcc), (adc.r["CFG1"] >> 5) & 3,
+                        mhz(f) if isinstance(f, int) else f, (adc.r["CFG2"] & 0xFF) + 1 + periph.ADC_COMPARE_CLOCKS,
+                        periph.ADC_COMPARE_CLOCKS))
+    lp = d["LPIT0"]
+    t_l = safe(lp.clk)
+    per = (lp.r["TVAL0"] + 1) * t_l if isinstance(t_l, int) else None
+    lines.append("  LPIT0: PCC PCS %d (DIV2) %s MHz, TVAL0 %d: period %s clocks"
+                 % (c.pcc_dev.pcs(lp.pcc), mhz(hz / t_l) if isinstance(t_l, int) else t_l, lp.r["TVAL0"], per))
+    checks.append(("LPIT0 period from its registers and the clock tree: 1 ms", per == hz // 1000,
+                   "%s clocks" % per))
+    t_u = safe(d["LPUART1"].bit_cycles)
+    baud = hz / t_u if isinstance(t_u, int) and t_u else None
+    lines.append("  LPUART1: PCC PCS %d (DIV2), BAUD 0x%08X: %s baud (LIN %d)"
+                 % (c.pcc_dev.pcs(d["LPUART1"].pcc), d["LPUART1"].r["BAUD"],
+                    "%.1f" % baud if baud else t_u, LIN_BAUD))
+    checks.append(("LIN bit rate from LPUART1's registers and the clock tree: %d baud +-%.1f %%"
+                   % (LIN_BAUD, 100 * LIN_TOL), baud is not None and abs(baud / LIN_BAUD - 1) <= LIN_TOL,
+                   "%s baud" % ("%.1f" % baud if baud else "-")))
+    can = d["CAN0"]
+    t_c = safe(can.bit_cycles) if can.r["CTRL1"] else "CAN0 not set up"
+    bps = hz / t_c if isinstance(t_c, int) and t_c else None
+    lines.append("  CAN0: CTRL1[CLKSRC] = 0 (SOSCDIV2 %s MHz): %s bit/s (network %d)"
+                 % (mhz(tree.get("SOSCDIV2")), "%.0f" % bps if bps else t_c, CAN_BPS))
+    checks.append(("CAN bit rate from CAN0's registers and the clock tree: %d bit/s +-%.1f %%"
+                   % (CAN_BPS, 100 * CAN_TOL), bps is not None and abs(bps / CAN_BPS - 1) <= CAN_TOL,
+                   "%s bit/s" % ("%.0f" % bps if bps else "-")))
+    return {"text": "\n".join(lines), "checks": checks, "tree": tree, "f_pwm": f_pwm, "baud": baud,
+            "bps": bps, "lpit_period": per}
+
+
+def dead_time_report(pil, twin_lib):
+    """The dead time the image's FTM3 set-up inserts (DEADTIME with DTEN of the three pairs:
+    FTM.dead_ticks()) and the dead times of the periods the plant switched (from the gate
+    signals, periph.bridge) against the table's dead-time compensation in the image
+    (qfoc_params_reference.svpwm.dt_comp, one compare count = 2 FTM clocks of high time:
+    tables/reference_params.c); the port derives its dead time from it
+    (qfoc_s32k_pwm_cfg), so a difference is a compensation that does not match the
+    inverter."""
+    ftm = pil.dev["FTM3"]
+    c = pil.core
+    off, host = twin_mod.dt_comp_field(twin_lib)
+    a = c.syms.get("qfoc_params_reference")
+    if a is None:
+        return {"ok": False, "detail": "no qfoc_params_reference in the image", "text": ""}
+    dt_comp = int.from_bytes(bytes(c.flash[a + off:a + off + 2]), "little")
+    want = 2 * dt_comp
+    dten = [bool(ftm.r["COMBINE"] & (0x10 << (8 * k))) for k in range(3)]
+    reg = ftm.dead_ticks() if all(dten) else (0 if not any(dten) else None)
+    f_ftm = core_mod.CORE_HZ // ftm.tick() if ftm.r["SC"] & 0x18 else core_mod.CORE_HZ
+    seen = dict(sorted(pil.dead_ticks.items()))
+    ok = reg == want and all(k == want for k in seen) and dt_comp == host
+    text = ("inverter dead time from FTM3: DEADTIME 0x%08X, DTEN %s -> %s FTM clocks (%s us at %.0f MHz); "
+            "periods switched by dead time (FTM clocks: periods) %s; the table's compensation dt_comp %d "
+            "(image; host table %d) = %d FTM clocks"
+            % (ftm.r["DEADTIME"], "".join("1" if x else "0" for x in dten), reg,
+               "%.3f" % (reg * 1e6 / f_ftm) if reg is not None else "-", f_ftm / 1e6,
+               seen or "none", dt_comp, host, want))
+    detail = "registers %s, periods %s, table %d" % (reg, ",".join(str(k) for k in seen) or "-", want)
+    return {"ok": ok, "detail": detail, "text": text, "reg": reg, "seen": seen, "want": want}
 
 
 def stall_at(c, t0):

@@ -18,7 +18,8 @@ reports LINK); the watchdog timeout 10 ms (REQ-PORT-014); the supervision latche
 fault output when more than 2 periods pass without a fast step within a millisecond
 (REQ-PORT-018); the ADC-complete interrupt pre-empts the tick (REQ-PORT-015).
 
-Requirement: REQ-PIL-004 (specs/requirements/pil.md).
+Requirements: REQ-PIL-004, REQ-PIL-006 (the image's measured timing of the runs, written with
+--timing-json for make bench; timing.py) (specs/requirements/pil.md).
 """
 import argparse
 import contextlib
@@ -31,6 +32,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import run as run_mod  # noqa: E402
+import timing as timing_mod  # noqa: E402
 
 HZ = 80_000_000
 MS = HZ // 1000
@@ -167,16 +169,22 @@ def one(job):
             ok, checks = r["ok"], r["checks"]
             ls = r["lockstep"]
             lsd = (ls.periods, ls.ticks_compared, ls.divergence[:4] if ls.divergence else None)
+            # the timing of a run with a stalled handler or a stuck converter is not the
+            # image's own: left out of the figures for the bench
+            summ = r["timing"] if r["pil"].inject is None else None
         except Exception as e:  # noqa: BLE001 -- reported as a failed scenario
-            ok, checks, lsd = False, [("the scenario runs", False, repr(e))], None
+            ok, checks, lsd, summ = False, [("the scenario runs", False, repr(e))], None, None
             print(repr(e))
     if log_dir:
         with open(os.path.join(log_dir, name + ".txt"), "w") as f:
             f.write(buf.getvalue())
-    return name, ok, [(w, bool(g), d) for w, g, d in checks], lsd, time.time() - t0
+    return name, ok, [(w, bool(g), d) for w, g, d in checks], lsd, time.time() - t0, summ
 
 
-def run_all(elf, names=None, jobs=2, log_dir=None, lib=None, twin_lib=None, quiet=False):
+def run_all(elf, names=None, jobs=2, log_dir=None, lib=None, twin_lib=None, quiet=False,
+            timing_json=None):
+    """Run the scenarios; with timing_json, write the merged timing figures of the runs
+    (timing.merge, with the image's static bounds) there for the bench report."""
     sel = [s for s in SCENARIOS if names is None or s[0] in names]
     common = [elf] + (["--lib", lib] if lib else []) + (["--twin-lib", twin_lib] if twin_lib else [])
     if log_dir:
@@ -187,6 +195,16 @@ def run_all(elf, names=None, jobs=2, log_dir=None, lib=None, twin_lib=None, quie
             res = pool.map(one, work, chunksize=1)
     else:
         res = [one(w) for w in work]
+    summ = {r[0]: r[5] for r in res if r[5] is not None}
+    res = [r[:5] for r in res]
+    if timing_json and summ:
+        m = timing_mod.merge(summ)
+        m["static_bound"] = timing_mod.static_bounds(elf)
+        m["image"] = os.path.relpath(os.path.abspath(elf), run_mod.ROOT)
+        m["image_sha256"] = timing_mod.sha256(elf)
+        m["all_passed"] = all(r[1] for r in res)
+        m["run_utc"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+        timing_mod.write(timing_json, m)
     if not quiet:
         print("%-16s %-5s %7s  %s" % ("scenario", "", "host s", "targets / lock-step / failed checks"))
         for (n, ok, checks, lsd, dt), s in zip(res, sel):
@@ -209,8 +227,12 @@ def main(argv):
     ap.add_argument("--log-dir", default=None)
     ap.add_argument("--lib", default=None)
     ap.add_argument("--twin-lib", default=None)
+    ap.add_argument("--timing-json", default=None,
+                    help="write the merged timing figures of the runs here (make pil: "
+                         "build/pil/timing.json, read by make bench)")
     a = ap.parse_args(argv[1:])
-    res = run_all(a.elf, a.only.split(",") if a.only else None, a.jobs, a.log_dir, a.lib, a.twin_lib)
+    res = run_all(a.elf, a.only.split(",") if a.only else None, a.jobs, a.log_dir, a.lib, a.twin_lib,
+                  timing_json=a.timing_json)
     ok = all(r[1] for r in res)
     print("pil scenarios: %d of %d passed: %s" % (sum(1 for r in res if r[1]), len(res), "PASS" if ok else "FAIL"))
     return 0 if ok else 1

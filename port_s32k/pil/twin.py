@@ -69,6 +69,22 @@ def build(out):
     return out
 
 
+def dt_comp_field(lib_path):
+    """(offset of svpwm.dt_comp in qfoc_param_table_t, the host table's dt_comp), from the
+    twin's library (pil_twin.c)."""
+    lib = ctypes.CDLL(lib_path)
+    lib.pil_twin_dt_comp_offset.restype = ctypes.c_uint32
+    lib.pil_twin_dt_comp.restype = ctypes.c_uint32
+    return lib.pil_twin_dt_comp_offset(), lib.pil_twin_dt_comp()
+
+
+def f_pwm_offset(lib_path):
+    """The offset of f_pwm_hz in qfoc_param_table_t (pil_twin.c)."""
+    lib = ctypes.CDLL(lib_path)
+    lib.pil_twin_f_pwm_offset.restype = ctypes.c_uint32
+    return lib.pil_twin_f_pwm_offset()
+
+
 class Twin:
     def __init__(self, lib_path):
         lib = ctypes.CDLL(lib_path)

@@ -907,6 +907,70 @@ COST_NOTES = {
 }
 
 
+PIL_IRQS = (("adc1", "ADC1 conversion complete (IRQ 40, priority 1): `qfoc_s32k_adc_isr`, the fast step"),
+            ("lpit0", "LPIT0 1 ms (IRQ 48, priority 3): `qfoc_s32k_tick_isr`, the tick"),
+            ("ftm3", "FTM3 period (IRQ 122, priority 2)"),
+            ("lpuart1", "LPUART1 (IRQ 33, priority 4): LIN"))
+
+
+def pil_section(r):
+    """The firmware image's measured timing (make pil, build/pil/timing.json) beside the
+    static bounds and the bench's measured figures (REQ-PIL-006)."""
+    pil = r.get("pil")
+    sb = r["static"]
+    dr = r["drive"]
+    L = ["## The firmware image in the loop (`make pil`)\n"]
+    if not pil:
+        L.append("Not reported: no `build/pil/timing.json` (run `make pil` before `make bench`).\n")
+        return L
+
+    def mmm(x, f="{}"):
+        return "-" if not x else f"{x['min']} / {x['mean']} / {x['max']}"
+    L.append(f"The image `{pil['image']}` (SHA-256 `{pil['image_sha256'][:16]}`) run from reset in "
+             f"`port_s32k/pil/` over the scenarios of `make pil` ({', '.join(pil['runs'])}; "
+             f"{'all passed' if pil['all_passed'] else 'NOT ALL PASSED'}; {pil['run_utc']}).  "
+             "One instruction is one clock at 80 MHz there (no wait states); an instruction of "
+             "an IT block counts whether its condition holds or not, as in the static bound "
+             "(the bench's own counts skip those whose condition fails, so they may be a few "
+             "below the image's on the same path).  The library's entry points: instructions "
+             "from their first to their return instruction, callees included, nested handlers "
+             "excluded; the static bound of `tools/bench/wcet.py` on the bench's image and on "
+             "the firmware image; a measured count above either is UNSOUND and fails the "
+             "bench.\n")
+    L.append("| entry point | static bound (bench image) | static bound (firmware image) | "
+             "bench measured max (windows and start-ups) | firmware image min / mean / max | "
+             "calls | longest in |")
+    L.append("|---|---:|---:|---:|---:|---:|---|")
+    for e, k in (("qfoc_drive_fast_step", "fast"), ("qfoc_drive_tick", "tick")):
+        m = pil["lib"].get(e)
+        bench_max = max(d[k]["max"] for d in dr.values())
+        if k == "fast":
+            bench_max = max([bench_max] + [v["max"] for d in dr.values() for v in d["by_sub"].values()])
+        L.append(f"| `{e}` | {sb[e]['instructions']} | {pil['static_bound'][e]} | "
+                 f"{bench_max} | {mmm(m)} | "
+                 f"{m['n'] if m else '-'} | {m['max_in'] if m else '-'} |")
+    L.append("")
+    L.append("The image's interrupts (instructions: the handler's own, nested handlers "
+             "excluded; clocks: with the exception entry, 12, 6 when tail-chained, and the "
+             "return, 10; latency: the request to the handler's first instruction):\n")
+    L.append("| interrupt | count | instructions min / mean / max | clocks with entry and return "
+             "| latency, clocks | longest in |")
+    L.append("|---|---:|---:|---:|---:|---|")
+    for key, label in PIL_IRQS:
+        x = pil["irqs"].get(key, {})
+        ins = x.get("instructions")
+        L.append(f"| {label} | {ins['n'] if ins else 0} | {mmm(ins)} | {mmm(x.get('clocks'))} | "
+                 f"{mmm(x.get('latency'))} | {ins['max_in'] if ins else '-'} |")
+    s2l = pil.get("sample_to_ldok")
+    L.append("")
+    if s2l:
+        L.append(f"Sampling instant (PDB1 pre-trigger 0, the reload point) to the compare values "
+                 f"loaded (the PWMLOAD[LDOK] write of the ADC1 handler): {mmm(s2l)} clocks = "
+                 f"{s2l['max'] / F_CPU_HZ * 1e6:.1f} us at most, against the next reload point "
+                 f"one PWM period later.\n")
+    return L
+
+
 def write_report(md_path, r):
     fn = r["functions"]
     dr = r["drive"]
@@ -974,6 +1038,15 @@ def write_report(md_path, r):
         row("REQ-BENCH-003" if f["limit"] is not None else "REQ-BENCH-001", f["label"], f["min"],
             f["max"], f["limit"], "instructions", goal=f.get("goal"), static=f["static"],
             gated="static")
+    pil = r.get("pil")
+    if pil:
+        for e, what in (("qfoc_drive_fast_step", fs), ("qfoc_drive_tick", tk)):
+            m = pil["lib"].get(e)
+            if m:
+                row("REQ-PIL-006", f"`{e}`, the firmware image in the loop (`make pil`, "
+                    f"{len(pil['runs'])} scenarios, {m['n']} calls; static bound of the image "
+                    f"{pil['static_bound'][e]})", m["min"], m["max"], None, "instructions",
+                    static=min(what["instructions"], pil["static_bound"][e]))
     row("REQ-BENCH-003", "the drive's SVPWM chain in the fast step (`qfoc_circle_limit` + "
         "`qfoc_svpwm_step_lin`)", None, None, LIMIT_SVPWM_CHAIN, "instructions",
         goal=GOAL_SVPWM_CHAIN, static=sum(sb[n]["instructions"] for n in SVPWM_CHAIN),
@@ -1094,6 +1167,7 @@ def write_report(md_path, r):
         L.append(f"Calls on the longest static path of `{e}`: "
                  + ", ".join(f"`{c}` {sb[c]['instructions'] if c in sb else ''}".rstrip()
                              for c in sb[e]["path"]) + ".\n")
+    L.extend(pil_section(r))
     # what costs the instructions
     L.append("## What costs the instructions\n")
     f = main["fast"]
@@ -1288,6 +1362,10 @@ def main():
     ap.add_argument("--size", default="arm-none-eabi-size")
     ap.add_argument("--cc", default="arm-none-eabi-gcc")
     ap.add_argument("--cflags", default="")
+    ap.add_argument("--pil-timing", default=None,
+                    help="the firmware image's measured timing from make pil "
+                         "(build/pil/timing.json, port_s32k/pil/timing.py); reported beside "
+                         "the static bounds, a measured count above its bound fails the bench")
     o = ap.parse_args()
     t0 = time.time()
     try:
@@ -1324,9 +1402,14 @@ def main():
     except (RuntimeError, UcError, KeyError, OSError, subprocess.CalledProcessError) as e:
         print(f"bench: {e}", file=sys.stderr)
         return 1
+    pil = None
+    if o.pil_timing and os.path.exists(o.pil_timing):
+        with open(o.pil_timing, encoding="utf-8") as f:
+            pil = json.load(f)
     r = {"cc": cc_version, "cflags": o.cflags, "unicorn": unicorn.__version__,
          "functions": functions, "drive": drive, "main_scenario": next(iter(drive)),
-         "sizes": sz, "stack": st, "dynamic_frames": dyn, "scale": scale, "static": sb}
+         "sizes": sz, "stack": st, "dynamic_frames": dyn, "scale": scale, "static": sb,
+         "pil": pil}
     r["wall_s"] = time.time() - t0
     os.makedirs(o.out_dir, exist_ok=True)
     rows = write_report(os.path.join(o.out_dir, "bench.md"), r)

@@ -814,11 +814,368 @@ def test_seeded_defects_apply_exactly_once():
     has none.
 
     Methods: 1d the errors guessed: a PDB delay off by half a PWM period, a compare value on
-    the wrong channel pair, the ADC interrupt below the tick in priority
+    the wrong channel pair, the dead time not inserted, the low side not the complement, a
+    clock divider off by a factor of 2, the ADC interrupt below the tick in priority
     """
     import defects
     names = [d[0] for d in defects.DEFECTS]
-    assert names[0] == "control" and len(names) == 4
+    assert names[0] == "control" and len(names) == 7
     for name, fname, old, new, what in defects.DEFECTS[1:]:
         text = open(os.path.join(ROOT, "port_s32k", fname)).read()
         assert text.count(old) == 1 and old != new and new not in text, name
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_library_counts_within_the_static_bound(libs, monkeypatch, capsys):
+    """REQ-PIL-006: the instructions the image executes inside qfoc_drive_fast_step and
+    qfoc_drive_tick, counted at their entry and return in the running image, are at most the
+    static bound tools/bench/wcet.py computes for them on the same image; the RUN entry
+    (power on at 350 ms) is inside the run.  Each fast step runs inside an ADC1 handler, so
+    the handler's own instructions are at least the fast step's.  With the bound made one
+    below the longest measured call the run fails on that check.
+
+    Methods: 1a the comparison of the statement; 1c the boundary of a bound one below the
+    measured maximum
+    """
+    import timing
+    args, run = fw_run(libs, "--ms", "420", "--lin-period-ms", "20", "--power-on-ms", "350")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert r["ok"], out
+    lib, c = r["lib"], r["pil"].core
+    bounds = r["timing"]["static_bound"]
+    fast, tick = lib.calls["qfoc_drive_fast_step"], lib.calls["qfoc_drive_tick"]
+    adc = [s[0] for s in c.irq_stats[40]]
+    assert len(fast) == len(adc) and len(tick) == len(c.irq_stats[48])
+    assert 1000 < max(fast) <= bounds["qfoc_drive_fast_step"]
+    assert max(tick) <= bounds["qfoc_drive_tick"]
+    assert all(a >= f for a, f in zip(adc, fast))
+    assert r["timing"]["lib"]["qfoc_drive_fast_step"]["max"] == max(fast)
+
+    low = dict(bounds, qfoc_drive_fast_step=max(fast) - 1)
+    monkeypatch.setattr(timing, "static_bounds", lambda elf: low)
+    args, run = fw_run(libs, "--ms", "420", "--lin-period-ms", "20", "--power-on-ms", "350")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert not r["ok"]
+    assert "FAIL the library's measured instructions within their static bound" in out
+
+
+# ---------------------------------------------------------------------- FTM3 outputs
+def ftm_cpwm(c0v=(1200, 2500, 4000), deadtime=0x94, comb_pair=0x72, pol=0, outmask=0):
+    """An FTM3 model in the port's set-up, without a core: up-down counting, MOD 5000,
+    six high-true channels, the pairs complementary with dead time (COMP, DTEN, SYNCEN,
+    FAULTEN: 0x72), DEADTIME 0x94 (DTPS /4, DTVAL 20: 80 clocks)."""
+    f = periph.FTM()
+    f.running = True
+    f.r["SC"] = 0x20 | (1 << 3) | (0x3F << 16)
+    f.r["MOD"] = 5000
+    for ch in range(6):
+        f.r["C%dSC" % ch] = 0x28
+        f.r["C%dV" % ch] = c0v[ch // 2] if ch % 2 == 0 else 2500
+    f.r["COMBINE"] = comb_pair | (comb_pair << 8) | (comb_pair << 16)
+    f.r["DEADTIME"], f.r["POL"], f.r["OUTMASK"] = deadtime, pol, outmask
+    return f
+
+
+def test_ftm_outputs_complementary_with_dead_time():
+    """REQ-PIL-007: in the port's set-up each high side is on from MOD - CnV + dead time to
+    MOD + CnV of the period that starts at the reload point, its low side before MOD - CnV and
+    from MOD + CnV + dead time on; the plant gets CnV and the dead time 80 FTM clocks
+    (DTPS /4 x DTVAL 20); DTVALEX extends DTVAL; a high-side pulse no longer than the dead
+    time disappears and the plant keeps its nominal width (the diode conducts in the gap).
+
+    Methods: 1a the RM's output of a complementary pair with dead time; 1b prescalers /1, /4,
+    /16 and DTVALEX; 1c the boundary of a pulse as long as the dead time
+    """
+    f = ftm_cpwm()
+    assert f.dead_ticks() == 80
+    pins = f.pin_on()
+    assert pins[0] == [(5000 - 1200 + 80, 5000 + 1200)]
+    assert pins[1] == [(0, 5000 - 1200), (5000 + 1200 + 80, 10000)]
+    assert periph.bridge(pins, 5000) == ([1200, 2500, 4000], 80, True)
+    for reg, ticks in ((0x05, 5), (0x45, 5), (0x85, 20), (0xC5, 80), ((1 << 16) | 0x05, 69),
+                       ((0xF << 16) | 0xFF, 16 * 1023)):
+        assert ftm_cpwm(deadtime=reg).dead_ticks() == ticks, hex(reg)
+    f = ftm_cpwm(c0v=(40, 2500, 5000))
+    pins = f.pin_on()
+    assert pins[0] == [] and pins[4] == [(0, 10000)] and pins[5] == []
+    assert periph.bridge(pins, 5000) == ([40, 2500, 5000], 80, True)
+
+
+def test_ftm_outputs_without_dead_time_mask_polarity_and_shoot_through():
+    """REQ-PIL-007: DTEN clear gives dead time 0 to the plant; OUTMASK of all six outputs
+    switches the bridge off; COMP clear (the low side a PWM of its own CnV) or POL set on a
+    low side puts both switches of a leg on together: the run stops on the shoot-through.
+
+    Methods: 1d the errors guessed: dead time off, complementary mode off, an inverted
+    output; 1b the masked bridge
+    """
+    f = ftm_cpwm(comb_pair=0x62)
+    assert periph.bridge(f.pin_on(), 5000) == ([1200, 2500, 4000], 0, True)
+    f = ftm_cpwm(outmask=0x3F)
+    assert periph.bridge(f.pin_on(), 5000) == ([0, 0, 0], None, False)
+    for kw in ({"comb_pair": 0x70}, {"pol": 0x02}):
+        with pytest.raises(core.Stop, match="shoot-through"):
+            periph.bridge(ftm_cpwm(**kw).pin_on(), 5000)
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_dead_time_mismatch_with_the_table_is_reported(libs, monkeypatch, capsys):
+    """REQ-PIL-007: the image's FTM3 inserts 80 FTM clocks, the table compensates dt_comp =
+    40 compare counts (80 clocks): the run passes and the plant switches with the registers'
+    dead time (1 us); with the registers read as 60 clocks the run fails on the dead-time
+    check, which names both figures.
+
+    Methods: 1a the comparison of the statement; 1l the fault injected: a dead time 20 clocks
+    short of the compensation
+    """
+    args, run = fw_run(libs, "--ms", "420", "--lin-period-ms", "20", "--power-on-ms", "350")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert r["ok"], out
+    pil = r["pil"]
+    assert set(pil.dead_ticks) == {80} and pil.dead_ticks[80] > 100
+    assert abs(pil.plant.dead_time_s - 1.0e-6) < 1e-12
+    monkeypatch.setattr(periph.FTM, "dead_ticks", lambda self: 60)
+    args, run = fw_run(libs, "--ms", "60")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert not r["ok"]
+    assert "FAIL the inverter's dead time from the FTM3 registers" in out
+    assert "registers 60" in out and "table 80" in out
+
+
+# ---------------------------------------------------------------------- clocks
+def scg_regs(**kw):
+    """An SCG model with the port's clock set-up (mcu.c, qfoc_s32k_clock_init): SOSC 8 MHz
+    crystal, SOSCDIV1 = SOSCDIV2 = /1, SPLL PREDIV 0, MULT 24, SPLLDIV1 /2, SPLLDIV2 /4,
+    RCCR SCS = SPLL, DIVCORE 1, DIVBUS 1, DIVSLOW 2; keyword arguments replace registers."""
+    g = periph.SCG()
+    g.r.update({"SOSCCSR": 1, "SOSCCFG": 0x24, "SOSCDIV": 0x101, "SPLLCSR": 1,
+                "SPLLCFG": 24 << 16, "SPLLDIV": 0x302, "RCCR": 0x06010012})
+    g.r.update(kw)
+    g._tree = None
+    return g
+
+
+def test_clock_tree_from_the_scg_registers():
+    """REQ-PIL-008: the port's set-up gives VCO 320 MHz, SPLL_CLK 160 MHz, SPLLDIV1 80,
+    SPLLDIV2 40, SOSCDIV2 8, CORE = SYS 80, BUS 40, FLASH 80 / 3 MHz; PREDIV divides the
+    source by PREDIV + 1, MULT multiplies by MULT + 16, a divider field n by 2^(n - 1), 0
+    turns the output off; without the crystal (EREFS 0) or the SOSC disabled the SPLL is off.
+
+    Methods: 1a the RM's formulas; 1b each divider code; 1c the boundaries 0 (off) and 7
+    (/64) of a divider field
+    """
+    t = scg_regs().clock_tree()
+    assert (t["VCO"], t["SPLL"], t["SPLLDIV1"], t["SPLLDIV2"]) == (320e6, 160e6, 80e6, 40e6)
+    assert (t["SOSCDIV1"], t["SOSCDIV2"], t["CORE"], t["SYS"], t["BUS"]) == (8e6, 8e6, 80e6, 80e6, 40e6)
+    assert t["FLASH"] == 80_000_000 // 3
+    t = scg_regs(SPLLCFG=(24 << 16) | (1 << 8)).clock_tree()
+    assert t["VCO"] == 160e6 and t["SPLLDIV1"] == 40e6
+    t = scg_regs(SPLLCFG=4 << 16).clock_tree()
+    assert t["SPLL"] == 80e6
+    for field, div in ((1, 1), (2, 2), (3, 4), (7, 64)):
+        assert scg_regs(SOSCDIV=field << 8).clock_tree()["SOSCDIV2"] == 8e6 / div
+    assert scg_regs(SOSCDIV=0).clock_tree()["SOSCDIV2"] is None
+    assert scg_regs(SOSCCFG=0x20).clock_tree()["SPLL"] is None
+    assert scg_regs(SOSCCSR=0).clock_tree()["SOSCDIV2"] is None
+
+
+def test_peripheral_clocks_follow_the_registers(tmp_path):
+    """REQ-PIL-008: the core clocks per count of FTM3 (CLKS 01: SYS_CLK), the PDBs (SYS_CLK),
+    the ADCs (PCC PCS: SPLLDIV2 / 2^ADIV), LPIT0 and LPUART1 (PCC PCS: SOSCDIV2) follow the
+    SCG and PCC registers: SOSCDIV2 halved doubles the LPIT0 and LPUART1 counts, SPLLDIV2
+    halved doubles the ADC conversion; a clock that is off, a PCC source not modelled, or
+    a core clock other than the 80 MHz time base stops the run.
+
+    Methods: 1a the clock of each peripheral per the RM; 1d the errors guessed: a divider
+    off by 2, a clock left off, the core switched to another frequency
+    """
+    elf = build(tmp_path, "idle", "    .thumb_func\nreset:\n    b reset\n", {})
+    c = core.Core(elf)
+    dev = periph.build(c)
+    g = dev["SCG"]
+    g.r.update(scg_regs().r)
+    g._tree = None
+    for off, pcs in ((0xDC, 1), (0x1AC, 1), (0xEC, 6), (0x9C, 6), (0x98, 6)):
+        dev["PCC"].r[off] = (1 << 31) | periph.CGC | (pcs << 24)
+    ftm, pdb, adc, lpit, uart = dev["FTM3"], dev["PDB1"], dev["ADC1"], dev["LPIT0"], dev["LPUART1"]
+    ftm.r["SC"] = 1 << 3
+    adc.r["CFG2"] = 12
+    uart.r["BAUD"] = 0x0F00801A
+    assert (ftm.tick(), pdb.clk(), lpit.clk(), adc.conv_cycles()) == (1, 1, 10, 2 * 33)
+    assert uart.bit_cycles() == 16 * 26 * 10
+    g.r["SOSCDIV"] = 0x201
+    g._tree = None
+    assert (lpit.clk(), uart.bit_cycles()) == (20, 16 * 26 * 20)
+    g.r["SPLLDIV"] = 0x402
+    g._tree = None
+    assert adc.conv_cycles() == 4 * 33 and ftm.tick() == 1
+    g.r["SPLLDIV"] = 0x002
+    g._tree = None
+    with pytest.raises(core.Stop, match="SPLLDIV2 is off"):
+        adc.conv_cycles()
+    dev["PCC"].r[0xDC] = (1 << 31) | periph.CGC | (3 << 24)
+    with pytest.raises(core.Stop, match="FIRCDIV2 is not modelled"):
+        lpit.clk()
+    with pytest.raises(core.Stop, match="time base"):
+        g.wr_RCCR(0x06020012)
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_image_rates_from_the_clock_tree(libs, monkeypatch, capsys):
+    """REQ-PIL-008: the image's registers give the table's PWM frequency (8000 Hz), a 1 ms
+    LPIT0 period, LIN 19230.8 baud (19200 +-1.5 %) and CAN 500 kbit/s; with the crystal
+    taken as 4 MHz (every clock derived from it halved) the image's switch of the core to
+    the SPLL stops the run: CORE_CLK 40 MHz from the registers, not the 80 MHz time base.
+
+    Methods: 1a the rates of the statement from the registers; 1l the fault injected: the
+    crystal at half its frequency
+    """
+    args, run = fw_run(libs, "--ms", "60", "--expect", "ANY")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert r["ok"], out
+    assert "PWM 8000.0 Hz (table f_pwm_hz 8000)" in out and "19230.8 baud" in out
+    assert "500000 bit/s (network 500000)" in out and "period 80000 clocks" in out
+    monkeypatch.setattr(periph, "SOSC_HZ", 4_000_000)
+    args, run = fw_run(libs, "--ms", "60", "--expect", "ANY")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert not r["ok"] and "CORE_CLK 40000000 Hz" in out
+
+
+# ---------------------------------------------------------------------- sampling instant
+def test_plant_sampled_at_an_instant_of_the_period(libs):
+    """REQ-PIL-009: the plant's codes at tau after the period's start (sim_sample_at): at
+    tau = 0 those of the period's start, at tau = T those the plant gives after the period
+    with the same compare values and enable, in between the current's ripple (a code other
+    than the start's); the plant itself is not changed.
+
+    Methods: 1a the statement; 1c the boundaries tau = 0 and tau = T
+    """
+    import plant as plant_mod
+    p = plant_mod.Plant(libs[0], os.path.join(ROOT, "specs", "motors", "reference.toml"), 320.0)
+    p.set_dead_time(1e-6)
+    cmp3 = [2700, 2500, 2300]
+    for _ in range(40):
+        p.step(cmp3, True)
+    start = p.sample()
+    T = 2.0 * p.period / 80e6
+    assert p.sample_at(0.0) == start
+    mid = [p.sample_at(T * k / 8.0) for k in range(1, 8)]
+    end = p.sample_at(T)
+    assert p.sample() == start                      # unchanged by sample_at
+    assert any(m[:2] != start[:2] for m in mid)
+    p.step(cmp3, True)
+    assert p.sample() == end
+
+
+@pytest.mark.skipif(not os.path.exists(FW), reason="make firmware first")
+def test_conversions_convert_the_plant_at_their_instant(libs, monkeypatch, capsys):
+    """REQ-PIL-009: a conversion that starts after the reload point (V_dc on ADC1_SE8, back to
+    back after i_v) converts the plant at its own instant: sample_at is called with the
+    clocks since the reload point (132 for V_dc) and its code is the one converted; with the
+    plant's bus read as 0 V at those instants the drive never leaves PRECHARGE.
+
+    Methods: 1a the instant of each conversion; 1l the fault injected: the bus code of the
+    conversion instant 0
+    """
+    import plant as plant_mod
+    taus = []
+    orig = plant_mod.Plant.sample_at
+
+    def spy(self, tau):
+        taus.append(round(tau * 80e6))
+        return orig(self, tau)
+    monkeypatch.setattr(plant_mod.Plant, "sample_at", spy)
+    args, run = fw_run(libs, "--ms", "150", "--expect", "PRECHARGE")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert r["ok"], out
+    pil = r["pil"]
+    assert pil.tau_log == {(1, 8): 132} and set(taus) == {132}
+    assert len(taus) == pil.off_instant > 1000
+
+    def bus_zero(self, tau):
+        return orig(self, tau)[:2] + [0]
+    monkeypatch.setattr(plant_mod.Plant, "sample_at", bus_zero)
+    args, run = fw_run(libs, "--ms", "450", "--lin-period-ms", "20", "--power-on-ms", "350",
+                       "--expect", "STOP")
+    r = run.execute(args)
+    out = capsys.readouterr().out
+    assert not r["ok"]
+    assert all(run.STATES.get(s) == "PRECHARGE" for _, s, _ in r["seen"])
+
+
+# ---------------------------------------------------------------------- library counts
+# Two functions named as the drive's entry points, called from thread mode: the first runs
+# 6 instructions (its bx lr included); the second pends IRQ 40 in its third store, which is
+# taken at once (nested in the call: 4 instructions, entry and return), then runs on: 12
+# instructions of its own.
+LIB_COUNT = """
+    .thumb_func
+reset:
+    bl qfoc_drive_fast_step
+    bl qfoc_drive_tick
+    ldr r0, =0x1FFF8000
+    str r0, [r0]
+1:  b 1b
+
+    .thumb_func
+qfoc_drive_fast_step:
+    movs r0, #1
+    adds r0, r0, #1
+    adds r0, r0, #1
+    adds r0, r0, #1
+    adds r0, r0, #1
+    bx lr
+
+    .thumb_func
+qfoc_drive_tick:
+    ldr r0, =0xE000E104         @ ISER1: IRQ 40 enabled
+    movs r1, #1
+    lsls r1, r1, #8
+    str r1, [r0]
+    ldr r0, =0xE000E204         @ ISPR1: IRQ 40 pending: taken after this store
+    str r1, [r0]
+    movs r2, #1
+    adds r2, r2, #1
+    adds r2, r2, #1
+    adds r2, r2, #1
+    adds r2, r2, #1
+    bx lr
+    .ltorg
+
+    .thumb_func
+isr40:
+    movs r3, #1
+    adds r3, r3, #1
+    adds r3, r3, #1
+    bx lr
+"""
+
+
+def test_library_counts_exclude_nested_handlers(tmp_path):
+    """REQ-PIL-006: the count of a call is its own instructions from the first to the return
+    instruction: 6 for a straight function, 12 for one in which an interrupt (4 instructions,
+    12 clocks of entry and 10 of return) is taken, the handler's 26 clocks left out.
+
+    Methods: 1a the count of the statement on known instruction sequences; 1b a call with and
+    without a nested handler
+    """
+    import timing
+    elf = build(tmp_path, "libcount", LIB_COUNT, {40: "isr40"})
+    c = core.Core(elf)
+    lib = timing.LibTiming(c)
+    c.log_isr = True
+    c.boot()
+    assert c.run_until(400), c.stopped
+    assert lib.calls["qfoc_drive_fast_step"] == [6]
+    assert lib.calls["qfoc_drive_tick"] == [12]
+    assert [s[0] for s in c.irq_stats[40]] == [4] and c.handler_clocks == 4 + 12 + 10
+    t_tick = lib.max_at["qfoc_drive_tick"]
+    enter = [t for t, irq, what in c.isr_log if irq == 40 and what == "enter"]
+    assert len(enter) == 1 and t_tick < enter[0] < t_tick + 12 + 26      # nested in the call
