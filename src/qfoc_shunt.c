@@ -334,7 +334,7 @@ void qfoc_shunt_align(const qfoc_shunt_cfg_t *c, const qfoc_shunt_plan_t *p, int
         const int32_t w = (d * 25736) / 8192;
         const int32_t a1 = shunt_angle(w, r, (int32_t)p->trig[0] + half, p2);
         const int32_t a2 = shunt_angle(w, r, (int32_t)p->trig[1] + half, p2);
-        /* the step from the second sample to the first: |a2 - a1| may reach 32768 */
+        /* the step from the second sample to the first, held within 0.5 rad (16384) */
         const int32_t ad = shunt_min(shunt_max(a2 - a1, -16384), 16384);
         /* lo follows hi in the order u, v, w: q_hi = s (i_hi + 2 i_lo) / sqrt 3,
            q_lo = -s (2 i_hi + i_lo) / sqrt 3 */
