@@ -4,7 +4,7 @@
  *        from two DC-link samples handed to the drive's fast step, and the plan of the next
  *        period.
  *
- * Requirements: REQ-SHUNT-006, REQ-SHUNT-007 (specs/requirements/shunt.md).
+ * Requirements: REQ-SHUNT-006, REQ-SHUNT-007, REQ-SHUNT-008 (specs/requirements/shunt.md).
  */
 #include "qfoc/drive_shunt.h"
 #include "qfoc/q15.h"
@@ -74,6 +74,8 @@ uint8_t qfoc_drive_shunt_init(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d, uin
     c.t_sample = t->drive.shunt_sample;
     c.hold_max = t->drive.shunt_hold;
     sd->cfg = c;
+    /* (L_d + L_q) / 2, each read as 0 .. 32767 */
+    sd->l_mean = (int16_t)((((t->ld > 0) ? (int32_t)t->ld : 0) + ((t->lq > 0) ? (int32_t)t->lq : 0)) / 2);
     ok = (qfoc_shunt_init(&sd->rec, &c) == QFOC_SHUNT_OK) && mode;
     dsh_reset(sd, ok, latency);
     return ok ? QFOC_SHUNT_OK : QFOC_SHUNT_ERR_CFG;
@@ -110,6 +112,27 @@ static uint16_t dsh_offset(uint16_t off)
     return (off > QFOC_ADC_MAX) ? QFOC_ADC_MAX : off;
 }
 
+/* E13-8: the change of a phase current over one period at the full DC bus, Q15:
+   V_dc T / L = vdc x (w_base T) / l, w_base T = 2 pi k_theta / 2^17, l = (L_d + L_q) / 2 in
+   Q12: (vdc kt / 32768) x 2048 / l, then x pi (25736 / 8192); 0 for an inductance of 0 or
+   a bus at or below 0, at most 32767. */
+/*@
+  requires range: 0 <= kt <= 32767;
+  assigns \nothing;
+  ensures range: 0 <= \result <= 32767;
+*/
+static int32_t dsh_ripple_gain(qfoc_q15_t vdc, qfoc_q15_t kt, int16_t l_mean)
+{
+    const int32_t l = (int32_t)l_mean;
+    int32_t g = 0;
+    if ((l > 0) && (vdc > 0)) {
+        const int32_t m = (int32_t)qfoc_q15_mul(vdc, kt);
+        const int32_t a = (((m > 0) ? m : 0) * 2048) / l;
+        g = (((a > 10430) ? 10430 : a) * 25736) / 8192;
+    }
+    return g;
+}
+
 qfoc_adc_t qfoc_drive_shunt_measure(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d,
                                     const qfoc_adc_t *adc, qfoc_q15_t s1, qfoc_q15_t s2)
 {
@@ -133,6 +156,17 @@ qfoc_adc_t qfoc_drive_shunt_measure(qfoc_drive_shunt_t *sd, const qfoc_drive_t *
         qfoc_q15_t i[3];
         m = qfoc_shunt_currents(&sd->rec, &sd->plan[j], qfoc_q15_sat((int32_t)s1 - e),
                                 qfoc_q15_sat((int32_t)s2 - e), i);
+        if ((m == QFOC_SHUNT_OK) && (d->s.sm.sub != QFOC_SUB_CATCH)) {
+            /* E13-7: referred to the instant the drive takes its currents for, latency - 1
+               periods after the start of the sampled period (not in CATCH: drive_shunt.h);
+               the angle per period of the drive's speed, speed_f x k_theta / 65536 (2^16
+               per turn; k_theta above 32767, which no valid table has, read as 32767) */
+            const qfoc_q15_t kt = (d->f.pll.k_theta > 32767u) ? (qfoc_q15_t)32767
+                                                               : (qfoc_q15_t)d->f.pll.k_theta;
+            const int32_t dth = (int32_t)qfoc_q15_mul(d->f.speed_f, kt) / 2;
+            qfoc_shunt_align(&sd->cfg, &sd->plan[j], dth, dsh_ripple_gain(d->f.vdc, kt, sd->l_mean),
+                             (uint8_t)(sd->latency - 1u), i);
+        }
         a.iu = dsh_code(i[0], off_u);
         a.iv = dsh_code(i[1], off_v);
     }

@@ -4,7 +4,7 @@
  *        and the sampling instants) and the phase currents rebuilt from two DC-link
  *        samples, with the hold of the last currents.
  *
- * Requirements: REQ-SHUNT-001 .. REQ-SHUNT-004 (specs/requirements/shunt.md).
+ * Requirements: REQ-SHUNT-001 .. REQ-SHUNT-004, REQ-SHUNT-008 (specs/requirements/shunt.md).
  */
 #include "qfoc/shunt.h"
 #include "qfoc/q15.h"
@@ -242,4 +242,130 @@ uint8_t qfoc_shunt_currents(qfoc_shunt_t *s, const qfoc_shunt_plan_t *p, qfoc_q1
     out[1] = s->i[1];
     out[2] = s->i[2];
     return r;
+}
+
+/* The small-angle rotation of a phase current (E13-7): i - i a^2 / 2 - q a, with h = a^2 / 2
+   given (Q15). */
+/*@
+  requires range: QfocQ15Sym(i) && QfocQ15Sym(q) && QfocQ15Sym(a) && QfocQ15Sym(h);
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  ensures still: a == 0 && h == 0 ==> \result == i;
+*/
+static qfoc_q15_t shunt_turn(qfoc_q15_t i, qfoc_q15_t q, int32_t a, int32_t h)
+{
+    const int32_t di = (int32_t)qfoc_q15_mul(i, (qfoc_q15_t)h);
+    const int32_t dq = (int32_t)qfoc_q15_mul(q, (qfoc_q15_t)a);
+    return qfoc_q15_sat(((int32_t)i - di) - dq);
+}
+
+/* The quadrature (i_a + 2 i_b) / sqrt 3 of a phase, its sign s (+1 or -1) (E13-7). */
+/*@
+  requires range: QfocQ15Sym(a) && QfocQ15Sym(b) && (s == 1 || s == -1);
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+*/
+static qfoc_q15_t shunt_quad(qfoc_q15_t a, qfoc_q15_t b, int32_t s)
+{
+    const int32_t x = s * ((int32_t)a + (2 * (int32_t)b));
+    return qfoc_q15_from_q30(x * QFOC_SHUNT_INV_SQRT3);
+}
+
+/* A value held within [-b, b]. */
+/*@
+  requires range: 0 <= b;
+  assigns \nothing;
+  ensures range: -b <= \result <= b;
+  ensures kept: -b <= v <= b ==> \result == v;
+*/
+static int32_t shunt_clamp(int32_t v, int32_t b)
+{
+    return shunt_min(shunt_max(v, -b), b);
+}
+
+/* The PWM ripple of a phase current at tick n of the period (E13-8): g [y / p2 - 2 (n / p2)
+   (dx / p2)] / 3, y = 3 (C_k - mean C) the ticks the phase was high up to n less the mean of
+   the three, dx = 3 (x_k - mean x) twice over (2 x_k = up_k + down_k), each ratio in Q15. */
+/*@
+  requires range: 0 <= g <= 32767 && 200 <= p2 <= 65534;
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  ensures zero: g == 0 ==> \result == 0;
+*/
+static int32_t shunt_ripple(int32_t g, int32_t y, int32_t n, int32_t dx2, int32_t p2)
+{
+    /* each ratio held within the Q15 range (it reaches 32768 at most) */
+    const int32_t yq = shunt_clamp((shunt_clamp(y, p2) * 32768) / p2, 32767);
+    const int32_t nq = shunt_clamp((shunt_min(shunt_max(n, 0), p2) * 32768) / p2, 32767);
+    const int32_t xq = shunt_clamp((shunt_clamp(dx2, 2 * p2) * 16384) / p2, 32767);
+    const int32_t m = (int32_t)qfoc_q15_mul((qfoc_q15_t)nq, (qfoc_q15_t)xq);
+    const int32_t b = shunt_clamp((yq - (2 * m)) / 3, 32767);
+    return (int32_t)qfoc_q15_mul((qfoc_q15_t)g, (qfoc_q15_t)b);
+}
+
+/* The angle from a sample at tick t to the instant r (E13-7): w (r - t) / (2 P), the ratio
+   (r - t) / (2 P) held within [-1, 1] (it is, for a plan of the configuration) in Q15. */
+/*@
+  requires range: QfocQ15Sym(w) && 0 <= r <= 65534 && 0 <= t <= 65535 + 16384 &&
+                  200 <= p2 <= 65534;
+  assigns \nothing;
+  ensures range: QfocQ15Sym(\result);
+  ensures still: w == 0 ==> \result == 0;
+*/
+static int32_t shunt_angle(int32_t w, int32_t r, int32_t t, int32_t p2)
+{
+    const int32_t f = shunt_clamp((shunt_clamp(r - t, p2) * 32768) / p2, 32767);
+    return (int32_t)qfoc_q15_mul((qfoc_q15_t)w, (qfoc_q15_t)f);
+}
+
+void qfoc_shunt_align(const qfoc_shunt_cfg_t *c, const qfoc_shunt_plan_t *p, int32_t dth,
+                      int32_t g, uint8_t lead, qfoc_q15_t i[3])
+{
+    if (qfoc_shunt_cfg_is_valid(c) && p->ok && (p->hi <= 2u) && (p->lo <= 2u) &&
+        (p->hi != p->lo)) {
+        const uint8_t hi = p->hi;
+        const uint8_t lo = p->lo;
+        const uint8_t mid = (uint8_t)(3u - hi - lo);
+        const int32_t p2 = 2 * (int32_t)c->period;
+        const int32_t r = (lead == 0u) ? 0 : p2;
+        const int32_t half = (int32_t)c->t_sample / 2;
+        const int32_t d = shunt_min(shunt_max(dth, -QFOC_SHUNT_DTH_MAX), QFOC_SHUNT_DTH_MAX);
+        /* pi in Q13: 25736; |w| <= 5215 x 25736 / 8192 = 16383 */
+        const int32_t w = (d * 25736) / 8192;
+        const int32_t a1 = shunt_angle(w, r, (int32_t)p->trig[0] + half, p2);
+        const int32_t a2 = shunt_angle(w, r, (int32_t)p->trig[1] + half, p2);
+        /* the step from the second sample to the first, held within 0.5 rad (16384) */
+        const int32_t ad = shunt_min(shunt_max(a2 - a1, -16384), 16384);
+        /* lo follows hi in the order u, v, w: q_hi = s (i_hi + 2 i_lo) / sqrt 3,
+           q_lo = -s (2 i_hi + i_lo) / sqrt 3 */
+        const int32_t s = (lo == (uint8_t)((hi + 1u) % 3u)) ? (int32_t)1 : (int32_t)-1;
+        /* E13-8: the ripple at the two samples, taken off */
+        const int32_t gr = shunt_min(shunt_max(g, 0), 32767);
+        const int32_t n1 = (int32_t)p->trig[0] + half;
+        const int32_t n2 = (int32_t)p->trig[1] + half;
+        const int32_t per = (int32_t)c->period;
+        const int32_t s0 = (int32_t)p->up[0] + (int32_t)p->down[0];
+        const int32_t s1 = (int32_t)p->up[1] + (int32_t)p->down[1];
+        const int32_t s2 = (int32_t)p->up[2] + (int32_t)p->down[2];
+        const int32_t sx = (s0 + s1) + s2;
+        const int32_t xs[3] = { s0, s1, s2 };
+        /* high ticks up to the sample: hi alone at n1; hi and the middle one at n2 */
+        const int32_t c1 = shunt_max((n1 - per) + (int32_t)p->up[hi], 0);
+        const int32_t c2 = shunt_max((n2 - per) + (int32_t)p->up[hi], 0) +
+                           shunt_max((n2 - per) + (int32_t)p->up[mid], 0);
+        const int32_t rh = shunt_ripple(gr, 2 * c1, n1, (3 * xs[hi]) - sx, p2);
+        const int32_t rl = shunt_ripple(gr, -c2, n2, (3 * xs[lo]) - sx, p2);
+        const qfoc_q15_t ih = qfoc_q15_sat((int32_t)i[hi] - rh);
+        const qfoc_q15_t il = qfoc_q15_sat((int32_t)i[lo] - rl);
+        const int32_t hd = (int32_t)qfoc_q15_mul((qfoc_q15_t)ad, (qfoc_q15_t)ad) / 2;
+        const int32_t h1 = (int32_t)qfoc_q15_mul((qfoc_q15_t)a1, (qfoc_q15_t)a1) / 2;
+        const qfoc_q15_t il1 = shunt_turn(il, shunt_quad(il, ih, -s), ad, hd);
+        const qfoc_q15_t ih2 = shunt_turn(ih, shunt_quad(ih, il1, s), a1, h1);
+        const qfoc_q15_t il2 = shunt_turn(il1, shunt_quad(il1, ih, -s), a1, h1);
+        i[hi] = ih2;
+        i[lo] = il2;
+        i[mid] = qfoc_q15_sat(-((int32_t)ih2 + (int32_t)il2));
+    } else {
+        /* no measurement of this plan: nothing to refer */
+    }
 }

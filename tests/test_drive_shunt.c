@@ -232,6 +232,69 @@ static void test_req_shunt_006_codes(void **state)
     assert_true(p->up[0] <= sd.cfg.period);
 }
 
+/* REQ-SHUNT-008: the measurement refers the rebuilt currents to the drive's instant, latency
+   - 1 periods after the start of the sampled period, with the angle per period of the
+   drive's filtered speed and the ripple of its filtered bus across (L_d + L_q) / 2: the
+   codes equal those of the currents turned by qfoc_shunt_align() with the angle and the gain
+   computed here in double precision from the table's bases (within one step of rounding of
+   each: 1 code); without speed and bus the currents are those rebuilt.
+   Methods: 1b speeds of both signs, both latencies; 1c no speed and no bus; 1n the angle
+   (speed x f_base / f_pwm turns per period) and the gain (V_dc T / L) in double precision */
+static void test_req_shunt_008_measure(void **state)
+{
+    static const uint16_t cmp[3] = { 2400u, 1500u, 600u };
+    const qfoc_adc_t a = { 0u, 0u, 2621u };
+    const qfoc_param_table_t *t = &shunt_table;
+    const int16_t speeds[4] = { 0, 3000, -5000, 9000 };
+    int k;
+    (void)state;
+    for (k = 0; k < 8; k++) {
+        qfoc_drive_t d;
+        qfoc_drive_shunt_t sd;
+        qfoc_shunt_t rec;
+        qfoc_q15_t i[3];
+        qfoc_adc_t c;
+        const uint8_t lat = (uint8_t)(1 + (k & 1));
+        const int16_t sp = speeds[k / 2];
+        const int16_t vdc = (k < 2) ? 0 : 16000;
+        double dth;
+        double g;
+        int32_t diff[2][2];
+        int m;
+        measured_rig(&d, &sd, lat, cmp);
+        assert_int_equal(d.s.offset_u, 2048u);
+        d.f.speed_f = sp;
+        d.f.vdc = vdc;
+        /* the angle per period, 65536 per turn: speed / 32768 x f_base / f_pwm turns */
+        dth = (double)sp / 32768.0 * ((double)t->f_base_mhz * 1e-3) / (double)t->f_pwm_hz * 65536.0;
+        /* V_dc T / L in Q15 of I_base: vdc / 32768 x w_base T / l_pu, l_pu = (ld + lq) / 2 / 4096 */
+        g = (double)vdc / 32768.0 * (2.0 * 3.14159265358979 * (double)t->f_base_mhz * 1e-3 /
+            (double)t->f_pwm_hz) / (0.5 * ((double)t->ld + (double)t->lq) / 4096.0) * 32768.0;
+        c = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
+        assert_int_equal(sd.status, QFOC_SHUNT_OK);
+        for (m = 0; m < 2; m++) {
+            const int32_t dd = (m == 0) ? (int32_t)floor(dth) : (int32_t)ceil(dth);
+            const int32_t gg = (m == 0) ? (int32_t)floor(g) : (int32_t)ceil(g);
+            (void)qfoc_shunt_init(&rec, &sd.cfg);
+            assert_int_equal(qfoc_shunt_currents(&rec, &sd.plan[0], 6000, -2500, i), QFOC_SHUNT_OK);
+            qfoc_shunt_align(&sd.cfg, &sd.plan[0], dd, gg, (uint8_t)(lat - 1u), i);
+            diff[m][0] = (int32_t)c.iu - ((int32_t)d.s.offset_u + i[0] / 16);
+            diff[m][1] = (int32_t)c.iv - ((int32_t)d.s.offset_v + i[1] / 16);
+        }
+        assert_true(labs((long)diff[0][0]) <= 1 || labs((long)diff[1][0]) <= 1);
+        assert_true(labs((long)diff[0][1]) <= 1 || labs((long)diff[1][1]) <= 1);
+        if (k >= 2) {
+            /* speed and bus: the currents are no longer those rebuilt */
+            assert_true((c.iu != d.s.offset_u + 6000 / 16) || (c.iv != d.s.offset_v - 8500 / 16));
+        }
+        if (k < 2) {
+            /* no speed, no bus: as rebuilt, i_u = s1 = 6000, i_v = s2 - s1 = -8500 */
+            assert_int_equal(c.iu, d.s.offset_u + 6000 / 16);
+            assert_int_equal(c.iv, d.s.offset_v - 8500 / 16);
+        }
+    }
+}
+
 /* REQ-SHUNT-006, REQ-SHUNT-007: a cold start from standstill to 3000 rpm at the nominal
    4.5 N m with the currents rebuilt from the DC-link samples: closed loop reached, the
    speed within 1 % and the angle error within 1.5 times the two-sensor start's (and at
@@ -333,6 +396,7 @@ int main(void)
         cmocka_unit_test(test_req_shunt_006_codes),
         cmocka_unit_test(test_req_shunt_006_cold_start),
         cmocka_unit_test(test_req_shunt_007_sensing_lost),
+        cmocka_unit_test(test_req_shunt_008_measure),
     };
     return cmocka_run_group_tests_name("drive_shunt", tests, setup, NULL);
 }

@@ -259,8 +259,8 @@ static double metric(const char *key)
 /* REQ-SCN-016: the cold start on a single-shunt inverter (the reference motor's table with
    sensing.mode = "shunt"; the plant's DC-link current with the dead time, a ringing for the
    table's settle time and the table's sample time): every target of [cold_start], the
-   loop closed at the same time as with two sensors (within 10 ms), the largest angle error
-   within 1.5 times the two-sensor start's.
+   loop closed at the same time as with two sensors (within 10 ms), the largest and the RMS
+   angle error and the speed held within 1.5 times the two-sensor start's.
    Methods: 1a the cold start of REQ-SCN-001 with single-shunt sensing; 1n the same start
    with two phase-current sensors */
 static void test_scn_016_cold_start_shunt(void **state)
@@ -280,6 +280,8 @@ static void test_scn_016_cold_start_shunt(void **state)
     judged("angle_err_max_deg");
     assert_true(fabs(metric("t_closed_loop_s") - t_cl) <= 0.010);
     assert_true(metric("angle_err_max_deg") <= 1.5 * ang_max);
+    assert_true(metric("angle_err_rms_deg") <= 1.5 * ang_rms);
+    assert_true(metric("ss_err_max_pct") <= 1.5 * ripple);
     print_message("single shunt / two sensors: angle error max %.2f / %.2f deg (x %.2f), rms "
                   "%.3f / %.3f deg (x %.2f), speed held within %.3f / %.3f %% (x %.2f)\n",
                   metric("angle_err_max_deg"), ang_max, metric("angle_err_max_deg") / ang_max,
@@ -287,13 +289,13 @@ static void test_scn_016_cold_start_shunt(void **state)
                   metric("ss_err_max_pct"), ripple, metric("ss_err_max_pct") / ripple);
 }
 
-/* REQ-SCN-017: the pulsating load with torque compensation and the controlled stop on a lost
-   link (and the restart) on the single-shunt table: every target of [pulsating_load] and
-   [fault_link]; the ripple reduction within 1 point of the two-sensor run's, LINK detected and
-   the PWM off at the same time (within 1 ms).  The speed changes to 8000 rpm (field weakening)
-   are not run on it: open finding FND-11 (specs/safety-analysis.md section 4.2).
-   Methods: 1a the scenarios of REQ-SCN-003 and REQ-SCN-010 with single-shunt sensing; 1n the
-   same runs with two phase-current sensors */
+/* REQ-SCN-017: the pulsating load with torque compensation, the controlled stop on a lost
+   link (and the restart) and the speed changes to 8000 rpm on the single-shunt table: every
+   target of [pulsating_load], [fault_link] and [speed_steps]; the ripple reduction within
+   1 point of the two-sensor run's, the speed ripple within 1.5 times, LINK detected and the
+   PWM off at the same time (within 1 ms).
+   Methods: 1a the scenarios of REQ-SCN-002, REQ-SCN-003 and REQ-SCN-010 with single-shunt
+   sensing; 1n the same runs with two phase-current sensors */
 static void test_scn_017_shunt_runs(void **state)
 {
     double red;
@@ -309,6 +311,7 @@ static void test_scn_017_shunt_runs(void **state)
     assert_true(res.pass);
     judged("ripple_reduction_pct");
     assert_true(fabs(metric("ripple_reduction_pct") - red) <= 1.0);
+    assert_true(metric("ripple_on_rpm") <= 1.5 * rip);
     print_message("single shunt / two sensors, pulsating load: ripple reduction %.2f / %.2f %%, "
                   "speed ripple %.2f / %.2f rpm (x %.2f), angle error rms %.3f / %.3f deg "
                   "(x %.2f)\n", metric("ripple_reduction_pct"), red, metric("ripple_on_rpm"), rip,
@@ -321,6 +324,14 @@ static void test_scn_017_shunt_runs(void **state)
     judged("t_pwm_off_ms");
     judged("t_recover_s");
     assert_true(fabs(metric("t_pwm_off_ms") - t_off) <= 1.0);
+    run("speed_steps", &tab_shunt, "speed_steps_reference_shunt");
+    assert_true(res.pass);
+    judged("overshoot_8000_pct");
+    judged("i_peak_pct_trip");
+    judged("faults");
+    print_message("single shunt, speed changes: overshoot at 8000 rpm %.2f %%, i_d at 8000 rpm "
+                  "%.2f A, peak current %.1f %% of i_trip\n", metric("overshoot_8000_pct"),
+                  metric("id_8000_a"), metric("i_peak_pct_trip"));
 }
 
 /* REQ-SCN-012: the 16 kHz table, the traction motor and the 800 V e-compressor start with

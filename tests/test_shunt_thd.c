@@ -230,9 +230,10 @@ static void point(sht_point_t *p, const scn_table_t *tab, int mode)
    the smallest the library accepts (t_settle 0, t_sample 1: an edge moves only where two
    compare values are equal) the shifted-PWM path agrees with the two-sensor run within
    0.05 points of THD and of total distortion; with the single shunt's own window (200
-   ticks) the edge shifting alone changes them by less than 0.3 points; the single shunt
-   adds more than 3 points of THD (the 4th harmonic, from the rebuilt currents), and every
-   run holds the fundamental within 2 % of the two-sensor run's.
+   ticks) the edge shifting alone changes them by less than 0.3 points; the single shunt,
+   its currents referred to the two-sensor instant (REQ-SHUNT-008), adds some THD but less
+   than 1.5 points (more than 5 before), and every run holds the fundamental within 2 % of
+   the two-sensor run's.
    Methods: 1b the three ways of measuring and switching (two sensors, the shift alone, the
    single shunt); 1c the smallest window the library accepts (the shift practically off);
    1d a shifted PWM that distorts the current by itself; 1n the DFT of the plant's true
@@ -268,8 +269,10 @@ static void test_req_scn_018_shunt_thd(void **state)
     assert_true(shift.shifted_frac > 0.05);
     assert_true(fabs(shift.thd - two.thd) < 0.003);
     assert_true(fabs(shift.tdd - two.tdd) < 0.003);
-    assert_true(sh.thd - two.thd > 0.03);
-    assert_true(sh.ph[0].h_rms[4] > sh.ph[0].h_rms[5]);
+    assert_true(sh.thd > two.thd);
+    assert_true(sh.thd - two.thd < 0.015);
+    print_message("single shunt, phase u: 2nd .. 5th harmonic %.4f %.4f %.4f %.4f A rms\n",
+                  sh.ph[0].h_rms[2], sh.ph[0].h_rms[3], sh.ph[0].h_rms[4], sh.ph[0].h_rms[5]);
     assert_true(fabs(sh.fund_rms / two.fund_rms - 1.0) < 0.02);
     assert_true(fabs(shift.fund_rms / two.fund_rms - 1.0) < 0.02);
 }

@@ -28,6 +28,16 @@
  * zero in Q15.  While switching, e (from offset_u) is taken off both samples before the
  * currents are rebuilt, and each rebuilt current i_k is handed over as offset_k + i_k / 16,
  * which the drive turns back into i_k (to 16 LSB).
+
+Instant: the currents of a measured period are referred to the instant a two-sensor drive
+samples (qfoc_shunt_align(), E13-7): `latency - 1` periods after the start of the sampled
+period, 1.5 periods before the centre of the voltage the fast step then computes, with the
+angle per period of the drive's filtered speed (speed_f x k_theta / 65536, 2^16 per turn),
+and the PWM ripple of each sample taken off (E13-8: the drive's filtered DC bus across the
+table's mean inductance (L_d + L_q) / 2).  A held period hands over the last currents as
+rebuilt, and so does every period of the flying-start detection (the drive's sub-state
+QFOC_SUB_CATCH: zero currents held while the estimator's speed settles; samples that do not
+measure, an open sense line, are not turned into a current there).
  *
  * Quality: a period without a measurement (a plan that could not open both windows) holds
  * the last currents for at most drive.shunt_hold periods (QFOC_SHUNT_HELD); beyond it the
@@ -43,7 +53,7 @@
  * 2 where the fast step runs at the start of a period with the samples of the one before,
  * as the simulator does).
  *
- * Requirements: REQ-SHUNT-006, REQ-SHUNT-007 (specs/requirements/shunt.md).
+ * Requirements: REQ-SHUNT-006 .. REQ-SHUNT-008 (specs/requirements/shunt.md).
  */
 #ifndef QFOC_DRIVE_SHUNT_H
 #define QFOC_DRIVE_SHUNT_H
@@ -66,6 +76,8 @@ typedef struct {
     bool plan_on[2];            /**< the output each of those plans was made for was enabled */
     uint8_t head;               /**< 0 .. 1: the index of the last call's plan */
     uint8_t latency;            /**< 1 .. QFOC_DRIVE_SHUNT_LATENCY_MAX */
+    int16_t l_mean;             /**< (L_d + L_q) / 2 of the table, Q12 of L_base, 0 .. 32767:
+                                     the inductance of the PWM ripple (E13-8) */
     uint8_t status;             /**< the last call's measurement: QFOC_SHUNT_OK, _HELD, _LOST;
                                      QFOC_SHUNT_ERR_CFG after a refused initialisation */
     bool lost;                  /**< the sensing was lost or never configured: output off */
@@ -104,13 +116,14 @@ uint8_t qfoc_drive_shunt_init(qfoc_drive_shunt_t *sd, const qfoc_drive_t *d, uin
  * @brief Before the drive's fast step: the phase-current codes of this period from its two
  *        DC-link samples, for qfoc_drive_fast_step() (see above).
  * @param[in,out] sd  the front end (valid)
- * @param[in]     d   the drive (its calibrated offsets are read; above 4095 read as 4095)
+ * @param[in]     d   the drive (its calibrated offsets are read, above 4095 read as 4095;
+ *                    its filtered speed and the PLL's k_theta give the angle per period)
  * @param[in]     adc this period's DC-bus code (its phase-current codes are not read)
  * @param[in]     s1  the first DC-link sample of this period, Q15 (hal.h), any value
  * @param[in]     s2  the second, any value
  * @return the codes the drive's fast step takes: the DC-bus code as read, the phase
  *         codes within 0 .. 4095; u 4095, v 0 once the sensing is lost
- * Requirements: REQ-SHUNT-006, REQ-SHUNT-007.
+ * Requirements: REQ-SHUNT-006, REQ-SHUNT-007, REQ-SHUNT-008.
  */
 /*@
   requires valid: \valid(sd) && \valid_read(d) && \valid_read(adc);

@@ -30,6 +30,15 @@
  * periods in a row; after that it reports LOST (the caller's fault), and so it does from
  * init until the first measured period.
  *
+ * qfoc_shunt_align() refers the rebuilt currents of a measured period to one instant (E13-7):
+ * the two samples are taken at two instants of the up-counting half, while the drive's
+ * estimator and current loop take the currents of the instant a two-sensor inverter samples
+ * (the centre of the zero vector with every phase low, 1.5 periods before the centre of the
+ * voltage computed from them, specs/equations.md E12-3).  The PWM ripple of each sample is
+ * taken off (E13-8: the current at that instant is the mean trajectory's), and each measured
+ * phase is turned to the instant by the angle the rotor travels in between, from the drive's
+ * speed.
+ *
  * Every function is total: any configuration (an invalid one is refused and measures
  * nothing: every period LOST), any compare value (above the period: clamped, as the PWM
  * applies it), any sample and any plan (indices out of range: not measured).
@@ -39,7 +48,7 @@
  * current (code less its offset, x 16, as the drive reads its phase samples).  All
  * arithmetic is in 32 bits on values at most 2 x 32767.
  *
- * Requirements: REQ-SHUNT-001 .. REQ-SHUNT-004 (specs/requirements/shunt.md).
+ * Requirements: REQ-SHUNT-001 .. REQ-SHUNT-004, REQ-SHUNT-008 (specs/requirements/shunt.md).
  */
 #ifndef QFOC_SHUNT_H
 #define QFOC_SHUNT_H
@@ -89,6 +98,12 @@ typedef struct {
 #define QFOC_SHUNT_LOST    ((uint8_t)2u)
 /** qfoc_shunt_init(): the configuration was refused. */
 #define QFOC_SHUNT_ERR_CFG ((uint8_t)3u)
+
+/** Largest angle per period qfoc_shunt_align() turns by: 5215 / 65536 of a turn, 0.5 rad
+    (the reference motor turns 0.30 rad per period at 8000 rpm); a larger one is clamped. */
+#define QFOC_SHUNT_DTH_MAX ((int32_t)5215)
+/** 1 / sqrt(3) in Q15: round(32768 / sqrt(3)) = 18919. */
+#define QFOC_SHUNT_INV_SQRT3 ((int32_t)18919)
 
 #ifdef __FRAMAC__
 /* ACSL logic of this module, read by Frama-C only (DEV-001). */
@@ -246,6 +261,85 @@ void qfoc_shunt_plan(const qfoc_shunt_cfg_t *c, const uint16_t cmp[3], qfoc_shun
 */
 uint8_t qfoc_shunt_currents(qfoc_shunt_t *s, const qfoc_shunt_plan_t *p, qfoc_q15_t s1,
                             qfoc_q15_t s2, qfoc_q15_t out[3]);
+
+/**
+ * @brief The rebuilt currents of a measured period referred to one instant (E13-7).
+ * @param[in]     c    the configuration (any values; a refused one changes nothing)
+ * @param[in]     p    the plan in force while the samples were taken (any contents; one
+ *                     that did not open both windows changes nothing)
+ * @param[in]     dth  the electrical angle the rotor turns per PWM period, 65536 per turn,
+ *                     signed (any value; clamped to +-QFOC_SHUNT_DTH_MAX)
+ * @param[in]     g    the change of a phase current over one period (2 P ticks) under the
+ *                     full DC-bus voltage, V_dc T / L, Q15 of the current base (any value;
+ *                     held within 0 .. 32767; 0: no ripple taken off)
+ * @param[in]     lead whole periods from the start of the sampled period to the instant:
+ *                     0 or 1 (any other value read as 1)
+ * @param[in,out] i    the phase currents u, v, w qfoc_shunt_currents() rebuilt from p's
+ *                     samples (any values); on return referred to the instant
+ *
+ * With P the period, the samples' mid-points (their sample-and-hold) lie at t_j = trig[j]
+ * + t_sample / 2 ticks from the start of the period (2 P ticks), the instant at r = lead x
+ * 2 P; w = pi dth / 32768 rad per period and phi_j = w (r - t_j) / (2 P) the angle from
+ * sample j to the instant (Q15 rad: the ratio (r - t_j) / (2 P) in Q15, truncated and held
+ * within [-1, 1], times w rounded; within +-16384).  With q_k = (i_k+1 -
+ * i_k+2) / sqrt 3 the quadrature of phase k (u, v, w cyclic: the current vector turning
+ * by a, i_k goes to i_k cos a - q_k sin a) and R(i, q, a) = i - i a^2 / 2 - q a the
+ * small-angle rotation:
+ *   0. the PWM ripple of each sample is taken off (E13-8): the phase voltage less its mean
+ *      over the period, integrated from the start of the period (where the ripple is zero,
+ *      as it is again at the end) to the sample, r_k(n) = g [(C_k(n) - C(n)) - n (x_k -
+ *      x) / P] / (2 P), C_k(n) the ticks phase k was high up to tick n (up-counting half:
+ *      n - P + up_k, at least 0), x_k = (up_k + down_k) / 2 its mean compare value, C and
+ *      x the means of the three; each ratio to 2 P in Q15, truncated;
+ *   1. the phase lo is turned to the first sample's instant: i_lo' = R(i_lo, q_lo,
+ *      phi_2 - phi_1), q_lo from the currents as rebuilt (i_hi, i_lo, -(i_hi + i_lo));
+ *   2. both are turned to the instant: i_hi'' = R(i_hi, q_hi, phi_1), i_lo'' = R(i_lo',
+ *      q_lo', phi_1), the quadratures from (i_hi, i_lo', -(i_hi + i_lo'));
+ *   3. the third phase is -(i_hi'' + i_lo'').
+ * Every product is a Q15 product rounded to nearest (qfoc_q15_mul()), every sum saturated
+ * to [-32767, 32767].
+ *
+ * Error bound (REQ-SHUNT-008): for phase currents that are those of a current vector of
+ * magnitude I turning at the constant rate w, |I| <= 30000, plus the ripple of E13-8 (the
+ * plant's inductance the one g is made with, no dead time), each of the three
+ * returned currents lies within
+ *     I (1.2 d^2 (1 + 1.2 |phi_1|) + 0.2 (|d|^3 + |phi_1|^3)) + 12 LSB,   d = phi_2 - phi_1
+ * of the vector's phase current at the instant: the truncation of the small-angle rotation
+ * (a^3 / 6), the quadrature of step 1 taken from two instants (2 / sqrt 3 I |d| per rad of
+ * turn) and the roundings (the ripple's within 4 LSB for g <= 32767).  |d| <= |w| / 2 (both samples lie in one half period) and
+ * |phi_1| <= |w|: at the reference motor's 0.23 rad per period (6000 rpm) the bound is
+ * 2.3 % of I + 12 LSB, at 0.30 rad (8000 rpm) 4.3 %; the currents as rebuilt are off by up
+ * to 22 % and 29 % of I there (tests/test_shunt.c checks the bound against a
+ * double-precision reference: at most 0.8 of it reached, 1.2 % and 2.1 % of I).
+ *
+ * Scaling and overflow: every tick difference is held within +-2 P (+-4 P for the compare
+ * sums) before its ratio to 2 P, so that times 32768 (16384) it stays below 2^31; each
+ * ratio is held within the Q15 range, and the products of two Q15 values are
+ * qfoc_q15_mul()'s (rounded, saturated); dth is clamped to |dth| <= 5215 and w = dth x
+ * 25736 / 8192 (pi in Q13) lies within +-16383; the quadratures come from sums of at most
+ * 3 x 32767 times 18919 < 2^31, rounded by qfoc_q15_from_q30() (saturated).  Only a
+ * configuration qfoc_shunt_cfg_is_valid() accepts is used (P >= 100: no division by 0).
+ *
+ * Requirements: REQ-SHUNT-008.
+ */
+/*@
+  requires valid: \valid_read(c) && \valid_read(p) && \valid(i + (0 .. 2));
+  requires sep: \separated(i + (0 .. 2), c) && \separated(i + (0 .. 2), p);
+  assigns i[0 .. 2];
+  behavior turned:
+    assumes ShuntCfgValid(c) && p->ok && ShuntPlanIdx(p);
+    ensures range: QfocQ15Sym(i[0]) && QfocQ15Sym(i[1]) && QfocQ15Sym(i[2]);
+    ensures third: i[3 - p->hi - p->lo] == QfocSat15(-(i[p->hi] + i[p->lo]));
+    ensures still: dth == 0 && g <= 0 && QfocQ15Sym(\old(i[p->hi])) && QfocQ15Sym(\old(i[p->lo])) ==>
+                   i[p->hi] == \old(i[p->hi]) && i[p->lo] == \old(i[p->lo]);
+  behavior kept:
+    assumes !(ShuntCfgValid(c) && p->ok && ShuntPlanIdx(p));
+    ensures kept: i[0] == \old(i[0]) && i[1] == \old(i[1]) && i[2] == \old(i[2]);
+  complete behaviors;
+  disjoint behaviors;
+*/
+void qfoc_shunt_align(const qfoc_shunt_cfg_t *c, const qfoc_shunt_plan_t *p, int32_t dth,
+                      int32_t g, uint8_t lead, qfoc_q15_t i[3]);
 
 #ifdef __cplusplus
 }

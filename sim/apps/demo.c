@@ -83,17 +83,16 @@ int main(int argc, char **argv)
         n++;
     }
     /* a single-shunt table of the reference motor: the pulsating load with torque
-       compensation and the controlled stop on a lost link with the restart on it too, against
-       the targets of the two-sensor runs (REQ-SCN-017; the speed changes to 8000 rpm are not
-       run on it: open finding FND-11) */
-    for (k = 1; k < scn_n_tables && n + 2 <= MAX_RUNS; k++) {
-        static const char *const shunt_scn[2] = { "pulsating_load", "fault_link" };
+       compensation, the controlled stop on a lost link with the restart and the speed changes
+       to 8000 rpm on it too, against the targets of the two-sensor runs (REQ-SCN-017) */
+    for (k = 1; k < scn_n_tables && n + 3 <= MAX_RUNS; k++) {
+        static const char *const shunt_scn[3] = { "pulsating_load", "fault_link", "speed_steps" };
         int j;
         if (scn_tables[k].table->drive.sensing != QFOC_SENSING_SHUNT ||
             strcmp(scn_tables[k].motor_file, scn_tables[0].motor_file) != 0) {
             continue;
         }
-        for (j = 0; j < 2; j++) {
+        for (j = 0; j < 3; j++) {
             runs[n].scenario = shunt_scn[j];
             runs[n].tab = &scn_tables[k];
             snprintf(runs[n].name, sizeof runs[n].name, "%s_%s", shunt_scn[j], scn_tables[k].name);

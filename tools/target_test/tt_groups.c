@@ -1526,7 +1526,9 @@ static void tt_replay_drive_shunt(tt_ctx_t *c)
 /* ------------------------------------------------------------------ shunt.h */
 
 /* shunt: [period, t_settle, t_sample, hold_max, cmp u, v, w, s1, s2] -> the check, the
-   init's status, the plan, the currents of the plan and of a period without a measurement
+   init's status, the plan, the currents of the plan, those currents referred to the
+   instant by qfoc_shunt_align() (s1 / 4 as the angle per period, s2 as the ripple gain, the
+   lead 0 or 1 by the vector's parity), the currents of a period without a measurement
    (held or lost), the count. */
 static void tt_replay_shunt(tt_ctx_t *c)
 {
@@ -1565,6 +1567,15 @@ static void tt_replay_shunt(tt_ctx_t *c)
         tt_d_i16(&d, out[0]);
         tt_d_i16(&d, out[1]);
         tt_d_i16(&d, out[2]);
+        {
+            qfoc_q15_t al[3];
+            (void)memcpy(al, out, sizeof al);
+            qfoc_shunt_align(&cfg, &pl, (int32_t)tt_in_i16(c, k, 7u) / 4, (int32_t)tt_in_i16(c, k, 8u),
+                             (uint8_t)(k & 1u), al);
+            tt_d_i16(&d, al[0]);
+            tt_d_i16(&d, al[1]);
+            tt_d_i16(&d, al[2]);
+        }
         pl.ok = false;
         tt_d_u8(&d, qfoc_shunt_currents(&s, &pl, tt_in_i16(c, k, 8u), tt_in_i16(c, k, 7u), out));
         tt_d_i16(&d, out[0]);
