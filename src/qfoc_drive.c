@@ -389,6 +389,7 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
     qfoc_ab_t i_ab;
     qfoc_angle_t theta;
     qfoc_q15_t w;
+    qfoc_q15_t w_ff;
     qfoc_sincos_t sc;
     qfoc_dq_t ref;
     qfoc_dq_t v_dq;
@@ -428,7 +429,13 @@ static void drv_control(qfoc_drive_t *d, uint8_t sub, qfoc_q15_t ff)
     /* CATCH measures the back-EMF by the voltage the zero-current PIs need: no feed-forward
        of the estimate's own speed, which would put on the terminals the very back-EMF the
        verdict looks for, kept by the inverter's dead band at zero current (REQ-DRV-027) */
-    drv_current_loop(f, p, &ref, (sub == QFOC_SUB_CATCH) ? (qfoc_q15_t)0 : w, &v_dq);
+    w_ff = w;
+    if (sub == QFOC_SUB_CATCH) {
+        w_ff = 0;
+    } else {
+        /* the decoupling at the loops' speed */
+    }
+    drv_current_loop(f, p, &ref, w_ff, &v_dq);
     /* the command acts from the next period on, on average 1.5 periods later */
     {
         const int32_t adv = drv_advance(w, p->pll.k_theta);

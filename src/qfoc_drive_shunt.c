@@ -161,8 +161,12 @@ qfoc_adc_t qfoc_drive_shunt_measure(qfoc_drive_shunt_t *sd, const qfoc_drive_t *
                periods after the start of the sampled period (not in CATCH: drive_shunt.h);
                the angle per period of the drive's speed, speed_f x k_theta / 65536 (2^16
                per turn; k_theta above 32767, which no valid table has, read as 32767) */
-            const qfoc_q15_t kt = (d->f.pll.k_theta > 32767u) ? (qfoc_q15_t)32767
-                                                               : (qfoc_q15_t)d->f.pll.k_theta;
+            qfoc_q15_t kt = 32767;
+            if (d->f.pll.k_theta <= 32767u) {
+                kt = (qfoc_q15_t)d->f.pll.k_theta;
+            } else {
+                /* no valid table: read as 32767 */
+            }
             const int32_t dth = (int32_t)qfoc_q15_mul(d->f.speed_f, kt) / 2;
             qfoc_shunt_align(&sd->cfg, &sd->plan[j], dth, dsh_ripple_gain(d->f.vdc, kt, sd->l_mean),
                              (uint8_t)(sd->latency - 1u), i);
