@@ -295,6 +295,58 @@ static void test_req_shunt_008_measure(void **state)
     }
 }
 
+/* REQ-SHUNT-008: the corners of the correction's factors in qfoc_drive_shunt_measure(): a
+   front end whose mean inductance is 0 takes no ripple off (the same codes as with no bus,
+   where the gain is 0 too), and a k_theta above 32767, which no valid table has, reads as
+   32767 (the same codes as with 32767).
+   Methods: 1c l_mean 0 and k_theta 32767 / 40000; 1n each against the same measurement
+   with the other input giving the same factor */
+static void test_req_shunt_008_measure_corners(void **state)
+{
+    static const uint16_t cmp[3] = { 2400u, 1500u, 600u };
+    const qfoc_adc_t a = { 0u, 0u, 2621u };
+    qfoc_drive_t d;
+    qfoc_drive_shunt_t sd;
+    qfoc_adc_t c0;
+    qfoc_adc_t c1;
+    (void)state;
+    /* l_mean 0 at a bus of 16000 against a bus of 0 */
+    measured_rig(&d, &sd, 2u, cmp);
+    d.f.speed_f = 3000;
+    d.f.vdc = 0;
+    c0 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
+    measured_rig(&d, &sd, 2u, cmp);
+    d.f.speed_f = 3000;
+    d.f.vdc = 16000;
+    assert_true(sd.l_mean > 0);
+    sd.l_mean = 0;
+    c1 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
+    assert_int_equal(sd.status, QFOC_SHUNT_OK);
+    assert_int_equal(c1.iu, c0.iu);
+    assert_int_equal(c1.iv, c0.iv);
+    /* k_theta 40000 against 32767 */
+    measured_rig(&d, &sd, 1u, cmp);
+    d.f.speed_f = 3000;
+    d.f.vdc = 16000;
+    d.f.pll.k_theta = 32767u;
+    c0 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
+    measured_rig(&d, &sd, 1u, cmp);
+    d.f.speed_f = 3000;
+    d.f.vdc = 16000;
+    d.f.pll.k_theta = 40000u;
+    c1 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
+    assert_int_equal(sd.status, QFOC_SHUNT_OK);
+    assert_int_equal(c1.iu, c0.iu);
+    assert_int_equal(c1.iv, c0.iv);
+    /* and the factor matters: another k_theta gives other codes */
+    measured_rig(&d, &sd, 1u, cmp);
+    d.f.speed_f = 3000;
+    d.f.vdc = 16000;
+    d.f.pll.k_theta = 8000u;
+    c1 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
+    assert_true((c1.iu != c0.iu) || (c1.iv != c0.iv));
+}
+
 /* REQ-SHUNT-006, REQ-SHUNT-007: a cold start from standstill to 3000 rpm at the nominal
    4.5 N m with the currents rebuilt from the DC-link samples: closed loop reached, the
    speed within 1 % and the angle error within 1.5 times the two-sensor start's (and at
@@ -397,6 +449,7 @@ int main(void)
         cmocka_unit_test(test_req_shunt_006_cold_start),
         cmocka_unit_test(test_req_shunt_007_sensing_lost),
         cmocka_unit_test(test_req_shunt_008_measure),
+        cmocka_unit_test(test_req_shunt_008_measure_corners),
     };
     return cmocka_run_group_tests_name("drive_shunt", tests, setup, NULL);
 }

@@ -606,6 +606,15 @@ static void test_req_shunt_008_align(void **state)
         pl.hi = pl.lo;
         qfoc_shunt_align(&cfgs[0], &pl, 3000, 0, 1u, j);
         assert_memory_equal(j, i, sizeof j);
+        /* a phase index out of range, either sample's */
+        qfoc_shunt_plan(&cfgs[0], cmp, &pl);
+        pl.hi = 3u;
+        qfoc_shunt_align(&cfgs[0], &pl, 3000, 0, 1u, j);
+        assert_memory_equal(j, i, sizeof j);
+        qfoc_shunt_plan(&cfgs[0], cmp, &pl);
+        pl.lo = 3u;
+        qfoc_shunt_align(&cfgs[0], &pl, 3000, 0, 1u, j);
+        assert_memory_equal(j, i, sizeof j);
         qfoc_shunt_plan(&cfgs[0], cmp, &pl);
         j[0] = -32768;
         j[1] = 32767;
