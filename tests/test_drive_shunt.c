@@ -295,6 +295,31 @@ static void test_req_shunt_008_measure(void **state)
     }
 }
 
+/* One measured period at 3000 (Q15 speed) of the front end of measured_rig(): the bus vdc,
+   the front end's mean inductance kept (l_mean < 0) or set, the PLL's k_theta kept (0) or
+   set; the status must be OK. */
+static qfoc_adc_t corner_measure(uint8_t lat, int16_t vdc, int16_t l_mean, uint16_t k_theta)
+{
+    static const uint16_t cmp[3] = { 2400u, 1500u, 600u };
+    const qfoc_adc_t a = { 0u, 0u, 2621u };
+    qfoc_drive_t d;
+    qfoc_drive_shunt_t sd;
+    qfoc_adc_t c;
+    measured_rig(&d, &sd, lat, cmp);
+    assert_true(sd.l_mean > 0);
+    d.f.speed_f = 3000;
+    d.f.vdc = vdc;
+    if (l_mean >= 0) {
+        sd.l_mean = l_mean;
+    }
+    if (k_theta != 0u) {
+        d.f.pll.k_theta = k_theta;
+    }
+    c = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
+    assert_int_equal(sd.status, QFOC_SHUNT_OK);
+    return c;
+}
+
 /* REQ-SHUNT-008: the corners of the correction's factors in qfoc_drive_shunt_measure(): a
    front end whose mean inductance is 0 takes no ripple off (the same codes as with no bus,
    where the gain is 0 too), and a k_theta above 32767, which no valid table has, reads as
@@ -303,47 +328,21 @@ static void test_req_shunt_008_measure(void **state)
    with the other input giving the same factor */
 static void test_req_shunt_008_measure_corners(void **state)
 {
-    static const uint16_t cmp[3] = { 2400u, 1500u, 600u };
-    const qfoc_adc_t a = { 0u, 0u, 2621u };
-    qfoc_drive_t d;
-    qfoc_drive_shunt_t sd;
     qfoc_adc_t c0;
     qfoc_adc_t c1;
     (void)state;
     /* l_mean 0 at a bus of 16000 against a bus of 0 */
-    measured_rig(&d, &sd, 2u, cmp);
-    d.f.speed_f = 3000;
-    d.f.vdc = 0;
-    c0 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
-    measured_rig(&d, &sd, 2u, cmp);
-    d.f.speed_f = 3000;
-    d.f.vdc = 16000;
-    assert_true(sd.l_mean > 0);
-    sd.l_mean = 0;
-    c1 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
-    assert_int_equal(sd.status, QFOC_SHUNT_OK);
+    c0 = corner_measure(2u, 0, -1, 0u);
+    c1 = corner_measure(2u, 16000, 0, 0u);
     assert_int_equal(c1.iu, c0.iu);
     assert_int_equal(c1.iv, c0.iv);
     /* k_theta 40000 against 32767 */
-    measured_rig(&d, &sd, 1u, cmp);
-    d.f.speed_f = 3000;
-    d.f.vdc = 16000;
-    d.f.pll.k_theta = 32767u;
-    c0 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
-    measured_rig(&d, &sd, 1u, cmp);
-    d.f.speed_f = 3000;
-    d.f.vdc = 16000;
-    d.f.pll.k_theta = 40000u;
-    c1 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
-    assert_int_equal(sd.status, QFOC_SHUNT_OK);
+    c0 = corner_measure(1u, 16000, -1, 32767u);
+    c1 = corner_measure(1u, 16000, -1, 40000u);
     assert_int_equal(c1.iu, c0.iu);
     assert_int_equal(c1.iv, c0.iv);
     /* and the factor matters: another k_theta gives other codes */
-    measured_rig(&d, &sd, 1u, cmp);
-    d.f.speed_f = 3000;
-    d.f.vdc = 16000;
-    d.f.pll.k_theta = 8000u;
-    c1 = qfoc_drive_shunt_measure(&sd, &d, &a, 6000, -2500);
+    c1 = corner_measure(1u, 16000, -1, 8000u);
     assert_true((c1.iu != c0.iu) || (c1.iv != c0.iv));
 }
 
